@@ -1,0 +1,11 @@
+#pragma once
+// Factories of the model kinds; each lives in its own file under lib/src/cases/kinds/.
+#include <memory>
+
+#include "drillwave/cases/model_kind.hpp"
+
+namespace drillwave::cases {
+
+std::unique_ptr<ModelKind> MakeTorsionalWaveKind();
+
+}  // namespace drillwave::cases

@@ -1,0 +1,28 @@
+#pragma once
+// Stick–slip statistics over a time window, shared by every kind whose bit (or disc) can stick.
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace drillwave::cases {
+
+struct StuckInterval {
+  double begin_s, end_s;  // end = +inf while still stuck at the end of the run
+};
+
+struct StickSlipStatistics {
+  double stick_slip_period_s = 0;  // mean interval between successive stick onsets in the window; NaN if < 2
+  int stick_onsets = 0;
+  double stick_fraction = 0;       // time stuck / window length
+  double speed_max = 0, speed_min = 0, speed_mean = 0;  // rad/s
+  nlohmann::json ToJson() const;   // NaN -> null
+};
+
+// speed samples (time, value) give max/min; the mean speed is exact from the angle at the window ends.
+StickSlipStatistics ComputeStickSlipStatistics(const std::vector<StuckInterval>& stuck,
+                                               const std::vector<double>& time_s,
+                                               const std::vector<double>& speed_rad_s,
+                                               const std::vector<double>& angle_rad, double window_begin_s,
+                                               double window_end_s);
+
+}  // namespace drillwave::cases

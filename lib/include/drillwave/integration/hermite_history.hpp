@@ -1,0 +1,65 @@
+#pragma once
+// Dense history of a vector-valued signal, built one accepted step at a time: a quartic piece per step from the
+// values and derivatives at both ends and the value at the midpoint (the cubic Hermite interpolant plus a bubble
+// s^2 (1-s)^2; with the midpoint of Dormand–Prince's continuous extension it reproduces that degree-4 extension). Pieces keep one-sided end values, so a jump or a kink at a
+// breakpoint or event is stored exactly (the left piece holds the left limit, the right piece the right limit).
+#include <functional>
+#include <vector>
+
+namespace drillwave::integration {
+
+// Which one-sided limit to take when a query time falls on a piece boundary.
+enum class Side { kLeft, kRight };
+
+class HermiteHistory {
+ public:
+  // Values (and derivatives) before the first committed piece. Called with t < start of history.
+  using Prehistory = std::function<void(double t, double* value, double* derivative)>;
+
+  explicit HermiteHistory(int dimension);
+  HermiteHistory(int dimension, Prehistory prehistory);
+
+  int dimension() const { return dimension_; }
+  bool empty() const { return first_ == t_begin_.size(); }
+  double begin_time() const;  // start of the oldest piece still kept
+  double end_time() const;    // end of the newest piece
+  std::size_t num_pieces() const { return t_begin_.size() - first_; }
+
+  // Appends the piece [t0, t1]; t0 must equal end_time() (up to rounding) unless the history is empty.
+  void Append(double t0, const double* x0, const double* d0, double t1, const double* x1, const double* d1,
+              const double* x_mid);
+
+  // Component i at time t. Before the history: the prehistory; after its end: the last piece extrapolated
+  // (only vanishing delays ask for that, and the step-size control keeps it accurate).
+  double Value(double t, int i, Side side = Side::kRight) const;
+  double Derivative(double t, int i, Side side = Side::kRight) const;
+  void Values(double t, double* out, Side side = Side::kRight) const;
+
+  // Integral of component i squared over [a, b] (within the stored pieces): exact for the quartic pieces
+  // (5-point Gauss–Legendre per piece). Used for the energy carried by waves in flight.
+  double IntegrateSquare(int i, double a, double b) const;
+
+  // Forgets pieces that end before t (for constant delays: t = now - largest delay).
+  void DiscardBefore(double t);
+
+ private:
+  struct Location {
+    std::size_t piece;  // index into the arrays; kPrehistory if before the history
+    double s;           // normalized position in the piece (0..1, may exceed 1 when extrapolating)
+  };
+  static constexpr int kPerPiece = 5;
+  static constexpr std::size_t kPrehistory = static_cast<std::size_t>(-1);
+  Location Locate(double t, Side side) const;
+  const double* PieceData(std::size_t piece) const { return &data_[piece * kPerPiece * dimension_]; }
+
+  int dimension_;
+  Prehistory prehistory_;
+  std::size_t first_ = 0;       // pieces before this index are discarded (compacted lazily)
+  std::vector<double> t_begin_;
+  std::vector<double> t_end_;
+  std::vector<double> data_;    // per piece: x0[dim], x1[dim], d0[dim], d1[dim], bubble[dim]
+  mutable std::vector<double> scratch_value_, scratch_deriv_;
+  mutable std::size_t hint_ = 0;  // piece of the last look-up (a cache; makes a history unsafe to share across threads)
+};
+
+}  // namespace drillwave::integration

@@ -1,0 +1,70 @@
+#pragma once
+// The wave network of a drill string (DESIGN.md §1): uniform sections carrying d'Alembert waves between nodes.
+// One channel (torsional here; the axial channel has the same structure with force and linear speed).
+// Sections and nodes form a chain: node 0 is the top, node i sits between sections i-1 and i, the last node is
+// the bit. The model is immutable; a run's changing state lives in NetworkProcess.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "drillwave/bitrock/friction.hpp"
+#include "drillwave/model/schedule.hpp"
+
+namespace drillwave::waves {
+
+// A uniform section: the 1-D wave equation reduced to its travel time and impedance.
+struct Section {
+  double length_m = 0;
+  double travel_time_s = 0;  // tau = L / c
+  double impedance = 0;      // Z = K / c = sqrt(K rho X): N·m·s/rad for torsion
+
+  // Torsion of a section of polar moment J [m^4], shear modulus G [Pa], density rho [kg/m^3].
+  static Section Torsional(double length_m, double shear_modulus_pa, double density_kg_m3, double polar_moment_m4);
+  double wave_speed() const { return length_m / travel_time_s; }
+  double stiffness() const { return impedance * wave_speed() / length_m; }  // K / L: lumped spring of the section
+  double inertia() const { return impedance * travel_time_s; }              // rho J L: lumped inertia of the section
+};
+
+// How a node is driven from outside (the top boundary conditions of the seeds).
+enum class Drive {
+  kNone,
+  kPrescribedSpeed,   // v = setpoint(t): the imposed-speed top (Neumann-free, reflection -1)
+  kSpeedDashpot,      // torque beta (setpoint(t) - v): the dissipative top of the chapter's eq. 2.10 family
+  kPiSpeedController, // torque kp (setpoint - v) + ki * integral(setpoint - v), clamped to +/- torque_limit
+  kTorque,            // torque = setpoint(t)
+};
+
+struct Node {
+  std::string name;                  // e.g. "top", "junction", "bit": used in messages and outputs
+  double inertia = 0;                // kg·m^2; 0 makes the node massless (algebraic)
+  double ground_damping = 0;         // torque -c v to the borehole or frame (local dampers, lumped viscous damping)
+  Drive drive = Drive::kNone;
+  model::Schedule setpoint;          // speed [rad/s] or torque [N·m], by drive
+  double drive_damping = 0;          // beta of kSpeedDashpot [N·m·s/rad]
+  double kp = 0, ki = 0;             // PI gains [N·m·s/rad], [N·m/rad]
+  double torque_limit = 0;           // 0: unlimited
+  std::optional<bitrock::FrictionLaw> friction;  // contact torque (bit–rock); set-valued laws need inertia > 0
+
+  bool massless() const { return inertia == 0; }
+  bool has_set_valued_friction() const { return friction && friction->IsSetValued(); }
+};
+
+// Initial condition: at rest, or turning rigidly at a given speed with the steady torque carried by every section.
+struct InitialCondition {
+  double speed_rad_s = 0;
+};
+
+struct Network {
+  std::vector<Section> sections;
+  std::vector<Node> nodes;  // sections.size() + 1
+  InitialCondition initial;
+
+  // Throws std::invalid_argument describing the first inconsistency (the case parser reports JSON paths first).
+  void Validate() const;
+  const Node& top() const { return nodes.front(); }
+  const Node& bit() const { return nodes.back(); }
+  double SmallestTravelTime() const;
+  double LargestTravelTime() const;
+};
+
+}  // namespace drillwave::waves

@@ -1,0 +1,32 @@
+// The list of model kinds. Adding a kind: write lib/src/cases/kinds/<kind>.cpp, declare its factory in kinds.hpp
+// and add it here; the runner, the solvers and the output writers stay as they are.
+#include "drillwave/cases/kinds.hpp"
+#include "drillwave/core/error.hpp"
+
+namespace drillwave::cases {
+
+const std::vector<std::unique_ptr<ModelKind>>& AllKinds() {
+  static const std::vector<std::unique_ptr<ModelKind>> kinds = [] {
+    std::vector<std::unique_ptr<ModelKind>> k;
+    k.push_back(MakeTorsionalWaveKind());
+    return k;
+  }();
+  return kinds;
+}
+
+const ModelKind& FindKind(const std::string& name, const std::string& json_path) {
+  std::string known;
+  for (const auto& kind : AllKinds()) {
+    if (kind->name() == name) return *kind;
+    known += (known.empty() ? "" : ", ") + kind->name();
+  }
+  throw InputError(json_path, "unknown model kind \"" + name + "\"; expected one of: " + known);
+}
+
+const Channel& RunResult::channel(const std::string& name) const {
+  for (const Channel& c : channels)
+    if (c.name == name) return c;
+  throw std::out_of_range("no channel named " + name);
+}
+
+}  // namespace drillwave::cases

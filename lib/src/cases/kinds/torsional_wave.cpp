@@ -1,0 +1,220 @@
+// Model kind "torsional_wave": a drill string of uniform sections (pipe, collars) as a d'Alembert wave network,
+// with a top boundary from the seeds (imposed speed, dissipative top, top drive with PI control, torque) and a bit
+// with any friction law. Distributed viscous damping is lumped into dashpots at internal massless nodes.
+#include <cmath>
+#include <limits>
+
+#include "drillwave/cases/kinds.hpp"
+#include "drillwave/cases/statistics.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/waves/network_simulation.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+using io::JsonReader;
+using Range = io::Range;
+
+constexpr double kRadPerSecToRpm = 60.0 / (2.0 * M_PI);
+
+waves::Section ReadSection(const JsonReader& r) {
+  const double length = r.Number("length_m", Range::Positive());
+  const double g = r.Number("shear_modulus_Pa", Range::Positive());
+  const double rho = r.Number("density_kg_m3", Range::Positive());
+  double j;
+  if (r.Has("polar_moment_m4")) {
+    j = r.Number("polar_moment_m4", Range::Positive());
+  } else {
+    const double ro = r.Number("outer_radius_m", Range::Positive());
+    const double ri = r.Number("inner_radius_m", Range::Between(0, ro), 0.0);
+    if (!(ri < ro)) throw InputError(r.PathOf("inner_radius_m"), "expected a number below outer_radius_m");
+    j = 0.5 * M_PI * (std::pow(ro, 4) - std::pow(ri, 4));
+  }
+  r.Allow("name");
+  r.Finish();
+  return waves::Section::Torsional(length, g, rho, j);
+}
+
+// Splits each section into m equal parts and puts a dashpot gamma * length / m to ground at each internal node:
+// the distributed viscous damping of eqs. 2.20/2.24 (gamma per unit length) lumped so the reduction stays exact.
+void AddSectionsWithDamping(const std::vector<waves::Section>& sections, double gamma_per_m, int subsections,
+                            waves::Network& net) {
+  for (std::size_t k = 0; k < sections.size(); ++k) {
+    const waves::Section& s = sections[k];
+    const int m = gamma_per_m > 0 ? subsections : 1;
+    for (int part = 0; part < m; ++part) {
+      net.sections.push_back({s.length_m / m, s.travel_time_s / m, s.impedance});
+      const bool last = k + 1 == sections.size() && part + 1 == m;
+      if (last) break;
+      waves::Node node;
+      node.name = part + 1 == m ? "junction" : "damper";
+      // Each internal node carries the damping of one part length; both string ends take half a part.
+      node.ground_damping = gamma_per_m * s.length_m / m;
+      net.nodes.push_back(node);
+    }
+  }
+}
+
+waves::Node ReadTop(const JsonReader& r) {
+  waves::Node top;
+  top.name = "top";
+  const std::string type = r.String("type", {"prescribed_speed", "dissipative", "top_drive", "torque"});
+  if (type == "prescribed_speed") {
+    top.drive = waves::Drive::kPrescribedSpeed;
+    top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
+  } else if (type == "dissipative") {
+    top.drive = waves::Drive::kSpeedDashpot;
+    top.drive_damping = r.Number("beta_Nms_per_rad", Range::Positive());
+    top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
+  } else if (type == "top_drive") {
+    top.drive = waves::Drive::kPiSpeedController;
+    top.inertia = r.Number("inertia_kgm2", Range::Positive());
+    top.kp = r.Number("kp_Nms_per_rad", Range::NonNegative());
+    top.ki = r.Number("ki_Nm_per_rad", Range::NonNegative());
+    top.torque_limit = r.Number("torque_limit_Nm", Range::NonNegative(), 0.0);
+    top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
+  } else {
+    top.drive = waves::Drive::kTorque;
+    top.inertia = r.Number("inertia_kgm2", Range::Positive());
+    top.setpoint = model::Schedule::FromJson(r.Raw("torque_Nm"), r.PathOf("torque_Nm"));
+  }
+  top.ground_damping = r.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
+  r.Finish();
+  return top;
+}
+
+class TorsionalWaveModel : public PreparedModel {
+ public:
+  explicit TorsionalWaveModel(waves::Network net) : net_(std::move(net)) {}
+
+  RunResult Run(const RunSettings& settings) const override {
+    waves::NetworkRunOptions options;
+    options.t_end_s = settings.duration_s;
+    options.output_interval_s = settings.output_interval_s;
+    options.integrator = settings.integrator;
+    const waves::NetworkRun run = waves::SimulateNetwork(net_, options);
+    const waves::NetworkTrajectory& tr = run.trajectory;
+
+    RunResult result;
+    result.time_s = tr.time_s;
+    auto scaled = [](const std::vector<double>& v, double f) {
+      std::vector<double> out(v.size());
+      for (std::size_t i = 0; i < v.size(); ++i) out[i] = f * v[i];
+      return out;
+    };
+    result.channels = {{"top_rpm", scaled(tr.top_speed_rad_s, kRadPerSecToRpm)},
+                       {"bit_rpm", scaled(tr.bit_speed_rad_s, kRadPerSecToRpm)},
+                       {"top_torque_Nm", tr.top_torque_nm},
+                       {"bit_torque_Nm", tr.bit_torque_nm},
+                       {"bit_angle_rad", tr.bit_angle_rad},
+                       {"bit_stuck", tr.bit_stuck}};
+    result.plot_panels = {{"top_rpm", "bit_rpm"}, {"top_torque_Nm", "bit_torque_Nm"}};
+
+    // Stuck intervals of the bit from its regime changes.
+    const int bit = static_cast<int>(net_.nodes.size()) - 1;
+    std::vector<StuckInterval> stuck;
+    if (!tr.bit_stuck.empty() && tr.bit_stuck.front() > 0) stuck.push_back({0.0, std::numeric_limits<double>::infinity()});
+    for (const waves::RegimeChange& c : run.regime_changes) {
+      if (c.node != bit) continue;
+      if (c.to == waves::Regime::kStuck && c.from != waves::Regime::kStuck)
+        stuck.push_back({c.time_s, std::numeric_limits<double>::infinity()});
+      else if (c.from == waves::Regime::kStuck && c.to != waves::Regime::kStuck && !stuck.empty())
+        stuck.back().end_s = c.time_s;
+    }
+    const StickSlipStatistics stats = ComputeStickSlipStatistics(
+        stuck, tr.time_s, tr.bit_speed_rad_s, tr.bit_angle_rad, settings.window_begin_s, settings.window_end_s);
+    result.summary = stats.ToJson();
+    result.summary["steps"] = run.stats.steps;
+    result.summary["events"] = run.stats.events;
+    result.summary["breakpoints"] = run.stats.breakpoints;
+    result.summary["derivative_evaluations"] = run.stats.derivative_evaluations;
+    result.summary["integration_wall_time_s"] = run.stats.wall_time_s;
+    return result;
+  }
+
+ private:
+  waves::Network net_;
+};
+
+class TorsionalWaveKind : public ModelKind {
+ public:
+  std::string name() const override { return "torsional_wave"; }
+  std::string description() const override {
+    return "torsional d'Alembert wave network: sections, top boundary, bit with friction (DESIGN.md §1–3)";
+  }
+  nlohmann::json FieldSchema() const override {
+    return {
+        {"string/sections/*/length_m", "section length [m], > 0"},
+        {"string/sections/*/shear_modulus_Pa", "G [Pa], > 0"},
+        {"string/sections/*/density_kg_m3", "rho [kg/m^3], > 0"},
+        {"string/sections/*/polar_moment_m4", "J [m^4], > 0 (or outer_radius_m and inner_radius_m)"},
+        {"string/sections/*/name", "optional label"},
+        {"string/viscous_damping_Nms_per_rad_m", "distributed viscous damping gamma [N·m·s/rad per m], >= 0, default 0"},
+        {"string/damping_subsections", "dashpot nodes per section for the damping, 1..1000, default 20"},
+        {"top/type", "prescribed_speed | dissipative | top_drive | torque"},
+        {"top/speed_rad_s", "set-point [rad/s]: a number or {\"knots\": [[t, v], ...]}"},
+        {"top/beta_Nms_per_rad", "dissipative top: beta > 0"},
+        {"top/inertia_kgm2", "top_drive/torque: inertia > 0"},
+        {"top/kp_Nms_per_rad", "top_drive: proportional gain >= 0"},
+        {"top/ki_Nm_per_rad", "top_drive: integral gain >= 0"},
+        {"top/torque_limit_Nm", "top_drive: >= 0, 0 = unlimited"},
+        {"top/torque_Nm", "torque top: schedule [N·m]"},
+        {"top/damping_Nms_per_rad", "local damper at the top, >= 0, default 0"},
+        {"bit/inertia_kgm2", "bit (BHA) inertia, >= 0 (0: massless bit, smooth friction only)"},
+        {"bit/damping_Nms_per_rad", "local damper at the bit, >= 0, default 0"},
+        {"bit/friction", "friction law, see below (optional: free bit)"},
+        {"initial/bit_speed_rad_s", "rigid rotation at start, default 0 (at rest; a set-valued bit starts stuck)"},
+        {"friction laws", bitrock::FrictionLaw::Schema()},
+    };
+  }
+
+  std::unique_ptr<PreparedModel> Prepare(const JsonReader& model) const override {
+    const JsonReader string = model.Object("string");
+    std::vector<waves::Section> sections;
+    for (const JsonReader& s : string.ObjectArray("sections")) sections.push_back(ReadSection(s));
+    if (sections.empty()) throw InputError(string.PathOf("sections"), "expected at least one section");
+    const double gamma = string.Number("viscous_damping_Nms_per_rad_m", Range::NonNegative(), 0.0);
+    const int subsections = string.Integer("damping_subsections", 1, 1000, 20);
+    string.Finish();
+
+    waves::Network net;
+    net.nodes.push_back(ReadTop(model.Object("top")));
+    AddSectionsWithDamping(sections, gamma, subsections, net);
+
+    const JsonReader bit_reader = model.Object("bit");
+    waves::Node bit;
+    bit.name = "bit";
+    bit.inertia = bit_reader.Number("inertia_kgm2", Range::NonNegative());
+    bit.ground_damping = bit_reader.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
+    if (bit_reader.Has("friction"))
+      bit.friction = bitrock::FrictionLaw::FromJson(bit_reader.Raw("friction"), bit_reader.PathOf("friction"));
+    if (bit.has_set_valued_friction() && bit.massless())
+      throw InputError(bit_reader.PathOf("inertia_kgm2"), "a set-valued friction law needs a bit inertia > 0");
+    bit_reader.Finish();
+    net.nodes.push_back(bit);
+    // Half a damping part at each end of the string, so the total equals gamma * length.
+    if (gamma > 0) {
+      net.nodes.front().ground_damping += 0.5 * gamma * sections.front().length_m / subsections;
+      net.nodes.back().ground_damping += 0.5 * gamma * sections.back().length_m / subsections;
+    }
+
+    if (model.Has("initial")) {
+      const JsonReader initial = model.Object("initial");
+      net.initial.speed_rad_s = initial.Number("bit_speed_rad_s", Range::Any(), 0.0);
+      initial.Finish();
+    }
+    model.Finish();
+    try {
+      net.Validate();
+    } catch (const std::invalid_argument& e) {
+      throw InputError(model.PathOf("top"), e.what());
+    }
+    return std::make_unique<TorsionalWaveModel>(std::move(net));
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<ModelKind> MakeTorsionalWaveKind() { return std::make_unique<TorsionalWaveKind>(); }
+
+}  // namespace drillwave::cases

@@ -1,0 +1,62 @@
+#include "drillwave/cases/statistics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace drillwave::cases {
+namespace {
+
+double Interpolate(const std::vector<double>& t, const std::vector<double>& y, double at) {
+  auto it = std::lower_bound(t.begin(), t.end(), at);
+  if (it == t.begin()) return y.front();
+  if (it == t.end()) return y.back();
+  const std::size_t i = static_cast<std::size_t>(it - t.begin());
+  const double w = (at - t[i - 1]) / (t[i] - t[i - 1]);
+  return y[i - 1] + w * (y[i] - y[i - 1]);
+}
+
+nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+nlohmann::json StickSlipStatistics::ToJson() const {
+  return {{"stick_slip_period_s", NumberOrNull(stick_slip_period_s)},
+          {"stick_onsets", stick_onsets},
+          {"stick_fraction", stick_fraction},
+          {"bit_speed_max_rad_s", speed_max},
+          {"bit_speed_min_rad_s", speed_min},
+          {"bit_speed_mean_rad_s", speed_mean}};
+}
+
+StickSlipStatistics ComputeStickSlipStatistics(const std::vector<StuckInterval>& stuck,
+                                               const std::vector<double>& time_s,
+                                               const std::vector<double>& speed_rad_s,
+                                               const std::vector<double>& angle_rad, double window_begin_s,
+                                               double window_end_s) {
+  StickSlipStatistics s;
+  const double length = window_end_s - window_begin_s;
+  std::vector<double> onsets;
+  double stuck_time = 0;
+  for (const StuckInterval& iv : stuck) {
+    if (iv.begin_s >= window_begin_s && iv.begin_s < window_end_s) onsets.push_back(iv.begin_s);
+    const double a = std::max(iv.begin_s, window_begin_s), b = std::min(iv.end_s, window_end_s);
+    if (b > a) stuck_time += b - a;
+  }
+  s.stick_onsets = static_cast<int>(onsets.size());
+  s.stick_slip_period_s = onsets.size() >= 2 ? (onsets.back() - onsets.front()) / (onsets.size() - 1)
+                                             : std::numeric_limits<double>::quiet_NaN();
+  s.stick_fraction = length > 0 ? stuck_time / length : 0;
+  s.speed_max = -std::numeric_limits<double>::infinity();
+  s.speed_min = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < time_s.size(); ++i) {
+    if (time_s[i] < window_begin_s || time_s[i] > window_end_s) continue;
+    s.speed_max = std::max(s.speed_max, speed_rad_s[i]);
+    s.speed_min = std::min(s.speed_min, speed_rad_s[i]);
+  }
+  if (!angle_rad.empty() && length > 0)
+    s.speed_mean = (Interpolate(time_s, angle_rad, window_end_s) - Interpolate(time_s, angle_rad, window_begin_s)) / length;
+  return s;
+}
+
+}  // namespace drillwave::cases

@@ -1,0 +1,172 @@
+#include "drillwave/integration/hermite_history.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace drillwave::integration {
+namespace {
+
+// Query times computed as (t + tau) - tau miss a stored boundary by a few ulps; closer than this they are on it.
+double SnapTolerance(double t) { return 1e-12 * std::max(1.0, std::abs(t)); }
+
+// Cubic Hermite basis on [0, 1] for a piece of length h, plus b * s^2 (1 - s)^2.
+inline double QuarticValue(double s, double h, double x0, double x1, double d0, double d1, double b) {
+  const double s2 = s * s, s3 = s2 * s, r = 1 - s;
+  return (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * h * d0 + (-2 * s3 + 3 * s2) * x1 + (s3 - s2) * h * d1 +
+         b * s2 * r * r;
+}
+
+inline double QuarticDerivative(double s, double h, double x0, double x1, double d0, double d1, double b) {
+  const double s2 = s * s;
+  return ((6 * s2 - 6 * s) * x0 + (-6 * s2 + 6 * s) * x1 + b * 2 * s * (1 - s) * (1 - 2 * s)) / h +
+         (3 * s2 - 4 * s + 1) * d0 + (3 * s2 - 2 * s) * d1;
+}
+
+}  // namespace
+
+HermiteHistory::HermiteHistory(int dimension)
+    : HermiteHistory(dimension, [dimension](double, double* x, double* d) {
+        std::fill(x, x + dimension, 0.0);
+        std::fill(d, d + dimension, 0.0);
+      }) {}
+
+HermiteHistory::HermiteHistory(int dimension, Prehistory prehistory)
+    : dimension_(dimension),
+      prehistory_(std::move(prehistory)),
+      scratch_value_(dimension),
+      scratch_deriv_(dimension) {
+  if (dimension <= 0) throw std::invalid_argument("HermiteHistory: dimension must be positive");
+}
+
+double HermiteHistory::begin_time() const { return empty() ? 0.0 : t_begin_[first_]; }
+double HermiteHistory::end_time() const { return empty() ? 0.0 : t_end_.back(); }
+
+void HermiteHistory::Append(double t0, const double* x0, const double* d0, double t1, const double* x1,
+                            const double* d1, const double* x_mid) {
+  if (!(t1 > t0)) throw std::invalid_argument("HermiteHistory::Append: empty or reversed piece");
+  if (!empty()) t0 = t_end_.back();  // keep the pieces contiguous despite rounding in the caller's times
+  t_begin_.push_back(t0);
+  t_end_.push_back(t1);
+  data_.insert(data_.end(), x0, x0 + dimension_);
+  data_.insert(data_.end(), x1, x1 + dimension_);
+  data_.insert(data_.end(), d0, d0 + dimension_);
+  data_.insert(data_.end(), d1, d1 + dimension_);
+  const double h = t1 - t0;
+  for (int i = 0; i < dimension_; ++i) {
+    const double cubic_mid = 0.5 * (x0[i] + x1[i]) + 0.125 * h * (d0[i] - d1[i]);
+    data_.push_back(16.0 * (x_mid[i] - cubic_mid));  // bubble weight: s^2 (1-s)^2 = 1/16 at s = 1/2
+  }
+}
+
+HermiteHistory::Location HermiteHistory::Locate(double t, Side side) const {
+  if (empty()) return {kPrehistory, 0.0};
+  const double eps = SnapTolerance(t);
+  // Look-ups come in runs at slowly advancing times: try the piece found last time and its successor first.
+  std::size_t piece;
+  const std::size_t n = t_begin_.size();
+  if (hint_ >= first_ && hint_ < n && t_begin_[hint_] <= t + eps && (hint_ + 1 == n || t + eps < t_begin_[hint_ + 1])) {
+    piece = hint_;
+  } else if (hint_ + 1 >= first_ && hint_ + 1 < n && t_begin_[hint_ + 1] <= t + eps &&
+             (hint_ + 2 == n || t + eps < t_begin_[hint_ + 2])) {
+    piece = hint_ + 1;
+  } else {
+    // Last piece starting at or before t + eps: t lies on its start boundary (within eps) or inside it.
+    const auto begin = t_begin_.begin() + static_cast<std::ptrdiff_t>(first_);
+    auto it = std::upper_bound(begin, t_begin_.end(), t + eps);
+    if (it == begin) return {kPrehistory, 0.0};  // before the history (or on its start, see below)
+    piece = static_cast<std::size_t>(it - t_begin_.begin()) - 1;
+  }
+  hint_ = piece;
+  if (std::abs(t - t_begin_[piece]) <= eps) {
+    // On a boundary: the left limit lives in the previous piece (or the prehistory).
+    if (side == Side::kLeft) {
+      if (piece == first_) return {kPrehistory, 0.0};
+      --piece;
+      return {piece, 1.0};
+    }
+    return {piece, 0.0};
+  }
+  const double h = t_end_[piece] - t_begin_[piece];
+  return {piece, (t - t_begin_[piece]) / h};
+}
+
+double HermiteHistory::Value(double t, int i, Side side) const {
+  const Location loc = Locate(t, side);
+  if (loc.piece == kPrehistory) {
+    prehistory_(std::min(t, empty() ? t : begin_time()), scratch_value_.data(), scratch_deriv_.data());
+    return scratch_value_[i];
+  }
+  const double* p = PieceData(loc.piece);
+  const int n = dimension_;
+  return QuarticValue(loc.s, t_end_[loc.piece] - t_begin_[loc.piece], p[i], p[n + i], p[2 * n + i], p[3 * n + i], p[4 * n + i]);
+}
+
+double HermiteHistory::Derivative(double t, int i, Side side) const {
+  const Location loc = Locate(t, side);
+  if (loc.piece == kPrehistory) {
+    prehistory_(std::min(t, empty() ? t : begin_time()), scratch_value_.data(), scratch_deriv_.data());
+    return scratch_deriv_[i];
+  }
+  const double* p = PieceData(loc.piece);
+  const int n = dimension_;
+  return QuarticDerivative(loc.s, t_end_[loc.piece] - t_begin_[loc.piece], p[i], p[n + i], p[2 * n + i],
+                           p[3 * n + i], p[4 * n + i]);
+}
+
+void HermiteHistory::Values(double t, double* out, Side side) const {
+  const Location loc = Locate(t, side);
+  if (loc.piece == kPrehistory) {
+    prehistory_(std::min(t, empty() ? t : begin_time()), out, scratch_deriv_.data());
+    return;
+  }
+  const double* p = PieceData(loc.piece);
+  const int n = dimension_;
+  const double h = t_end_[loc.piece] - t_begin_[loc.piece];
+  for (int i = 0; i < n; ++i) out[i] = QuarticValue(loc.s, h, p[i], p[n + i], p[2 * n + i], p[3 * n + i], p[4 * n + i]);
+}
+
+double HermiteHistory::IntegrateSquare(int i, double a, double b) const {
+  static constexpr double kNodes[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                                       0.9061798459386640};
+  static constexpr double kWeights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                         0.4786286704993665, 0.2369268850561891};
+  double total = 0;
+  auto integrate = [&](double lo, double hi) {
+    const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+    for (int q = 0; q < 5; ++q) {
+      const double v = Value(mid + half * kNodes[q], i);
+      total += kWeights[q] * half * v * v;
+    }
+  };
+  double lo = a;
+  // Prehistory part (constant or user function): integrate it as one smooth piece.
+  if (empty() || lo < t_begin_[first_]) {
+    const double hi = empty() ? b : std::min(b, t_begin_[first_]);
+    if (hi > lo) integrate(lo, hi);
+    lo = std::max(lo, hi);
+  }
+  for (std::size_t p = first_; p < t_begin_.size() && lo < b; ++p) {
+    if (t_end_[p] <= lo) continue;
+    const double hi = std::min(b, t_end_[p]);
+    if (hi > lo) integrate(lo, hi);
+    lo = hi;
+  }
+  if (lo < b) integrate(lo, b);  // beyond the end: extrapolated
+  return total;
+}
+
+void HermiteHistory::DiscardBefore(double t) {
+  while (first_ + 1 < t_begin_.size() && t_end_[first_] < t) ++first_;
+  // Compact when more than half of the storage is dead, so appends stay amortized O(1).
+  if (first_ > 1024 && first_ * 2 > t_begin_.size()) {
+    const auto n = static_cast<std::ptrdiff_t>(first_);
+    t_begin_.erase(t_begin_.begin(), t_begin_.begin() + n);
+    t_end_.erase(t_end_.begin(), t_end_.begin() + n);
+    data_.erase(data_.begin(), data_.begin() + n * kPerPiece * dimension_);
+    first_ = 0;
+    hint_ = 0;
+  }
+}
+
+}  // namespace drillwave::integration

@@ -1,0 +1,44 @@
+#include "drillwave/waves/network.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace drillwave::waves {
+
+Section Section::Torsional(double length_m, double shear_modulus_pa, double density_kg_m3, double polar_moment_m4) {
+  const double c = std::sqrt(shear_modulus_pa / density_kg_m3);
+  return Section{length_m, length_m / c, polar_moment_m4 * std::sqrt(shear_modulus_pa * density_kg_m3)};
+}
+
+void Network::Validate() const {
+  if (sections.empty()) throw std::invalid_argument("a network needs at least one section");
+  if (nodes.size() != sections.size() + 1) throw std::invalid_argument("a chain of n sections has n + 1 nodes");
+  for (const Section& s : sections)
+    if (!(s.travel_time_s > 0) || !(s.impedance > 0) || !std::isfinite(s.travel_time_s) || !std::isfinite(s.impedance))
+      throw std::invalid_argument("sections need positive finite travel time and impedance");
+  for (const Node& n : nodes) {
+    if (n.has_set_valued_friction() && n.massless())
+      throw std::invalid_argument("node '" + n.name + "': set-valued friction needs an inertia > 0");
+    if (n.drive == Drive::kPiSpeedController && n.massless())
+      throw std::invalid_argument("node '" + n.name + "': a PI speed controller needs an inertia > 0");
+    if (n.drive == Drive::kPrescribedSpeed && !n.massless())
+      throw std::invalid_argument("node '" + n.name + "': a prescribed-speed node has no inertia");
+    if (n.drive == Drive::kTorque && n.massless() && !n.friction && n.ground_damping == 0)
+      throw std::invalid_argument("node '" + n.name + "': a massless torque-driven node needs damping");
+  }
+}
+
+double Network::SmallestTravelTime() const {
+  double m = sections.front().travel_time_s;
+  for (const Section& s : sections) m = std::min(m, s.travel_time_s);
+  return m;
+}
+
+double Network::LargestTravelTime() const {
+  double m = 0;
+  for (const Section& s : sections) m = std::max(m, s.travel_time_s);
+  return m;
+}
+
+}  // namespace drillwave::waves

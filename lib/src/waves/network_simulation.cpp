@@ -1,0 +1,501 @@
+#include "drillwave/waves/network_simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "drillwave/integration/breakpoints.hpp"
+#include "drillwave/integration/hermite_history.hpp"
+
+namespace drillwave::waves {
+namespace {
+
+using integration::Side;
+using State = std::vector<double>;
+
+constexpr int kNone = -1;
+constexpr int kBitAngle = 0;
+
+struct Arrivals {
+  double above = 0, below = 0;
+};
+// The slip branch of a set-valued law is continued to the far side of zero by its limit at zero (trial stages can
+// overshoot a stop before the event that ends the regime is located).
+constexpr double kTinySpeed = 1e-300;
+
+// The mutable side of a run: committed wave buffers, friction regimes, pending breakpoints.
+// State layout: the bit angle (for statistics and, later, the cut-depth delay), then the speeds of nodes with
+// inertia, then PI integrals. Other angles are not integrated: nothing reads them and they would only add work.
+class NetworkProcess {
+ public:
+  NetworkProcess(const Network& net, const NetworkRunOptions& options)
+      : net_(net),
+        options_(options),
+        num_nodes_(static_cast<int>(net.nodes.size())),
+        waves_(2 * static_cast<int>(net.sections.size())) {
+    int next = 1;  // index 0: bit angle
+    speed_index_.assign(num_nodes_, kNone);
+    integral_index_.assign(num_nodes_, kNone);
+    regime_.assign(num_nodes_, Regime::kSlipPositive);
+    for (int i = 0; i < num_nodes_; ++i)
+      if (!net.nodes[i].massless()) speed_index_[i] = next++;
+    for (int i = 0; i < num_nodes_; ++i)
+      if (net.nodes[i].drive == Drive::kPiSpeedController) integral_index_[i] = next++;
+    dimension_ = next;
+    for (int i = 0; i < num_nodes_; ++i)
+      if (net.nodes[i].has_set_valued_friction()) frictional_nodes_.push_back(i);
+    max_travel_time_ = net.LargestTravelTime();
+    InitializeWaves();
+  }
+
+  int Dimension() const { return dimension_; }
+  double MaxStep() const { return net_.SmallestTravelTime(); }
+  void BeginStep(double t0) { step_start_ = t0; }
+
+  State InitialState() const {
+    State x(dimension_, 0.0);
+    for (int i = 0; i < num_nodes_; ++i)
+      if (speed_index_[i] != kNone) x[speed_index_[i]] = net_.initial.speed_rad_s;
+    // A PI controller in steady state holds the steady torque with its integral part.
+    for (int i = 0; i < num_nodes_; ++i)
+      if (integral_index_[i] != kNone && net_.nodes[i].ki > 0)
+        x[integral_index_[i]] = steady_torque_ / net_.nodes[i].ki;
+    return x;
+  }
+
+  // Decides the initial regimes: a bit at rest is stuck if the driving torque is within its static range.
+  void InitializeRegimes(double t0, State& x) {
+    step_start_ = t0;
+    for (int i : frictional_nodes_) {
+      const double v = net_.initial.speed_rad_s;
+      if (v > 0) regime_[i] = Regime::kSlipPositive;
+      else if (v < 0) regime_[i] = Regime::kSlipNegative;
+      else {
+        regime_[i] = Regime::kStuck;
+        regime_[i] = RegimeForDrivingTorque(i, DrivingTorqueAtRest(i, t0, x));
+        if (regime_[i] == Regime::kStuck) x[speed_index_[i]] = 0;
+      }
+    }
+  }
+
+  void Derivatives(const State& x, State& dxdt, double t) const {
+    const Side side = SideAt(t);
+    dxdt[kBitAngle] = Speed(num_nodes_ - 1, x, t, side);
+    for (int i = 0; i < num_nodes_; ++i) {
+      const Node& node = net_.nodes[i];
+      if (speed_index_[i] == kNone && integral_index_[i] == kNone) continue;
+      const double v = Speed(i, x, t, side);
+      if (integral_index_[i] != kNone) dxdt[integral_index_[i]] = Setpoint(node, t, side) - v;
+      if (speed_index_[i] == kNone) continue;
+      double& a = dxdt[speed_index_[i]];
+      if (regime_[i] == Regime::kStuck) {
+        a = 0;
+        continue;
+      }
+      double torque = StringTorqueOnNode(i, v, t, side) - node.ground_damping * v + DriveTorque(i, x, v, t, side);
+      if (node.friction) torque -= SlipFriction(i, v);
+      a = torque / node.inertia;
+    }
+  }
+
+  // The waves leaving every node over the piece, and how well their cubic Hermite interpolant matches the exact
+  // midpoint value: a wave buffer is history too, and its interpolation error is invisible to the stepper.
+  double PrepareCommit(const integration::Piece& p, double abs_tol, double rel_tol) {
+    const int m = waves_.dimension();
+    out0_.resize(m), out1_.resize(m), outm_.resize(m), d0_.resize(m), d1_.resize(m);
+    // Without a breakpoint or event in between, the start of this piece is the end of the last one.
+    if (!(start_is_last_end_ && p.t0 == last_end_time_)) OutgoingWaves(p.t0, p.x0, p.f0, Side::kRight, out0_.data(), d0_.data());
+    OutgoingWaves(p.t1, p.x1, p.f1, Side::kLeft, out1_.data(), d1_.data());
+    OutgoingWaves(0.5 * (p.t0 + p.t1), p.x_mid, p.f1, Side::kLeft, outm_.data(), nullptr);
+    const double h = p.t1 - p.t0;
+    double worst = 0;
+    for (int k = 0; k < m; ++k) {
+      const double cubic_mid = 0.5 * (out0_[k] + out1_[k]) + 0.125 * h * (d0_[k] - d1_[k]);
+      const double scale = abs_tol + rel_tol * std::max(std::abs(out0_[k]), std::abs(out1_[k]));
+      worst = std::max(worst, std::abs(outm_[k] - cubic_mid) / scale);
+    }
+    return worst;
+  }
+
+  void Commit(const integration::Piece& p) {
+    waves_.Append(p.t0, out0_.data(), d0_.data(), p.t1, out1_.data(), d1_.data(), outm_.data());
+    out0_.swap(out1_);
+    d0_.swap(d1_);
+    last_end_time_ = p.t1;
+    start_is_last_end_ = true;
+    // Keep what the delays can still reach, plus a margin for output look-ups.
+    waves_.DiscardBefore(p.t1 - 2.0 * max_travel_time_ - 1.0);
+  }
+
+  int NumWitnesses() const { return 2 * static_cast<int>(frictional_nodes_.size()); }
+
+  // Slipping: the first witness is the speed in the slip direction (the bit stops). Stuck: the margins of the
+  // driving torque to the two static limits (the bit breaks free).
+  double Witness(int k, double t, const State& x) const {
+    const int i = frictional_nodes_[k / 2];
+    const bool first = k % 2 == 0;
+    switch (regime_[i]) {
+      case Regime::kSlipPositive: return first ? x[speed_index_[i]] : 1.0;
+      case Regime::kSlipNegative: return first ? -x[speed_index_[i]] : 1.0;
+      case Regime::kStuck: {
+        const double drive = DrivingTorqueAtRest(i, t, x);
+        const auto& f = *net_.nodes[i].friction;
+        return first ? f.StaticPositive() - drive : drive + f.StaticNegative();
+      }
+    }
+    return 1.0;
+  }
+
+  bool OnEvent(int k, double t, State& x) {
+    const int i = frictional_nodes_[k / 2];
+    const Regime before = regime_[i];
+    Regime after;
+    if (before == Regime::kStuck) {
+      after = k % 2 == 0 ? Regime::kSlipPositive : Regime::kSlipNegative;
+    } else {
+      // The node has come to rest: it stays if the friction can hold the driving torque, else it reverses.
+      regime_[i] = Regime::kStuck;
+      after = RegimeForDrivingTorque(i, DrivingTorqueAtRest(i, t, x));
+    }
+    regime_[i] = after;
+    if (after == Regime::kStuck || before == Regime::kStuck) x[speed_index_[i]] = 0;
+    changes_.push_back({t, i, before, after});
+    start_is_last_end_ = false;
+    Source(i, t, 1);
+    return after != before;
+  }
+
+  double NextBreakpoint() const { return breakpoints_.NextTime(); }
+  void OnBreakpoint(double t) {
+    start_is_last_end_ = false;
+    for (const auto& b : breakpoints_.PopAt(t, 1e-12 * std::max(1.0, std::abs(t)))) Echo(b);
+  }
+
+  // Sources of breakpoints: the start and every knot of every input schedule (a repeated knot time is a jump).
+  void SeedBreakpoints(double t0, double t_end) {
+    for (int i = 0; i < num_nodes_; ++i) {
+      const auto& knots = net_.nodes[i].setpoint.knots();
+      bool jump_at_start = false;
+      for (std::size_t k = 0; k < knots.size(); ++k) {
+        const double tk = knots[k].first;
+        const bool jump = (k > 0 && knots[k - 1].first == tk) || (k + 1 < knots.size() && knots[k + 1].first == tk);
+        if (tk <= t0) jump_at_start |= jump && tk == t0;
+        else if (tk < t_end && !(k > 0 && knots[k - 1].first == tk)) breakpoints_.Push({tk, i, 1.0, jump ? 0 : 1, kNone, 0});
+      }
+      Source(i, t0, jump_at_start ? 0 : 1);
+    }
+  }
+
+  // Outputs at time t for a state x (interpolated by the caller).
+  void Sample(double t, const State& x, NetworkTrajectory& out) const {
+    const Side side = Side::kLeft;
+    const int top = 0, bit = num_nodes_ - 1;
+    const double v_top = Speed(top, x, t, side), v_bit = Speed(bit, x, t, side);
+    out.time_s.push_back(t);
+    out.top_speed_rad_s.push_back(v_top);
+    out.bit_speed_rad_s.push_back(v_bit);
+    out.top_torque_nm.push_back(-StringTorqueOnNode(top, v_top, t, side));
+    out.bit_torque_nm.push_back(BitTorque(bit, x, t, side));
+    out.bit_angle_rad.push_back(x[kBitAngle]);
+    out.bit_stuck.push_back(regime_[bit] == Regime::kStuck && net_.nodes[bit].has_set_valued_friction() ? 1.0 : 0.0);
+    if (options_.record_energy) out.energy_j.push_back(StoredEnergy(t, x));
+  }
+
+  const std::vector<RegimeChange>& changes() const { return changes_; }
+
+  // Kinetic energy of the nodes plus the energy in flight in every section: the energy density of a section is
+  // rho J (D^2 + U^2), so a section holds Z times the integral of D^2 + U^2 over the last travel time.
+  double StoredEnergy(double t, const State& x) const {
+    double e = 0;
+    for (int i = 0; i < num_nodes_; ++i)
+      if (speed_index_[i] != kNone) {
+        const double v = Speed(i, x, t, Side::kLeft);
+        e += 0.5 * net_.nodes[i].inertia * v * v;
+      }
+    for (std::size_t k = 0; k < net_.sections.size(); ++k) {
+      const double tau = net_.sections[k].travel_time_s;
+      e += net_.sections[k].impedance * (waves_.IntegrateSquare(2 * static_cast<int>(k), t - tau, t) +
+                                         waves_.IntegrateSquare(2 * static_cast<int>(k) + 1, t - tau, t));
+    }
+    return e;
+  }
+
+ private:
+  Side SideAt(double t) const { return t <= step_start_ ? Side::kRight : Side::kLeft; }
+
+  // Components of the wave history: 2k is the wave leaving the top of section k (going down), 2k+1 the wave
+  // leaving its bottom (going up). A wave arrives at the far end one travel time later.
+  // Waves arriving at node i at time t from the section above and the section below (0 where there is none).
+  Arrivals Arriving(int i, double t, Side side) const {
+    Arrivals in;
+    if (HasAbove(i)) in.above = waves_.Value(t - net_.sections[i - 1].travel_time_s, 2 * (i - 1), side);
+    if (HasBelow(i)) in.below = waves_.Value(t - net_.sections[i].travel_time_s, 2 * i + 1, side);
+    return in;
+  }
+  Arrivals ArrivingRate(int i, double t, Side side) const {
+    Arrivals in;
+    if (HasAbove(i)) in.above = waves_.Derivative(t - net_.sections[i - 1].travel_time_s, 2 * (i - 1), side);
+    if (HasBelow(i)) in.below = waves_.Derivative(t - net_.sections[i].travel_time_s, 2 * i + 1, side);
+    return in;
+  }
+  bool HasAbove(int i) const { return i > 0; }
+  bool HasBelow(int i) const { return i < num_nodes_ - 1; }
+
+  double ImpedanceSum(int i) const {
+    return (HasAbove(i) ? net_.sections[i - 1].impedance : 0.0) + (HasBelow(i) ? net_.sections[i].impedance : 0.0);
+  }
+  // Sum of Z_k * 2 w_in,k over the sections at node i (torque the string would exert on the node held at rest).
+  double TwiceIncoming(int i, const Arrivals& in) const {
+    return (HasAbove(i) ? 2 * net_.sections[i - 1].impedance * in.above : 0.0) +
+           (HasBelow(i) ? 2 * net_.sections[i].impedance * in.below : 0.0);
+  }
+  double TwiceIncoming(int i, double t, Side side) const { return TwiceIncoming(i, Arriving(i, t, side)); }
+  // Torque of the string on node i turning at v: sum of Z_k (2 w_in,k - v).
+  double StringTorqueOnNode(int i, double v, double t, Side side) const {
+    return TwiceIncoming(i, t, side) - ImpedanceSum(i) * v;
+  }
+
+  static double Setpoint(const Node& node, double t, Side side) {
+    return side == Side::kLeft ? node.setpoint.ValueBefore(t) : node.setpoint.Value(t);
+  }
+  static double SetpointRate(const Node& node, double t, Side side) {
+    return side == Side::kLeft ? node.setpoint.SlopeBefore(t) : node.setpoint.Slope(t);
+  }
+
+  double DriveTorque(int i, const State& x, double v, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    switch (node.drive) {
+      case Drive::kNone:
+      case Drive::kPrescribedSpeed: return 0;
+      case Drive::kSpeedDashpot: return node.drive_damping * (Setpoint(node, t, side) - v);
+      case Drive::kTorque: return Setpoint(node, t, side);
+      case Drive::kPiSpeedController: {
+        const double u = node.kp * (Setpoint(node, t, side) - v) + node.ki * x[integral_index_[i]];
+        return node.torque_limit > 0 ? std::clamp(u, -node.torque_limit, node.torque_limit) : u;
+      }
+    }
+    return 0;
+  }
+
+  double SlipFriction(int i, double v) const {
+    const auto& f = *net_.nodes[i].friction;
+    if (!f.IsSetValued()) return f.SlipTorque(v);
+    return regime_[i] == Regime::kSlipPositive ? f.SlipTorque(std::max(v, kTinySpeed))
+                                               : f.SlipTorque(std::min(v, -kTinySpeed));
+  }
+
+  // Everything but friction acting on node i held at rest: what the friction must balance to keep it stuck.
+  double DrivingTorqueAtRest(int i, double t, const State& x) const {
+    const Side side = SideAt(t);
+    return TwiceIncoming(i, t, side) + DriveTorque(i, x, 0.0, t, side);
+  }
+
+  Regime RegimeForDrivingTorque(int i, double drive) const {
+    const auto& f = *net_.nodes[i].friction;
+    if (drive > f.StaticPositive()) return Regime::kSlipPositive;
+    if (drive < -f.StaticNegative()) return Regime::kSlipNegative;
+    return Regime::kStuck;
+  }
+
+  // Speed of node i: a state for nodes with inertia, algebraic for massless ones (the balance of the incoming
+  // waves and the external torques, DESIGN.md §1).
+  double Speed(int i, const State& x, double t, Side side) const {
+    if (speed_index_[i] != kNone) return regime_[i] == Regime::kStuck ? 0.0 : x[speed_index_[i]];
+    return MasslessSpeed(i, Arriving(i, t, side), t, side);
+  }
+
+  double MasslessSpeed(int i, const Arrivals& in, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    if (node.drive == Drive::kPrescribedSpeed) return Setpoint(node, t, side);
+    const auto [a, b] = MasslessBalance(i, TwiceIncoming(i, in), t, side);
+    if (!node.friction) return a / b;
+    // Smooth friction: solve a - b v - T(v) = 0 by Newton from the frictionless speed.
+    const auto& f = *node.friction;
+    double v = a / b;
+    for (int iter = 0; iter < 50; ++iter) {
+      const double r = a - b * v - f.SlipTorque(v);
+      const double dr = -b - f.SlipTorqueDerivative(v);
+      const double step = r / dr;
+      v -= step;
+      if (std::abs(step) <= 1e-14 * (1 + std::abs(v))) break;
+    }
+    return v;
+  }
+
+  // Linear part of a massless node's balance: a - b v = sum Z(2 w_in - v) - c v + drive torque.
+  std::pair<double, double> MasslessBalance(int i, double twice_incoming, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    double a = twice_incoming, b = ImpedanceSum(i) + node.ground_damping;
+    if (node.drive == Drive::kSpeedDashpot) {
+      a += node.drive_damping * Setpoint(node, t, side);
+      b += node.drive_damping;
+    } else if (node.drive == Drive::kTorque) {
+      a += Setpoint(node, t, side);
+    }
+    return {a, b};
+  }
+
+  // Rate of change of a massless node's speed (implicit derivative of its balance), for the wave buffers.
+  double MasslessSpeedRate(int i, double v, const Arrivals& rate, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    if (node.drive == Drive::kPrescribedSpeed) return SetpointRate(node, t, side);
+    double da = TwiceIncoming(i, rate), b = ImpedanceSum(i) + node.ground_damping;
+    if (node.drive == Drive::kSpeedDashpot) {
+      da += node.drive_damping * SetpointRate(node, t, side);
+      b += node.drive_damping;
+    } else if (node.drive == Drive::kTorque) {
+      da += SetpointRate(node, t, side);
+    }
+    if (node.friction) b += node.friction->SlipTorqueDerivative(v);
+    return da / b;
+  }
+
+  double BitTorque(int i, const State& x, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    const double v = Speed(i, x, t, side);
+    if (!node.friction) return 0;
+    if (regime_[i] == Regime::kStuck) return DrivingTorqueAtRest(i, t, x);
+    return SlipFriction(i, v);
+  }
+
+  // Waves leaving every node at time t: w_out = v - w_in on each of its sections, with their rates if asked.
+  void OutgoingWaves(double t, const State& x, const State& f, Side side, double* out, double* rate) const {
+    for (int i = 0; i < num_nodes_; ++i) {
+      const Arrivals in = Arriving(i, t, side);
+      const bool inertial = speed_index_[i] != kNone;
+      const double v = inertial ? (regime_[i] == Regime::kStuck ? 0.0 : x[speed_index_[i]]) : MasslessSpeed(i, in, t, side);
+      if (HasAbove(i)) out[2 * (i - 1) + 1] = v - in.above;  // up-going wave at the bottom of section i-1
+      if (HasBelow(i)) out[2 * i] = v - in.below;            // down-going wave at the top of section i
+      if (!rate) continue;
+      const Arrivals in_rate = ArrivingRate(i, t, side);
+      const double dv = inertial ? (regime_[i] == Regime::kStuck ? 0.0 : f[speed_index_[i]])
+                                 : MasslessSpeedRate(i, v, in_rate, t, side);
+      if (HasAbove(i)) rate[2 * (i - 1) + 1] = dv - in_rate.above;
+      if (HasBelow(i)) rate[2 * i] = dv - in_rate.below;
+    }
+  }
+
+  // Rigid rotation at the initial speed: every section carries the torque of everything below it.
+  void InitializeWaves() {
+    const double v0 = net_.initial.speed_rad_s;
+    std::vector<double> torque_below(net_.sections.size(), 0.0);
+    double acc = 0;
+    for (int i = num_nodes_ - 1; i >= 1; --i) {
+      const Node& node = net_.nodes[i];
+      if (node.friction && v0 != 0) acc += node.friction->SlipTorque(v0);
+      acc += node.ground_damping * v0;
+      torque_below[i - 1] = acc;
+    }
+    steady_torque_ = acc + net_.nodes[0].ground_damping * v0 + (net_.nodes[0].friction && v0 != 0 ? net_.nodes[0].friction->SlipTorque(v0) : 0.0);
+    const int m = waves_.dimension();
+    std::vector<double> initial(m);
+    for (std::size_t k = 0; k < net_.sections.size(); ++k) {
+      const double z = net_.sections[k].impedance;
+      initial[2 * k] = 0.5 * (v0 + torque_below[k] / z);      // down: D - U = T / Z, D + U = v0
+      initial[2 * k + 1] = 0.5 * (v0 - torque_below[k] / z);  // up
+    }
+    waves_ = integration::HermiteHistory(m, [initial](double, double* value, double* rate) {
+      std::copy(initial.begin(), initial.end(), value);
+      std::fill(rate, rate + initial.size(), 0.0);
+    });
+  }
+
+  // A discontinuity at node i at time t travels into each of its sections and reaches the far node one travel time
+  // later. After a massless node its size is scaled by that node's transmission or reflection coefficient; an
+  // inertial node reflects a jump as a jump but passes it on to its other sections smoothed by one order.
+  void Echo(const integration::Breakpoint& b) {
+    const int i = b.site;
+    const Node& node = net_.nodes[i];
+    const double sum = ImpedanceSum(i) + node.ground_damping + (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0);
+    const bool scatters = node.massless() && node.drive != Drive::kPrescribedSpeed && b.via != kNone;
+    for (int k : {i - 1, i}) {
+      if (k < 0 || k >= static_cast<int>(net_.sections.size())) continue;
+      double w = b.weight;
+      int order = b.order;
+      if (scatters) {
+        const double share = 2 * net_.sections[b.via].impedance / sum;
+        w *= k == b.via ? std::abs(share - 1) : std::abs(share);
+      } else if (!node.massless() && (b.via == kNone || k != b.via)) {
+        order = std::max(order + (b.via == kNone ? 0 : 1), 1);  // the node's speed is continuous
+      }
+      if (w < options_.echo_weight_threshold) continue;
+      if (order > 0 && breakpoints_.size() >= options_.max_pending_kinks) continue;
+      const int far = k == i - 1 ? i - 1 : i + 1;
+      const double arrival = b.time + net_.sections[k].travel_time_s;
+      if (arrival < t_end_) breakpoints_.Push({arrival, far, w, order, k, b.generation + 1});
+    }
+  }
+  // A new discontinuity at node i: a regime change (kink, order 1) or an input knot (jump if the schedule jumps).
+  void Source(int i, double t, int order) { Echo({t, i, 1.0, order, kNone, 0}); }
+
+ public:
+  void set_t_end(double t_end) { t_end_ = t_end; }
+
+ private:
+  const Network& net_;
+  const NetworkRunOptions& options_;
+  int num_nodes_;
+  int dimension_ = 0;
+  std::vector<int> speed_index_, integral_index_;
+  std::vector<int> frictional_nodes_;
+  std::vector<Regime> regime_;
+  integration::HermiteHistory waves_;
+  integration::BreakpointQueue breakpoints_;
+  std::vector<RegimeChange> changes_;
+  double step_start_ = 0;
+  double max_travel_time_ = 0;
+  double steady_torque_ = 0;
+  double t_end_ = std::numeric_limits<double>::infinity();
+  std::vector<double> out0_, out1_, outm_, d0_, d1_;  // the prepared piece's waves (ends, midpoint, rates)
+  bool start_is_last_end_ = false;
+  double last_end_time_ = 0;
+};
+
+// Quartic interpolation of the state inside a piece (the same interpolant the history stores).
+void InterpolatePiece(const integration::Piece& p, double t, State& x) {
+  const double h = p.t1 - p.t0, s = (t - p.t0) / h, s2 = s * s, s3 = s2 * s, r = 1 - s;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double cubic_mid = 0.5 * (p.x0[i] + p.x1[i]) + 0.125 * h * (p.f0[i] - p.f1[i]);
+    const double bubble = 16.0 * (p.x_mid[i] - cubic_mid);
+    x[i] = (2 * s3 - 3 * s2 + 1) * p.x0[i] + (s3 - 2 * s2 + s) * h * p.f0[i] + (-2 * s3 + 3 * s2) * p.x1[i] +
+           (s3 - s2) * h * p.f1[i] + bubble * s2 * r * r;
+  }
+}
+
+}  // namespace
+
+NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& options) {
+  network.Validate();
+  NetworkProcess process(network, options);
+  process.set_t_end(options.t_end_s);
+  State x = process.InitialState();
+  process.InitializeRegimes(0.0, x);
+  process.SeedBreakpoints(0.0, options.t_end_s);
+
+  NetworkRun run;
+  run.t_end_s = options.t_end_s;
+  State xs(x.size());
+  double next_sample = 0.0;
+  process.Sample(0.0, x, run.trajectory);
+  next_sample = options.output_interval_s;
+  auto observer = [&](const integration::Piece& p) {
+    if (options.output_interval_s <= 0) {
+      process.Sample(p.t1, p.x1, run.trajectory);
+      return;
+    }
+    while (next_sample <= p.t1 + 1e-12 * std::max(1.0, p.t1)) {
+      InterpolatePiece(p, std::min(next_sample, p.t1), xs);
+      process.Sample(next_sample, xs, run.trajectory);
+      next_sample = run.trajectory.time_s.size() * options.output_interval_s;
+    }
+  };
+  integration::Simulator<NetworkProcess> simulator(process, options.integrator);
+  const State x_end = simulator.Integrate(0.0, x, options.t_end_s, observer);
+  run.stats = simulator.stats();
+  run.regime_changes = process.changes();
+  run.final_bit_angle_rad = x_end[0];
+  return run;
+}
+
+}  // namespace drillwave::waves
