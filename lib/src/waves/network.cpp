@@ -24,8 +24,6 @@ void Network::Validate() const {
       throw std::invalid_argument("node '" + n.name + "': a PI speed controller needs an inertia > 0");
     if (n.drive == Drive::kPrescribedSpeed && !n.massless())
       throw std::invalid_argument("node '" + n.name + "': a prescribed-speed node has no inertia");
-    if (n.drive == Drive::kTorque && n.massless() && !n.friction && n.ground_damping == 0)
-      throw std::invalid_argument("node '" + n.name + "': a massless torque-driven node needs damping");
   }
 }
 
