@@ -45,7 +45,10 @@ double HermiteHistory::end_time() const { return empty() ? 0.0 : t_end_.back(); 
 void HermiteHistory::Append(double t0, const double* x0, const double* d0, double t1, const double* x1,
                             const double* d1, const double* x_mid) {
   if (!(t1 > t0)) throw std::invalid_argument("HermiteHistory::Append: empty or reversed piece");
-  if (!empty()) t0 = t_end_.back();  // keep the pieces contiguous despite rounding in the caller's times
+  if (!empty()) {
+    t0 = t_end_.back();  // keep the pieces contiguous despite rounding in the caller's times
+    if (!(t1 > t0)) return;  // a piece within rounding of the end: nothing to add
+  }
   t_begin_.push_back(t0);
   t_end_.push_back(t1);
   data_.insert(data_.end(), x0, x0 + dimension_);

@@ -44,6 +44,8 @@ nlohmann::json LoadJsonFile(const std::string& file) {
     }
     throw InputError("", "malformed JSON in " + file + " at line " + std::to_string(line) + ", column " +
                              std::to_string(column) + ": " + e.what());
+  } catch (const nlohmann::json::exception& e) {  // e.g. 1e999: a number that is not finite
+    throw InputError("", "invalid JSON in " + file + ": " + e.what() + " (numbers must be finite)");
   }
 }
 

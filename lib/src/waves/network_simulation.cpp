@@ -16,6 +16,7 @@ using State = std::vector<double>;
 
 constexpr int kNone = -1;
 constexpr int kBitAngle = 0;
+constexpr double kJumpWeightThreshold = 1e-15;
 
 struct Arrivals {
   double above = 0, below = 0;
@@ -172,18 +173,21 @@ class NetworkProcess {
     for (const auto& b : breakpoints_.PopAt(t, 1e-12 * std::max(1.0, std::abs(t)))) Echo(b);
   }
 
-  // Sources of breakpoints: the start and every knot of every input schedule (a repeated knot time is a jump).
+  // Sources of breakpoints: every knot of every input schedule (a repeated knot time is a jump) and the start,
+  // which is followed as a jump: the initial waves need not match the inputs at t0 (a string at rest under a
+  // top speed that starts at 20 rad/s).
   void SeedBreakpoints(double t0, double t_end) {
     for (int i = 0; i < num_nodes_; ++i) {
       const auto& knots = net_.nodes[i].setpoint.knots();
-      bool jump_at_start = false;
       for (std::size_t k = 0; k < knots.size(); ++k) {
         const double tk = knots[k].first;
-        const bool jump = (k > 0 && knots[k - 1].first == tk) || (k + 1 < knots.size() && knots[k + 1].first == tk);
-        if (tk <= t0) jump_at_start |= jump && tk == t0;
-        else if (tk < t_end && !(k > 0 && knots[k - 1].first == tk)) breakpoints_.Push({tk, i, 1.0, jump ? 0 : 1, kNone, 0});
+        const bool repeated = k > 0 && knots[k - 1].first == tk;
+        const bool jump = repeated || (k + 1 < knots.size() && knots[k + 1].first == tk);
+        if (tk > t0 && tk < t_end && !repeated) breakpoints_.Push({tk, i, 1.0, jump ? 0 : 1, kNone, 0});
       }
-      Source(i, t0, jump_at_start ? 0 : 1);
+      const Node& node = net_.nodes[i];
+      if (!node.massless()) Source(i, t0, 1);
+      else if (node.drive != Drive::kNone) Source(i, t0, 0);  // a driven massless end can jump at t0
     }
   }
 
@@ -419,7 +423,8 @@ class NetworkProcess {
       } else if (!node.massless() && (b.via == kNone || k != b.via)) {
         order = std::max(order + (b.via == kNone ? 0 : 1), 1);  // the node's speed is continuous
       }
-      if (w < options_.echo_weight_threshold) continue;
+      // A jump inside a step cannot be resolved by shrinking it: follow jumps until they are below rounding.
+      if (w < (order == 0 ? kJumpWeightThreshold : options_.echo_weight_threshold)) continue;
       if (order > 0 && breakpoints_.size() >= options_.max_pending_kinks) continue;
       const int far = k == i - 1 ? i - 1 : i + 1;
       const double arrival = b.time + net_.sections[k].travel_time_s;

@@ -163,7 +163,19 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
     if (restart || limited || history_limited) {
       dense.initialize(x, t, limited ? t_stop - t : dt);
       capture_first = true;
-      if (restart) witnesses(t, x, g0);
+      if (restart) {
+        witnesses(t, x, g0);
+        // A regime can be left at the very instant of a restart (a jump arriving at a breakpoint pushes the
+        // driving torque past the static limit): a witness already negative fires at once.
+        const auto negative = std::find_if(g0.begin(), g0.end(), [](double g) { return g < 0; });
+        if (negative != g0.end()) {
+          if (t == events_here_time && ++events_here > options_.max_events_at_one_instant)
+            throw NumericalError("too many events at one instant (chattering between modes)", t, x);
+          if (t != events_here_time) events_here_time = t, events_here = 0;
+          if (process_.OnEvent(static_cast<int>(negative - g0.begin()), t, x)) ++stats_.events;
+          continue;
+        }
+      }
     }
     try {
       dense.do_step(system);
@@ -172,6 +184,8 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
     }
     const double t1 = dense.current_time();
     const State& x1 = dense.current_state();
+    if (!(t1 - t > 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))))
+      throw NumericalError("step size underflow (a discontinuity the integrator cannot step over?)", t, x);
     if (!std::all_of(x1.begin(), x1.end(), [](double v) { return std::isfinite(v); }))
       throw NumericalError("non-finite state in the step after this point (diverged, or a model function gave NaN)",
                            t, x);
@@ -190,7 +204,9 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
                                                      options_.rel_tol));
       // Cubic interpolation error scales as h^4: the step this piece could have had.
       dt_history = h * std::min(5.0, std::max(0.2, 0.9 * std::pow(worst, -0.25)));
-      if (worst > 1.0) {  // redo the step shorter
+      // Redo the step shorter; but a jump nobody announced as a breakpoint cannot be resolved by shrinking the
+      // step, so below a floor the piece is accepted as it is.
+      if (worst > 1.0 && h > 1e-9 * std::max(1.0, std::abs(t))) {
         ++stats_.history_rejections;
         dt = dt_history;
         dense.initialize(x, t, dt);
@@ -224,10 +240,12 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
       process_.Derivatives(x_event, f_event, t_event);
       dense.calc_state(0.5 * (t + t_event), x_mid_event);
       const Piece piece{t, t_event, x, f0, x_event, f_event, x_mid_event};
-      process_.PrepareCommit(piece, options_.abs_tol, options_.rel_tol);
-      process_.Commit(piece);
-      if (observer) observer(piece);
-      ++stats_.steps;
+      if (t_event > t) {
+        process_.PrepareCommit(piece, options_.abs_tol, options_.rel_tol);
+        process_.Commit(piece);
+        if (observer) observer(piece);
+        ++stats_.steps;
+      }
       if (t_event == events_here_time) {
         if (++events_here > options_.max_events_at_one_instant)
           throw NumericalError("too many events at one instant (chattering between modes)", t_event, x_event);
@@ -235,6 +253,7 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
         events_here_time = t_event;
         events_here = 0;
       }
+      ++stats_.derivative_evaluations;  // the left-limit derivative at the event
       if (process_.OnEvent(first, t_event, x_event)) ++stats_.events;
       check_finite(x_event, t_event, "non-finite state after an event");
       t = t_event;

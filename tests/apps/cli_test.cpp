@@ -1,0 +1,160 @@
+// The command-line tool as a user meets it: exit codes, messages that name the JSON path, nothing written on failure.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code;
+  std::string output;
+};
+
+Outcome RunTool(const std::string& args) {
+  const std::string command = std::string(DRILLWAVE_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("drillwave-cli-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::ifstream in(std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+    base_ = nlohmann::json::parse(in);
+    base_["simulation"]["duration_s"] = 10;
+    base_["statistics"]["window_s"] = {5, 10};
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Write(const std::string& text) {
+    const std::string file = (dir_ / "case.json").string();
+    std::ofstream(file) << text;
+    return file;
+  }
+  // Runs a case that must be rejected, and checks the exit code, the message and that nothing was written.
+  void ExpectRejected(const std::string& text, int code, const std::string& must_mention) {
+    const std::string out = (dir_ / "out").string();
+    const Outcome o = RunTool("run " + Write(text) + " --out " + out);
+    EXPECT_EQ(o.exit_code, code) << o.output;
+    EXPECT_NE(o.output.find(must_mention), std::string::npos) << "message should mention '" << must_mention
+                                                                << "': " << o.output;
+    EXPECT_FALSE(fs::exists(out)) << "nothing may be written on failure";
+    for (const auto& entry : fs::directory_iterator(dir_))
+      EXPECT_EQ(entry.path().filename().string().find("staging"), std::string::npos) << "staging left behind";
+  }
+
+  fs::path dir_;
+  nlohmann::json base_;
+};
+
+TEST_F(Cli, RunsACaseAndWritesEveryOutput) {
+  const std::string out = (dir_ / "out").string();
+  const Outcome o = RunTool("run " + Write(base_.dump()) + " --out " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  for (const char* f : {"trajectory.csv", "summary.json", "plot.svg", "report.md", "case.json"})
+    EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+  std::ifstream csv(fs::path(out) / "trajectory.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("time_s,top_rpm,bit_rpm,top_torque_Nm,bit_torque_Nm", 0), 0u) << header;
+  std::ifstream summary_file(fs::path(out) / "summary.json");
+  const auto summary = nlohmann::json::parse(summary_file);
+  for (const char* key : {"stick_slip_period_s", "stick_fraction", "bit_speed_max_rad_s", "bit_speed_mean_rad_s",
+                          "steps", "events", "wall_time_s"})
+    EXPECT_TRUE(summary.contains(key)) << key;
+}
+
+TEST_F(Cli, NoArgumentsRunsTheEmbeddedDefaultCase) {
+  const Outcome o = RunTool("run --out " + (dir_ / "default").string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("saldivar-stickslip"), std::string::npos);
+  EXPECT_NE(o.output.find("trajectory.csv"), std::string::npos);
+}
+
+TEST_F(Cli, MalformedJsonIsRejectedWithLineAndColumn) { ExpectRejected("{\"name\": \"x\",\n  oops}", 2, "line 2"); }
+
+TEST_F(Cli, UnknownKeyIsRejected) {
+  auto doc = base_;
+  doc["model"]["bit"]["inertai_kgm2"] = 89;
+  ExpectRejected(doc.dump(), 2, "/model/bit/inertai_kgm2");
+}
+
+TEST_F(Cli, MissingFieldIsRejected) {
+  auto doc = base_;
+  doc["model"]["string"]["sections"][0].erase("length_m");
+  ExpectRejected(doc.dump(), 2, "/model/string/sections/0/length_m");
+}
+
+TEST_F(Cli, WrongTypeIsRejected) {
+  auto doc = base_;
+  doc["model"]["bit"]["inertia_kgm2"] = "heavy";
+  ExpectRejected(doc.dump(), 2, "/model/bit/inertia_kgm2");
+}
+
+TEST_F(Cli, NegativeLengthIsRejected) {
+  auto doc = base_;
+  doc["model"]["string"]["sections"][0]["length_m"] = -3;
+  ExpectRejected(doc.dump(), 2, "expected a number > 0, got -3");
+}
+
+TEST_F(Cli, ZeroInertiaWithSetValuedFrictionIsRejected) {
+  auto doc = base_;
+  doc["model"]["bit"]["inertia_kgm2"] = 0;
+  ExpectRejected(doc.dump(), 2, "/model/bit/inertia_kgm2");
+}
+
+TEST_F(Cli, InfinityIsRejected) {
+  std::string text = base_.dump();
+  const std::string key = "\"beta_Nms_per_rad\":2000";
+  text.replace(text.find(key), key.size(), "\"beta_Nms_per_rad\":1e999");
+  ExpectRejected(text, 2, "1e999");
+}
+
+TEST_F(Cli, UnknownModelKindIsRejected) {
+  auto doc = base_;
+  doc["model"]["kind"] = "quantum_string";
+  ExpectRejected(doc.dump(), 2, "/model/kind");
+}
+
+// A bit law with strongly negative damping makes the solution overflow: reported with the time and the state.
+TEST_F(Cli, DivergenceIsANumericalFailure) {
+  auto doc = base_;
+  doc["model"]["bit"]["friction"] = {{"law", "tanh_hump"}, {"amplitude_Nm", 1000}, {"beta", 1},
+                                      {"gamma1", -1000}, {"gamma2", 0}};
+  ExpectRejected(doc.dump(), 3, "at t = ");
+}
+
+TEST_F(Cli, CheckFlagFailsOnAnUnmetExpectation) {
+  auto doc = base_;
+  doc["expect"] = {{"stick_fraction", {{"min", 0.99}}}};
+  const Outcome o = RunTool("run " + Write(doc.dump()) + " --check --out " + (dir_ / "out").string());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("FAIL"), std::string::npos);
+}
+
+TEST_F(Cli, KindsListsFieldsWithUnits) {
+  const Outcome o = RunTool("kinds");
+  EXPECT_EQ(o.exit_code, 0);
+  EXPECT_NE(o.output.find("torsional_wave"), std::string::npos);
+  EXPECT_NE(o.output.find("length_m"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,63 @@
+// Every case in json-cases/ runs and meets its own expect block (each case carries its expectations).
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/io/json_reader.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+std::vector<std::string> CaseFiles() {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases"))
+    if (entry.path().extension() == ".json") files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+class JsonCase : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(JsonCase, MeetsItsExpectations) {
+  const Case c = ParseCase(io::LoadJsonFile(GetParam()));
+  ASSERT_FALSE(c.expect.empty()) << GetParam() << " has no expect block";
+  const CaseRun run = RunCase(c);
+  for (const ExpectationCheck& check : CheckExpectations(c.expect, run.summary)) {
+    std::cout << "[ expect ] " << c.name << ": " << check.detail << "\n";
+    EXPECT_TRUE(check.passed) << c.name << ": " << check.detail;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllCases, JsonCase, ::testing::ValuesIn(CaseFiles()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = std::filesystem::path(info.param).stem().string();
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
+
+TEST(DefaultCase, IsTheSaldivarStickSlipCase) {
+  const auto embedded = nlohmann::json::parse(DefaultCaseText());
+  const auto file = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+  EXPECT_EQ(embedded, file);
+}
+
+TEST(ParameterPaths, EveryParameterIsAddressableByItsJsonPointer) {
+  auto doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+  io::SetByPointer(doc, "/model/top/speed_rad_s", 20.0);
+  io::SetByPointer(doc, "/simulation/duration_s", 30.0);
+  io::SetByPointer(doc, "/statistics/window_s", nlohmann::json::array({20.0, 30.0}));
+  const CaseRun run = RunCase(ParseCase(doc));
+  EXPECT_EQ(run.summary.at("stick_onsets").get<int>(), 0);  // 20 rad/s: smooth drilling
+  EXPECT_THROW(io::SetByPointer(doc, "/model/bit/no_such_field", 1.0), InputError);
+}
+
+}  // namespace
+}  // namespace drillwave::cases
