@@ -56,6 +56,13 @@ class DelayProcess {
     }
   }
 
+  // Seeds the first step's look-ups past t0 with x0 + (t - t0) x'(t0+), x'(t0+) from the right-hand side.
+  void SetStart(double t0, const State& x0, State& f0) {
+    step_start_ = t0;
+    Derivatives(x0, f0, t0);
+    history_.SetStart(t0, x0.data(), f0.data());
+  }
+
   HermiteHistory TakeHistory() { return std::move(history_); }
   std::vector<double> TakeEventTimes() { return std::move(event_times_); }
 
@@ -87,8 +94,9 @@ DelaySolution SolveDelayProblem(const DelayProblem& problem, double t_end, const
     if (!(tau > 0)) throw std::invalid_argument("DelayProblem: constant delays must be positive");
 
   DelayProcess process(problem, t_end);
-  std::vector<double> x0(problem.dimension), d0(problem.dimension);
+  std::vector<double> x0(problem.dimension), d0(problem.dimension), f0(problem.dimension);
   problem.history(problem.t0, x0.data(), d0.data());
+  process.SetStart(problem.t0, x0, f0);
   Simulator<DelayProcess> simulator(process, options);
   simulator.Integrate(problem.t0, x0, t_end);
   return DelaySolution{process.TakeHistory(), process.TakeEventTimes(), simulator.stats()};
