@@ -9,6 +9,7 @@ const std::vector<std::unique_ptr<ModelKind>>& AllKinds() {
   static const std::vector<std::unique_ptr<ModelKind>> kinds = [] {
     std::vector<std::unique_ptr<ModelKind>> k;
     k.push_back(MakeTorsionalWaveKind());
+    k.push_back(MakeTwoMassKind());
     return k;
   }();
   return kinds;

@@ -7,5 +7,6 @@
 namespace drillwave::cases {
 
 std::unique_ptr<ModelKind> MakeTorsionalWaveKind();
+std::unique_ptr<ModelKind> MakeTwoMassKind();
 
 }  // namespace drillwave::cases
