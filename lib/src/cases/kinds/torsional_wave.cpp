@@ -75,7 +75,7 @@ waves::Node ReadTop(const JsonReader& r) {
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
   } else {
     top.drive = waves::Drive::kTorque;
-    top.inertia = r.Number("inertia_kgm2", Range::Positive());
+    top.inertia = r.Number("inertia_kgm2", Range::NonNegative(), 0.0);  // 0: a force-controlled end (eq. 2.9)
     top.setpoint = model::Schedule::FromJson(r.Raw("torque_Nm"), r.PathOf("torque_Nm"));
   }
   top.ground_damping = r.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
@@ -154,7 +154,7 @@ class TorsionalWaveKind : public ModelKind {
         {"top/type", "prescribed_speed | dissipative | top_drive | torque"},
         {"top/speed_rad_s", "set-point [rad/s]: a number or {\"knots\": [[t, v], ...]}"},
         {"top/beta_Nms_per_rad", "dissipative top: beta > 0"},
-        {"top/inertia_kgm2", "top_drive/torque: inertia > 0"},
+        {"top/inertia_kgm2", "top_drive: inertia > 0; torque: >= 0, default 0 (force-controlled end)"},
         {"top/kp_Nms_per_rad", "top_drive: proportional gain >= 0"},
         {"top/ki_Nm_per_rad", "top_drive: integral gain >= 0"},
         {"top/torque_limit_Nm", "top_drive: >= 0, 0 = unlimited"},
