@@ -457,17 +457,6 @@ class NetworkProcess {
   double last_end_time_ = 0;
 };
 
-// Quartic interpolation of the state inside a piece (the same interpolant the history stores).
-void InterpolatePiece(const integration::Piece& p, double t, State& x) {
-  const double h = p.t1 - p.t0, s = (t - p.t0) / h, s2 = s * s, s3 = s2 * s, r = 1 - s;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double cubic_mid = 0.5 * (p.x0[i] + p.x1[i]) + 0.125 * h * (p.f0[i] - p.f1[i]);
-    const double bubble = 16.0 * (p.x_mid[i] - cubic_mid);
-    x[i] = (2 * s3 - 3 * s2 + 1) * p.x0[i] + (s3 - 2 * s2 + s) * h * p.f0[i] + (-2 * s3 + 3 * s2) * p.x1[i] +
-           (s3 - s2) * h * p.f1[i] + bubble * s2 * r * r;
-  }
-}
-
 }  // namespace
 
 NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& options) {
@@ -490,7 +479,7 @@ NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& opti
       return;
     }
     while (next_sample <= p.t1 + 1e-12 * std::max(1.0, p.t1)) {
-      InterpolatePiece(p, std::min(next_sample, p.t1), xs);
+      integration::InterpolatePiece(p, std::min(next_sample, p.t1), xs);
       process.Sample(next_sample, xs, run.trajectory);
       next_sample = run.trajectory.time_s.size() * options.output_interval_s;
     }

@@ -155,12 +155,7 @@ class TwoMassModel : public PreparedModel {
     auto observer = [&](const integration::Piece& p) {
       if (settings.output_interval_s <= 0) return sample(p.t1, p.x1);
       while (next <= p.t1 + 1e-12 * std::max(1.0, p.t1)) {
-        const double h = p.t1 - p.t0, s = (std::min(next, p.t1) - p.t0) / h, s2 = s * s, s3 = s2 * s, r = 1 - s;
-        for (int i = 0; i < 7; ++i) {
-          const double cubic_mid = 0.5 * (p.x0[i] + p.x1[i]) + 0.125 * h * (p.f0[i] - p.f1[i]);
-          xs[i] = (2 * s3 - 3 * s2 + 1) * p.x0[i] + (s3 - 2 * s2 + s) * h * p.f0[i] + (-2 * s3 + 3 * s2) * p.x1[i] +
-                  (s3 - s2) * h * p.f1[i] + 16.0 * (p.x_mid[i] - cubic_mid) * s2 * r * r;
-        }
+        integration::InterpolatePiece(p, std::min(next, p.t1), xs);
         sample(next, xs);
         next = result.time_s.size() * settings.output_interval_s;
       }
