@@ -157,6 +157,17 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
   bool history_limited = false;  // the last piece asked for a shorter step than the stepper's suggestion
   int events_here = 0;
   double events_here_time = t0;
+  // Applies event i at t; many at one instant mean the modes chatter (no consistent regime exists there).
+  auto apply_event = [&](int i, double te, State& xe) {
+    if (te == events_here_time) {
+      if (++events_here > options_.max_events_at_one_instant)
+        throw NumericalError("too many events at one instant (chattering between modes)", te, xe);
+    } else {
+      events_here_time = te;
+      events_here = 0;
+    }
+    if (process_.OnEvent(i, te, xe)) ++stats_.events;
+  };
 
   while (t < t_end) {
     const double t_stop = std::min(process_.NextBreakpoint(), t_end);
@@ -179,10 +190,7 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
         // driving torque past the static limit): a witness already negative fires at once.
         const auto negative = std::find_if(g0.begin(), g0.end(), [](double g) { return g < 0; });
         if (negative != g0.end()) {
-          if (t == events_here_time && ++events_here > options_.max_events_at_one_instant)
-            throw NumericalError("too many events at one instant (chattering between modes)", t, x);
-          if (t != events_here_time) events_here_time = t, events_here = 0;
-          if (process_.OnEvent(static_cast<int>(negative - g0.begin()), t, x)) ++stats_.events;
+          apply_event(static_cast<int>(negative - g0.begin()), t, x);
           continue;
         }
       }
@@ -256,15 +264,8 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
         if (observer) observer(piece);
         ++stats_.steps;
       }
-      if (t_event == events_here_time) {
-        if (++events_here > options_.max_events_at_one_instant)
-          throw NumericalError("too many events at one instant (chattering between modes)", t_event, x_event);
-      } else {
-        events_here_time = t_event;
-        events_here = 0;
-      }
       ++stats_.derivative_evaluations;  // the left-limit derivative at the event
-      if (process_.OnEvent(first, t_event, x_event)) ++stats_.events;
+      apply_event(first, t_event, x_event);
       check_finite(x_event, t_event, "non-finite state after an event");
       t = t_event;
       x = x_event;
