@@ -109,12 +109,22 @@ class NetworkProcess {
     if (!(start_is_last_end_ && p.t0 == last_end_time_)) OutgoingWaves(p.t0, p.x0, p.f0, Side::kRight, out0_.data(), d0_.data());
     OutgoingWaves(p.t1, p.x1, p.f1, Side::kLeft, out1_.data(), d1_.data());
     OutgoingWaves(0.5 * (p.t0 + p.t1), p.x_mid, p.f1, Side::kLeft, outm_.data(), nullptr);
-    const double h = p.t1 - p.t0;
+    // The stored quartic against the exact outgoing waves at a quarter of the piece (state from the piece's own
+    // interpolant): the error of what later look-ups will read.
+    const double h = p.t1 - p.t0, tq = p.t0 + 0.25 * h;
+    state_quarter_.resize(p.x0.size());
+    outq_.resize(m);
+    integration::InterpolatePiece(p, tq, state_quarter_);
+    OutgoingWaves(tq, state_quarter_, p.f1, Side::kLeft, outq_.data(), nullptr);
+    constexpr double s = 0.25, s2 = s * s, s3 = s2 * s, r = 1 - s;
     double worst = 0;
     for (int k = 0; k < m; ++k) {
       const double cubic_mid = 0.5 * (out0_[k] + out1_[k]) + 0.125 * h * (d0_[k] - d1_[k]);
+      const double stored = (2 * s3 - 3 * s2 + 1) * out0_[k] + (s3 - 2 * s2 + s) * h * d0_[k] +
+                            (-2 * s3 + 3 * s2) * out1_[k] + (s3 - s2) * h * d1_[k] +
+                            16.0 * (outm_[k] - cubic_mid) * s2 * r * r;
       const double scale = abs_tol + rel_tol * std::max(std::abs(out0_[k]), std::abs(out1_[k]));
-      worst = std::max(worst, std::abs(outm_[k] - cubic_mid) / scale);
+      worst = std::max(worst, std::abs(outq_[k] - stored) / scale);
     }
     return worst;
   }
@@ -452,7 +462,7 @@ class NetworkProcess {
   double max_travel_time_ = 0;
   double steady_torque_ = 0;
   double t_end_ = std::numeric_limits<double>::infinity();
-  std::vector<double> out0_, out1_, outm_, d0_, d1_;  // the prepared piece's waves (ends, midpoint, rates)
+  std::vector<double> out0_, out1_, outm_, d0_, d1_, outq_, state_quarter_;  // the prepared piece's waves (ends, midpoint, rates)
   bool start_is_last_end_ = false;
   double last_end_time_ = 0;
 };
