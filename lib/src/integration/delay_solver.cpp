@@ -50,10 +50,14 @@ class DelayProcess {
     return true;
   }
   double NextBreakpoint() const { return breakpoints_.NextTime(); }
+  // Echo each instant once, at the lowest order popped there: coincident breakpoints (sums of several delays)
+  // would otherwise multiply without bound in neutral problems, whose orders never rise.
   void OnBreakpoint(double t) {
-    for (const Breakpoint& b : breakpoints_.PopAt(t, 1e-12 * std::max(1.0, std::abs(t)))) {
-      AddEchoes(b.time, problem_.neutral ? b.order : b.order + 1);
-    }
+    const std::vector<Breakpoint> due = breakpoints_.PopAt(t, 1e-12 * std::max(1.0, std::abs(t)));
+    if (due.empty()) return;
+    int order = due.front().order;
+    for (const Breakpoint& b : due) order = std::min(order, b.order);
+    AddEchoes(t, problem_.neutral ? order : order + 1);
   }
 
   // Seeds the first step's look-ups past t0 with x0 + (t - t0) x'(t0+), x'(t0+) from the right-hand side.

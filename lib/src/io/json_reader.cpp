@@ -1,64 +1,153 @@
 #include "drillwave/io/json_reader.hpp"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <iterator>
+#include <limits>
 
 #include "drillwave/core/error.hpp"
 
 namespace drillwave::io {
 namespace {
 
-std::string Found(const nlohmann::json& v) {
-  if (v.is_string()) return "a string " + v.dump();
-  if (v.is_number()) return v.dump();
-  return std::string(v.type_name()) + " " + v.dump().substr(0, 60);
+// A bound or limit as people write it: "0", "0.01", "1e-14".
+std::string FormatBound(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", v);
+  return buffer;
 }
 
-std::string Format(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
+std::string Shortened(const std::string& text) {
+  constexpr std::size_t kMax = 60;
+  return text.size() <= kMax ? text : text.substr(0, kMax) + "...";
+}
+
+// What was found, for "expected X, got <Found>": -3, a string "abc", true, null, an array [1,2], inf.
+std::string Found(const nlohmann::json& v) {
+  if (v.is_number()) {
+    const double x = v.get<double>();
+    if (std::isnan(x)) return "nan";
+    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+    return v.dump();
+  }
+  if (v.is_string()) return "a string " + Shortened(v.dump());
+  if (v.is_array()) return "an array " + Shortened(v.dump());
+  if (v.is_object()) return "an object " + Shortened(v.dump());
+  return v.dump();  // true, false, null
+}
+
+std::string JoinedList(const std::vector<std::string>& items) {
+  std::string list;
+  for (const auto& item : items) list += (list.empty() ? "" : ", ") + item;
+  return list;
+}
+
+// nlohmann's what() is "[json.exception.parse_error.101] parse error at line 3, column 1: syntax error ..."; keep
+// only the description, since the caller states the location itself.
+std::string ParserDescription(const std::string& what) {
+  std::size_t start = what.find("] ");
+  start = start == std::string::npos ? 0 : start + 2;
+  if (what.compare(start, 11, "parse error") == 0) {
+    const std::size_t colon = what.find(": ", start);
+    if (colon != std::string::npos) start = colon + 2;
+  }
+  return what.substr(start);
+}
+
+struct TextPosition {
+  std::size_t line, column;
+};
+
+// Line and column (1-based) of the byte at `offset`. Columns count characters, not UTF-8 bytes, as editors do.
+TextPosition PositionOf(const std::string& text, std::size_t offset) {
+  TextPosition p{1, 1};
+  std::size_t i = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;  // a byte order mark is not a column
+  for (offset = std::min(offset, text.size()); i < offset; ++i) {
+    if (text[i] == '\n') {
+      ++p.line;
+      p.column = 1;
+    } else if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) {
+      ++p.column;
+    }
+  }
+  return p;
+}
+
+// nlohmann reports a number that overflows a double (1e999) without its position. The parser stops at the first
+// such number, and everything before it is valid JSON, so it is the first number token outside strings that does
+// not convert to a finite double.
+std::size_t FirstNonFiniteNumber(const std::string& text) {
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '-' || (c >= '0' && c <= '9')) {
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str() + i, &end);
+      if (!std::isfinite(v)) return i;
+      i = std::max(i, static_cast<std::size_t>(end - text.c_str()) - 1);
+    }
+  }
+  return std::string::npos;
+}
+
+std::string MalformedJson(const std::string& file, const std::string& text, std::size_t offset,
+                          const std::string& description) {
+  const TextPosition p = PositionOf(text, offset);
+  return "malformed JSON in " + file + " at line " + std::to_string(p.line) + ", column " + std::to_string(p.column) +
+         ": " + description;
 }
 
 }  // namespace
 
 nlohmann::json LoadJsonFile(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError("", "cannot open case file " + file);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  std::error_code ignored;  // a folder opens, but then cannot be read
+  if (!in || std::filesystem::is_directory(file, ignored)) throw InputError("", "cannot open case file " + file);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    std::size_t line = 1, column = 1;
-    for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    throw InputError("", "malformed JSON in " + file + " at line " + std::to_string(line) + ", column " +
-                             std::to_string(column) + ": " + e.what());
-  } catch (const nlohmann::json::exception& e) {  // e.g. 1e999: a number that is not finite
-    throw InputError("", "invalid JSON in " + file + ": " + e.what() + " (numbers must be finite)");
+    // e.byte counts the bytes read, including the offending one.
+    throw InputError("", MalformedJson(file, text, e.byte == 0 ? 0 : e.byte - 1, ParserDescription(e.what())));
+  } catch (const nlohmann::json::out_of_range& e) {  // 1e999
+    throw InputError("", MalformedJson(file, text, FirstNonFiniteNumber(text),
+                                       ParserDescription(e.what()) + " (numbers must be finite doubles)"));
   }
 }
 
 bool Range::Contains(double v) const {
-  return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
 }
 
 std::string Range::Describe() const {
-  if (std::isinf(lo) && std::isinf(hi)) return "a finite number";
-  if (std::isinf(hi)) return std::string("a number ") + (lo_open ? "> " : ">= ") + Format(lo);
-  if (std::isinf(lo)) return std::string("a number ") + (hi_open ? "< " : "<= ") + Format(hi);
-  return "a number in " + std::string(lo_open ? "(" : "[") + Format(lo) + ", " + Format(hi) + (hi_open ? ")" : "]");
+  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  if (!has_lo && !has_hi) return "a finite number";
+  if (!has_hi) return std::string("a number ") + (lo_open ? "> " : ">= ") + FormatBound(lo);
+  if (!has_lo) return std::string("a number ") + (hi_open ? "< " : "<= ") + FormatBound(hi);
+  return std::string("a number in ") + (lo_open ? "(" : "[") + FormatBound(lo) + ", " + FormatBound(hi) +
+         (hi_open ? ")" : "]");
 }
+
+namespace {
+
+double CheckedNumber(const nlohmann::json& v, const std::string& path, const Range& range) {
+  if (!v.is_number()) throw InputError(path, "expected " + range.Describe() + ", got " + Found(v));
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) throw InputError(path, "expected a finite number, got " + Found(v));
+  if (!range.Contains(x)) throw InputError(path, "expected " + range.Describe() + ", got " + Found(v));
+  return x;
+}
+
+}  // namespace
 
 JsonReader::JsonReader(const nlohmann::json& object, std::string path) : object_(&object), path_(std::move(path)) {
   if (!object.is_object()) throw InputError(path_, "expected an object, got " + Found(object));
@@ -73,34 +162,29 @@ void JsonReader::Allow(const std::string& key) const { known_.insert(key); }
 
 const nlohmann::json& JsonReader::Required(const std::string& key, const std::string& expected) const {
   known_.insert(key);
-  if (!object_->contains(key)) throw InputError(PathOf(key), "missing required field (" + expected + ")");
-  return object_->at(key);
+  const auto it = object_->find(key);
+  if (it == object_->end()) throw InputError(PathOf(key), "missing required field (" + expected + ")");
+  return *it;
 }
 
 const nlohmann::json& JsonReader::Raw(const std::string& key) const { return Required(key, "a value"); }
 
-double JsonReader::CheckNumber(const nlohmann::json& v, const std::string& key, Range range) const {
-  if (!v.is_number()) throw InputError(PathOf(key), "expected " + range.Describe() + ", got " + Found(v));
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) throw InputError(PathOf(key), "expected a finite number, got " + Format(x));
-  if (!range.Contains(x)) throw InputError(PathOf(key), "expected " + range.Describe() + ", got " + Format(x));
-  return x;
-}
-
 double JsonReader::Number(const std::string& key, Range range) const {
-  return CheckNumber(Required(key, range.Describe()), key, range);
+  return CheckedNumber(Required(key, range.Describe()), PathOf(key), range);
 }
 
 double JsonReader::Number(const std::string& key, Range range, double default_value) const {
-  return Has(key) ? CheckNumber(object_->at(key), key, range) : default_value;
+  return Has(key) ? Number(key, range) : default_value;
 }
 
 int JsonReader::Integer(const std::string& key, int lo, int hi) const {
   const std::string expected = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-  const auto& v = Required(key, expected);
-  if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
+  const nlohmann::json& v = Required(key, expected);
+  // Compared as doubles: exact for every int, and no wrap-around for huge unsigned values.
+  const double x = v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
+  if (!std::isfinite(x) || x != std::floor(x) || x < lo || x > hi)
     throw InputError(PathOf(key), "expected " + expected + ", got " + Found(v));
-  return v.get<int>();
+  return static_cast<int>(x);
 }
 
 int JsonReader::Integer(const std::string& key, int lo, int hi, int default_value) const {
@@ -108,7 +192,7 @@ int JsonReader::Integer(const std::string& key, int lo, int hi, int default_valu
 }
 
 bool JsonReader::Boolean(const std::string& key) const {
-  const auto& v = Required(key, "true or false");
+  const nlohmann::json& v = Required(key, "true or false");
   if (!v.is_boolean()) throw InputError(PathOf(key), "expected true or false, got " + Found(v));
   return v.get<bool>();
 }
@@ -118,14 +202,12 @@ bool JsonReader::Boolean(const std::string& key, bool default_value) const {
 }
 
 std::string JsonReader::String(const std::string& key, const std::vector<std::string>& allowed) const {
-  std::string list;
-  for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-  const std::string expected = allowed.empty() ? "a string" : "one of: " + list;
-  const auto& v = Required(key, expected);
+  const std::string expected = allowed.empty() ? "a string" : "one of: " + JoinedList(allowed);
+  const nlohmann::json& v = Required(key, expected);
   if (!v.is_string()) throw InputError(PathOf(key), "expected " + expected + ", got " + Found(v));
-  const std::string s = v.get<std::string>();
+  std::string s = v.get<std::string>();
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), s) == allowed.end())
-    throw InputError(PathOf(key), "expected " + expected + ", got \"" + s + "\"");
+    throw InputError(PathOf(key), "expected " + expected + ", got " + Shortened(v.dump()));
   return s;
 }
 
@@ -135,11 +217,14 @@ std::string JsonReader::String(const std::string& key, const std::vector<std::st
 }
 
 std::vector<double> JsonReader::NumberArray(const std::string& key, Range range) const {
-  const auto& v = Required(key, "a list of numbers");
-  if (!v.is_array()) throw InputError(PathOf(key), "expected a list of numbers, got " + Found(v));
-  std::vector<double> out;
-  for (std::size_t i = 0; i < v.size(); ++i) out.push_back(CheckNumber(v[i], key + "/" + std::to_string(i), range));
-  return out;
+  const std::string expected = "a list of numbers (each " + range.Describe() + ")";
+  const nlohmann::json& v = Required(key, expected);
+  if (!v.is_array()) throw InputError(PathOf(key), "expected " + expected + ", got " + Found(v));
+  std::vector<double> values;
+  values.reserve(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    values.push_back(CheckedNumber(v[i], PathOf(key) + "/" + std::to_string(i), range));
+  return values;
 }
 
 JsonReader JsonReader::Object(const std::string& key) const {
@@ -147,36 +232,64 @@ JsonReader JsonReader::Object(const std::string& key) const {
 }
 
 std::vector<JsonReader> JsonReader::ObjectArray(const std::string& key) const {
-  const auto& v = Required(key, "a list of objects");
+  const nlohmann::json& v = Required(key, "a list of objects");
   if (!v.is_array()) throw InputError(PathOf(key), "expected a list of objects, got " + Found(v));
-  std::vector<JsonReader> out;
-  for (std::size_t i = 0; i < v.size(); ++i) out.emplace_back(v[i], PathOf(key) + "/" + std::to_string(i));
-  return out;
+  std::vector<JsonReader> readers;
+  readers.reserve(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) readers.emplace_back(v[i], PathOf(key) + "/" + std::to_string(i));
+  return readers;
 }
 
 void JsonReader::Finish() const {
   for (const auto& item : object_->items()) {
     if (known_.count(item.key())) continue;
-    std::string list;
-    for (const auto& k : known_) list += (list.empty() ? "" : ", ") + k;
-    throw InputError(PathOf(item.key()), "unknown field; expected one of: " + list);
+    if (known_.empty()) throw InputError(PathOf(item.key()), "unknown field; this object takes no fields");
+    throw InputError(PathOf(item.key()),
+                     "unknown field; expected one of: " + JoinedList({known_.begin(), known_.end()}));
   }
 }
 
 void SetByPointer(nlohmann::json& doc, const std::string& pointer, const nlohmann::json& value) {
-  try {
-    const nlohmann::json::json_pointer p(pointer);
-    if (!doc.contains(p)) throw InputError(pointer, "no such field in the case");
-    doc[p] = value;
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(pointer, std::string("not a valid JSON pointer into the case: ") + e.what());
+  if (pointer.empty() || pointer[0] != '/')
+    throw InputError(pointer, "expected a JSON pointer such as /simulation/duration_s");
+  // Walked by hand rather than with nlohmann::json_pointer, whose operator[] would create missing fields and
+  // whose errors for bad array indices are not about the case.
+  nlohmann::json* node = &doc;
+  std::size_t start = 1;
+  while (true) {
+    const std::size_t slash = pointer.find('/', start);
+    std::string token = pointer.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+    // RFC 6901 escapes: "~1" is '/', "~0" is '~' (in that order).
+    for (std::size_t i = 0; (i = token.find("~1", i)) != std::string::npos; ++i) token.replace(i, 2, "/");
+    for (std::size_t i = 0; (i = token.find("~0", i)) != std::string::npos; ++i) token.replace(i, 2, "~");
+    nlohmann::json* child = nullptr;
+    if (node->is_object()) {
+      const auto it = node->find(token);
+      if (it != node->end()) child = &*it;
+    } else if (node->is_array()) {
+      const bool is_index = !token.empty() && token.size() <= 9 &&
+                            token.find_first_not_of("0123456789") == std::string::npos &&
+                            (token == "0" || token[0] != '0');
+      if (is_index && std::stoul(token) < node->size()) child = &(*node)[std::stoul(token)];
+    }
+    if (child == nullptr) throw InputError(pointer, "no such field in the case");
+    node = child;
+    if (slash == std::string::npos) break;
+    start = slash + 1;
   }
+  *node = value;
 }
 
 nlohmann::json ParseScalarText(const std::string& text) {
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error&) {
+    return text;
+  } catch (const nlohmann::json::out_of_range&) {  // number syntax, but beyond a double: 1e999 (or inside [1e999])
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    while (*end == ' ' || *end == '\t' || *end == '\n' || *end == '\r') ++end;
+    if (*end == '\0') return v;
     return text;
   }
 }

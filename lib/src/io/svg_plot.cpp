@@ -8,135 +8,247 @@
 namespace drillwave::io {
 namespace {
 
-constexpr double kWidth = 1000, kPanelHeight = 260, kLeft = 80, kRight = 20, kTop = 40, kGap = 50;
-const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b"};
+// Layout in px. Inner panels carry no x tick labels (the axis is shared), so they need only a small gap.
+constexpr double kWidth = 1000;
+constexpr double kLeft = 80;    // y tick labels and the rotated y label
+constexpr double kRight = 20;
+constexpr double kTitle = 40;
+constexpr double kPanelHeight = 220;
+constexpr double kPanelGap = 16;
+constexpr double kBottom = 50;  // x tick labels and the x label
+constexpr double kPlotWidth = kWidth - kLeft - kRight;
 
-std::string Escape(const std::string& s) {
+// Matplotlib's "tab10": distinct, and readable on white.
+constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
+                                    "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+constexpr std::size_t kColourCount = sizeof kColours / sizeof kColours[0];
+
+std::string EscapeXml(const std::string& text) {
   std::string out;
-  for (char c : s) {
+  out.reserve(text.size());
+  for (char c : text) {
     switch (c) {
       case '<': out += "&lt;"; break;
       case '>': out += "&gt;"; break;
       case '&': out += "&amp;"; break;
       case '"': out += "&quot;"; break;
-      default: out += c;
+      case '\'': out += "&apos;"; break;
+      default:
+        // Control characters other than tab and line ends are not allowed in XML 1.0 at all.
+        if (static_cast<unsigned char>(c) >= 0x20 || c == '\t' || c == '\n' || c == '\r') out += c;
     }
   }
   return out;
 }
 
-std::string Number(double v) {
+// A pixel coordinate: 0.01 px is finer than any screen, and short numbers keep the file small.
+std::string Px(double v) {
   char b[32];
-  std::snprintf(b, sizeof b, "%.6g", std::abs(v) < 1e-12 ? 0.0 : v);
+  std::snprintf(b, sizeof b, "%.2f", v);
   return b;
 }
 
-// Tick values at 1-2-5 steps covering [lo, hi].
-std::vector<double> Ticks(double lo, double hi) {
-  const double raw = (hi - lo) / 6;
-  const double mag = std::pow(10, std::floor(std::log10(raw)));
-  double step = mag;
-  for (double m : {1.0, 2.0, 5.0, 10.0})
-    if (m * mag >= raw) {
-      step = m * mag;
-      break;
+std::string TickLabel(double v, double step) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", std::abs(v) < 1e-9 * step ? 0.0 : v);  // no "-0" or "1e-17" at zero
+  return b;
+}
+
+struct Interval {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void Include(const std::vector<double>& values) {
+    for (double v : values) {
+      if (!std::isfinite(v)) continue;
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
     }
-  std::vector<double> ticks;
-  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * step; t += step) ticks.push_back(t);
-  return ticks;
+  }
+  // A usable axis even for no data or constant data.
+  void MakeNonEmpty() {
+    if (!(lo <= hi)) {
+      lo = 0;
+      hi = 1;
+    }
+    if (hi - lo <= 1e-12 * std::max(std::abs(lo), std::abs(hi))) {
+      const double half = hi != 0 ? 0.05 * std::abs(hi) : 0.5;
+      lo -= half;
+      hi += half;
+    }
+  }
+};
+
+// Maps data to pixels for one panel.
+struct Axes {
+  double x_lo, x_hi, y_lo, y_hi, top, bottom;
+  double X(double x) const { return kLeft + (x - x_lo) / (x_hi - x_lo) * kPlotWidth; }
+  double Y(double y) const { return bottom - (y - y_lo) / (y_hi - y_lo) * (bottom - top); }
+};
+
+void WriteSeries(const Series& series, const Axes& axes, const char* colour, std::ostream& out) {
+  const std::size_t n = std::min(series.x.size(), series.y.size());
+  std::string points;  // "x,y x,y ..." of the current unbroken stretch
+  double lone_x = 0, lone_y = 0;
+  std::size_t count = 0;
+  auto flush = [&]() {
+    if (count >= 2) {
+      out << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.2\" stroke-linejoin=\"round\" "
+          << "points=\"" << points << "\"/>\n";
+    } else if (count == 1) {  // a lone point between gaps would otherwise vanish
+      out << "<circle cx=\"" << Px(lone_x) << "\" cy=\"" << Px(lone_y) << "\" r=\"1.5\" fill=\"" << colour << "\"/>\n";
+    }
+    points.clear();
+    count = 0;
+  };
+  for (std::size_t i : DecimateMinMax(series.x, series.y, axes.x_lo, axes.x_hi, static_cast<int>(kPlotWidth))) {
+    if (i >= n) break;
+    if (!std::isfinite(series.x[i]) || !std::isfinite(series.y[i])) {
+      flush();
+      continue;
+    }
+    lone_x = axes.X(series.x[i]);
+    lone_y = axes.Y(series.y[i]);
+    if (count++) points += ' ';
+    points += Px(lone_x) + "," + Px(lone_y);
+  }
+  flush();
 }
 
-void Range(const std::vector<double>& v, double& lo, double& hi) {
-  for (double x : v)
-    if (std::isfinite(x)) lo = std::min(lo, x), hi = std::max(hi, x);
-}
-
-void Widen(double& lo, double& hi) {
-  if (!(lo <= hi)) lo = 0, hi = 1;
-  if (hi - lo < 1e-12 * std::max(1.0, std::abs(hi))) lo -= 0.5, hi += 0.5;
-  const double pad = 0.05 * (hi - lo);
-  lo -= pad, hi += pad;
+void WriteLegend(const Panel& panel, const Axes& axes, std::ostream& out) {
+  std::size_t longest = 0, entries = 0;
+  for (const Series& s : panel.series) {
+    if (s.label.empty()) continue;
+    longest = std::max(longest, s.label.size());
+    ++entries;
+  }
+  if (entries == 0) return;
+  const double row = 16, width = 34 + 7 * static_cast<double>(longest);  // ~7 px per character at 12 px
+  const double left = kLeft + kPlotWidth - width - 8, top = axes.top + 8;
+  out << "<rect x=\"" << Px(left) << "\" y=\"" << Px(top) << "\" width=\"" << Px(width) << "\" height=\""
+      << Px(row * static_cast<double>(entries) + 6) << "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#bbb\"/>\n";
+  std::size_t k = 0;
+  for (std::size_t si = 0; si < panel.series.size(); ++si) {
+    if (panel.series[si].label.empty()) continue;
+    const double y = top + 3 + row * (static_cast<double>(k++) + 0.5);
+    out << "<line x1=\"" << Px(left + 6) << "\" x2=\"" << Px(left + 24) << "\" y1=\"" << Px(y) << "\" y2=\"" << Px(y)
+        << "\" stroke=\"" << kColours[si % kColourCount] << "\" stroke-width=\"2\"/>"
+        << "<text x=\"" << Px(left + 30) << "\" y=\"" << Px(y + 4) << "\">" << EscapeXml(panel.series[si].label)
+        << "</text>\n";
+  }
 }
 
 }  // namespace
 
-void WriteSvg(const Figure& figure, std::ostream& out) {
-  const double plot_w = kWidth - kLeft - kRight;
-  const double height = kTop + figure.panels.size() * (kPanelHeight + kGap) + 20;
-  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
-  for (const Panel& p : figure.panels)
-    for (const Series& s : p.series) Range(s.x, x_lo, x_hi);
-  if (!(x_lo < x_hi)) x_lo = 0, x_hi = 1;
-  auto px = [&](double x) { return kLeft + (x - x_lo) / (x_hi - x_lo) * plot_w; };
+std::vector<double> NiceTicks(double lo, double hi, int target_count) {
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo) || target_count < 1) return {};
+  const double raw = (hi - lo) / target_count;
+  const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+  const double residual = raw / magnitude;  // in [1, 10)
+  // The nearest of 1, 2, 5, 10 (Heckbert's rounding), so the count stays within about 0.7 to 1.5 times the target.
+  const double step = magnitude * (residual < 1.5 ? 1 : residual < 3 ? 2 : residual < 7 ? 5 : 10);
+  // k * step rather than repeated addition, so 0.3 is 3 * 0.1 and not 0.1 + 0.1 + 0.1.
+  std::vector<double> ticks;
+  const double tolerance = 1e-9;
+  for (double k = std::ceil(lo / step - tolerance); k <= std::floor(hi / step + tolerance); ++k)
+    ticks.push_back(k * step);
+  return ticks;
+}
 
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << height
-      << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  out << "<text x=\"" << kWidth / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << Escape(figure.title)
-      << "</text>\n";
+std::vector<std::size_t> DecimateMinMax(const std::vector<double>& x, const std::vector<double>& y, double x_lo,
+                                        double x_hi, int columns) {
+  const std::size_t n = std::min(x.size(), y.size());
+  std::vector<std::size_t> kept;
+  const double scale = x_hi > x_lo ? columns / (x_hi - x_lo) : 0.0;
+  // The run of finite points in the current pixel column.
+  bool in_run = false, after_gap = false;
+  long long column = 0;
+  std::size_t first = 0, last = 0, lowest = 0, highest = 0;
+  auto flush = [&]() {
+    if (!in_run) return;
+    std::size_t picks[4] = {first, lowest, highest, last};
+    std::sort(picks, picks + 4);
+    for (std::size_t k = 0; k < 4; ++k)
+      if (k == 0 || picks[k] != picks[k - 1]) kept.push_back(picks[k]);
+    in_run = false;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) {
+      flush();
+      if (!after_gap) kept.push_back(i);
+      after_gap = true;
+      continue;
+    }
+    after_gap = false;
+    // Clamped so that a wild x cannot overflow the conversion; such points just share an edge column.
+    const long long c = static_cast<long long>(std::floor(std::clamp((x[i] - x_lo) * scale, -1e9, 1e9)));
+    if (in_run && c == column) {
+      last = i;
+      if (y[i] < y[lowest]) lowest = i;
+      if (y[i] > y[highest]) highest = i;
+    } else {
+      flush();
+      in_run = true;
+      column = c;
+      first = last = lowest = highest = i;
+    }
+  }
+  flush();
+  return kept;
+}
+
+void WriteSvg(const Figure& figure, std::ostream& out) {
+  Interval x_range;
+  for (const Panel& panel : figure.panels)
+    for (const Series& s : panel.series) x_range.Include(s.x);
+  x_range.MakeNonEmpty();
+  const std::vector<double> x_ticks = NiceTicks(x_range.lo, x_range.hi, 10);
+  const double x_step = x_ticks.size() >= 2 ? x_ticks[1] - x_ticks[0] : 1;
+
+  const double panels = static_cast<double>(figure.panels.size());
+  const double height = kTitle + panels * kPanelHeight + std::max(0.0, panels - 1) * kPanelGap + kBottom;
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << Px(height)
+      << "\" viewBox=\"0 0 " << kWidth << " " << Px(height) << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"" << kWidth / 2 << "\" y=\"25\" text-anchor=\"middle\" font-size=\"15\">"
+      << EscapeXml(figure.title) << "</text>\n";
+
   for (std::size_t pi = 0; pi < figure.panels.size(); ++pi) {
     const Panel& panel = figure.panels[pi];
-    const double top = kTop + pi * (kPanelHeight + kGap), bottom = top + kPanelHeight;
-    double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
-    for (const Series& s : panel.series) Range(s.y, y_lo, y_hi);
-    Widen(y_lo, y_hi);
-    auto py = [&](double y) { return bottom - (y - y_lo) / (y_hi - y_lo) * kPanelHeight; };
-    out << "<rect x=\"" << kLeft << "\" y=\"" << top << "\" width=\"" << plot_w << "\" height=\"" << kPanelHeight
-        << "\" fill=\"none\" stroke=\"#444\"/>\n";
-    for (double t : Ticks(y_lo, y_hi)) {
-      out << "<line x1=\"" << kLeft << "\" x2=\"" << kLeft + plot_w << "\" y1=\"" << py(t) << "\" y2=\"" << py(t)
-          << "\" stroke=\"#ddd\"/><text x=\"" << kLeft - 5 << "\" y=\"" << py(t) + 4 << "\" text-anchor=\"end\">"
-          << Number(t) << "</text>\n";
+    const bool bottom_panel = pi + 1 == figure.panels.size();
+    Interval y_range;
+    for (const Series& s : panel.series) y_range.Include(s.y);
+    y_range.MakeNonEmpty();
+    const double pad = 0.05 * (y_range.hi - y_range.lo);  // lines do not touch the frame
+    const double top = kTitle + static_cast<double>(pi) * (kPanelHeight + kPanelGap);
+    const Axes axes{x_range.lo, x_range.hi, y_range.lo - pad, y_range.hi + pad, top, top + kPanelHeight};
+
+    out << "<g>\n";
+    const std::vector<double> y_ticks = NiceTicks(axes.y_lo, axes.y_hi, 5);
+    const double y_step = y_ticks.size() >= 2 ? y_ticks[1] - y_ticks[0] : 1;
+    for (double t : y_ticks) {
+      out << "<line x1=\"" << kLeft << "\" x2=\"" << kLeft + kPlotWidth << "\" y1=\"" << Px(axes.Y(t)) << "\" y2=\""
+          << Px(axes.Y(t)) << "\" stroke=\"#e0e0e0\"/><text x=\"" << kLeft - 6 << "\" y=\"" << Px(axes.Y(t) + 4)
+          << "\" text-anchor=\"end\">" << TickLabel(t, y_step) << "</text>\n";
     }
-    for (double t : Ticks(x_lo, x_hi)) {
-      out << "<line x1=\"" << px(t) << "\" x2=\"" << px(t) << "\" y1=\"" << top << "\" y2=\"" << bottom
-          << "\" stroke=\"#eee\"/><text x=\"" << px(t) << "\" y=\"" << bottom + 15 << "\" text-anchor=\"middle\">"
-          << Number(t) << "</text>\n";
+    for (double t : x_ticks) {
+      out << "<line x1=\"" << Px(axes.X(t)) << "\" x2=\"" << Px(axes.X(t)) << "\" y1=\"" << Px(axes.top)
+          << "\" y2=\"" << Px(axes.bottom) << "\" stroke=\"#e0e0e0\"/>";
+      if (bottom_panel)
+        out << "<text x=\"" << Px(axes.X(t)) << "\" y=\"" << Px(axes.bottom + 16) << "\" text-anchor=\"middle\">"
+            << TickLabel(t, x_step) << "</text>";
+      out << "\n";
     }
-    out << "<text transform=\"translate(18," << (top + bottom) / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
-        << Escape(panel.y_label) << "</text>\n";
-    if (pi + 1 == figure.panels.size())
-      out << "<text x=\"" << kLeft + plot_w / 2 << "\" y=\"" << bottom + 32 << "\" text-anchor=\"middle\">"
-          << Escape(figure.x_label) << "</text>\n";
-    for (std::size_t si = 0; si < panel.series.size(); ++si) {
-      const Series& s = panel.series[si];
-      const char* colour = kColours[si % 6];
-      // Min and max per pixel column, in the order they occur.
-      out << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1\" points=\"";
-      const std::size_t n = std::min(s.x.size(), s.y.size());
-      long column = -1;
-      std::size_t i_min = 0, i_max = 0;
-      bool open = false;
-      auto flush = [&]() {
-        if (column < 0) return;
-        const std::size_t a = std::min(i_min, i_max), b = std::max(i_min, i_max);
-        out << px(s.x[a]) << "," << py(s.y[a]) << " ";
-        if (b != a) out << px(s.x[b]) << "," << py(s.y[b]) << " ";
-      };
-      for (std::size_t i = 0; i < n; ++i) {
-        if (!std::isfinite(s.y[i]) || !std::isfinite(s.x[i])) {  // a gap: close this polyline, open another
-          flush();
-          column = -1;
-          out << "\"/>\n<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1\" points=\"";
-          continue;
-        }
-        const long c = static_cast<long>(std::floor(px(s.x[i])));
-        if (c != column) {
-          flush();
-          column = c;
-          i_min = i_max = i;
-        } else {
-          if (s.y[i] < s.y[i_min]) i_min = i;
-          if (s.y[i] > s.y[i_max]) i_max = i;
-        }
-        open = true;
-      }
-      flush();
-      (void)open;
-      out << "\"/>\n";
-      out << "<rect x=\"" << kLeft + plot_w - 170 << "\" y=\"" << top + 8 + 16 * si << "\" width=\"12\" height=\"3\" fill=\""
-          << colour << "\"/><text x=\"" << kLeft + plot_w - 152 << "\" y=\"" << top + 13 + 16 * si << "\">"
-          << Escape(s.label) << "</text>\n";
-    }
+    out << "<rect x=\"" << kLeft << "\" y=\"" << Px(axes.top) << "\" width=\"" << kPlotWidth << "\" height=\""
+        << kPanelHeight << "\" fill=\"none\" stroke=\"#444\"/>\n";
+    out << "<text transform=\"translate(18," << Px((axes.top + axes.bottom) / 2)
+        << ") rotate(-90)\" text-anchor=\"middle\">" << EscapeXml(panel.y_label) << "</text>\n";
+    if (bottom_panel)
+      out << "<text x=\"" << kLeft + kPlotWidth / 2 << "\" y=\"" << Px(axes.bottom + 38)
+          << "\" text-anchor=\"middle\">" << EscapeXml(figure.x_label) << "</text>\n";
+    for (std::size_t si = 0; si < panel.series.size(); ++si)
+      WriteSeries(panel.series[si], axes, kColours[si % kColourCount], out);
+    WriteLegend(panel, axes, out);
+    out << "</g>\n";
   }
   out << "</svg>\n";
 }

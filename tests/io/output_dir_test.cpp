@@ -1,0 +1,138 @@
+// io/output_dir: results appear all at once on Commit(), and nothing is left behind without it.
+#include "drillwave/io/output_dir.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+namespace drillwave::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Contents(const fs::path& file) {
+  std::ifstream in(file);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Each test works in its own empty scratch folder.
+class OutputDirectoryTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scratch_ = fs::temp_directory_path() /
+               ("drillwave-outdir-" + std::to_string(::getpid()) + "-" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(scratch_);
+    fs::create_directories(scratch_);
+  }
+  void TearDown() override { fs::remove_all(scratch_); }
+
+  // Names in the scratch folder, to see that no staging folder is left over.
+  std::vector<std::string> Entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(scratch_)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  fs::path scratch_;
+};
+
+TEST_F(OutputDirectoryTest, CommitMovesEveryFileIntoPlace) {
+  const fs::path dir = scratch_ / "run";
+  {
+    OutputDirectory out(dir.string());
+    out.Open("trajectory.csv") << "t\n0\n";
+    out.Open("summary.json") << "{}";
+    out.Open("figures/plot.svg") << "<svg/>";
+    EXPECT_FALSE(fs::exists(dir)) << "nothing visible before Commit()";
+    out.Commit();
+    EXPECT_EQ(out.PathOf("summary.json"), (dir / "summary.json").string());
+  }
+  EXPECT_EQ(Contents(dir / "trajectory.csv"), "t\n0\n");
+  EXPECT_EQ(Contents(dir / "summary.json"), "{}");
+  EXPECT_EQ(Contents(dir / "figures/plot.svg"), "<svg/>");
+  EXPECT_EQ(Entries(), std::vector<std::string>{"run"});
+}
+
+TEST_F(OutputDirectoryTest, WithoutCommitNothingIsLeftBehind) {
+  const fs::path dir = scratch_ / "not" / "yet" / "there";
+  try {
+    OutputDirectory out(dir.string());
+    out.Open("trajectory.csv") << "half a file";
+    throw std::runtime_error("the integration failed");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_FALSE(fs::exists(dir));
+  EXPECT_FALSE(fs::exists(scratch_ / "not")) << "parent folders created for the staging folder are removed too";
+  EXPECT_TRUE(Entries().empty());
+}
+
+TEST_F(OutputDirectoryTest, AnExistingFolderIsUntouchedWithoutCommitAndUpdatedWithIt) {
+  const fs::path dir = scratch_ / "run";
+  fs::create_directories(dir);
+  std::ofstream(dir / "summary.json") << "old";
+  std::ofstream(dir / "notes.txt") << "mine";
+  {
+    OutputDirectory out(dir.string());
+    out.Open("summary.json") << "new";
+  }
+  EXPECT_EQ(Contents(dir / "summary.json"), "old");
+  EXPECT_EQ(Entries(), std::vector<std::string>{"run"});
+  {
+    OutputDirectory out(dir.string());
+    out.Open("summary.json") << "new";
+    out.Open("plot.svg") << "<svg/>";
+    out.Commit();
+  }
+  EXPECT_EQ(Contents(dir / "summary.json"), "new");
+  EXPECT_EQ(Contents(dir / "plot.svg"), "<svg/>");
+  EXPECT_EQ(Contents(dir / "notes.txt"), "mine");
+  EXPECT_EQ(Entries(), std::vector<std::string>{"run"});
+}
+
+TEST_F(OutputDirectoryTest, TrailingSlashStagesBesideNotInside) {
+  const std::string dir = (scratch_ / "run").string() + "/";
+  {
+    OutputDirectory out(dir);
+    out.Open("a.txt") << "a";
+    EXPECT_FALSE(fs::exists(scratch_ / "run"));
+  }
+  EXPECT_TRUE(Entries().empty());
+}
+
+TEST_F(OutputDirectoryTest, TwoWritersToTheSameFolderDoNotClobberEachOther) {
+  const fs::path dir = scratch_ / "run";
+  OutputDirectory first(dir.string());
+  first.Open("a.txt") << "first";
+  {
+    OutputDirectory second(dir.string());
+    second.Open("b.txt") << "second";
+  }  // abandoned: must not remove the first writer's staging folder
+  first.Commit();
+  EXPECT_EQ(Contents(dir / "a.txt"), "first");
+  EXPECT_FALSE(fs::exists(dir / "b.txt"));
+}
+
+TEST_F(OutputDirectoryTest, RejectsMisuse) {
+  std::ofstream(scratch_ / "a-file") << "x";
+  EXPECT_THROW(OutputDirectory((scratch_ / "a-file").string()), std::runtime_error);
+
+  OutputDirectory out((scratch_ / "run").string());
+  EXPECT_THROW(out.Open("../escape.txt"), std::invalid_argument);
+  EXPECT_THROW(out.Open("/tmp/absolute.txt"), std::invalid_argument);
+  EXPECT_THROW(out.Open(""), std::invalid_argument);
+  out.Open("a.txt") << "a";
+  EXPECT_THROW(out.Open("./a.txt"), std::invalid_argument);
+  out.Commit();
+  EXPECT_THROW(out.Open("b.txt"), std::logic_error);
+  EXPECT_THROW(out.Commit(), std::logic_error);
+}
+
+}  // namespace
+}  // namespace drillwave::io
