@@ -1,223 +1,511 @@
 #include "drillwave/bitrock/friction.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 
 #include "drillwave/core/error.hpp"
-#include "drillwave/io/json_reader.hpp"
 
 namespace drillwave::bitrock {
 namespace {
 
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
+using Law = FrictionLaw::Law;
+using nlohmann::json;
 
-double Sign(double w) { return w > 0 ? 1.0 : (w < 0 ? -1.0 : 0.0); }
-// 1 - 2 / (1 + e^{a|w|}) = tanh(a|w| / 2): the smooth step of the humped law.
-double Step(double a, double w) { return std::tanh(0.5 * a * std::abs(w)); }
-double StepDerivative(double a, double w) {  // d/dw of Step, times sign(w) (the law multiplies by sign w)
-  const double th = std::tanh(0.5 * a * std::abs(w));
-  return 0.5 * a * (1 - th * th);
+// ---------------------------------------------------------------------------------------------------------------
+// Field tables. Each law lists its fields once; reading, writing, validation, scaling and the schema all walk
+// that list, so they cannot disagree about a key, a unit or a range.
+
+enum class Bound { kAny, kNonNegative, kPositive, kAtLeastOther, kWithinOther };  // kWithinOther: |x| <= other
+enum class Absent { kRequired, kZero, kOther };                                   // what a missing key means
+
+template <class L>
+struct Field {
+  const char* key;      // JSON key; carries the unit
+  double L::*member;
+  const char* meaning;  // for Schema()
+  Bound bound = Bound::kAny;
+  double L::*other = nullptr;  // the field a relative bound refers to; listed earlier
+  bool is_torque_level = false;  // multiplied by Scaled()
+  Absent absent = Absent::kRequired;
+  double L::*default_from = nullptr;  // for Absent::kOther; listed earlier
+
+  constexpr Field NonNegative() const { return With(Bound::kNonNegative, nullptr); }
+  constexpr Field Positive() const { return With(Bound::kPositive, nullptr); }
+  constexpr Field AtLeast(double L::*o) const { return With(Bound::kAtLeastOther, o); }
+  constexpr Field Within(double L::*o) const { return With(Bound::kWithinOther, o); }
+  constexpr Field TorqueLevel() const {
+    Field f = *this;
+    f.is_torque_level = true;
+    return f;
+  }
+  constexpr Field DefaultZero() const {
+    Field f = *this;
+    f.absent = Absent::kZero;
+    return f;
+  }
+  constexpr Field DefaultTo(double L::*from) const {
+    Field f = *this;
+    f.absent = Absent::kOther;
+    f.default_from = from;
+    return f;
+  }
+
+ private:
+  constexpr Field With(Bound b, double L::*o) const {
+    Field f = *this;
+    f.bound = b;
+    f.other = o;
+    return f;
+  }
+};
+
+// Per law: JSON name, formulas (kStatic == nullptr for smooth laws), where it comes from, and its fields.
+template <class L>
+struct Traits;
+
+// Sign with sign(0) = 0, without branches.
+double Sign(double w) { return static_cast<double>((w > 0) - (w < 0)); }
+
+// ---------------------------------------------------------------------------------------------------------------
+// The laws. Slip/Slope are on the integrator's hot path: no allocation, no look-ups, few branches.
+
+template <>
+struct Traits<Viscous> {
+  static constexpr const char* kKind = "viscous";
+  static constexpr const char* kTorque = "T = c w";
+  static constexpr const char* kStatic = nullptr;
+  static constexpr const char* kSource = "linear reference law for validation";
+  using F = Field<Viscous>;
+  static constexpr F kFields[] = {
+      F{"c_Nms_per_rad", &Viscous::c, "viscous coefficient c [N·m·s/rad]"}.NonNegative().TorqueLevel(),
+  };
+};
+double Slip(const Viscous& l, double w) { return l.c * w; }
+double Slope(const Viscous& l, double) { return l.c; }
+
+template <>
+struct Traits<Coulomb> {
+  static constexpr const char* kKind = "coulomb";
+  static constexpr const char* kTorque = "T = T_c sign w + c w";
+  static constexpr const char* kStatic = "T in [-T_s, T_s]";
+  static constexpr const char* kSource = "Coulomb friction with stiction (setup seed eq. 2)";
+  using F = Field<Coulomb>;
+  static constexpr F kFields[] = {
+      F{"T_c_Nm", &Coulomb::t_c, "sliding friction torque T_c [N·m]"}.NonNegative().TorqueLevel(),
+      F{"T_s_Nm", &Coulomb::t_s, "static friction torque T_s [N·m]"}
+          .AtLeast(&Coulomb::t_c).TorqueLevel().DefaultTo(&Coulomb::t_c),
+      F{"c_Nms_per_rad", &Coulomb::c, "viscous coefficient c [N·m·s/rad]"}.NonNegative().TorqueLevel().DefaultZero(),
+  };
+};
+double Slip(const Coulomb& l, double w) { return l.t_c * Sign(w) + l.c * w; }
+double Slope(const Coulomb& l, double) { return l.c; }
+double StaticUp(const Coulomb& l) { return l.t_s; }
+double StaticDown(const Coulomb& l) { return l.t_s; }
+
+template <>
+struct Traits<Stribeck> {
+  static constexpr const char* kKind = "stribeck";
+  static constexpr const char* kTorque = "T = c_b w + W R (mu_c + (mu_s - mu_c) exp(-gamma_b |w| / nu_f)) sign w";
+  static constexpr const char* kStatic = "T in [-W R mu_s, W R mu_s]";
+  static constexpr const char* kSource =
+      "Navarro-López bit friction (DESIGN.md §3): W = 97347, R = 0.155575, mu_c = 0.5, mu_s = 0.8, "
+      "gamma_b = 0.9, nu_f = 1, c_b = 0.03";
+  using F = Field<Stribeck>;
+  static constexpr F kFields[] = {
+      F{"W_N", &Stribeck::weight_on_bit, "weight on bit W [N]"}.NonNegative().TorqueLevel(),
+      F{"R_m", &Stribeck::bit_radius, "bit radius R [m]"}.Positive(),
+      F{"mu_c", &Stribeck::mu_c, "kinetic (Coulomb) friction coefficient [-]"}.NonNegative(),
+      F{"mu_s", &Stribeck::mu_s, "static friction coefficient [-]"}.AtLeast(&Stribeck::mu_c),
+      F{"gamma_b", &Stribeck::gamma_b, "decay rate of the friction coefficient [-]"}.NonNegative(),
+      F{"nu_f_rad_s", &Stribeck::nu_f, "speed scale of the decay nu_f [rad/s]"}.Positive(),
+      F{"c_b_Nms_per_rad", &Stribeck::c_b, "viscous coefficient at the bit c_b [N·m·s/rad]"}
+          .NonNegative().TorqueLevel(),
+  };
+};
+double StribeckDecay(const Stribeck& l, double w) { return std::exp(-l.gamma_b * std::abs(w) / l.nu_f); }
+double Slip(const Stribeck& l, double w) {
+  const double mu = l.mu_c + (l.mu_s - l.mu_c) * StribeckDecay(l, w);
+  return l.c_b * w + l.weight_on_bit * l.bit_radius * mu * Sign(w);
+}
+double Slope(const Stribeck& l, double w) {  // d/dw of (mu(|w|) sign w) is mu'(|w|): the sign cancels
+  return l.c_b - l.weight_on_bit * l.bit_radius * (l.mu_s - l.mu_c) * (l.gamma_b / l.nu_f) * StribeckDecay(l, w);
+}
+double StaticUp(const Stribeck& l) { return l.weight_on_bit * l.bit_radius * l.mu_s; }
+double StaticDown(const Stribeck& l) { return StaticUp(l); }
+
+template <>
+struct Traits<SqrtRegularized> {
+  static constexpr const char* kKind = "sqrt_regularized";
+  static constexpr const char* kTorque = "T = p alpha w / sqrt(w^2 + epsilon^2)";
+  static constexpr const char* kStatic = nullptr;
+  static constexpr const char* kSource = "chapter eq. 2.29 times an amplitude p";
+  using F = Field<SqrtRegularized>;
+  static constexpr F kFields[] = {
+      F{"amplitude_Nm", &SqrtRegularized::amplitude, "torque amplitude p [N·m]"}.NonNegative().TorqueLevel(),
+      F{"alpha", &SqrtRegularized::alpha, "level alpha [-]"}.NonNegative(),
+      F{"epsilon_rad_s", &SqrtRegularized::epsilon, "regularization speed epsilon [rad/s]"}.Positive(),
+  };
+};
+double Slip(const SqrtRegularized& l, double w) {
+  return l.amplitude * l.alpha * w / std::sqrt(w * w + l.epsilon * l.epsilon);
+}
+double Slope(const SqrtRegularized& l, double w) {
+  const double e2 = l.epsilon * l.epsilon;
+  const double r = 1.0 / std::sqrt(w * w + e2);
+  return l.amplitude * l.alpha * e2 * r * r * r;
+}
+
+template <>
+struct Traits<TanhHump> {
+  static constexpr const char* kKind = "tanh_hump";
+  static constexpr const char* kTorque = "T = p beta (tanh w + gamma1 w / (1 + gamma2 w^2)), w in rad/s as a number";
+  static constexpr const char* kStatic = nullptr;
+  static constexpr const char* kSource =
+      "chapter eq. 2.30 times an amplitude p; the seed's layout is garbled, read with gamma1 w in the numerator "
+      "so that the law is odd and smooth";
+  using F = Field<TanhHump>;
+  static constexpr F kFields[] = {
+      F{"amplitude_Nm", &TanhHump::amplitude, "torque amplitude p [N·m]"}.NonNegative().TorqueLevel(),
+      F{"beta", &TanhHump::beta, "level beta [-]"}.NonNegative(),
+      F{"gamma1", &TanhHump::gamma1, "hump height gamma1 [s/rad]"}.NonNegative(),
+      F{"gamma2", &TanhHump::gamma2, "hump decay gamma2 [s^2/rad^2]"}.NonNegative(),
+  };
+};
+double Slip(const TanhHump& l, double w) {
+  return l.amplitude * l.beta * (std::tanh(w) + l.gamma1 * w / (1 + l.gamma2 * w * w));
+}
+double Slope(const TanhHump& l, double w) {
+  const double th = std::tanh(w);
+  const double q = 1 + l.gamma2 * w * w;
+  return l.amplitude * l.beta * ((1 - th * th) + l.gamma1 * (1 - l.gamma2 * w * w) / (q * q));
+}
+
+template <>
+struct Traits<Rational> {
+  static constexpr const char* kKind = "rational";
+  static constexpr const char* kTorque = "T = p k w / (k^2 w^2 + zeta)";
+  static constexpr const char* kStatic = nullptr;
+  static constexpr const char* kSource = "chapter eqs. 2.12-2.13 (there 0 < zeta << 1, 0 < k < 1)";
+  using F = Field<Rational>;
+  static constexpr F kFields[] = {
+      F{"p_Nm", &Rational::p, "torque amplitude p [N·m]"}.NonNegative().TorqueLevel(),
+      F{"k", &Rational::k, "sharpness k [s/rad]"}.Positive(),
+      F{"zeta", &Rational::zeta, "sharpness zeta [-]"}.Positive(),
+  };
+};
+double Slip(const Rational& l, double w) { return l.p * l.k * w / (l.k * l.k * w * w + l.zeta); }
+double Slope(const Rational& l, double w) {
+  const double kw2 = l.k * l.k * w * w;
+  const double q = kw2 + l.zeta;
+  return l.p * l.k * (l.zeta - kw2) / (q * q);
+}
+
+template <>
+struct Traits<Humped> {
+  static constexpr const char* kKind = "humped";
+  static constexpr const char* kTorque =
+      "T = (T_sl + T_1 (1 - 2/(1 + e^(omega_1 |w|))) + T_2 (1 - 2/(1 + e^(omega_2 |w|))) + b_l |w| "
+      "+ delta_T_sl sign w) sign w";
+  static constexpr const char* kStatic = "T in [-(T_sl - delta_T_sl), T_sl + delta_T_sl]";
+  static constexpr const char* kSource = "setup seed eq. 7 (lower disc); the asymmetry delta_T_sl as in eq. 5";
+  using F = Field<Humped>;
+  static constexpr F kFields[] = {
+      F{"T_sl_Nm", &Humped::t_sl, "static friction level T_sl [N·m]"}.NonNegative().TorqueLevel(),
+      F{"T_1_Nm", &Humped::t_1, "first step T_1 [N·m], negative for velocity weakening"}.TorqueLevel(),
+      F{"T_2_Nm", &Humped::t_2, "second step T_2 [N·m]"}.TorqueLevel(),
+      F{"omega_1_s_per_rad", &Humped::omega_1, "rate of the first step omega_1 [s/rad]"}.NonNegative(),
+      F{"omega_2_s_per_rad", &Humped::omega_2, "rate of the second step omega_2 [s/rad]"}.NonNegative(),
+      F{"b_l_Nms_per_rad", &Humped::b_l, "viscous coefficient b_l [N·m·s/rad]"}.NonNegative().TorqueLevel(),
+      F{"delta_T_sl_Nm", &Humped::delta_t_sl, "asymmetry of the static level [N·m]"}
+          .Within(&Humped::t_sl).TorqueLevel().DefaultZero(),
+  };
+};
+// 1 - 2 / (1 + e^x) = tanh(x / 2), which does not overflow for large x.
+double HumpStep(double x) { return std::tanh(0.5 * x); }
+double HumpStepSlope(double x) {
+  const double th = std::tanh(0.5 * x);
+  return 0.5 * (1 - th * th);
+}
+double Slip(const Humped& l, double w) {
+  const double r = std::abs(w), s = Sign(w);
+  const double magnitude = l.t_sl + l.t_1 * HumpStep(l.omega_1 * r) + l.t_2 * HumpStep(l.omega_2 * r) + l.b_l * r;
+  return magnitude * s + l.delta_t_sl * s * s;  // (magnitude + delta sign w) sign w
+}
+double Slope(const Humped& l, double w) {
+  const double r = std::abs(w);
+  return l.t_1 * l.omega_1 * HumpStepSlope(l.omega_1 * r) + l.t_2 * l.omega_2 * HumpStepSlope(l.omega_2 * r) + l.b_l;
+}
+double StaticUp(const Humped& l) { return l.t_sl + l.delta_t_sl; }
+double StaticDown(const Humped& l) { return l.t_sl - l.delta_t_sl; }
+
+template <>
+struct Traits<AsymmetricCoulombViscous> {
+  static constexpr const char* kKind = "asymmetric_coulomb_viscous";
+  static constexpr const char* kTorque =
+      "w > 0: T = (T_s + delta_T_s) + (b + delta_b) w; w < 0: T = -(T_s - delta_T_s) + (b - delta_b) w";
+  static constexpr const char* kStatic = "T in [-(T_s - delta_T_s), T_s + delta_T_s]";
+  static constexpr const char* kSource =
+      "setup seed eqs. 5-6 (upper disc): T_s = 0.3212, delta_T_s = 0.0095, b = 1.9833, delta_b = 0.0167";
+  using F = Field<AsymmetricCoulombViscous>;
+  static constexpr F kFields[] = {
+      F{"T_s_Nm", &AsymmetricCoulombViscous::t_s, "mean static friction level T_s [N·m]"}.NonNegative().TorqueLevel(),
+      F{"delta_T_s_Nm", &AsymmetricCoulombViscous::delta_t_s, "asymmetry of the static level [N·m]"}
+          .Within(&AsymmetricCoulombViscous::t_s).TorqueLevel(),
+      F{"b_Nms_per_rad", &AsymmetricCoulombViscous::b, "mean viscous coefficient b [N·m·s/rad]"}
+          .NonNegative().TorqueLevel(),
+      F{"delta_b_Nms_per_rad", &AsymmetricCoulombViscous::delta_b, "asymmetry of the viscous coefficient [N·m·s/rad]"}
+          .Within(&AsymmetricCoulombViscous::b).TorqueLevel(),
+  };
+};
+double Slip(const AsymmetricCoulombViscous& l, double w) {
+  const double s = Sign(w);
+  return l.t_s * s + l.delta_t_s * s * s + (l.b + l.delta_b * s) * w;
+}
+double Slope(const AsymmetricCoulombViscous& l, double w) { return l.b + l.delta_b * Sign(w); }
+double StaticUp(const AsymmetricCoulombViscous& l) { return l.t_s + l.delta_t_s; }
+double StaticDown(const AsymmetricCoulombViscous& l) { return l.t_s - l.delta_t_s; }
+
+template <class L>
+constexpr bool IsSetValuedLaw() {
+  return Traits<L>::kStatic != nullptr;
+}
+
+// Smooth laws hold no torque at rest; every set-valued law has its own overloads above.
+template <class L>
+double StaticUp(const L&) {
+  static_assert(!IsSetValuedLaw<L>(), "a set-valued law needs StaticUp and StaticDown");
+  return 0.0;
+}
+template <class L>
+double StaticDown(const L&) {
+  static_assert(!IsSetValuedLaw<L>(), "a set-valued law needs StaticUp and StaticDown");
+  return 0.0;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Generic machinery over the field tables.
+
+template <class L>
+using TraitsOf = Traits<std::decay_t<L>>;
+
+constexpr std::size_t kNumLaws = std::variant_size_v<Law>;
+
+template <std::size_t... I>
+std::array<std::string, kNumLaws> KindNames(std::index_sequence<I...>) {
+  return {Traits<std::variant_alternative_t<I, Law>>::kKind...};
+}
+
+const std::array<std::string, kNumLaws>& Kinds() {
+  static const std::array<std::string, kNumLaws> kinds = KindNames(std::make_index_sequence<kNumLaws>());
+  return kinds;
+}
+
+std::string KindList() {
+  std::string list;
+  for (const std::string& k : Kinds()) list += (list.empty() ? "" : ", ") + k;
+  return list;
+}
+
+std::string Format(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", x);
+  return text;
+}
+
+std::string Found(const json& v) {
+  if (v.is_string()) return "a string " + v.dump();
+  if (v.is_number()) return Format(v.get<double>());
+  return std::string(v.type_name()) + " " + v.dump().substr(0, 60);
+}
+
+template <class L>
+std::string KeyOf(double L::*member) {
+  for (const auto& f : Traits<L>::kFields)
+    if (f.member == member) return f.key;
+  return "?";
+}
+
+template <class L>
+std::string RangeText(const Field<L>& f) {
+  switch (f.bound) {
+    case Bound::kAny: return "a finite number";
+    case Bound::kNonNegative: return "a number >= 0";
+    case Bound::kPositive: return "a number > 0";
+    case Bound::kAtLeastOther: return "a number >= " + KeyOf(f.other);
+    case Bound::kWithinOther: return "a number in [-" + KeyOf(f.other) + ", " + KeyOf(f.other) + "]";
+  }
+  return "";
+}
+
+// For error messages: the range with the value of the field it refers to, e.g. "a number >= mu_c (mu_c = 0.5)".
+template <class L>
+std::string RangeText(const Field<L>& f, const L& law) {
+  if (f.other == nullptr) return RangeText(f);
+  return RangeText(f) + " (" + KeyOf(f.other) + " = " + Format(law.*f.other) + ")";
+}
+
+template <class L>
+bool InRange(const Field<L>& f, const L& law) {
+  const double x = law.*f.member;
+  if (!std::isfinite(x)) return false;
+  switch (f.bound) {
+    case Bound::kAny: return true;
+    case Bound::kNonNegative: return x >= 0;
+    case Bound::kPositive: return x > 0;
+    case Bound::kAtLeastOther: return x >= law.*f.other;
+    case Bound::kWithinOther: return std::abs(x) <= law.*f.other;
+  }
+  return false;
+}
+
+template <class L>
+bool HasField(const std::string& key) {
+  for (const auto& f : Traits<L>::kFields)
+    if (key == f.key) return true;
+  return false;
+}
+
+template <class L>
+L ReadLaw(const json& j, const std::string& path) {
+  // Unknown keys first: a misspelt key would otherwise be reported as a missing one.
+  for (const auto& item : j.items()) {
+    if (item.key() == "law" || HasField<L>(item.key())) continue;
+    std::string known = "law";
+    for (const auto& f : Traits<L>::kFields) known += std::string(", ") + f.key;
+    throw InputError(path + "/" + item.key(), std::string("unknown field of friction law \"") + Traits<L>::kKind +
+                                                  "\"; expected one of: " + known);
+  }
+  L law{};
+  for (const auto& f : Traits<L>::kFields) {
+    const std::string field_path = path + "/" + f.key;
+    const json::const_iterator it = j.find(f.key);
+    if (it == j.end()) {
+      if (f.absent == Absent::kRequired) throw InputError(field_path, "missing required field (" + RangeText(f) + ")");
+      law.*f.member = f.absent == Absent::kOther ? law.*f.default_from : 0.0;
+      continue;
+    }
+    if (!it->is_number()) throw InputError(field_path, "expected " + RangeText(f, law) + ", got " + Found(*it));
+    law.*f.member = it->get<double>();
+    if (!std::isfinite(law.*f.member))
+      throw InputError(field_path, "expected a finite number (" + RangeText(f, law) + "), got " + Found(*it));
+    if (!InRange(f, law)) throw InputError(field_path, "expected " + RangeText(f, law) + ", got " + Found(*it));
+  }
+  return law;
+}
+
+template <std::size_t... I>
+std::optional<Law> ReadKind(const std::string& kind, const json& j, const std::string& path,
+                            std::index_sequence<I...>) {
+  std::optional<Law> law;
+  (void)((kind == Traits<std::variant_alternative_t<I, Law>>::kKind
+              ? (law = ReadLaw<std::variant_alternative_t<I, Law>>(j, path), true)
+              : false) ||
+         ...);
+  return law;
+}
+
+template <class L>
+json SchemaOf() {
+  json fields = json::object();
+  for (const auto& f : Traits<L>::kFields) {
+    std::string text = std::string(f.meaning) + "; " + RangeText(f);
+    if (f.absent == Absent::kZero) text += "; optional, default 0";
+    if (f.absent == Absent::kOther) text += "; optional, default " + KeyOf(f.default_from);
+    fields[f.key] = text;
+  }
+  json schema = {{"set_valued", IsSetValuedLaw<L>()},
+                 {"torque", Traits<L>::kTorque},
+                 {"source", Traits<L>::kSource},
+                 {"fields", fields}};
+  if (IsSetValuedLaw<L>()) schema["static"] = Traits<L>::kStatic;
+  return schema;
+}
+
+template <std::size_t... I>
+json SchemaOfAll(std::index_sequence<I...>) {
+  json schema = json::object();
+  ((schema[Traits<std::variant_alternative_t<I, Law>>::kKind] = SchemaOf<std::variant_alternative_t<I, Law>>()), ...);
+  return schema;
 }
 
 }  // namespace
 
-double FrictionLaw::SlipTorque(double w) const {
-  return std::visit(
-      Overloaded{
-          [w](const Viscous& l) { return l.c * w; },
-          [w](const Coulomb& l) { return l.t_c * Sign(w) + l.c * w; },
-          [w](const Stribeck& l) {
-            return l.c_b * w + l.w_n * l.r_m * (l.mu_c + (l.mu_s - l.mu_c) * std::exp(-l.gamma_b * std::abs(w) / l.nu_f)) * Sign(w);
-          },
-          [w](const SqrtRegularized& l) { return l.amplitude * l.alpha * w / std::sqrt(w * w + l.epsilon * l.epsilon); },
-          [w](const TanhHump& l) { return l.amplitude * l.beta * (std::tanh(w) + l.gamma1 * w / (1 + l.gamma2 * w * w)); },
-          [w](const Rational& l) { return l.p * l.k * w / (l.k * l.k * w * w + l.zeta); },
-          [w](const Humped& l) {
-            const double magnitude = l.t_sl + l.t_1 * Step(l.omega_1, w) + l.t_2 * Step(l.omega_2, w) + l.b_l * std::abs(w);
-            return magnitude * Sign(w) + l.delta_t_sl;
-          },
-          [w](const AsymmetricCoulombViscous& l) {
-            return w > 0 ? (l.t_s + l.delta_t_s) + (l.b + l.delta_b) * w
-                         : (w < 0 ? -(l.t_s - l.delta_t_s) + (l.b - l.delta_b) * w : 0.0);
-          },
+FrictionLaw::FrictionLaw(const Law& law) : law_(law) {
+  std::visit(
+      [](const auto& l) {
+        using Tr = TraitsOf<decltype(l)>;
+        for (const auto& f : Tr::kFields) {
+          if (InRange(f, l)) continue;
+          throw std::invalid_argument(std::string("friction law \"") + Tr::kKind + "\": " + f.key + ": expected " +
+                                      RangeText(f, l) + ", got " + Format(l.*f.member));
+        }
       },
       law_);
 }
 
-double FrictionLaw::SlipTorqueDerivative(double w) const {
-  return std::visit(
-      Overloaded{
-          [](const Viscous& l) { return l.c; },
-          [](const Coulomb& l) { return l.c; },
-          [w](const Stribeck& l) {
-            return l.c_b - l.w_n * l.r_m * (l.mu_s - l.mu_c) * l.gamma_b / l.nu_f * std::exp(-l.gamma_b * std::abs(w) / l.nu_f);
-          },
-          [w](const SqrtRegularized& l) {
-            const double e2 = l.epsilon * l.epsilon;
-            return l.amplitude * l.alpha * e2 / std::pow(w * w + e2, 1.5);
-          },
-          [w](const TanhHump& l) {
-            const double th = std::tanh(w), q = 1 + l.gamma2 * w * w;
-            return l.amplitude * l.beta * ((1 - th * th) + l.gamma1 * (1 - l.gamma2 * w * w) / (q * q));
-          },
-          [w](const Rational& l) {
-            const double q = l.k * l.k * w * w + l.zeta;
-            return l.p * l.k * (l.zeta - l.k * l.k * w * w) / (q * q);
-          },
-          [w](const Humped& l) {
-            return l.t_1 * StepDerivative(l.omega_1, w) + l.t_2 * StepDerivative(l.omega_2, w) + l.b_l;
-          },
-          [w](const AsymmetricCoulombViscous& l) { return w >= 0 ? l.b + l.delta_b : l.b - l.delta_b; },
-      },
-      law_);
+double FrictionLaw::SlipTorque(double omega) const {
+  return std::visit([omega](const auto& l) { return Slip(l, omega); }, law_);
+}
+
+double FrictionLaw::SlipTorqueDerivative(double omega) const {
+  return std::visit([omega](const auto& l) { return Slope(l, omega); }, law_);
 }
 
 bool FrictionLaw::IsSetValued() const {
-  return std::holds_alternative<Coulomb>(law_) || std::holds_alternative<Stribeck>(law_) ||
-         std::holds_alternative<Humped>(law_) || std::holds_alternative<AsymmetricCoulombViscous>(law_);
+  return std::visit([](const auto& l) { return IsSetValuedLaw<std::decay_t<decltype(l)>>(); }, law_);
 }
 
 double FrictionLaw::StaticPositive() const {
-  return std::visit(Overloaded{[](const Coulomb& l) { return l.t_s; },
-                               [](const Stribeck& l) { return l.w_n * l.r_m * l.mu_s; },
-                               [](const Humped& l) { return l.t_sl + l.delta_t_sl; },
-                               [](const AsymmetricCoulombViscous& l) { return l.t_s + l.delta_t_s; },
-                               [](const auto&) { return 0.0; }},
-                    law_);
+  return std::visit([](const auto& l) { return StaticUp(l); }, law_);
 }
 
 double FrictionLaw::StaticNegative() const {
-  return std::visit(Overloaded{[](const Coulomb& l) { return l.t_s; },
-                               [](const Stribeck& l) { return l.w_n * l.r_m * l.mu_s; },
-                               [](const Humped& l) { return l.t_sl - l.delta_t_sl; },
-                               [](const AsymmetricCoulombViscous& l) { return l.t_s - l.delta_t_s; },
-                               [](const auto&) { return 0.0; }},
-                    law_);
+  return std::visit([](const auto& l) { return StaticDown(l); }, law_);
 }
 
-std::string FrictionLaw::Kind() const {
-  static const char* kNames[] = {"viscous", "coulomb", "stribeck", "sqrt_regularized", "tanh_hump", "rational",
-                                 "humped", "asymmetric_coulomb_viscous"};
-  return kNames[law_.index()];
-}
+const std::string& FrictionLaw::Kind() const { return Kinds()[law_.index()]; }
 
-FrictionLaw FrictionLaw::FromJson(const nlohmann::json& j, const std::string& json_path) {
-  using io::Range;
-  const io::JsonReader r(j, json_path);
-  const std::string kind = r.String("law", {"viscous", "coulomb", "stribeck", "sqrt_regularized", "tanh_hump",
-                                            "rational", "humped", "asymmetric_coulomb_viscous"});
-  Law law = Viscous{0};
-  if (kind == "viscous") {
-    law = Viscous{r.Number("c_Nms_per_rad", Range::NonNegative())};
-  } else if (kind == "coulomb") {
-    const double tc = r.Number("T_c_Nm", Range::NonNegative());
-    const double ts = r.Number("T_s_Nm", Range::AtLeast(tc), tc);
-    law = Coulomb{tc, ts, r.Number("c_Nms_per_rad", Range::NonNegative(), 0.0)};
-  } else if (kind == "stribeck") {
-    Stribeck s{};
-    s.w_n = r.Number("W_N", Range::Positive());
-    s.r_m = r.Number("R_m", Range::Positive());
-    s.mu_c = r.Number("mu_c", Range::NonNegative());
-    s.mu_s = r.Number("mu_s", Range::AtLeast(s.mu_c));
-    s.gamma_b = r.Number("gamma_b", Range::NonNegative());
-    s.nu_f = r.Number("nu_f_rad_s", Range::Positive());
-    s.c_b = r.Number("c_b_Nms_per_rad", Range::NonNegative());
-    law = s;
-  } else if (kind == "sqrt_regularized") {
-    law = SqrtRegularized{r.Number("amplitude_Nm", Range::NonNegative()), r.Number("alpha", Range::NonNegative()),
-                          r.Number("epsilon_rad_s", Range::Positive())};
-  } else if (kind == "tanh_hump") {
-    law = TanhHump{r.Number("amplitude_Nm", Range::NonNegative()), r.Number("beta", Range::NonNegative()),
-                   r.Number("gamma1", Range::Any()), r.Number("gamma2", Range::NonNegative())};
-  } else if (kind == "rational") {
-    law = Rational{r.Number("p_Nm", Range::NonNegative()), r.Number("k", Range::Positive()),
-                   r.Number("zeta", Range::Positive())};
-  } else if (kind == "humped") {
-    Humped h{};
-    h.t_sl = r.Number("T_sl_Nm", Range::NonNegative());
-    h.t_1 = r.Number("T_1_Nm", Range::Any());
-    h.t_2 = r.Number("T_2_Nm", Range::Any());
-    h.omega_1 = r.Number("omega_1_s_per_rad", Range::NonNegative());
-    h.omega_2 = r.Number("omega_2_s_per_rad", Range::NonNegative());
-    h.b_l = r.Number("b_l_Nms_per_rad", Range::NonNegative());
-    h.delta_t_sl = r.Number("delta_T_sl_Nm", Range::Between(-h.t_sl, h.t_sl), 0.0);
-    law = h;
-  } else {
-    AsymmetricCoulombViscous a{};
-    a.t_s = r.Number("T_s_Nm", Range::NonNegative());
-    a.delta_t_s = r.Number("delta_T_s_Nm", Range::Between(-a.t_s, a.t_s));
-    a.b = r.Number("b_Nms_per_rad", Range::NonNegative());
-    a.delta_b = r.Number("delta_b_Nms_per_rad", Range::Between(-a.b, a.b));
-    law = a;
+FrictionLaw FrictionLaw::FromJson(const json& j, const std::string& json_path) {
+  if (!j.is_object())
+    throw InputError(json_path, "expected a friction law, an object {\"law\": \"<kind>\", ...}, got " + Found(j));
+  const std::string law_path = json_path + "/law";
+  const auto kind = j.find("law");
+  if (kind == j.end()) throw InputError(law_path, "missing required field (one of: " + KindList() + ")");
+  if (kind->is_string()) {
+    const std::optional<Law> law =
+        ReadKind(kind->get_ref<const std::string&>(), j, json_path, std::make_index_sequence<kNumLaws>());
+    if (law) return FrictionLaw(*law);
   }
-  r.Finish();
-  return FrictionLaw(law);
+  throw InputError(law_path, "expected one of: " + KindList() + ", got " + Found(*kind));
 }
 
-nlohmann::json FrictionLaw::ToJson() const {
-  nlohmann::json j = std::visit(
-      Overloaded{
-          [](const Viscous& l) { return nlohmann::json{{"c_Nms_per_rad", l.c}}; },
-          [](const Coulomb& l) { return nlohmann::json{{"T_c_Nm", l.t_c}, {"T_s_Nm", l.t_s}, {"c_Nms_per_rad", l.c}}; },
-          [](const Stribeck& l) {
-            return nlohmann::json{{"W_N", l.w_n},   {"R_m", l.r_m},         {"mu_c", l.mu_c},           {"mu_s", l.mu_s},
-                                  {"gamma_b", l.gamma_b}, {"nu_f_rad_s", l.nu_f}, {"c_b_Nms_per_rad", l.c_b}};
-          },
-          [](const SqrtRegularized& l) {
-            return nlohmann::json{{"amplitude_Nm", l.amplitude}, {"alpha", l.alpha}, {"epsilon_rad_s", l.epsilon}};
-          },
-          [](const TanhHump& l) {
-            return nlohmann::json{{"amplitude_Nm", l.amplitude}, {"beta", l.beta}, {"gamma1", l.gamma1}, {"gamma2", l.gamma2}};
-          },
-          [](const Rational& l) { return nlohmann::json{{"p_Nm", l.p}, {"k", l.k}, {"zeta", l.zeta}}; },
-          [](const Humped& l) {
-            return nlohmann::json{{"T_sl_Nm", l.t_sl},           {"T_1_Nm", l.t_1},
-                                  {"T_2_Nm", l.t_2},             {"omega_1_s_per_rad", l.omega_1},
-                                  {"omega_2_s_per_rad", l.omega_2}, {"b_l_Nms_per_rad", l.b_l},
-                                  {"delta_T_sl_Nm", l.delta_t_sl}};
-          },
-          [](const AsymmetricCoulombViscous& l) {
-            return nlohmann::json{{"T_s_Nm", l.t_s}, {"delta_T_s_Nm", l.delta_t_s}, {"b_Nms_per_rad", l.b},
-                                  {"delta_b_Nms_per_rad", l.delta_b}};
-          },
+json FrictionLaw::ToJson() const {
+  json j = {{"law", Kind()}};
+  std::visit(
+      [&j](const auto& l) {
+        for (const auto& f : TraitsOf<decltype(l)>::kFields) j[f.key] = l.*f.member;
       },
       law_);
-  j["law"] = Kind();
   return j;
 }
 
-FrictionLaw FrictionLaw::Scaled(double f) const {
-  if (!(f > 0)) throw std::invalid_argument("FrictionLaw::Scaled: factor must be > 0");
+FrictionLaw FrictionLaw::Scaled(double factor) const {
+  if (!(factor > 0 && std::isfinite(factor)))
+    throw std::invalid_argument("FrictionLaw::Scaled: expected a finite factor > 0, got " + Format(factor));
   return FrictionLaw(std::visit(
-      Overloaded{
-          [f](Viscous l) -> Law { l.c *= f; return l; },
-          [f](Coulomb l) -> Law { l.t_c *= f; l.t_s *= f; l.c *= f; return l; },
-          [f](Stribeck l) -> Law { l.w_n *= f; l.c_b *= f; return l; },
-          [f](SqrtRegularized l) -> Law { l.amplitude *= f; return l; },
-          [f](TanhHump l) -> Law { l.amplitude *= f; return l; },
-          [f](Rational l) -> Law { l.p *= f; return l; },
-          [f](Humped l) -> Law { l.t_sl *= f; l.t_1 *= f; l.t_2 *= f; l.b_l *= f; l.delta_t_sl *= f; return l; },
-          [f](AsymmetricCoulombViscous l) -> Law { l.t_s *= f; l.delta_t_s *= f; l.b *= f; l.delta_b *= f; return l; },
+      [factor](auto l) -> Law {
+        for (const auto& f : TraitsOf<decltype(l)>::kFields)
+          if (f.is_torque_level) l.*f.member *= factor;
+        return l;
       },
       law_));
 }
 
-nlohmann::json FrictionLaw::Schema() {
-  return {
-      {"viscous", "T = c w; c_Nms_per_rad >= 0"},
-      {"coulomb", "set-valued: T = T_c sign w + c w, static T_s; T_c_Nm >= 0, T_s_Nm >= T_c (default T_c), c_Nms_per_rad >= 0 (default 0)"},
-      {"stribeck", "set-valued: T = c_b w + W R (mu_c + (mu_s - mu_c) exp(-gamma_b |w| / nu_f)) sign w, static W R mu_s; W_N > 0, R_m > 0, mu_c >= 0, mu_s >= mu_c, gamma_b >= 0, nu_f_rad_s > 0, c_b_Nms_per_rad >= 0"},
-      {"sqrt_regularized", "chapter eq. 2.29: T = amplitude alpha w / sqrt(w^2 + epsilon^2); amplitude_Nm >= 0, alpha >= 0, epsilon_rad_s > 0"},
-      {"tanh_hump", "chapter eq. 2.30: T = amplitude beta (tanh w + gamma1 w / (1 + gamma2 w^2)); amplitude_Nm >= 0, beta >= 0, gamma1 any, gamma2 >= 0"},
-      {"rational", "chapter eqs. 2.12-2.13: T = p k w / (k^2 w^2 + zeta); p_Nm >= 0, k > 0, zeta > 0"},
-      {"humped", "setup seed eq. 7, set-valued: T = [T_sl + T_1 (1 - 2/(1 + e^{omega_1 |w|})) + T_2 (1 - 2/(1 + e^{omega_2 |w|})) + b_l |w|] sign w + delta_T_sl, static [-(T_sl - delta), T_sl + delta]; T_sl_Nm >= 0, T_1_Nm, T_2_Nm any, omega_1/2_s_per_rad >= 0, b_l_Nms_per_rad >= 0, delta_T_sl_Nm in [-T_sl, T_sl] (default 0)"},
-      {"asymmetric_coulomb_viscous", "setup seed eqs. 5-6, set-valued: w > 0: (T_s + dT_s) + (b + db) w; w < 0: -(T_s - dT_s) + (b - db) w; T_s_Nm >= 0, delta_T_s_Nm in [-T_s, T_s], b_Nms_per_rad >= 0, delta_b_Nms_per_rad in [-b, b]"},
-  };
-}
+json FrictionLaw::Schema() { return SchemaOfAll(std::make_index_sequence<kNumLaws>()); }
 
 }  // namespace drillwave::bitrock

@@ -3,6 +3,9 @@
 // The torque opposes motion: it has the sign of omega and is subtracted in J omega' = T_drive - T_friction.
 // Set-valued laws (Coulomb, Stribeck, humped, asymmetric) hold any torque in [-StaticNegative, StaticPositive]
 // at omega = 0; the integrator treats that as a stuck regime with events (DESIGN.md §2).
+//
+// Each law is a plain struct of its parameters (torques in N·m, speeds in rad/s); the comment on each member
+// names its JSON key. FrictionLaw holds one of them and is an immutable value.
 #include <string>
 #include <variant>
 
@@ -10,34 +13,109 @@
 
 namespace drillwave::bitrock {
 
-struct Viscous { double c; };                                  // T = c w
-struct Coulomb { double t_c, t_s, c; };                        // T = Tc sign w + c w; static Ts
-struct Stribeck { double w_n, r_m, mu_c, mu_s, gamma_b, nu_f, c_b; };  // Navarro-López & Suárez
-struct SqrtRegularized { double amplitude, alpha, epsilon; };  // chapter eq. 2.29: p a w / sqrt(w^2 + e^2)
-struct TanhHump { double amplitude, beta, gamma1, gamma2; };   // chapter eq. 2.30: p b (tanh w + g1 w/(1 + g2 w^2))
-struct Rational { double p, k, zeta; };                        // chapter eqs. 2.12-2.13: p k w / (k^2 w^2 + zeta)
-struct Humped { double t_sl, t_1, t_2, omega_1, omega_2, b_l, delta_t_sl; };  // setup seed eq. 7
-struct AsymmetricCoulombViscous { double t_s, delta_t_s, b, delta_b; };     // setup seed eqs. 5-6
+// T = c w. Smooth; the linear reference for validation tests.
+struct Viscous {
+  double c;  // c_Nms_per_rad >= 0
+};
+
+// Slip T = T_c sign w + c w; stuck |T| <= T_s.
+struct Coulomb {
+  double t_c;  // T_c_Nm >= 0
+  double t_s;  // T_s_Nm >= T_c (optional, default T_c)
+  double c;    // c_Nms_per_rad >= 0 (optional, default 0)
+};
+
+// Velocity-weakening bit friction (Navarro-López; DESIGN.md §3):
+// slip T = c_b w + W R mu(w) sign w with mu(w) = mu_c + (mu_s - mu_c) exp(-gamma_b |w| / nu_f); stuck |T| <= W R mu_s.
+struct Stribeck {
+  double weight_on_bit;  // W_N >= 0
+  double bit_radius;     // R_m > 0
+  double mu_c;           // mu_c >= 0, kinetic friction coefficient
+  double mu_s;           // mu_s >= mu_c, static friction coefficient
+  double gamma_b;        // gamma_b >= 0, decay rate of mu
+  double nu_f;           // nu_f_rad_s > 0, speed scale of the decay
+  double c_b;            // c_b_Nms_per_rad >= 0
+};
+
+// Chapter eq. 2.29, a smooth Coulomb law: T = p alpha w / sqrt(w^2 + epsilon^2).
+struct SqrtRegularized {
+  double amplitude;  // amplitude_Nm >= 0 (p)
+  double alpha;      // alpha >= 0
+  double epsilon;    // epsilon_rad_s > 0
+};
+
+// Chapter eq. 2.30, read as T = p beta (tanh w + gamma1 w / (1 + gamma2 w^2)), w in rad/s taken as a pure number.
+// Smooth and odd; gamma1 > 0 puts a hump (velocity weakening) at about w = 1 / sqrt(gamma2).
+struct TanhHump {
+  double amplitude;  // amplitude_Nm >= 0 (p)
+  double beta;       // beta >= 0
+  double gamma1;     // gamma1 >= 0
+  double gamma2;     // gamma2 >= 0
+};
+
+// Chapter eqs. 2.12-2.13: T = p k w / (k^2 w^2 + zeta). Smooth; peaks at w = sqrt(zeta) / k, then decays like 1/w.
+struct Rational {
+  double p;     // p_Nm >= 0
+  double k;     // k > 0
+  double zeta;  // zeta > 0
+};
+
+// Humped lower-disc law of the setup seed, eq. 7, with an optional asymmetry dT:
+// slip T = (T_l(|w|) + dT sign w) sign w, T_l(r) = T_sl + T_1 s(omega_1 r) + T_2 s(omega_2 r) + b_l r,
+// s(x) = 1 - 2 / (1 + e^x); stuck T in [-(T_sl - dT), T_sl + dT]. T_1, T_2 may be negative: that makes the hump.
+struct Humped {
+  double t_sl;        // T_sl_Nm >= 0
+  double t_1;         // T_1_Nm, any sign
+  double t_2;         // T_2_Nm, any sign
+  double omega_1;     // omega_1_s_per_rad >= 0
+  double omega_2;     // omega_2_s_per_rad >= 0
+  double b_l;         // b_l_Nms_per_rad >= 0
+  double delta_t_sl;  // delta_T_sl_Nm in [-T_sl, T_sl] (optional, default 0)
+};
+
+// Asymmetric upper-disc law of the setup seed, eqs. 5-6:
+// w > 0: T = (T_s + dT_s) + (b + db) w;  w < 0: T = -(T_s - dT_s) + (b - db) w;
+// stuck T in [-(T_s - dT_s), T_s + dT_s].
+struct AsymmetricCoulombViscous {
+  double t_s;        // T_s_Nm >= 0
+  double delta_t_s;  // delta_T_s_Nm in [-T_s, T_s]
+  double b;          // b_Nms_per_rad >= 0
+  double delta_b;    // delta_b_Nms_per_rad in [-b, b]
+};
 
 class FrictionLaw {
  public:
   using Law = std::variant<Viscous, Coulomb, Stribeck, SqrtRegularized, TanhHump, Rational, Humped,
                            AsymmetricCoulombViscous>;
-  explicit FrictionLaw(Law law) : law_(law) {}
 
-  // Torque while slipping (omega != 0); smooth laws are valid at every omega.
+  // Checks the parameters against the ranges listed by Schema(); throws std::invalid_argument naming the field.
+  explicit FrictionLaw(const Law& law);
+
+  // Torque while slipping (omega != 0); smooth laws are valid at every omega. At omega == 0 exactly a set-valued
+  // law returns 0, which lies in its static range; the caller decides the stuck torque, not this function.
   double SlipTorque(double omega) const;
-  double SlipTorqueDerivative(double omega) const;  // d SlipTorque / d omega
+  // d SlipTorque / d omega, for linearization. At omega == 0 a set-valued law returns the limit of the slope,
+  // which is the same from both sides, except for the asymmetric law: it returns the mean b of b +- db.
+  double SlipTorqueDerivative(double omega) const;
+  // True for laws with a static range at omega = 0; smooth laws have StaticPositive() == StaticNegative() == 0.
   bool IsSetValued() const;
-  double StaticPositive() const;  // largest torque held at rest in the positive direction (magnitude)
-  double StaticNegative() const;  // ... in the negative direction (magnitude)
-  std::string Kind() const;       // the JSON "law" name
+  double StaticPositive() const;  // largest torque held at rest in the positive direction (magnitude, >= 0)
+  double StaticNegative() const;  // largest torque held at rest in the negative direction (magnitude, >= 0)
+  const std::string& Kind() const;  // the JSON "law" name
   const Law& law() const { return law_; }
 
+  // Reads {"law": <kind>, <fields>...}. Throws InputError at json_path + "/<field>" for a missing, unknown,
+  // non-numeric, non-finite or out-of-range field, with the value found and the range expected.
   static FrictionLaw FromJson(const nlohmann::json& j, const std::string& json_path);
-  nlohmann::json ToJson() const;
-  FrictionLaw Scaled(double factor) const;  // all torque levels times factor (> 0), e.g. weight-on-bit scaling
-  static nlohmann::json Schema();           // fields, units and ranges of every law
+  nlohmann::json ToJson() const;  // every field, defaults included; FromJson(ToJson()) reproduces the law
+
+  // All torque levels (slip and static) times factor (finite, > 0), e.g. weight-on-bit scaling:
+  // Scaled(f).SlipTorque(w) == f * SlipTorque(w). Throws std::invalid_argument for a bad factor.
+  FrictionLaw Scaled(double factor) const;
+
+  // {"<kind>": {"set_valued", "torque", "static" (set-valued laws), "source", "fields": {"<key>": "meaning
+  // [unit]; range[; optional, default ...]"}}} for every law, for the "drillwave kinds" listing.
+  static nlohmann::json Schema();
 
  private:
   Law law_;
