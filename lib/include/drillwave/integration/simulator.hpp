@@ -14,6 +14,7 @@
 //   void Commit(const Piece& piece);   // appends the prepared piece; the only place history grows
 //   int NumWitnesses() const;
 //   double Witness(int i, double t, const std::vector<double>& x) const;  // event when it goes from > 0 to <= 0
+//                                      // (or from exactly 0 to < 0)
 //   bool OnEvent(int i, double t, std::vector<double>& x);  // apply the event; true if mode or state changed
 //   double NextBreakpoint() const;     // +inf if none
 //   void OnBreakpoint(double t);       // the loop has stepped exactly onto NextBreakpoint()
@@ -239,12 +240,13 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
     history_limited = history_limits_step;
     restart = false;
 
-    // Events: the earliest witness that went from > 0 to <= 0 within the step.
+    // Events: the earliest witness that went from > 0 to <= 0 within the step, or from exactly 0 (where a
+    // restart left it, e.g. a speed witness right after break-away) to < 0.
     witnesses(t1, x1, g1);
     int first = -1;
     double t_event = t1;
     for (int i = 0; i < num_witnesses; ++i) {
-      if (g0[i] > 0 && g1[i] <= 0) {
+      if ((g0[i] > 0 && g1[i] <= 0) || (g0[i] == 0 && g1[i] < 0)) {
         const double ti = LocateEvent(dense, i, t, t1, x_try);
         if (first < 0 || ti < t_event) {
           first = i;
