@@ -33,6 +33,8 @@ class NetworkProcess {
   NetworkProcess(const Network& net, const NetworkRunOptions& options)
       : net_(net),
         options_(options),
+        kink_threshold_(options.echo_weight_threshold > 0 ? options.echo_weight_threshold
+                                                          : AutomaticKinkThreshold(options.integrator)),
         num_nodes_(static_cast<int>(net.nodes.size())),
         waves_(2 * static_cast<int>(net.sections.size())) {
     int next = 1;  // index 0: bit angle
@@ -434,7 +436,7 @@ class NetworkProcess {
         order = std::max(order + (b.via == kNone ? 0 : 1), 1);  // the node's speed is continuous
       }
       // A jump inside a step cannot be resolved by shrinking it: follow jumps until they are below rounding.
-      if (w < (order == 0 ? kJumpWeightThreshold : options_.echo_weight_threshold)) continue;
+      if (w < (order == 0 ? kJumpWeightThreshold : kink_threshold_)) continue;
       if (order > 0 && breakpoints_.size() >= options_.max_pending_kinks) continue;
       const int far = k == i - 1 ? i - 1 : i + 1;
       const double arrival = b.time + net_.sections[k].travel_time_s;
@@ -450,6 +452,7 @@ class NetworkProcess {
  private:
   const Network& net_;
   const NetworkRunOptions& options_;
+  double kink_threshold_;
   int num_nodes_;
   int dimension_ = 0;
   std::vector<int> speed_index_, integral_index_;
@@ -468,6 +471,10 @@ class NetworkProcess {
 };
 
 }  // namespace
+
+double AutomaticKinkThreshold(const integration::IntegratorOptions& integrator) {
+  return std::clamp(std::sqrt(std::max(integrator.abs_tol, integrator.rel_tol)), 1e-3, 3e-2);
+}
 
 NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& options) {
   network.Validate();
