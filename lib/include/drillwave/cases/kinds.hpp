@@ -8,5 +8,6 @@ namespace drillwave::cases {
 
 std::unique_ptr<ModelKind> MakeTorsionalWaveKind();
 std::unique_ptr<ModelKind> MakeTwoMassKind();
+std::unique_ptr<ModelKind> MakeTwoDiscKind();
 
 }  // namespace drillwave::cases

@@ -2,6 +2,7 @@
 // A model kind: one module that declares, validates and runs one family of models (torsional wave string,
 // two-mass pendulum, two-disc set-up, ...). The runner knows kinds only through this interface, so adding a kind
 // touches neither the runner, nor the solvers, nor the output writers: only the list in kind_registry.cpp.
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,6 +39,13 @@ struct RunResult {
 
   const Channel& channel(const std::string& name) const;
 };
+
+// Angular speeds [rad/s] as revolutions per minute, for the *_rpm channels every kind writes.
+inline std::vector<double> ToRpm(const std::vector<double>& rad_s) {
+  std::vector<double> rpm(rad_s.size());
+  for (std::size_t i = 0; i < rad_s.size(); ++i) rpm[i] = rad_s[i] * (30.0 / M_PI);
+  return rpm;
+}
 
 // A validated model ready to run; immutable, so one prepared model can be run many times (sweeps, fits).
 class PreparedModel {

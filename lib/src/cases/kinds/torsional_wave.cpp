@@ -15,7 +15,6 @@ namespace {
 using io::JsonReader;
 using Range = io::Range;
 
-constexpr double kRadPerSecToRpm = 60.0 / (2.0 * M_PI);
 
 waves::Section ReadSection(const JsonReader& r) {
   const double length = r.Number("length_m", Range::Positive());
@@ -97,13 +96,8 @@ class TorsionalWaveModel : public PreparedModel {
 
     RunResult result;
     result.time_s = tr.time_s;
-    auto scaled = [](const std::vector<double>& v, double f) {
-      std::vector<double> out(v.size());
-      for (std::size_t i = 0; i < v.size(); ++i) out[i] = f * v[i];
-      return out;
-    };
-    result.channels = {{"top_rpm", scaled(tr.top_speed_rad_s, kRadPerSecToRpm)},
-                       {"bit_rpm", scaled(tr.bit_speed_rad_s, kRadPerSecToRpm)},
+    result.channels = {{"top_rpm", ToRpm(tr.top_speed_rad_s)},
+                       {"bit_rpm", ToRpm(tr.bit_speed_rad_s)},
                        {"top_torque_Nm", tr.top_torque_nm},
                        {"bit_torque_Nm", tr.bit_torque_nm},
                        {"bit_angle_rad", tr.bit_angle_rad},

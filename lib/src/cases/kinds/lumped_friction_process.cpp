@@ -1,0 +1,306 @@
+#include "lumped_friction_process.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace drillwave::cases::lumped {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kTinySpeed = 1e-300;  // evaluates a set-valued law on the side of its slip direction
+
+// The Process of integration::Simulator for a Chain. Regimes: +1 / -1 slipping forwards / backwards, 0 stuck; only
+// inertias with a set-valued law (and no smoothing) ever stick. Everything that changes during a run lives here.
+class ChainProcess {
+ public:
+  using State = std::vector<double>;
+
+  explicit ChainProcess(const Chain& c) : c_(c), n_(static_cast<int>(c.inertias.size())), regime_(n_, 1) {
+    for (int i = 0; i < n_; ++i)
+      if (CanStick(i)) frictional_.push_back(i);
+    stuck_.resize(n_);
+  }
+
+  // State layout.
+  int Twist(int j) const { return j; }
+  int SpeedIndex(int i) const { return n_ - 1 + i; }
+  int AngleIndex(int i) const { return 2 * n_ - 1 + i; }
+  int Integral() const { return 3 * n_ - 1; }
+  int Work() const { return 3 * n_; }
+  int Dissipated() const { return 3 * n_ + 1; }
+  int Dimension() const { return 3 * n_ + 2; }
+
+  State InitialState(double t0) {
+    State x(Dimension(), 0.0);
+    if (Prescribed()) x[SpeedIndex(0)] = c_.setpoint.Value(t0);
+    step_start_ = t0;
+    // An inertia at rest sticks unless the torque on it already exceeds its static range.
+    for (int i : frictional_) {
+      regime_[i] = 0;
+      regime_[i] = RegimeForTorqueAtRest(i, DrivingTorqueAtRest(i, x, t0), t0);
+      if (regime_[i] == 0) stuck_[i].push_back({t0, kInf});
+    }
+    return x;
+  }
+
+  // --- Process interface -------------------------------------------------------------------------------------
+  double MaxStep() const { return kInf; }
+  void BeginStep(double t0) { step_start_ = t0; }
+  double PrepareCommit(const integration::Piece&, double, double) { return 0; }
+  void Commit(const integration::Piece&) {}
+
+  void Derivatives(const State& x, State& dx, double t) const {
+    for (int j = 0; j + 1 < n_; ++j) dx[Twist(j)] = Speed(j, x, t) - Speed(j + 1, x, t);
+    double dissipated = 0;
+    for (int i = 0; i < n_; ++i) {
+      const double v = Speed(i, x, t);
+      dx[AngleIndex(i)] = v;
+      const double friction = FrictionTorque(i, x, t);
+      dissipated += Inertia(i).damping_Nms_per_rad * v * v + friction * v;
+      if (i == 0 && Prescribed())
+        dx[SpeedIndex(0)] = Setpoint(t).second;
+      else
+        dx[SpeedIndex(i)] = regime_[i] == 0 ? 0.0 : (UnbalancedTorque(i, x, t, v) - friction) / Inertia(i).inertia_kgm2;
+    }
+    for (int j = 0; j + 1 < n_; ++j) {
+      const double dv = Speed(j, x, t) - Speed(j + 1, x, t);
+      dissipated += c_.couplings[j].damping_Nms_per_rad * dv * dv;
+    }
+    dx[Integral()] = c_.drive == Drive::kPiSpeed ? Setpoint(t).first - Speed(0, x, t) : 0.0;
+    dx[Work()] = DriveTorque(x, t) * Speed(0, x, t);
+    dx[Dissipated()] = dissipated;
+  }
+
+  int NumWitnesses() const { return 2 * static_cast<int>(frictional_.size()); }
+
+  // Slipping: the first witness is the speed in the slip direction (the inertia stops). Stuck: the margins of the
+  // torque on it to the two static limits (it breaks free).
+  double Witness(int k, double t, const State& x) const {
+    const int i = frictional_[k / 2];
+    const bool first = k % 2 == 0;
+    if (regime_[i] != 0) return first ? regime_[i] * x[SpeedIndex(i)] : 1.0;
+    const double drive = DrivingTorqueAtRest(i, x, t), s = Scale(i, t);
+    const auto& f = *Inertia(i).friction;
+    return first ? s * f.StaticPositive() - drive : drive + s * f.StaticNegative();
+  }
+
+  bool OnEvent(int k, double t, State& x) {
+    const int i = frictional_[k / 2];
+    const int before = regime_[i];
+    int after;
+    if (before == 0) {
+      after = k % 2 == 0 ? 1 : -1;
+    } else {
+      // Come to rest: it stays if the friction can hold the torque on it, else it turns the other way.
+      regime_[i] = 0;
+      after = RegimeForTorqueAtRest(i, DrivingTorqueAtRest(i, x, t), t);
+    }
+    regime_[i] = after;
+    if (after == 0 || before == 0) x[SpeedIndex(i)] = 0;
+    if (after == 0 && before != 0) stuck_[i].push_back({t, kInf});
+    if (after != 0 && before == 0 && !stuck_[i].empty()) stuck_[i].back().end_s = t;
+    return after != before;
+  }
+
+  double NextBreakpoint() const {
+    double next = kInf;
+    auto scan = [&](const model::Schedule& s) {
+      for (const auto& knot : s.knots())
+        if (knot.first > passed_) next = std::min(next, knot.first);
+    };
+    scan(c_.setpoint);
+    for (const auto& in : c_.inertias) scan(in.friction_scale);
+    return next;
+  }
+  void OnBreakpoint(double t) { passed_ = t; }
+
+  // --- Torques and energies (also used for the outputs) -------------------------------------------------------
+  double Speed(int i, const State& x, double t) const {
+    if (i == 0 && Prescribed()) return Setpoint(t).first;
+    return regime_[i] == 0 ? 0.0 : x[SpeedIndex(i)];
+  }
+  double CouplingTorque(int j, const State& x, double t) const {
+    const Coupling& cp = c_.couplings[j];
+    return cp.stiffness_Nm_per_rad * x[Twist(j)] + cp.damping_Nms_per_rad * (Speed(j, x, t) - Speed(j + 1, x, t));
+  }
+  // The torque the drive puts into inertia 0. A prescribed speed takes whatever keeps inertia 0 on its set-point.
+  double DriveTorque(const State& x, double t) const {
+    if (Prescribed()) {
+      const auto [w, dw] = Setpoint(t);
+      return Inertia(0).inertia_kgm2 * dw - UnbalancedTorque(0, x, t, w);  // UnbalancedTorque(0) excludes the drive
+    }
+    return DriveTorqueAt(x, t, Speed(0, x, t));
+  }
+  // Friction torque on inertia i (opposing its motion); while stuck the torque that holds it.
+  double FrictionTorque(int i, const State& x, double t) const {
+    const auto& law = Inertia(i).friction;
+    if (!law) return 0;
+    if (regime_[i] == 0) return DrivingTorqueAtRest(i, x, t);
+    const double v = Speed(i, x, t), s = Scale(i, t);
+    if (c_.friction_smoothing_rad_s > 0)
+      return v == 0 ? 0.0 : s * law->SlipTorque(v) * std::tanh(std::abs(v) / c_.friction_smoothing_rad_s);
+    if (!law->IsSetValued()) return s * law->SlipTorque(v);
+    return s * law->SlipTorque(regime_[i] > 0 ? std::max(v, kTinySpeed) : std::min(v, -kTinySpeed));
+  }
+  double StoredEnergy(const State& x, double t) const {
+    double e = 0;
+    for (int i = 0; i < n_; ++i) {
+      const double v = Speed(i, x, t);
+      e += 0.5 * Inertia(i).inertia_kgm2 * v * v;
+    }
+    for (int j = 0; j + 1 < n_; ++j) e += 0.5 * c_.couplings[j].stiffness_Nm_per_rad * x[Twist(j)] * x[Twist(j)];
+    return e;
+  }
+
+  bool Stuck(int i) const { return regime_[i] == 0; }
+  const std::vector<std::vector<StuckInterval>>& stuck_intervals() const { return stuck_; }
+
+ private:
+  const lumped::Inertia& Inertia(int i) const { return c_.inertias[i]; }
+  bool Prescribed() const { return c_.drive == Drive::kPrescribedSpeed; }
+  bool CanStick(int i) const {
+    const auto& f = Inertia(i).friction;
+    return f && f->IsSetValued() && c_.friction_smoothing_rad_s == 0 && !(i == 0 && Prescribed());
+  }
+  // Inputs on the side of the current step: right limits at its start, left limits inside and at its end (a step
+  // never crosses a knot, so a jump or kink at the step's end belongs to the next step).
+  std::pair<double, double> Setpoint(double t) const { return c_.setpoint.Evaluate(t, t > step_start_); }
+  double Scale(int i, double t) const { return Inertia(i).friction_scale.Evaluate(t, t > step_start_).first; }
+
+  double DriveTorqueAt(const State& x, double t, double v0) const {
+    const double u = Setpoint(t).first;
+    switch (c_.drive) {
+      case Drive::kTorque: return c_.torque_gain * u;
+      case Drive::kPiSpeed: return c_.kp * (u - v0) + c_.ki * x[Integral()];
+      case Drive::kPrescribedSpeed: break;
+    }
+    return 0;
+  }
+  // Every torque on inertia i except friction (and, for a prescribed-speed end, except the drive), with its speed
+  // taken as v.
+  double UnbalancedTorque(int i, const State& x, double t, double v) const {
+    double torque = -Inertia(i).damping_Nms_per_rad * v;
+    if (i == 0 && !Prescribed()) torque += DriveTorqueAt(x, t, v);
+    if (i > 0) {
+      const Coupling& cp = c_.couplings[i - 1];
+      torque += cp.stiffness_Nm_per_rad * x[Twist(i - 1)] + cp.damping_Nms_per_rad * (Speed(i - 1, x, t) - v);
+    }
+    if (i + 1 < n_) {
+      const Coupling& cp = c_.couplings[i];
+      torque -= cp.stiffness_Nm_per_rad * x[Twist(i)] + cp.damping_Nms_per_rad * (v - Speed(i + 1, x, t));
+    }
+    return torque;
+  }
+  // What the friction must balance to hold inertia i at rest.
+  double DrivingTorqueAtRest(int i, const State& x, double t) const { return UnbalancedTorque(i, x, t, 0.0); }
+  int RegimeForTorqueAtRest(int i, double torque, double t) const {
+    const auto& f = *Inertia(i).friction;
+    const double s = Scale(i, t);
+    if (torque > s * f.StaticPositive()) return 1;
+    if (torque < -s * f.StaticNegative()) return -1;
+    return 0;
+  }
+
+  const Chain& c_;
+  int n_;
+  std::vector<int> regime_;
+  std::vector<int> frictional_;
+  std::vector<std::vector<StuckInterval>> stuck_;
+  double step_start_ = 0;
+  double passed_ = -kInf;
+};
+
+}  // namespace
+
+void Chain::Validate() const {
+  if (inertias.size() < 2) throw std::invalid_argument("a lumped chain needs at least two inertias");
+  if (couplings.size() + 1 != inertias.size())
+    throw std::invalid_argument("a lumped chain of n inertias needs n - 1 couplings");
+  for (const auto& in : inertias) {
+    if (!(in.inertia_kgm2 > 0) || !std::isfinite(in.inertia_kgm2)) throw std::invalid_argument("inertia must be > 0");
+    if (!(in.damping_Nms_per_rad >= 0)) throw std::invalid_argument("damping must be >= 0");
+    for (const auto& [t, s] : in.friction_scale.knots())
+      if (!(s >= 0)) throw std::invalid_argument("friction scale must be >= 0");
+  }
+  for (const auto& cp : couplings)
+    if (!(cp.stiffness_Nm_per_rad > 0) || !(cp.damping_Nms_per_rad >= 0))
+      throw std::invalid_argument("coupling stiffness must be > 0 and damping >= 0");
+  if (drive == Drive::kPrescribedSpeed && inertias[0].friction)
+    throw std::invalid_argument("a prescribed-speed end takes no friction law (its drive torque covers it)");
+  if (!(friction_smoothing_rad_s >= 0)) throw std::invalid_argument("friction smoothing must be >= 0");
+}
+
+ChainRun RunChain(const Chain& chain, const RunSettings& settings) {
+  chain.Validate();
+  const int n = static_cast<int>(chain.inertias.size());
+  ChainProcess process(chain);
+  std::vector<double> x = process.InitialState(0.0);
+  const double stored0 = process.StoredEnergy(x, 0.0);
+
+  ChainRun run;
+  run.speed_rad_s.resize(n), run.angle_rad.resize(n), run.friction_Nm.resize(n), run.stuck.resize(n);
+  run.coupling_torque_Nm.resize(n - 1);
+  auto sample = [&](double t, const std::vector<double>& s) {
+    run.time_s.push_back(t);
+    for (int i = 0; i < n; ++i) {
+      run.speed_rad_s[i].push_back(process.Speed(i, s, t));
+      run.angle_rad[i].push_back(s[process.AngleIndex(i)]);
+      run.friction_Nm[i].push_back(process.FrictionTorque(i, s, t));
+      run.stuck[i].push_back(process.Stuck(i) ? 1.0 : 0.0);
+    }
+    for (int j = 0; j + 1 < n; ++j) run.coupling_torque_Nm[j].push_back(process.CouplingTorque(j, s, t));
+    run.drive_torque_Nm.push_back(process.DriveTorque(s, t));
+    run.energy_residual_J.push_back(s[process.Work()] - s[process.Dissipated()] -
+                                    (process.StoredEnergy(s, t) - stored0));
+  };
+  sample(0.0, x);
+  std::vector<double> xs(x.size());
+  auto observer = [&](const integration::Piece& p) {
+    if (settings.output_interval_s <= 0) return sample(p.t1, p.x1);
+    double next = run.time_s.size() * settings.output_interval_s;
+    while (next <= p.t1 + 1e-12 * std::max(1.0, p.t1)) {
+      integration::InterpolatePiece(p, std::min(next, p.t1), xs);
+      sample(next, xs);
+      next = run.time_s.size() * settings.output_interval_s;
+    }
+  };
+  integration::Simulator<ChainProcess> sim(process, settings.integrator);
+  const std::vector<double> x_end = sim.Integrate(0.0, x, settings.duration_s, observer);
+
+  run.stuck_intervals = process.stuck_intervals();
+  run.stats = sim.stats();
+  run.work_in_J = x_end[process.Work()];
+  run.dissipated_J = x_end[process.Dissipated()];
+  run.stored_change_J = process.StoredEnergy(x_end, settings.duration_s) - stored0;
+  return run;
+}
+
+RunResult ChainResult(const ChainRun& run, const RunSettings& settings) {
+  const std::size_t bit = run.speed_rad_s.size() - 1;
+  RunResult result;
+  result.time_s = run.time_s;
+  result.channels = {{"top_rpm", ToRpm(run.speed_rad_s[0])},
+                     {"bit_rpm", ToRpm(run.speed_rad_s[bit])},
+                     {"top_torque_Nm", run.coupling_torque_Nm[0]},
+                     {"bit_torque_Nm", run.friction_Nm[bit]},
+                     {"bit_angle_rad", run.angle_rad[bit]},
+                     {"bit_stuck", run.stuck[bit]},
+                     {"drive_torque_Nm", run.drive_torque_Nm},
+                     {"energy_balance_residual_J", run.energy_residual_J}};
+  result.plot_panels = {{"top_rpm", "bit_rpm"}, {"top_torque_Nm", "bit_torque_Nm"}};
+  result.summary = ComputeStickSlipStatistics(run.stuck_intervals[bit], run.time_s, run.speed_rad_s[bit],
+                                              run.angle_rad[bit], settings.window_begin_s, settings.window_end_s)
+                       .ToJson();
+  double worst = 0;
+  for (double b : run.energy_residual_J) worst = std::max(worst, std::abs(b));
+  result.summary["energy_balance_residual_max_J"] = worst;
+  result.summary["work_in_J"] = run.work_in_J;
+  result.summary["steps"] = run.stats.steps;
+  result.summary["events"] = run.stats.events;
+  result.summary["derivative_evaluations"] = run.stats.derivative_evaluations;
+  return result;
+}
+
+}  // namespace drillwave::cases::lumped

@@ -1,0 +1,74 @@
+#pragma once
+// A chain of n lumped inertias: neighbours coupled by a spring and a damper, each inertia with a damper to ground
+// and optionally a friction law, the first inertia driven by a prescribed speed, a PI speed controller or a torque.
+// Set-valued laws (Coulomb, Stribeck, humped, asymmetric) give real stick phases: every inertia sticks and slips on
+// its own, each transition located as an event (DESIGN.md §2). Shared by the kinds two_mass (chapter eqs. 2.1-2.4)
+// and two_disc (setup seed eqs. 1-7), which are chains of two.
+//
+// The integrated state is (twists phi_j - phi_{j+1}, speeds, angles, PI integral, work in, energy dissipated): the
+// twist form of chapter eq. 2.3 and setup eq. 4, plus the angles for the statistics and the two energy integrals,
+// so that work in = dissipation + change of stored energy can be checked along the run.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "drillwave/bitrock/friction.hpp"
+#include "drillwave/cases/model_kind.hpp"
+#include "drillwave/cases/statistics.hpp"
+#include "drillwave/integration/simulator.hpp"
+#include "drillwave/model/schedule.hpp"
+
+namespace drillwave::cases::lumped {
+
+enum class Drive { kPrescribedSpeed, kPiSpeed, kTorque };
+
+struct Inertia {
+  double inertia_kgm2 = 1;  // > 0
+  double damping_Nms_per_rad = 0;  // damper to ground, >= 0
+  std::optional<bitrock::FrictionLaw> friction;
+  model::Schedule friction_scale{1.0};  // multiplies every torque level of the law (e.g. weight on bit / nominal)
+};
+
+struct Coupling {
+  double stiffness_Nm_per_rad = 1;  // > 0
+  double damping_Nms_per_rad = 0;   // >= 0
+};
+
+struct Chain {
+  std::vector<Inertia> inertias;    // inertias[0] is the driven end
+  std::vector<Coupling> couplings;  // couplings[j] joins inertias j and j + 1
+  Drive drive = Drive::kTorque;
+  model::Schedule setpoint;  // speed [rad/s] (prescribed, PI) or the input of the torque drive
+  double torque_gain = 1;    // torque drive: torque = torque_gain * setpoint (e.g. motor constant * voltage)
+  double kp = 0, ki = 0;     // PI drive
+  // > 0: every friction law with sign(w) replaced by tanh(w / eps) (a smooth reference model without stick phases).
+  double friction_smoothing_rad_s = 0;
+
+  // Throws std::invalid_argument for an inconsistent chain (sizes, a friction law on a prescribed-speed end, ...).
+  void Validate() const;
+};
+
+// A run sampled at the output interval (or at every step if the interval is <= 0).
+struct ChainRun {
+  std::vector<double> time_s;
+  // Per inertia: speed [rad/s] (0 while stuck), angle [rad], friction torque [N·m] (while stuck: the torque that
+  // holds it), 1 while stuck.
+  std::vector<std::vector<double>> speed_rad_s, angle_rad, friction_Nm, stuck;
+  std::vector<std::vector<double>> coupling_torque_Nm;  // per coupling: k (phi_j - phi_{j+1}) + c (w_j - w_{j+1})
+  std::vector<double> drive_torque_Nm;                  // torque the drive puts into inertia 0
+  // Work in - dissipated - (stored - stored at start), from the integrated energy states; 0 up to the tolerance.
+  std::vector<double> energy_residual_J;
+  std::vector<std::vector<StuckInterval>> stuck_intervals;  // per inertia, from the events
+  integration::IntegrationStats stats;
+  double work_in_J = 0, dissipated_J = 0, stored_change_J = 0;  // at the end of the run
+};
+
+ChainRun RunChain(const Chain& chain, const RunSettings& settings);
+
+// What every chain kind reports, with inertia 0 as the "top" and the last inertia as the "bit": the common channels
+// (top_rpm, bit_rpm, top_torque_Nm = the first coupling's torque, bit_torque_Nm = the bit's friction, bit_angle_rad,
+// bit_stuck, drive_torque_Nm, energy_balance_residual_J), the bit's stick-slip statistics over the window, the
+// energy balance and the integrator's counts. Kinds add their own channels and keys.
+RunResult ChainResult(const ChainRun& run, const RunSettings& settings);
+
+}  // namespace drillwave::cases::lumped
