@@ -1,14 +1,17 @@
 // drillwave command-line tool: thin layer over the library. Exit codes: 0 success, 1 expectation failed,
 // 2 bad input (the message names the JSON path), 3 numerical failure (with time and state).
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -54,6 +57,36 @@ int RunAndWrite(const std::string& file, const std::string& out_dir, const std::
   return check && !all_passed ? 1 : 0;
 }
 
+int Sweep(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
+          const std::string& pointer, const std::string& values_text, int jobs) {
+  const nlohmann::json doc = LoadCaseDocument(file, overrides);
+  drillwave::cases::SweepSpec spec{pointer, drillwave::cases::ParseSweepValues(values_text, "--values"), jobs};
+  std::cout << "drillwave: sweeping " << pointer << " over " << spec.values.size() << " values on " << jobs
+            << " thread(s)" << (file.empty() ? " [embedded default case]" : "") << std::endl;
+  const auto result = drillwave::cases::RunSweep(
+      doc, spec, [&](const drillwave::cases::SweepPoint& p, int done, int total) {
+        std::cout << "  [" << done << "/" << total << "] " << pointer << " = " << p.value << ": ";
+        if (!p.ok) {
+          std::cout << "numerical failure: " << p.error << std::endl;
+          return;
+        }
+        for (const char* key : {"stick_onsets", "stick_fraction", "bit_speed_min_rad_s", "bit_speed_max_rad_s"})
+          if (p.summary.contains(key)) std::cout << key << " " << p.summary.at(key).dump() << "  ";
+        std::cout << std::endl;
+      });
+  drillwave::cases::WriteSweepOutputs(doc, spec, result, out_dir);
+  int failed = 0;
+  for (const auto& p : result.points) failed += p.ok ? 0 : 1;
+  std::cout << "wall time " << result.wall_time_s << " s; wrote " << std::filesystem::absolute(out_dir).string()
+            << "/sweep.csv, bifurcation.svg, report.md, case.json" << std::endl;
+  if (failed > 0) {
+    std::cerr << "drillwave: " << failed << " of " << result.points.size()
+              << " runs failed numerically (recorded in sweep.csv with ok = 0 and in report.md)" << std::endl;
+    return 3;
+  }
+  return 0;
+}
+
 int ListKinds() {
   for (const auto& kind : drillwave::cases::AllKinds()) {
     std::cout << kind->name() << ": " << kind->description() << "\n" << kind->FieldSchema().dump(2) << "\n\n";
@@ -80,6 +113,19 @@ int main(int argc, char** argv) {
   validate->add_option("case", case_file, "case JSON file")->required();
   validate->add_option("--set", overrides, "override a parameter by JSON pointer");
 
+  auto* sweep = app.add_subcommand(
+      "sweep", "run a case once for each value of one parameter (independent runs in parallel): sweep.csv with every "
+               "summary statistic per value, bifurcation.svg, report.md");
+  std::string sweep_pointer, sweep_values, sweep_out = "drillwave-sweep";
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  sweep->add_option("case", case_file, "case JSON file (default: the embedded default case)");
+  sweep->add_option("--param,-p", sweep_pointer, "the parameter's JSON pointer, e.g. /model/upper_disc/input_voltage_V")
+      ->required();
+  sweep->add_option("--values,-v", sweep_values, "first:last:count (evenly spaced) or v1,v2,...")->required();
+  sweep->add_option("--jobs,-j", jobs, "runs at once (default: the number of cores)");
+  sweep->add_option("--out,-o", sweep_out, "output folder (written all or nothing)");
+  sweep->add_option("--set", overrides, "override another parameter by JSON pointer");
+
   auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
 
   CLI11_PARSE(app, argc, argv);
@@ -90,6 +136,7 @@ int main(int argc, char** argv) {
       std::cout << "case '" << c.name << "' is valid (kind " << c.kind << ")\n";
       return 0;
     }
+    if (sweep->parsed()) return Sweep(case_file, sweep_out, overrides, sweep_pointer, sweep_values, jobs);
     return RunAndWrite(case_file, out_dir, overrides, check);
   } catch (const drillwave::InputError& e) {
     std::cerr << "drillwave: bad input: " << e.what() << std::endl;

@@ -151,6 +151,24 @@ TEST_F(Cli, CheckFlagFailsOnAnUnmetExpectation) {
   EXPECT_NE(o.output.find("FAIL"), std::string::npos);
 }
 
+TEST_F(Cli, SweepWritesEveryPointOrNothing) {
+  auto doc = base_;
+  const std::string file = Write(doc.dump());
+  const std::string out = (dir_ / "sweep").string();
+  Outcome o = RunTool("sweep " + file + " -p /model/bit/inertia_kgm2 -v 80,-1 -o " + out);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("/model/bit/inertia_kgm2"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(out));
+  o = RunTool("sweep " + file + " -p /model/no/such -v 1:2:2 -o " + out);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_FALSE(fs::exists(out));
+  o = RunTool("sweep " + file + " -p /model/bit/inertia_kgm2 -v 60:120:3 -j 2 -o " + out);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("[3/3]"), std::string::npos) << o.output;
+  for (const char* f : {"sweep.csv", "bifurcation.svg", "report.md", "case.json"})
+    EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+}
+
 TEST_F(Cli, KindsListsFieldsWithUnits) {
   const Outcome o = RunTool("kinds");
   EXPECT_EQ(o.exit_code, 0);

@@ -1,0 +1,189 @@
+#include "drillwave/cases/sweep.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/io/csv.hpp"
+#include "drillwave/io/json_reader.hpp"
+#include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/svg_plot.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+double ParseNumber(const std::string& text, const std::string& what) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
+    throw InputError(what, "'" + text + "' is not a finite number");
+  return v;
+}
+
+std::vector<std::string> Split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  if (!text.empty() && text.back() == separator) parts.emplace_back();
+  return parts;
+}
+
+// The document with the swept parameter set to v.
+nlohmann::json Variant(const nlohmann::json& document, const std::string& pointer, double v) {
+  nlohmann::json doc = document;
+  io::SetByPointer(doc, pointer, v);
+  return doc;
+}
+
+std::string Format(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<double> ParseSweepValues(const std::string& text, const std::string& what) {
+  std::vector<double> values;
+  if (text.find(':') != std::string::npos) {
+    const auto parts = Split(text, ':');
+    if (parts.size() != 3) throw InputError(what, "'" + text + "': expected first:last:count or v1,v2,...");
+    const double first = ParseNumber(parts[0], what), last = ParseNumber(parts[1], what);
+    const double count = ParseNumber(parts[2], what);
+    if (count < 1 || count != std::floor(count) || count > 1e6)
+      throw InputError(what, "'" + text + "': the count must be a whole number in [1, 1e6]");
+    const int n = static_cast<int>(count);
+    for (int i = 0; i < n; ++i) values.push_back(n == 1 ? first : first + (last - first) * i / (n - 1));
+  } else {
+    for (const std::string& part : Split(text, ',')) values.push_back(ParseNumber(part, what));
+  }
+  if (values.empty()) throw InputError(what, "no values given");
+  return values;
+}
+
+SweepResult RunSweep(const nlohmann::json& document, const SweepSpec& spec, const SweepProgress& progress) {
+  if (spec.values.empty()) throw InputError("--values", "no values to sweep");
+  if (spec.jobs < 1) throw InputError("--jobs", std::to_string(spec.jobs) + " is not >= 1");
+  // Everything is parsed first: bad input stops the sweep before any run, naming the value that caused it.
+  std::vector<Case> cases;
+  cases.reserve(spec.values.size());
+  for (double v : spec.values) {
+    if (!std::isfinite(v)) throw InputError(spec.pointer, "a sweep value is not finite");
+    try {
+      cases.push_back(ParseCase(Variant(document, spec.pointer, v)));
+    } catch (const InputError& e) {
+      throw InputError(e.json_path(), std::string(e.what()) + " (sweep value " + spec.pointer + " = " + Format(v) + ")");
+    }
+  }
+
+  const auto wall_start = std::chrono::steady_clock::now();
+  SweepResult result;
+  result.points.resize(spec.values.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex report_mutex;
+  int done = 0;
+  auto worker = [&] {
+    for (std::size_t i = next++; i < cases.size(); i = next++) {
+      SweepPoint& p = result.points[i];
+      p.value = spec.values[i];
+      try {
+        p.summary = RunCase(cases[i]).summary;
+        p.ok = true;
+      } catch (const NumericalError& e) {
+        p.error = e.what();
+      }
+      const std::lock_guard<std::mutex> lock(report_mutex);
+      ++done;
+      if (progress) progress(p, done, static_cast<int>(cases.size()));
+    }
+  };
+  const int threads = std::min<int>(spec.jobs, static_cast<int>(cases.size()));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return result;
+}
+
+void WriteSweepOutputs(const nlohmann::json& document, const SweepSpec& spec, const SweepResult& result,
+                       const std::string& out_dir) {
+  // Columns: the parameter, ok, then every numeric key any successful run reported (sorted, as JSON keeps them).
+  std::set<std::string> keys;
+  for (const SweepPoint& p : result.points)
+    if (p.ok)
+      for (const auto& item : p.summary.items())
+        if (item.value().is_number() || item.value().is_null()) keys.insert(item.key());
+  std::vector<std::string> header{spec.pointer, "ok"};
+  header.insert(header.end(), keys.begin(), keys.end());
+  std::vector<std::vector<double>> columns(header.size());
+  for (const SweepPoint& p : result.points) {
+    columns[0].push_back(p.value);
+    columns[1].push_back(p.ok ? 1.0 : 0.0);
+    std::size_t j = 2;
+    for (const std::string& key : keys) {
+      const bool has = p.ok && p.summary.contains(key) && p.summary.at(key).is_number();
+      columns[j++].push_back(has ? p.summary.at(key).get<double>() : std::nan(""));
+    }
+  }
+  auto column = [&](const std::string& key) -> const std::vector<double>* {
+    const auto it = std::find(header.begin(), header.end(), key);
+    return it == header.end() ? nullptr : &columns[static_cast<std::size_t>(it - header.begin())];
+  };
+
+  io::OutputDirectory out(out_dir);
+  // A pointer may contain ',' (not in drillwave's own keys, but JSON allows it): the CSV names it by its last part.
+  std::vector<std::string> csv_header = header;
+  if (csv_header[0].find_first_of(",\"\n") != std::string::npos) csv_header[0] = "parameter";
+  io::WriteCsv(out.Open("sweep.csv"), csv_header, columns);
+  out.Open("case.json") << document.dump(2) << "\n";
+
+  const std::string name = document.value("name", std::string("case"));
+  io::Figure figure;
+  figure.title = name + ": sweep of " + spec.pointer;
+  figure.x_label = spec.pointer;
+  io::Panel speeds{"bit speed over the window [rad/s]", {}};
+  for (const char* key : {"bit_speed_max_rad_s", "bit_speed_mean_rad_s", "bit_speed_min_rad_s"})
+    if (const auto* c = column(key)) speeds.series.push_back({key, columns[0], *c});
+  if (!speeds.series.empty()) figure.panels.push_back(speeds);
+  io::Panel sticking{"stick fraction", {}};
+  if (const auto* c = column("stick_fraction")) sticking.series.push_back({"stick_fraction", columns[0], *c});
+  if (!sticking.series.empty()) figure.panels.push_back(sticking);
+  if (!figure.panels.empty()) io::WriteSvg(figure, out.Open("bifurcation.svg"));
+
+  std::ostream& report = out.Open("report.md");
+  int failed = 0;
+  for (const SweepPoint& p : result.points) failed += p.ok ? 0 : 1;
+  report << "# Sweep of " << spec.pointer << " for " << name << "\n\n"
+         << result.points.size() << " runs (" << failed << " failed numerically) on " << spec.jobs
+         << " thread(s) in " << result.wall_time_s << " s wall time. Each run starts from the case's own initial "
+         << "state; statistics over the case's window.\n\n";
+  report << "| " << spec.pointer << " | stick onsets | stick fraction | bit speed min | mean | max [rad/s] |\n"
+         << "|---|---|---|---|---|---|\n";
+  for (const SweepPoint& p : result.points) {
+    report << "| " << Format(p.value) << " | ";
+    if (!p.ok) {
+      report << "failed: " << p.error << " | | | | |\n";
+      continue;
+    }
+    for (const char* key : {"stick_onsets", "stick_fraction", "bit_speed_min_rad_s", "bit_speed_mean_rad_s",
+                            "bit_speed_max_rad_s"})
+      report << (p.summary.contains(key) ? p.summary.at(key).dump() : "") << " | ";
+    report << "\n";
+  }
+  report << "\nFiles: `sweep.csv` (every numeric summary key per value), `bifurcation.svg`, `case.json` (the base "
+            "case).\n";
+  out.Commit();
+}
+
+}  // namespace drillwave::cases
