@@ -1,0 +1,263 @@
+#include "drillwave/analysis/spectrum.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
+namespace drillwave::analysis {
+namespace {
+
+using Complex = std::complex<double>;
+constexpr double kPi = 3.14159265358979323846;
+
+bool AllFinite(const Eigen::MatrixXd& m) { return m.allFinite(); }
+
+// Chebyshev points of the second kind mapped to [-tau, 0] (theta_0 = 0, theta_N = -tau) and the differentiation
+// matrix of the interpolating polynomial on them (Trefethen, Spectral Methods in MATLAB, cheb.m).
+struct ChebyshevGrid {
+  Eigen::VectorXd theta;
+  Eigen::MatrixXd d;
+  Eigen::VectorXd weights;  // barycentric weights
+};
+
+ChebyshevGrid MakeGrid(int n, double tau) {
+  ChebyshevGrid g;
+  g.theta.resize(n + 1);
+  g.weights.resize(n + 1);
+  Eigen::VectorXd x(n + 1), c(n + 1);
+  for (int j = 0; j <= n; ++j) {
+    x(j) = std::cos(kPi * j / n);
+    g.theta(j) = 0.5 * tau * (x(j) - 1.0);
+    c(j) = ((j == 0 || j == n) ? 2.0 : 1.0) * (j % 2 == 0 ? 1.0 : -1.0);
+    g.weights(j) = (j % 2 == 0 ? 1.0 : -1.0) * ((j == 0 || j == n) ? 0.5 : 1.0);
+  }
+  g.d = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= n; ++j)
+      if (i != j) g.d(i, j) = (c(i) / c(j)) / (x(i) - x(j));
+    g.d(i, i) = -g.d.row(i).sum();
+  }
+  g.d *= 2.0 / tau;  // d/dtheta = (2 / tau) d/dx
+  return g;
+}
+
+// Row of Lagrange basis values at theta (barycentric formula; a node gives a unit row).
+Eigen::RowVectorXd LagrangeRow(const ChebyshevGrid& g, double theta) {
+  const int m = static_cast<int>(g.theta.size());
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(m);
+  for (int j = 0; j < m; ++j)
+    if (std::abs(theta - g.theta(j)) <= 1e-14 * (1.0 + std::abs(theta))) {
+      row(j) = 1.0;
+      return row;
+    }
+  for (int j = 0; j < m; ++j) row(j) = g.weights(j) / (theta - g.theta(j));
+  return row / row.sum();
+}
+
+// Eigenvalues of the discretized infinitesimal generator: the state is the history on the Chebyshev grid; rows
+// 1..N differentiate it, row 0 is the system's equation at theta = 0 with delayed values and (neutral) delayed
+// derivatives taken from the interpolant.
+std::vector<Complex> GeneratorEigenvalues(const LinearDelaySystem& sys, int nodes) {
+  const int n = sys.dimension();
+  double tau_max = 0;
+  for (const DelayTerm& d : sys.delays) tau_max = std::max(tau_max, d.tau);
+  const ChebyshevGrid g = MakeGrid(nodes, tau_max);
+  const int m = nodes + 1;
+  Eigen::MatrixXd big = Eigen::MatrixXd::Zero(n * m, n * m);
+  for (int i = 1; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      big.block(i * n, j * n, n, n).diagonal().setConstant(g.d(i, j));
+  big.block(0, 0, n, n) += sys.a0;
+  for (const DelayTerm& d : sys.delays) {
+    const Eigen::RowVectorXd ell = LagrangeRow(g, -d.tau);
+    const Eigen::RowVectorXd ell_prime = ell * g.d;
+    for (int j = 0; j < m; ++j) {
+      if (d.retarded.size() > 0) big.block(0, j * n, n, n) += ell(j) * d.retarded;
+      if (d.neutral.size() > 0) big.block(0, j * n, n, n) += ell_prime(j) * d.neutral;
+    }
+  }
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(big, false);
+  if (solver.info() != Eigen::Success) throw std::runtime_error("eigenvalues of the discretized generator failed");
+  const auto ev = solver.eigenvalues();
+  return std::vector<Complex>(ev.data(), ev.data() + ev.size());
+}
+
+// The neutral delays as integer multiples m_k of a base delay tau0 (false if they are not commensurate with
+// multiples up to 64).
+bool CommensurateNeutral(const LinearDelaySystem& sys, double& tau0, std::vector<int>& multiples) {
+  std::vector<double> taus;
+  for (const DelayTerm& d : sys.delays)
+    if (d.neutral.size() > 0 && d.neutral.norm() > 0) taus.push_back(d.tau);
+  if (taus.empty()) return false;
+  const double smallest = *std::min_element(taus.begin(), taus.end());
+  for (int q = 1; q <= 64; ++q) {  // tau0 = smallest / q
+    tau0 = smallest / q;
+    multiples.clear();
+    bool ok = true;
+    for (double t : taus) {
+      const double r = t / tau0;
+      const double k = std::round(r);
+      if (std::abs(r - k) > 1e-9 * r || k > 64 * q) {
+        ok = false;
+        break;
+      }
+      multiples.push_back(static_cast<int>(k));
+    }
+    if (ok) return true;
+  }
+  return false;
+}
+
+// Roots mu = e^{s tau0} of det(mu^M I - sum_k B_k mu^{M - m_k}) (the difference operator), by a block companion
+// matrix.
+std::vector<Complex> DifferenceOperatorMultipliers(const LinearDelaySystem& sys,
+                                                   const std::vector<int>& multiples) {
+  const int n = sys.dimension();
+  const int big_m = *std::max_element(multiples.begin(), multiples.end());
+  // Monic polynomial mu^M + sum_{j<M} C_j mu^j with C_{M - m_k} = -B_k.
+  std::vector<Eigen::MatrixXd> coefficient(big_m, Eigen::MatrixXd::Zero(n, n));
+  std::size_t k = 0;
+  for (const DelayTerm& d : sys.delays)
+    if (d.neutral.size() > 0 && d.neutral.norm() > 0) coefficient[big_m - multiples[k++]] -= d.neutral;
+  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n * big_m, n * big_m);
+  for (int j = 0; j + 1 < big_m; ++j) companion.block(j * n, (j + 1) * n, n, n).setIdentity();
+  for (int j = 0; j < big_m; ++j) companion.block((big_m - 1) * n, j * n, n, n) = -coefficient[j];
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(companion, false);
+  const auto ev = solver.eigenvalues();
+  return std::vector<Complex>(ev.data(), ev.data() + ev.size());
+}
+
+// Newton's method on det Delta(s): d/ds ln det Delta = tr(Delta^{-1} Delta').
+bool Refine(const LinearDelaySystem& sys, Complex& s, const SpectrumOptions& o) {
+  for (int it = 0; it < o.newton_iterations; ++it) {
+    const Eigen::MatrixXcd delta = sys.Characteristic(s);
+    const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(delta);
+    const Complex trace = lu.solve(sys.CharacteristicDerivative(s)).trace();
+    if (!std::isfinite(trace.real()) || !std::isfinite(trace.imag()) || std::abs(trace) == 0) return false;
+    const Complex step = 1.0 / trace;
+    s -= step;
+    if (!std::isfinite(s.real()) || !std::isfinite(s.imag())) return false;
+    if (std::abs(step) <= o.root_tolerance * (1.0 + std::abs(s))) return true;
+  }
+  return false;
+}
+
+double Residual(const LinearDelaySystem& sys, Complex s) {
+  const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(sys.Characteristic(s));
+  const auto& sv = svd.singularValues();
+  return sv(0) > 0 ? sv(sv.size() - 1) / sv(0) : 0.0;
+}
+
+}  // namespace
+
+bool LinearDelaySystem::IsNeutral() const {
+  for (const DelayTerm& d : delays)
+    if (d.neutral.size() > 0 && d.neutral.norm() > 0) return true;
+  return false;
+}
+
+void LinearDelaySystem::Validate() const {
+  const auto n = a0.rows();
+  if (n < 1 || a0.cols() != n) throw std::invalid_argument("A_0 must be a non-empty square matrix");
+  if (!AllFinite(a0)) throw std::invalid_argument("A_0 has a non-finite entry");
+  for (std::size_t k = 0; k < delays.size(); ++k) {
+    const DelayTerm& d = delays[k];
+    const std::string which = "delay term " + std::to_string(k);
+    if (!(d.tau > 0) || !std::isfinite(d.tau)) throw std::invalid_argument(which + ": tau must be finite and > 0");
+    for (const Eigen::MatrixXd* m : {&d.retarded, &d.neutral}) {
+      if (m->size() == 0) continue;
+      if (m->rows() != n || m->cols() != n) throw std::invalid_argument(which + ": matrix is not n x n");
+      if (!AllFinite(*m)) throw std::invalid_argument(which + ": non-finite entry");
+    }
+  }
+}
+
+Eigen::MatrixXcd LinearDelaySystem::Characteristic(Complex s) const {
+  const int n = dimension();
+  Eigen::MatrixXcd delta = s * Eigen::MatrixXcd::Identity(n, n) - a0.cast<Complex>();
+  for (const DelayTerm& d : delays) {
+    const Complex e = std::exp(-s * d.tau);
+    if (d.neutral.size() > 0) delta -= (s * e) * d.neutral.cast<Complex>();
+    if (d.retarded.size() > 0) delta -= e * d.retarded.cast<Complex>();
+  }
+  return delta;
+}
+
+Eigen::MatrixXcd LinearDelaySystem::CharacteristicDerivative(Complex s) const {
+  const int n = dimension();
+  Eigen::MatrixXcd derivative = Eigen::MatrixXcd::Identity(n, n);
+  for (const DelayTerm& d : delays) {
+    const Complex e = std::exp(-s * d.tau);
+    if (d.neutral.size() > 0) derivative -= (e * (1.0 - s * d.tau)) * d.neutral.cast<Complex>();
+    if (d.retarded.size() > 0) derivative += (d.tau * e) * d.retarded.cast<Complex>();
+  }
+  return derivative;
+}
+
+Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o) {
+  sys.Validate();
+  if (o.collocation_nodes < 4) throw std::invalid_argument("collocation_nodes must be >= 4");
+  Spectrum out;
+  out.essential_abscissa = -std::numeric_limits<double>::infinity();
+
+  // Starting points.
+  std::vector<Complex> starts;
+  if (sys.delays.empty()) {
+    const Eigen::EigenSolver<Eigen::MatrixXd> solver(sys.a0, false);
+    for (int i = 0; i < solver.eigenvalues().size(); ++i) starts.push_back(solver.eigenvalues()(i));
+  } else {
+    starts = GeneratorEigenvalues(sys, o.collocation_nodes);
+  }
+  if (sys.IsNeutral()) {
+    double tau0 = 0;
+    std::vector<int> multiples;
+    if (CommensurateNeutral(sys, tau0, multiples)) {
+      double rho = 0;
+      for (const Complex mu : DifferenceOperatorMultipliers(sys, multiples)) {
+        const double r = std::abs(mu);
+        rho = std::max(rho, r);
+        if (r == 0) continue;
+        // The chain of roots that approaches Re s = ln|mu| / tau0, Im s = (arg mu + 2 pi j) / tau0.
+        const double re = std::log(r) / tau0;
+        for (int j = 0;; ++j) {
+          const double im = (std::arg(mu) + 2 * kPi * j) / tau0;
+          if (im > o.im_max) break;
+          if (im >= 0) starts.emplace_back(re, im);
+        }
+      }
+      out.essential_abscissa = rho > 0 ? std::log(rho) / tau0 : -std::numeric_limits<double>::infinity();
+    } else {
+      out.essential_abscissa = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  out.candidates = static_cast<int>(starts.size());
+
+  // Refine, keep those in the region (upper half plane), merge duplicates.
+  std::vector<Complex> found;
+  for (Complex s : starts) {
+    if (s.imag() < 0) s = std::conj(s);
+    if (s.real() < o.re_min - 10 || s.imag() > 1.5 * o.im_max) continue;
+    if (!Refine(sys, s, o)) continue;
+    if (s.imag() < 0) s = std::conj(s);
+    if (std::abs(s.imag()) < 1e-9 * (1.0 + std::abs(s))) s = {s.real(), 0.0};
+    if (s.real() < o.re_min || s.imag() > o.im_max) continue;
+    ++out.refined;
+    const bool duplicate = std::any_of(found.begin(), found.end(), [&](Complex r) {
+      return std::abs(r - s) <= 1e-7 * (1.0 + std::abs(s));
+    });
+    if (!duplicate) found.push_back(s);
+  }
+  std::sort(found.begin(), found.end(), [](Complex a, Complex b) {
+    return a.real() != b.real() ? a.real() > b.real() : a.imag() < b.imag();
+  });
+  for (Complex s : found) out.roots.push_back({s, Residual(sys, s)});
+  out.spectral_abscissa = found.empty() ? -std::numeric_limits<double>::infinity() : found.front().real();
+  out.stable = out.spectral_abscissa < 0 && out.essential_abscissa < 0;  // NaN (not computed): not stable
+  return out;
+}
+
+}  // namespace drillwave::analysis
