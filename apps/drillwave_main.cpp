@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
@@ -87,6 +88,38 @@ int Sweep(const std::string& file, const std::string& out_dir, const std::vector
   return 0;
 }
 
+int Stability(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
+              const std::string& pointer, const std::string& values_text, int jobs) {
+  const nlohmann::json doc = LoadCaseDocument(file, overrides);
+  const auto dir = std::filesystem::absolute(out_dir).string();
+  if (!pointer.empty()) {
+    const drillwave::cases::SweepSpec spec{pointer, drillwave::cases::ParseSweepValues(values_text, "--values"), jobs};
+    const auto rows = drillwave::cases::StabilityMap(doc, spec);
+    drillwave::cases::WriteStabilityMap(doc, spec, rows, out_dir);
+    int stable = 0;
+    for (const auto& r : rows) stable += r.stable ? 1 : 0;
+    std::cout << "drillwave: stability map over " << pointer << ": " << spec.values.size() << " values, "
+              << rows.size() << " steady states, " << stable << " stable\nwrote " << dir
+              << "/stability_map.csv, stability_map.svg, report.md, case.json" << std::endl;
+    return 0;
+  }
+  const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
+  const auto result = drillwave::cases::AnalyzeStability(c);
+  drillwave::cases::WriteStabilityOutputs(c, result, out_dir);
+  std::cout << "drillwave: linearized stability of '" << c.name << "' (kind " << c.kind << "): " << result.size()
+            << " steady state(s)" << std::endl;
+  for (std::size_t k = 0; k < result.size(); ++k) {
+    const auto& sp = result[k].spectrum;
+    std::cout << "  [" << k << "] " << result[k].point.steady_state.dump() << "\n      "
+              << (sp.stable ? "stable" : "UNSTABLE") << ": rightmost root " << sp.spectral_abscissa
+              << (sp.roots.empty() ? "" : " " + std::string(sp.roots[0].s.imag() >= 0 ? "+ " : "- ") +
+                                              std::to_string(std::abs(sp.roots[0].s.imag())) + "i")
+              << ", essential spectrum at Re s = " << sp.essential_abscissa << std::endl;
+  }
+  std::cout << "wrote " << dir << "/stability.json, roots.csv, report.md, case.json" << std::endl;
+  return 0;
+}
+
 int ListKinds() {
   for (const auto& kind : drillwave::cases::AllKinds()) {
     std::cout << kind->name() << ": " << kind->description() << "\n" << kind->FieldSchema().dump(2) << "\n\n";
@@ -126,6 +159,17 @@ int main(int argc, char** argv) {
   sweep->add_option("--out,-o", sweep_out, "output folder (written all or nothing)");
   sweep->add_option("--set", overrides, "override another parameter by JSON pointer");
 
+  auto* stability = app.add_subcommand(
+      "stability", "steady states at the inputs' final values and the characteristic roots of the linearization "
+                   "about each; with --param, a stability map over that parameter");
+  std::string stability_out = "drillwave-stability";
+  stability->add_option("case", case_file, "case JSON file (default: the embedded default case)");
+  stability->add_option("--param,-p", sweep_pointer, "map over this parameter (JSON pointer)");
+  stability->add_option("--values,-v", sweep_values, "first:last:count or v1,v2,... (with --param)");
+  stability->add_option("--jobs,-j", jobs, "analyses at once (default: the number of cores)");
+  stability->add_option("--out,-o", stability_out, "output folder (written all or nothing)");
+  stability->add_option("--set", overrides, "override a parameter by JSON pointer");
+
   auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
 
   CLI11_PARSE(app, argc, argv);
@@ -135,6 +179,11 @@ int main(int argc, char** argv) {
       const Case c = drillwave::cases::ParseCase(LoadCaseDocument(case_file, overrides));
       std::cout << "case '" << c.name << "' is valid (kind " << c.kind << ")\n";
       return 0;
+    }
+    if (stability->parsed()) {
+      if (sweep_pointer.empty() != sweep_values.empty())
+        throw drillwave::InputError("--param/--values", "a stability map needs both --param and --values");
+      return Stability(case_file, stability_out, overrides, sweep_pointer, sweep_values, jobs);
     }
     if (sweep->parsed()) return Sweep(case_file, sweep_out, overrides, sweep_pointer, sweep_values, jobs);
     return RunAndWrite(case_file, out_dir, overrides, check);

@@ -169,6 +169,22 @@ TEST_F(Cli, SweepWritesEveryPointOrNothing) {
     EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
 }
 
+TEST_F(Cli, StabilityReportsTheSteadyStateOrSaysWhyNot) {
+  const std::string out = (dir_ / "stab").string();
+  Outcome o = RunTool("stability " + std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json -o " + out);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("stable: rightmost root -0.2094"), std::string::npos) << o.output;
+  EXPECT_TRUE(fs::exists(fs::path(out) / "stability.json"));
+  const std::string out2 = (dir_ / "stab2").string();
+  o = RunTool("stability " + std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/bar-step.json -o " + out2);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("/model"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(out2));
+  o = RunTool("stability " + std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json -p /model/bit/inertia_kgm2 -o " + out2);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_FALSE(fs::exists(out2));
+}
+
 TEST_F(Cli, KindsListsFieldsWithUnits) {
   const Outcome o = RunTool("kinds");
   EXPECT_EQ(o.exit_code, 0);

@@ -131,13 +131,21 @@ std::vector<Complex> DifferenceOperatorMultipliers(const LinearDelaySystem& sys,
   return std::vector<Complex>(ev.data(), ev.data() + ev.size());
 }
 
+double Residual(const LinearDelaySystem& sys, Complex s) {
+  const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(sys.Characteristic(s));
+  const auto& sv = svd.singularValues();
+  return sv(0) > 0 ? sv(sv.size() - 1) / sv(0) : 0.0;
+}
+
 // Newton's method on det Delta(s): d/ds ln det Delta = tr(Delta^{-1} Delta').
 bool Refine(const LinearDelaySystem& sys, Complex& s, const SpectrumOptions& o) {
   for (int it = 0; it < o.newton_iterations; ++it) {
     const Eigen::MatrixXcd delta = sys.Characteristic(s);
     const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(delta);
     const Complex trace = lu.solve(sys.CharacteristicDerivative(s)).trace();
-    if (!std::isfinite(trace.real()) || !std::isfinite(trace.imag()) || std::abs(trace) == 0) return false;
+    // A start that is already a root to rounding makes Delta numerically singular: accept it as it is.
+    if (!std::isfinite(trace.real()) || !std::isfinite(trace.imag()) || std::abs(trace) == 0)
+      return Residual(sys, s) < 1e-13;
     const Complex step = 1.0 / trace;
     s -= step;
     if (!std::isfinite(s.real()) || !std::isfinite(s.imag())) return false;
@@ -146,11 +154,6 @@ bool Refine(const LinearDelaySystem& sys, Complex& s, const SpectrumOptions& o) 
   return false;
 }
 
-double Residual(const LinearDelaySystem& sys, Complex s) {
-  const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(sys.Characteristic(s));
-  const auto& sv = svd.singularValues();
-  return sv(0) > 0 ? sv(sv.size() - 1) / sv(0) : 0.0;
-}
 
 }  // namespace
 

@@ -31,4 +31,8 @@ const Channel& RunResult::channel(const std::string& name) const {
   throw std::out_of_range("no channel named " + name);
 }
 
+std::vector<LinearizedOperatingPoint> PreparedModel::Linearize() const {
+  throw InputError("/model/kind", "this model kind has no linearization for stability analysis");
+}
+
 }  // namespace drillwave::cases

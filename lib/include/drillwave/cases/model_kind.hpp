@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/analysis/spectrum.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -47,11 +48,22 @@ inline std::vector<double> ToRpm(const std::vector<double>& rad_s) {
   return rpm;
 }
 
+// A steady state of a model (at the final values of its input schedules) and the linear delay system of small
+// perturbations about it, for `drillwave stability`.
+struct LinearizedOperatingPoint {
+  nlohmann::json steady_state;  // named values with units, e.g. {"bit_speed_rad_s": 6.2, ...}
+  std::vector<std::string> state_names;
+  analysis::LinearDelaySystem system;
+};
+
 // A validated model ready to run; immutable, so one prepared model can be run many times (sweeps, fits).
 class PreparedModel {
  public:
   virtual ~PreparedModel() = default;
   virtual RunResult Run(const RunSettings& settings) const = 0;
+  // Every steady state at the inputs' final values with its linearization (possibly none: e.g. the bit held by
+  // static friction). Throws InputError naming "/model" if this kind or configuration has no linearization.
+  virtual std::vector<LinearizedOperatingPoint> Linearize() const;
 };
 
 class ModelKind {

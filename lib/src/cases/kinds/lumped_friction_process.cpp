@@ -303,4 +303,113 @@ RunResult ChainResult(const ChainRun& run, const RunSettings& settings) {
   return result;
 }
 
+namespace {
+
+// Friction and damper torque on inertia i sliding forwards at w (final input values), and its slope.
+std::pair<double, double> SlidingTorque(const Chain& c, int i, double w) {
+  const Inertia& in = c.inertias[i];
+  double torque = in.damping_Nms_per_rad * w, slope = in.damping_Nms_per_rad;
+  if (in.friction) {
+    const double scale = in.friction_scale.knots().back().second;
+    double t = in.friction->SlipTorque(w), dt = in.friction->SlipTorqueDerivative(w);
+    if (c.friction_smoothing_rad_s > 0) {
+      const double th = std::tanh(w / c.friction_smoothing_rad_s);
+      dt = dt * th + t * (1 - th * th) / c.friction_smoothing_rad_s;
+      t *= th;
+    }
+    torque += scale * t;
+    slope += scale * dt;
+  }
+  return {torque, slope};
+}
+
+}  // namespace
+
+std::vector<LinearizedOperatingPoint> LinearizeChain(const Chain& c) {
+  c.Validate();
+  const int n = static_cast<int>(c.inertias.size());
+  const double u = c.setpoint.knots().back().second;
+  auto total = [&](double w) {
+    double sum = 0;
+    for (int i = 0; i < n; ++i) sum += SlidingTorque(c, i, w).first;
+    return sum;
+  };
+  // Steady speeds.
+  std::vector<double> speeds;
+  if (c.drive != Drive::kTorque) {
+    if (u > 0) speeds.push_back(u);
+  } else {
+    const double drive = c.torque_gain * u;
+    double hi = 1.0;
+    while (total(hi) < drive && hi < 1e9) hi *= 2;
+    const int samples = 20000;
+    double w_prev = hi * 1e-12, f_prev = drive - total(w_prev);
+    for (int k = 1; k <= samples; ++k) {
+      const double w = hi * k / samples, f = drive - total(w);
+      if ((f_prev > 0) != (f > 0)) {
+        double lo = w_prev, up = w, flo = f_prev;
+        for (int it = 0; it < 200 && up - lo > 1e-15 * up; ++it) {
+          const double mid = 0.5 * (lo + up), fm = drive - total(mid);
+          if ((fm > 0) == (flo > 0)) lo = mid, flo = fm; else up = mid;
+        }
+        speeds.push_back(0.5 * (lo + up));
+      }
+      w_prev = w, f_prev = f;
+    }
+  }
+
+  std::vector<LinearizedOperatingPoint> points;
+  const bool prescribed = c.drive == Drive::kPrescribedSpeed, pi = c.drive == Drive::kPiSpeed;
+  for (double w : speeds) {
+    // State indices: twists 0..n-2, then the speeds of the inertias that move freely, then the PI integral.
+    std::vector<int> speed_index(n, -1);
+    std::vector<std::string> names;
+    for (int j = 0; j + 1 < n; ++j) names.push_back("twist_" + std::to_string(j) + "_rad");
+    for (int i = prescribed ? 1 : 0; i < n; ++i) {
+      speed_index[i] = static_cast<int>(names.size());
+      names.push_back("speed_" + std::to_string(i) + "_rad_s");
+    }
+    const int integral = pi ? static_cast<int>(names.size()) : -1;
+    if (pi) names.push_back("pi_integral_rad");
+    const int m = static_cast<int>(names.size());
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m, m);
+    auto add_speed = [&](int row, int i, double factor) {
+      if (speed_index[i] >= 0) a(row, speed_index[i]) += factor;
+    };
+    for (int j = 0; j + 1 < n; ++j) add_speed(j, j, 1), add_speed(j, j + 1, -1);
+    std::vector<double> slopes(n), twists(n > 1 ? n - 1 : 0);
+    double transmitted = 0;  // steady torque through coupling j: everything below it
+    for (int i = n - 1; i >= 0; --i) {
+      const auto [torque, slope] = SlidingTorque(c, i, w);
+      slopes[i] = slope;
+      if (i > 0) transmitted += torque, twists[i - 1] = transmitted / c.couplings[i - 1].stiffness_Nm_per_rad;
+      if (speed_index[i] < 0) continue;
+      const int row = speed_index[i];
+      const double inv = 1.0 / c.inertias[i].inertia_kgm2;
+      add_speed(row, i, -slope * inv);
+      if (i > 0) {
+        const Coupling& cp = c.couplings[i - 1];
+        a(row, i - 1) += cp.stiffness_Nm_per_rad * inv;
+        add_speed(row, i - 1, cp.damping_Nms_per_rad * inv);
+        add_speed(row, i, -cp.damping_Nms_per_rad * inv);
+      }
+      if (i + 1 < n) {
+        const Coupling& cp = c.couplings[i];
+        a(row, i) -= cp.stiffness_Nm_per_rad * inv;
+        add_speed(row, i, -cp.damping_Nms_per_rad * inv);
+        add_speed(row, i + 1, cp.damping_Nms_per_rad * inv);
+      }
+      if (i == 0 && pi) {
+        add_speed(row, 0, -c.kp * inv);
+        a(row, integral) += c.ki * inv;
+      }
+    }
+    if (pi) add_speed(integral, 0, -1);
+    nlohmann::json steady = {{"speed_rad_s", w}, {"twists_rad", twists}, {"torque_slopes_Nms_per_rad", slopes}};
+    steady["drive_torque_Nm"] = total(w);
+    points.push_back({steady, names, analysis::LinearDelaySystem{a, {}}});
+  }
+  return points;
+}
+
 }  // namespace drillwave::cases::lumped

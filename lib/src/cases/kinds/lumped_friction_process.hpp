@@ -71,4 +71,9 @@ ChainRun RunChain(const Chain& chain, const RunSettings& settings);
 // energy balance and the integrator's counts. Kinds add their own channels and keys.
 RunResult ChainResult(const ChainRun& run, const RunSettings& settings);
 
+// Steady states with every inertia turning at one speed w > 0, at the inputs' final values (a prescribed or PI
+// speed end fixes w; a torque drive gives every root of drive = sum of friction and damper torques at w), each
+// with the linear system of small perturbations: state (twists, speeds of the free inertias, PI integral).
+std::vector<LinearizedOperatingPoint> LinearizeChain(const Chain& chain);
+
 }  // namespace drillwave::cases::lumped

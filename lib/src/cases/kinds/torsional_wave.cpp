@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "drillwave/analysis/torsional_linearization.hpp"
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/error.hpp"
@@ -124,6 +125,26 @@ class TorsionalWaveModel : public PreparedModel {
     result.summary["derivative_evaluations"] = run.stats.derivative_evaluations;
     result.summary["integration_wall_time_s"] = run.stats.wall_time_s;
     return result;
+  }
+
+  // Steady sliding of a one-section string with a dissipative top at the final top set-point (DESIGN.md §1).
+  std::vector<LinearizedOperatingPoint> Linearize() const override {
+    try {
+      analysis::CheckLinearizable(net_);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("/model", std::string("no linearization for this string: ") + e.what() +
+                                     (net_.sections.size() > 1 ? " (sections and damping_subsections both count)" : ""));
+    }
+    const double omega = net_.top().setpoint.knots().back().second;
+    std::vector<LinearizedOperatingPoint> points;
+    for (const analysis::TorsionalOperatingPoint& p : analysis::SteadySlidingStates(net_, omega))
+      points.push_back({{{"top_speed_rad_s", p.top_speed_rad_s},
+                         {"bit_speed_rad_s", p.bit_speed_rad_s},
+                         {"bit_torque_Nm", p.bit_torque_Nm},
+                         {"bit_torque_slope_Nms_per_rad", p.torque_slope_Nms_per_rad}},
+                        {"bit_speed_rad_s"},
+                        analysis::LinearizeTorsionalString(net_, p)});
+    return points;
   }
 
  private:

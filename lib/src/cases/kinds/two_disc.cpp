@@ -56,6 +56,8 @@ class TwoDiscModel : public PreparedModel {
     return result;
   }
 
+  std::vector<LinearizedOperatingPoint> Linearize() const override { return lumped::LinearizeChain(chain_); }
+
  private:
   lumped::Chain chain_;
 };

@@ -29,6 +29,8 @@ class TwoMassModel : public PreparedModel {
     return lumped::ChainResult(lumped::RunChain(chain_, settings), settings);
   }
 
+  std::vector<LinearizedOperatingPoint> Linearize() const override { return lumped::LinearizeChain(chain_); }
+
  private:
   lumped::Chain chain_;
 };

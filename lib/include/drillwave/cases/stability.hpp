@@ -1,0 +1,48 @@
+#pragma once
+// Linearized stability of a case (DESIGN.md §4): its steady states at the inputs' final values, the characteristic
+// roots of the linearization about each, and stability maps over one parameter addressed by its JSON pointer.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "drillwave/analysis/spectrum.hpp"
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/sweep.hpp"
+
+namespace drillwave::cases {
+
+struct OperatingPointStability {
+  LinearizedOperatingPoint point;
+  analysis::Spectrum spectrum;
+};
+
+// Every steady state of the case with its spectrum. Throws InputError if the kind has no linearization.
+std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analysis::SpectrumOptions& options = {});
+
+// {"operating_points": [{"steady_state", "stable", "spectral_abscissa", "essential_abscissa", "roots": [[re, im,
+// residual], ...] (the rightmost max_roots)}]}
+nlohmann::json StabilityToJson(const std::vector<OperatingPointStability>& result, int max_roots = 12);
+
+// stability.json, roots.csv (every root found: point, Re, Im, residual), report.md, case.json; all or nothing.
+void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStability>& result,
+                           const std::string& out_dir);
+
+// One row per value and steady state (branch 0 = the slowest).
+struct StabilityMapRow {
+  double value = 0;
+  int branch = 0;
+  double speed_rad_s = 0;             // the steady bit (last inertia) speed
+  double spectral_abscissa = 0;       // rightmost Re s
+  double frequency_rad_s = 0;         // Im s of that root
+  double essential_abscissa = 0;      // -inf for retarded systems
+  bool stable = false;
+};
+// Values are checked first (InputError naming the pointer and value); spec.jobs threads.
+std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const SweepSpec& spec,
+                                          const analysis::SpectrumOptions& options = {});
+// stability_map.csv, stability_map.svg (steady speed and rightmost Re s against the parameter), report.md.
+void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
+                       const std::vector<StabilityMapRow>& rows, const std::string& out_dir);
+
+}  // namespace drillwave::cases

@@ -1,0 +1,209 @@
+#include "drillwave/cases/stability.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "drillwave/core/error.hpp"
+#include "drillwave/io/csv.hpp"
+#include "drillwave/io/json_reader.hpp"
+#include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/svg_plot.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+double SteadySpeed(const nlohmann::json& steady) {
+  for (const char* key : {"bit_speed_rad_s", "speed_rad_s"})
+    if (steady.contains(key)) return steady.at(key).get<double>();
+  return std::nan("");
+}
+
+// JSON has no infinities: -inf (no essential spectrum, no roots) is written as null.
+nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+std::string Format(double v) {
+  std::ostringstream s;
+  s.precision(8);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analysis::SpectrumOptions& options) {
+  std::vector<OperatingPointStability> out;
+  for (LinearizedOperatingPoint& p : c.model->Linearize()) {
+    analysis::Spectrum sp = analysis::ComputeSpectrum(p.system, options);
+    out.push_back({std::move(p), std::move(sp)});
+  }
+  return out;
+}
+
+nlohmann::json StabilityToJson(const std::vector<OperatingPointStability>& result, int max_roots) {
+  nlohmann::json points = nlohmann::json::array();
+  for (const OperatingPointStability& r : result) {
+    nlohmann::json roots = nlohmann::json::array();
+    for (std::size_t k = 0; k < r.spectrum.roots.size() && static_cast<int>(k) < max_roots; ++k)
+      roots.push_back({r.spectrum.roots[k].s.real(), r.spectrum.roots[k].s.imag(), r.spectrum.roots[k].residual});
+    points.push_back({{"steady_state", r.point.steady_state},
+                      {"state", r.point.state_names},
+                      {"stable", r.spectrum.stable},
+                      {"spectral_abscissa", Number(r.spectrum.spectral_abscissa)},
+                      {"essential_abscissa", Number(r.spectrum.essential_abscissa)},
+                      {"roots_re_im_residual", roots}});
+  }
+  return {{"operating_points", points}};
+}
+
+void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStability>& result,
+                           const std::string& out_dir) {
+  io::OutputDirectory out(out_dir);
+  out.Open("stability.json") << StabilityToJson(result).dump(2) << "\n";
+  out.Open("case.json") << c.document.dump(2) << "\n";
+  std::vector<double> point, re, im, residual;
+  for (std::size_t k = 0; k < result.size(); ++k)
+    for (const auto& r : result[k].spectrum.roots) {
+      point.push_back(static_cast<double>(k));
+      re.push_back(r.s.real());
+      im.push_back(r.s.imag());
+      residual.push_back(r.residual);
+    }
+  io::WriteCsv(out.Open("roots.csv"), {"operating_point", "re_per_s", "im_rad_per_s", "residual"},
+               {point, re, im, residual});
+
+  std::ostream& report = out.Open("report.md");
+  report << "# Linearized stability of " << c.name << "\n\n";
+  if (result.empty()) report << "No steady sliding state at the inputs' final values (e.g. held by static friction, "
+                                "or below the break-away level): nothing to linearize.\n";
+  for (std::size_t k = 0; k < result.size(); ++k) {
+    const auto& r = result[k];
+    report << "## Operating point " << k << ": " << (r.spectrum.stable ? "stable" : "UNSTABLE") << "\n\n"
+           << "Steady state: `" << r.point.steady_state.dump() << "`\n\n"
+           << "Rightmost root real part " << Format(r.spectrum.spectral_abscissa)
+           << " 1/s; essential spectrum of the difference operator at Re s = " << Format(r.spectrum.essential_abscissa)
+           << " 1/s (-inf: retarded or delay-free). " << r.spectrum.roots.size() << " roots found (upper half plane)."
+           << "\n\n| Re s [1/s] | Im s [rad/s] | residual |\n|---|---|---|\n";
+    for (std::size_t j = 0; j < r.spectrum.roots.size() && j < 12; ++j)
+      report << "| " << Format(r.spectrum.roots[j].s.real()) << " | " << Format(r.spectrum.roots[j].s.imag()) << " | "
+             << Format(r.spectrum.roots[j].residual) << " |\n";
+    report << "\n";
+  }
+  report << "A steady state is stable when every characteristic root and the essential spectrum lie in the left "
+            "half plane. Linear stability says nothing of large perturbations: stick-slip can coexist with a stable "
+            "steady state (simulate the case from rest to see which motion it reaches).\n";
+  out.Commit();
+}
+
+std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const SweepSpec& spec,
+                                          const analysis::SpectrumOptions& options) {
+  if (spec.values.empty()) throw InputError("--values", "no values to sweep");
+  if (spec.jobs < 1) throw InputError("--jobs", std::to_string(spec.jobs) + " is not >= 1");
+  std::vector<Case> cases;
+  for (double v : spec.values) {
+    nlohmann::json doc = document;
+    io::SetByPointer(doc, spec.pointer, v);
+    try {
+      cases.push_back(ParseCase(doc));
+    } catch (const InputError& e) {
+      throw InputError(e.json_path(), std::string(e.what()) + " (sweep value " + spec.pointer + " = " + Format(v) + ")");
+    }
+  }
+  cases.front().model->Linearize();  // a kind without linearization fails here, before the threads start
+  std::vector<std::vector<StabilityMapRow>> per_value(cases.size());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i = next++; i < cases.size(); i = next++) {
+      const auto analysis = AnalyzeStability(cases[i], options);
+      for (std::size_t b = 0; b < analysis.size(); ++b) {
+        const auto& sp = analysis[b].spectrum;
+        per_value[i].push_back({spec.values[i], static_cast<int>(b), SteadySpeed(analysis[b].point.steady_state),
+                                sp.spectral_abscissa, sp.roots.empty() ? 0.0 : sp.roots.front().s.imag(),
+                                sp.essential_abscissa, sp.stable});
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min<int>(spec.jobs, static_cast<int>(cases.size())); ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  std::vector<StabilityMapRow> rows;
+  for (auto& v : per_value) rows.insert(rows.end(), v.begin(), v.end());
+  return rows;
+}
+
+void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
+                       const std::vector<StabilityMapRow>& rows, const std::string& out_dir) {
+  io::OutputDirectory out(out_dir);
+  std::vector<double> value, branch, speed, abscissa, frequency, essential, stable;
+  for (const auto& r : rows) {
+    value.push_back(r.value);
+    branch.push_back(r.branch);
+    speed.push_back(r.speed_rad_s);
+    abscissa.push_back(r.spectral_abscissa);
+    frequency.push_back(r.frequency_rad_s);
+    essential.push_back(r.essential_abscissa);
+    stable.push_back(r.stable ? 1 : 0);
+  }
+  const std::string param = spec.pointer.find_first_of(",\"\n") == std::string::npos ? spec.pointer : "parameter";
+  io::WriteCsv(out.Open("stability_map.csv"),
+               {param, "branch", "steady_speed_rad_s", "spectral_abscissa_per_s", "frequency_rad_s",
+                "essential_abscissa_per_s", "stable"},
+               {value, branch, speed, abscissa, frequency, essential, stable});
+  out.Open("case.json") << document.dump(2) << "\n";
+
+  // One series per branch and stability, with breaks (NaN) where the branch is absent or of the other kind.
+  int branches = 0;
+  for (const auto& r : rows) branches = std::max(branches, r.branch + 1);
+  io::Figure figure;
+  figure.title = document.value("name", std::string("case")) + ": linearized stability against " + spec.pointer;
+  figure.x_label = spec.pointer;
+  io::Panel speeds{"steady speed [rad/s]", {}}, real_parts{"rightmost Re s [1/s]", {}};
+  for (int b = 0; b < branches; ++b)
+    for (bool want_stable : {true, false}) {
+      io::Series s{std::string(want_stable ? "stable" : "unstable") + (branches > 1 ? " (branch " + std::to_string(b) + ")" : ""), {}, {}};
+      io::Series a = s;
+      for (double v : spec.values) {
+        const auto it = std::find_if(rows.begin(), rows.end(),
+                                     [&](const StabilityMapRow& r) { return r.value == v && r.branch == b; });
+        const bool use = it != rows.end() && it->stable == want_stable;
+        s.x.push_back(v), a.x.push_back(v);
+        s.y.push_back(use ? it->speed_rad_s : std::nan(""));
+        a.y.push_back(it != rows.end() && std::isfinite(it->spectral_abscissa) && use ? it->spectral_abscissa : std::nan(""));
+      }
+      speeds.series.push_back(s);
+      real_parts.series.push_back(a);
+    }
+  figure.panels = {speeds, real_parts};
+  io::WriteSvg(figure, out.Open("stability_map.svg"));
+
+  std::ostream& report = out.Open("report.md");
+  report << "# Stability map of " << document.value("name", std::string("case")) << " over " << spec.pointer
+         << "\n\n| " << spec.pointer << " | branch | steady speed [rad/s] | rightmost Re s [1/s] | Im s [rad/s] | "
+         << "essential [1/s] | verdict |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows)
+    report << "| " << Format(r.value) << " | " << r.branch << " | " << Format(r.speed_rad_s) << " | "
+           << Format(r.spectral_abscissa) << " | " << Format(r.frequency_rad_s) << " | "
+           << Format(r.essential_abscissa) << " | " << (r.stable ? "stable" : "unstable") << " |\n";
+  // Crossings of the rightmost real part through zero along branch 0, located by linear interpolation.
+  report << "\nStability changes along branch 0 (linear interpolation between neighbouring values):\n";
+  const StabilityMapRow* prev = nullptr;
+  for (const auto& r : rows) {
+    if (r.branch != 0) continue;
+    if (prev && prev->stable != r.stable && std::isfinite(prev->spectral_abscissa) &&
+        std::isfinite(r.spectral_abscissa)) {
+      const double x = prev->value + (r.value - prev->value) * prev->spectral_abscissa /
+                                         (prev->spectral_abscissa - r.spectral_abscissa);
+      report << "- near " << spec.pointer << " = " << Format(x) << " (" << (r.stable ? "becomes stable" : "loses stability")
+             << ", frequency " << Format(r.frequency_rad_s) << " rad/s)\n";
+    }
+    prev = &r;
+  }
+  out.Commit();
+}
+
+}  // namespace drillwave::cases

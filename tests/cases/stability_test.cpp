@@ -1,0 +1,108 @@
+// Linearized stability of cases: steady states against their closed forms, the Hopf points of every kind against
+// independent figures (Routh-Hurwitz for the two-disc set-up, the wave-network growth rates for the string, the
+// measured start of linear stability of the two-mass pendulum), maps, and clear errors where no linearization
+// exists.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/stability.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/io/json_reader.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+nlohmann::json LoadCase(const std::string& name) {
+  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/" + name + ".json");
+}
+
+std::vector<OperatingPointStability> Analyze(nlohmann::json doc) { return AnalyzeStability(ParseCase(doc)); }
+
+TEST(CaseStability, TwoDiscSteadyStateAndBranchesOfFig4) {
+  nlohmann::json doc = LoadCase("two-disc-steady");
+  auto at = [&](double u) {
+    doc["model"]["upper_disc"]["input_voltage_V"] = u;
+    return Analyze(doc);
+  };
+  const auto steady = at(0.3);
+  ASSERT_EQ(steady.size(), 1u);
+  // The same root the case's expect block holds (bisection in the case notes).
+  EXPECT_NEAR(steady[0].point.steady_state.at("speed_rad_s").get<double>(), 0.2713141552, 1e-9);
+  EXPECT_TRUE(steady[0].spectrum.stable);
+  EXPECT_TRUE(at(0.12).empty()) << "below break-away nothing slides";
+  EXPECT_FALSE(at(0.6)[0].spectrum.stable);  // e3
+  EXPECT_FALSE(at(2.0)[0].spectrum.stable);
+  EXPECT_TRUE(at(8.0)[0].spectrum.stable);   // e4
+  // The map finds A and D where the Routh-Hurwitz test of two_disc_test.cpp and the case notes put them.
+  const SweepSpec spec{"/model/upper_disc/input_voltage_V", ParseSweepValues("0.40:0.60:201", "v"), 2};
+  const auto rows = StabilityMap(doc, spec);
+  double a = NAN;
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    if (rows[i - 1].stable && !rows[i].stable) a = 0.5 * (rows[i - 1].value + rows[i].value);
+  std::printf("[ measured ] two-disc stability map: e2 loses stability at u_c = %.4f V\n", a);
+  EXPECT_NEAR(a, 0.4849, 1e-3);
+}
+
+TEST(CaseStability, SaldivarSteadySlidingIsStableWhileStickSlipCoexists) {
+  const auto r = Analyze(LoadCase("saldivar-stickslip"));
+  ASSERT_EQ(r.size(), 1u);
+  const double w0 = r[0].point.steady_state.at("bit_speed_rad_s").get<double>();
+  std::printf("[ measured ] saldivar at 10 rad/s: steady sliding at %.9f rad/s, rightmost root %.6f%+.6fi, "
+              "essential %.6f\n", w0, r[0].spectrum.spectral_abscissa, r[0].spectrum.roots[0].s.imag(),
+              r[0].spectrum.essential_abscissa);
+  EXPECT_NEAR(2000 * (10 - w0), r[0].point.steady_state.at("bit_torque_Nm").get<double>(), 1e-6);
+  // Linearly stable (the simulation from rest still ends in stick-slip: bistability), decay rate 0.209 1/s.
+  EXPECT_TRUE(r[0].spectrum.stable);
+  EXPECT_NEAR(r[0].spectrum.spectral_abscissa, -0.2094, 1e-3);
+  // The smooth case's steady state is the speed its expect block holds.
+  const auto smooth = Analyze(LoadCase("saldivar-smooth"));
+  ASSERT_EQ(smooth.size(), 1u);
+  EXPECT_NEAR(smooth[0].point.steady_state.at("bit_speed_rad_s").get<double>(), 16.2135658705, 1e-8);
+}
+
+TEST(CaseStability, TwoMassSmoothRotationIsStableFromAbout4RadPerS) {
+  const nlohmann::json doc = LoadCase("two-mass-stickslip");
+  const SweepSpec spec{"/model/top/speed_rad_s/knots/1/1", ParseSweepValues("3.5:4.5:101", "v"), 2};
+  const auto rows = StabilityMap(doc, spec);
+  double crossing = NAN;
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    if (!rows[i - 1].stable && rows[i].stable) crossing = 0.5 * (rows[i - 1].value + rows[i].value);
+  std::printf("[ measured ] two-mass (prescribed top speed): smooth rotation stable from %.3f rad/s\n", crossing);
+  EXPECT_NEAR(crossing, 4.12, 0.01);
+  // A PI-driven top adds the integral state: the steady state is at the set-point, and a Coulomb bit (no velocity
+  // weakening) keeps it stable.
+  const auto pi = Analyze(LoadCase("two-mass-pi-coulomb"));
+  ASSERT_EQ(pi.size(), 1u);
+  EXPECT_EQ(pi[0].point.state_names.back(), "pi_integral_rad");
+  EXPECT_NEAR(pi[0].point.steady_state.at("speed_rad_s").get<double>(), 5.0, 1e-12);
+  EXPECT_TRUE(pi[0].spectrum.stable);
+}
+
+TEST(CaseStability, KindsWithoutALinearizationSaySo) {
+  try {
+    Analyze(LoadCase("bar-step"));
+    FAIL() << "the force-controlled bar has no steady sliding state to linearize";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/model");
+    EXPECT_NE(std::string(e.what()).find("dissipative"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CaseStability, OutputsAreWritten) {
+  const Case c = ParseCase(LoadCase("two-disc-setup"));
+  const auto dir = std::filesystem::temp_directory_path() / ("drillwave-stability-" + std::to_string(::getpid()));
+  WriteStabilityOutputs(c, AnalyzeStability(c), dir.string());
+  for (const char* f : {"stability.json", "roots.csv", "report.md", "case.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+  const auto json = io::LoadJsonFile((dir / "stability.json").string());
+  EXPECT_FALSE(json.at("operating_points").at(0).at("stable").get<bool>());
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace drillwave::cases
