@@ -486,6 +486,14 @@ NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& opti
 
   NetworkRun run;
   run.t_end_s = options.t_end_s;
+  if (options.output_interval_s > 0) {  // one allocation per channel instead of a growing series of them
+    const auto samples = static_cast<std::size_t>(options.t_end_s / options.output_interval_s) + 2;
+    NetworkTrajectory& tr = run.trajectory;
+    for (auto* v : {&tr.time_s, &tr.top_speed_rad_s, &tr.bit_speed_rad_s, &tr.top_torque_nm, &tr.bit_torque_nm,
+                    &tr.bit_angle_rad, &tr.bit_stuck})
+      v->reserve(samples);
+    if (options.record_energy) tr.energy_j.reserve(samples);
+  }
   State xs(x.size());
   double next_sample = 0.0;
   process.Sample(0.0, x, run.trajectory);

@@ -92,18 +92,8 @@ class TorsionalWaveModel : public PreparedModel {
     options.t_end_s = settings.duration_s;
     options.output_interval_s = settings.output_interval_s;
     options.integrator = settings.integrator;
-    const waves::NetworkRun run = waves::SimulateNetwork(net_, options);
-    const waves::NetworkTrajectory& tr = run.trajectory;
-
-    RunResult result;
-    result.time_s = tr.time_s;
-    result.channels = {{"top_rpm", ToRpm(tr.top_speed_rad_s)},
-                       {"bit_rpm", ToRpm(tr.bit_speed_rad_s)},
-                       {"top_torque_Nm", tr.top_torque_nm},
-                       {"bit_torque_Nm", tr.bit_torque_nm},
-                       {"bit_angle_rad", tr.bit_angle_rad},
-                       {"bit_stuck", tr.bit_stuck}};
-    result.plot_panels = {{"top_rpm", "bit_rpm"}, {"top_torque_Nm", "bit_torque_Nm"}};
+    waves::NetworkRun run = waves::SimulateNetwork(net_, options);
+    waves::NetworkTrajectory& tr = run.trajectory;
 
     // Stuck intervals of the bit from its regime changes.
     const int bit = static_cast<int>(net_.nodes.size()) - 1;
@@ -116,14 +106,26 @@ class TorsionalWaveModel : public PreparedModel {
       else if (c.from == waves::Regime::kStuck && c.to != waves::Regime::kStuck && !stuck.empty())
         stuck.back().end_s = c.time_s;
     }
-    const StickSlipStatistics stats = ComputeStickSlipStatistics(
-        stuck, tr.time_s, tr.bit_speed_rad_s, tr.bit_angle_rad, settings.window_begin_s, settings.window_end_s);
-    result.summary = stats.ToJson();
+    RunResult result;
+    result.summary = ComputeStickSlipStatistics(stuck, tr.time_s, tr.bit_speed_rad_s, tr.bit_angle_rad,
+                                                settings.window_begin_s, settings.window_end_s)
+                         .ToJson();
     result.summary["steps"] = run.stats.steps;
     result.summary["events"] = run.stats.events;
     result.summary["breakpoints"] = run.stats.breakpoints;
     result.summary["derivative_evaluations"] = run.stats.derivative_evaluations;
     result.summary["integration_wall_time_s"] = run.stats.wall_time_s;
+
+    // The sampled signals are moved into the channels, not copied (long runs sample millions of points).
+    result.channels.reserve(6);
+    result.channels.push_back({"top_rpm", ToRpm(tr.top_speed_rad_s)});
+    result.channels.push_back({"bit_rpm", ToRpm(tr.bit_speed_rad_s)});
+    result.channels.push_back({"top_torque_Nm", std::move(tr.top_torque_nm)});
+    result.channels.push_back({"bit_torque_Nm", std::move(tr.bit_torque_nm)});
+    result.channels.push_back({"bit_angle_rad", std::move(tr.bit_angle_rad)});
+    result.channels.push_back({"bit_stuck", std::move(tr.bit_stuck)});
+    result.plot_panels = {{"top_rpm", "bit_rpm"}, {"top_torque_Nm", "bit_torque_Nm"}};
+    result.time_s = std::move(tr.time_s);
     return result;
   }
 
