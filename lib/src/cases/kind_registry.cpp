@@ -11,6 +11,7 @@ const std::vector<std::unique_ptr<ModelKind>>& AllKinds() {
     k.push_back(MakeTorsionalWaveKind());
     k.push_back(MakeTwoMassKind());
     k.push_back(MakeTwoDiscKind());
+    k.push_back(MakeJeffcottKind());
     return k;
   }();
   return kinds;

@@ -9,5 +9,6 @@ namespace drillwave::cases {
 std::unique_ptr<ModelKind> MakeTorsionalWaveKind();
 std::unique_ptr<ModelKind> MakeTwoMassKind();
 std::unique_ptr<ModelKind> MakeTwoDiscKind();
+std::unique_ptr<ModelKind> MakeJeffcottKind();
 
 }  // namespace drillwave::cases

@@ -1,0 +1,108 @@
+// The Jeffcott rotor (kind jeffcott, failure seed eqs. 1-23) against closed forms: the steady synchronous whirl
+// at constant drive speed is exact (x = r cos(beta - phi), y = r sin(beta - phi), constant twist), the undamped
+// rotor at its critical speed grows linearly, and a constant reverse torque twists the shaft by T / k_tor.
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/io/json_reader.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+nlohmann::json Rotor() {
+  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/jeffcott-unbalance.json");
+}
+
+struct Constants {
+  double m, a, k_b, c_b, k_tor;
+};
+Constants Of(const nlohmann::json& doc, const nlohmann::json& summary) {
+  const auto& md = doc["model"];
+  const double m = md["rotor_mass_kg"].get<double>() + md["unbalance_mass_kg"].get<double>();
+  const double w_b = summary["bending_natural_frequency_rad_s"].get<double>();
+  const double inertia = md["rotor_inertia_kgm2"].get<double>() +
+                         md["unbalance_mass_kg"].get<double>() * std::pow(md["eccentricity_m"].get<double>(), 2);
+  const double w_tor = summary["torsional_natural_frequency_rad_s"].get<double>();
+  return {m, md["unbalance_mass_kg"].get<double>() * md["eccentricity_m"].get<double>(), m * w_b * w_b,
+          summary["bending_damping_Ns_per_m"].get<double>(), inertia * w_tor * w_tor};
+}
+
+// Steady whirl at constant Omega: r = a Omega^2 / sqrt((k - m Omega^2)^2 + (c Omega)^2), tan phi = c Omega / (k -
+// m Omega^2), and the twist balances the unbalance's drag and the external torque: k_tor gamma = T - a Omega^2 r sin phi.
+TEST(Jeffcott, SteadyWhirlAndTwistMatchTheClosedForm) {
+  for (double torque : {0.0, -120.0}) {
+    for (double ratio : {0.5, 0.9, 1.3}) {
+      nlohmann::json doc = Rotor();
+      const double w_b = RunCase(ParseCase(doc)).summary["bending_natural_frequency_rad_s"].get<double>();
+      const double omega = ratio * w_b;
+      doc["model"]["drive_speed_rad_s"] = {{"knots", {{0, 0}, {3, omega}}}};
+      doc["model"]["torque_Nm"] = torque;
+      doc["simulation"]["duration_s"] = 15;
+      doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-11;
+      doc["statistics"]["window_s"] = {13, 15};
+      const auto s = RunCase(ParseCase(doc)).summary;
+      const Constants k = Of(doc, s);
+      const double det = std::hypot(k.k_b - k.m * omega * omega, k.c_b * omega);
+      const double r = k.a * omega * omega / det, sin_phi = k.c_b * omega / det;
+      const double gamma = (torque - k.a * omega * omega * r * sin_phi) / k.k_tor;
+      std::printf("[ measured ] Omega/w_b = %.1f, T = %g N m: whirl %.9f m (closed form %.9f), twist %.9e rad (%.9e)\n",
+                  ratio, torque, s["deflection_mean_m"].get<double>(), r, s["twist_mean_rad"].get<double>(), gamma);
+      EXPECT_NEAR(s["deflection_max_m"].get<double>(), r, 1e-7 * r);
+      EXPECT_NEAR(s["deflection_min_m"].get<double>(), r, 1e-7 * r);
+      EXPECT_NEAR(s["twist_max_rad"].get<double>(), gamma, 1e-7 * std::abs(gamma));
+      EXPECT_NEAR(s["twist_min_rad"].get<double>(), gamma, 1e-7 * std::abs(gamma));
+      EXPECT_NEAR(s["rotor_speed_mean_rad_s"].get<double>(), omega, 1e-9 * omega);
+    }
+  }
+}
+
+// Undamped, driven at its critical speed from the start: x'' + w^2 x = (a w^2 / m) cos(w t) grows like
+// (a w / 2m) t; the rotor's twist couples in only at order a^2 / (m I).
+TEST(Jeffcott, UndampedRotorAtItsCriticalSpeedGrowsLinearly) {
+  nlohmann::json doc = Rotor();
+  doc["model"]["bending_damping_ratio"] = 0;
+  doc["model"]["unbalance_mass_kg"] = 0.01;
+  doc["model"]["rotor_inertia_kgm2"] = 10.0;  // a torsionally heavy rotor: the drive speed is the rotor's speed
+  const double w_b = RunCase(ParseCase(doc)).summary["bending_natural_frequency_rad_s"].get<double>();
+  doc["model"]["drive_speed_rad_s"] = w_b;
+  doc["simulation"]["duration_s"] = 4;
+  doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-10;
+  double previous = 0;
+  for (double t_end : {2.0, 4.0}) {
+    doc["statistics"]["window_s"] = {t_end - 0.05, t_end};
+    doc["simulation"]["duration_s"] = t_end;
+    const auto s = RunCase(ParseCase(doc)).summary;
+    const Constants k = Of(doc, s);
+    const double predicted = k.a * w_b / (2 * k.m) * t_end;
+    std::printf("[ measured ] undamped at w_b: deflection %.6e m at t = %g s, linear growth predicts %.6e m\n",
+                s["deflection_max_m"].get<double>(), t_end, predicted);
+    EXPECT_NEAR(s["deflection_max_m"].get<double>(), predicted, 0.01 * predicted);
+    EXPECT_GT(s["deflection_max_m"].get<double>(), 1.9 * previous);
+    previous = s["deflection_max_m"].get<double>();
+  }
+}
+
+TEST(Jeffcott, BadInputNamesTheJsonPath) {
+  nlohmann::json doc = Rotor();
+  doc["model"]["shaft"]["inner_diameter_m"] = 0.08;
+  try {
+    ParseCase(doc);
+    FAIL() << "an inner diameter above the outer one was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/model/shaft/inner_diameter_m");
+  }
+  doc = Rotor();
+  doc["model"]["unbalance_mass_kg"] = -1;
+  EXPECT_THROW(ParseCase(doc), InputError);
+  doc = Rotor();
+  doc["model"].erase("drive_speed_rad_s");
+  EXPECT_THROW(ParseCase(doc), InputError);
+}
+
+}  // namespace
+}  // namespace drillwave::cases
