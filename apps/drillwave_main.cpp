@@ -14,6 +14,7 @@
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
+#include "drillwave/diagnosis/inspection.hpp"
 #include "drillwave/io/json_reader.hpp"
 
 namespace {
@@ -120,6 +121,21 @@ int Stability(const std::string& file, const std::string& out_dir, const std::ve
   return 0;
 }
 
+int Inspect(const std::string& file, const std::string& out_dir, const std::string& bit, const std::string& top) {
+  const auto recording = drillwave::diagnosis::LoadRecording(file);
+  drillwave::diagnosis::InspectOptions options;
+  options.bit_speed = bit;
+  options.top_speed = top;
+  const auto inspection = drillwave::diagnosis::InspectRecording(recording, options);
+  drillwave::diagnosis::WriteInspection(recording, inspection, out_dir);
+  std::cout << "drillwave: inspected " << file << " (" << recording.names.size() << " channels, "
+            << recording.time_s.size() << " samples)" << std::endl;
+  for (const auto& f : inspection.findings) std::cout << "  - " << f << "\n";
+  std::cout << "wrote " << std::filesystem::absolute(out_dir).string() << "/findings.json, report.md, plot.svg"
+            << std::endl;
+  return 0;
+}
+
 int ListKinds() {
   for (const auto& kind : drillwave::cases::AllKinds()) {
     std::cout << kind->name() << ": " << kind->description() << "\n" << kind->FieldSchema().dump(2) << "\n\n";
@@ -170,6 +186,15 @@ int main(int argc, char** argv) {
   stability->add_option("--out,-o", stability_out, "output folder (written all or nothing)");
   stability->add_option("--set", overrides, "override a parameter by JSON pointer");
 
+  auto* inspect = app.add_subcommand(
+      "inspect", "first look at a recording (CSV with time_s): artefacts flagged and masked, stuck episodes of the "
+                 "bit, stretches without sticking, stick-slip period, top-speed steadiness, correlated channels");
+  std::string recording_file, inspect_out = "drillwave-inspect", bit_channel = "bit_rpm", top_channel = "top_rpm";
+  inspect->add_option("recording", recording_file, "recording CSV file")->required();
+  inspect->add_option("--bit", bit_channel, "the bit speed channel (default bit_rpm)");
+  inspect->add_option("--top", top_channel, "the top speed channel (default top_rpm)");
+  inspect->add_option("--out,-o", inspect_out, "output folder (written all or nothing)");
+
   auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
 
   CLI11_PARSE(app, argc, argv);
@@ -180,6 +205,7 @@ int main(int argc, char** argv) {
       std::cout << "case '" << c.name << "' is valid (kind " << c.kind << ")\n";
       return 0;
     }
+    if (inspect->parsed()) return Inspect(recording_file, inspect_out, bit_channel, top_channel);
     if (stability->parsed()) {
       if (sweep_pointer.empty() != sweep_values.empty())
         throw drillwave::InputError("--param/--values", "a stability map needs both --param and --values");

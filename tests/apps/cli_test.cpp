@@ -185,6 +185,23 @@ TEST_F(Cli, StabilityReportsTheSteadyStateOrSaysWhyNot) {
   EXPECT_FALSE(fs::exists(out2));
 }
 
+TEST_F(Cli, InspectNamesAMissingChannel) {
+  const std::string csv = (dir_ / "rec.csv").string();
+  {
+    std::ofstream out(csv);
+    out << "time_s,top_rpm,speed\n";
+    for (int i = 0; i < 100; ++i) out << 0.01 * i << ",60," << 50 + i % 7 << "\n";
+  }
+  const std::string out = (dir_ / "insp").string();
+  Outcome o = RunTool("inspect " + csv + " -o " + out);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("bit_rpm"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(out));
+  o = RunTool("inspect " + csv + " --bit speed -o " + out);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_TRUE(fs::exists(fs::path(out) / "findings.json"));
+}
+
 TEST_F(Cli, KindsListsFieldsWithUnits) {
   const Outcome o = RunTool("kinds");
   EXPECT_EQ(o.exit_code, 0);

@@ -1,0 +1,279 @@
+#include "drillwave/diagnosis/inspection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "drillwave/core/error.hpp"
+#include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/svg_plot.hpp"
+
+namespace drillwave::diagnosis {
+namespace {
+
+std::string Fixed(double v, int digits) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
+
+bool Overlaps(const Interval& a, const Interval& b) { return a.begin_s <= b.end_s && b.begin_s <= a.end_s; }
+
+nlohmann::json IntervalsToJson(const std::vector<Interval>& v) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Interval& i : v) out.push_back({i.begin_s, i.end_s});
+  return out;
+}
+
+}  // namespace
+
+Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
+  const std::vector<double>& bit_raw = rec.Channel(o.bit_speed);
+  rec.Channel(o.top_speed);  // both are needed; fail early, naming the one that is missing
+  Inspection ins;
+  ins.source = rec.source;
+  ins.duration_s = rec.time_s.back() - rec.time_s.front();
+  ins.sample_interval_s = rec.sample_interval_s;
+  const int half_window = std::max(1, static_cast<int>(std::lround(o.hampel_half_window_s / rec.sample_interval_s)));
+
+  // Artefacts, channel by channel.
+  std::vector<std::vector<char>> flags;
+  for (std::size_t j = 0; j < rec.names.size(); ++j) {
+    const auto& x = rec.channels[j];
+    std::vector<double> magnitude(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) magnitude[i] = std::abs(x[i]);
+    const double floor = o.hampel_floor_fraction * Median(magnitude);
+    HampelResult h = HampelFilter(x, half_window, o.hampel_threshold, floor, o.hampel_grow_threshold);
+    ChannelArtefacts a;
+    a.channel = rec.names[j];
+    a.samples_flagged = static_cast<int>(std::count(h.flagged.begin(), h.flagged.end(), 1));
+    a.bursts = Runs(rec.time_s, h.flagged, 3, 0.0);
+    a.raw_min = *std::min_element(x.begin(), x.end()), a.raw_max = *std::max_element(x.begin(), x.end());
+    a.clean_min = *std::min_element(h.cleaned.begin(), h.cleaned.end());
+    a.clean_max = *std::max_element(h.cleaned.begin(), h.cleaned.end());
+    ins.artefacts.push_back(a);
+    ins.cleaned.push_back(std::move(h.cleaned));
+    flags.push_back(std::move(h.flagged));
+  }
+  auto index = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(rec.names.begin(), rec.names.end(), name) - rec.names.begin());
+  };
+  // The bit speed for regimes and periods: cleaned, then averaged over smoothing_s so that sensor noise about zero
+  // does not cut a stuck episode into pieces.
+  std::vector<double> bit = ins.cleaned[index(o.bit_speed)];
+  {
+    const int half = static_cast<int>(std::lround(0.5 * o.smoothing_s / rec.sample_interval_s));
+    if (half >= 1) {
+      const std::vector<double>& raw = ins.cleaned[index(o.bit_speed)];
+      std::vector<double> prefix(raw.size() + 1, 0.0);
+      for (std::size_t i = 0; i < raw.size(); ++i) prefix[i + 1] = prefix[i] + raw[i];
+      const int n = static_cast<int>(raw.size());
+      for (int i = 0; i < n; ++i) {
+        const int lo = std::max(0, i - half), hi = std::min(n - 1, i + half);
+        bit[i] = (prefix[hi + 1] - prefix[lo]) / (hi - lo + 1);
+      }
+    }
+  }
+  const std::vector<double>& top = ins.cleaned[index(o.top_speed)];
+  (void)bit_raw;
+
+  // Stuck episodes of the bit.
+  std::vector<double> magnitude(bit.size());
+  for (std::size_t i = 0; i < bit.size(); ++i) magnitude[i] = std::abs(bit[i]);
+  ins.stuck_threshold = std::max(o.stuck_floor, o.stuck_fraction * Median(magnitude));
+  std::vector<char> at_rest(bit.size());
+  for (std::size_t i = 0; i < bit.size(); ++i) at_rest[i] = magnitude[i] < ins.stuck_threshold;
+  ins.stuck = Runs(rec.time_s, at_rest, 0, o.stuck_min_s);
+  double stuck_time = 0;
+  for (const Interval& s : ins.stuck) stuck_time += s.duration();
+  ins.stick_fraction = stuck_time / ins.duration_s;
+  std::vector<double> onset_gaps;
+  for (std::size_t k = 1; k < ins.stuck.size(); ++k) onset_gaps.push_back(ins.stuck[k].begin_s - ins.stuck[k - 1].begin_s);
+  ins.stick_slip_period_s = onset_gaps.size() >= 1 ? Median(onset_gaps) : std::nan("");
+  if (std::isfinite(ins.stick_slip_period_s)) {
+    const double long_gap = o.slip_stretch_periods * ins.stick_slip_period_s;
+    double from = rec.time_s.front();
+    for (const Interval& s : ins.stuck) {
+      if (s.begin_s - from > long_gap) ins.slip_without_stick.push_back({from, s.begin_s});
+      from = s.end_s;
+    }
+    if (rec.time_s.back() - from > long_gap) ins.slip_without_stick.push_back({from, rec.time_s.back()});
+  }
+  for (ChannelArtefacts& a : ins.artefacts)
+    for (const Interval& b : a.bursts)
+      if (std::any_of(ins.stuck.begin(), ins.stuck.end(), [&](const Interval& s) { return Overlaps(b, s); }))
+        ++a.bursts_while_stuck;
+
+  // Speeds.
+  double sum = 0, max_bit = -1e300;
+  for (double v : bit) sum += v, max_bit = std::max(max_bit, v);
+  ins.bit_speed_mean = sum / bit.size(), ins.bit_speed_max = max_bit;
+  sum = 0;
+  for (double v : top) sum += v;
+  ins.top_speed_mean = sum / top.size();
+  double var = 0;
+  for (double v : top) var += (v - ins.top_speed_mean) * (v - ins.top_speed_mean);
+  ins.top_speed_std = std::sqrt(var / top.size());
+  ins.top_speed_min = *std::min_element(top.begin(), top.end());
+  ins.top_speed_max = *std::max_element(top.begin(), top.end());
+
+  // Top speed: fluctuation about a slow trend (set-point changes are not softness) against the sensor noise.
+  {
+    const std::size_t n = top.size();
+    const int half = std::max(1, static_cast<int>(std::lround(0.5 * o.trend_window_s / rec.sample_interval_s)));
+    const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(half / 50));
+    std::vector<double> knots_t, knots_v, window;
+    for (std::size_t i = 0; i < n; i += stride) {
+      const std::size_t lo = i >= static_cast<std::size_t>(half) ? i - half : 0, hi = std::min(n - 1, i + half);
+      window.assign(top.begin() + static_cast<std::ptrdiff_t>(lo), top.begin() + static_cast<std::ptrdiff_t>(hi) + 1);
+      knots_t.push_back(static_cast<double>(i));
+      knots_v.push_back(Median(window));
+    }
+    double fluct = 0;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      while (k + 1 < knots_t.size() && knots_t[k + 1] < i) ++k;
+      const double trend = k + 1 < knots_t.size()
+                               ? knots_v[k] + (knots_v[k + 1] - knots_v[k]) * (i - knots_t[k]) / (knots_t[k + 1] - knots_t[k])
+                               : knots_v.back();
+      fluct += (top[i] - trend) * (top[i] - trend);
+    }
+    ins.top_speed_fluctuation = std::sqrt(fluct / n);
+    std::vector<double> diffs;
+    for (std::size_t i = 1; i < n; ++i) diffs.push_back(std::abs(top[i] - top[i - 1]));
+    ins.top_speed_noise = 1.4826 * Median(diffs) / std::sqrt(2.0);
+    ins.top_speed_fluctuation_ratio = ins.top_speed_noise > 0 ? ins.top_speed_fluctuation / ins.top_speed_noise
+                                                              : std::numeric_limits<double>::infinity();
+    ins.top_drive_soft = ins.top_speed_fluctuation_ratio > o.soft_drive_ratio;
+  }
+  {  // Bit oscillation period: upward crossings of the mean with hysteresis (half a standard deviation either side),
+     // so that sensor noise about a steady speed does not count as oscillation.
+    double var_bit = 0;
+    for (double v : bit) var_bit += (v - ins.bit_speed_mean) * (v - ins.bit_speed_mean);
+    const double band = 0.5 * std::sqrt(var_bit / bit.size());
+    std::vector<double> crossings, gaps;
+    bool armed = false;
+    for (std::size_t i = 0; i < bit.size(); ++i) {
+      if (bit[i] < ins.bit_speed_mean - band) armed = true;
+      if (armed && bit[i] > ins.bit_speed_mean + band) crossings.push_back(rec.time_s[i]), armed = false;
+    }
+    for (std::size_t i = 1; i < crossings.size(); ++i) gaps.push_back(crossings[i] - crossings[i - 1]);
+    ins.bit_oscillation_period_s = gaps.empty() ? std::nan("") : Median(gaps);
+  }
+
+  // Which channels move together.
+  for (std::size_t a = 0; a < rec.names.size(); ++a)
+    for (std::size_t b = a + 1; b < rec.names.size(); ++b)
+      ins.correlations.push_back({rec.names[a], rec.names[b], Correlation(ins.cleaned[a], ins.cleaned[b])});
+  std::sort(ins.correlations.begin(), ins.correlations.end(), [](const ChannelPair& x, const ChannelPair& y) {
+    return std::abs(x.correlation) > std::abs(y.correlation);
+  });
+
+  // Findings, restating the numbers.
+  auto& f = ins.findings;
+  for (const ChannelArtefacts& a : ins.artefacts)
+    if (a.samples_flagged > 0)
+      f.push_back(a.channel + ": " + std::to_string(a.samples_flagged) + " samples in " +
+                  std::to_string(a.bursts.size()) + " bursts flagged as artefacts and masked (" +
+                  std::to_string(a.bursts_while_stuck) + " bursts while the bit is at rest); range " +
+                  Fixed(a.raw_min, 1) + " .. " + Fixed(a.raw_max, 1) + " raw, " + Fixed(a.clean_min, 1) + " .. " +
+                  Fixed(a.clean_max, 1) + " cleaned.");
+  f.push_back("bit at rest (|" + o.bit_speed + "| < " + Fixed(ins.stuck_threshold, 2) + ") in " +
+              std::to_string(ins.stuck.size()) + " episodes, " + Fixed(100 * ins.stick_fraction, 1) +
+              " % of the time; median interval between stick onsets " + Fixed(ins.stick_slip_period_s, 3) + " s.");
+  double longest = 0;
+  const Interval* longest_episode = nullptr;
+  for (const Interval& s : ins.stuck)
+    if (s.duration() > longest) longest = s.duration(), longest_episode = &s;
+  if (longest_episode)
+    f.push_back("longest stuck episode " + Fixed(longest, 3) + " s, from " + Fixed(longest_episode->begin_s, 2) +
+                " s to " + Fixed(longest_episode->end_s, 2) + " s.");
+  for (const Interval& s : ins.slip_without_stick)
+    f.push_back("no stuck episode from " + Fixed(s.begin_s, 2) + " s to " + Fixed(s.end_s, 2) + " s (" +
+                Fixed(s.duration() / ins.stick_slip_period_s, 1) + " median periods): the bit keeps turning there.");
+  f.push_back(o.top_speed + " (cleaned): mean " + Fixed(ins.top_speed_mean, 2) + ", range " + Fixed(ins.top_speed_min, 1) +
+              " .. " + Fixed(ins.top_speed_max, 1) + "; fluctuation about its " + Fixed(o.trend_window_s, 0) +
+              "-s trend " + Fixed(ins.top_speed_fluctuation, 2) + " against sensor noise " +
+              Fixed(ins.top_speed_noise, 2) + " (ratio " + Fixed(ins.top_speed_fluctuation_ratio, 1) + ")" +
+              (ins.top_drive_soft ? ": the top speed is not held; the drive is soft, so model it (inertia and speed "
+                                    "controller) rather than impose its speed."
+                                  : ": the top speed is held (a stiff drive; imposing it is fine)."));
+  f.push_back(o.bit_speed + " oscillates with a median period of " + Fixed(ins.bit_oscillation_period_s, 3) + " s.");
+  for (const ChannelPair& p : ins.correlations)
+    if (std::abs(p.correlation) >= 0.5)
+      f.push_back(p.a + " and " + p.b + " move together: correlation " + Fixed(p.correlation, 2) + ".");
+  return ins;
+}
+
+nlohmann::json InspectionToJson(const Inspection& ins) {
+  nlohmann::json artefacts = nlohmann::json::array();
+  for (const ChannelArtefacts& a : ins.artefacts)
+    artefacts.push_back({{"channel", a.channel},
+                         {"samples_flagged", a.samples_flagged},
+                         {"bursts", IntervalsToJson(a.bursts)},
+                         {"bursts_while_stuck", a.bursts_while_stuck},
+                         {"raw_range", {a.raw_min, a.raw_max}},
+                         {"cleaned_range", {a.clean_min, a.clean_max}}});
+  nlohmann::json correlations = nlohmann::json::array();
+  for (const ChannelPair& p : ins.correlations) correlations.push_back({p.a, p.b, p.correlation});
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return {{"source", ins.source},
+          {"duration_s", ins.duration_s},
+          {"sample_interval_s", ins.sample_interval_s},
+          {"artefacts", artefacts},
+          {"stuck_threshold", ins.stuck_threshold},
+          {"stuck_episodes_s", IntervalsToJson(ins.stuck)},
+          {"slip_without_stick_s", IntervalsToJson(ins.slip_without_stick)},
+          {"stick_fraction", ins.stick_fraction},
+          {"stick_slip_period_s", number(ins.stick_slip_period_s)},
+          {"bit_speed_mean", ins.bit_speed_mean},
+          {"bit_speed_max", ins.bit_speed_max},
+          {"top_speed", {{"mean", ins.top_speed_mean}, {"std", ins.top_speed_std}, {"min", ins.top_speed_min},
+                         {"max", ins.top_speed_max}, {"fluctuation", ins.top_speed_fluctuation},
+                         {"noise", ins.top_speed_noise}, {"fluctuation_ratio", number(ins.top_speed_fluctuation_ratio)},
+                         {"drive_soft", ins.top_drive_soft}}},
+          {"bit_oscillation_period_s", number(ins.bit_oscillation_period_s)},
+          {"correlations", correlations},
+          {"findings", ins.findings}};
+}
+
+void WriteInspection(const Recording& rec, const Inspection& ins, const std::string& out_dir) {
+  io::OutputDirectory out(out_dir);
+  out.Open("findings.json") << InspectionToJson(ins).dump(2) << "\n";
+
+  io::Figure figure;
+  figure.title = "inspection of " + rec.source;
+  figure.x_label = "time [s]";
+  for (std::size_t j = 0; j < rec.names.size(); ++j) {
+    io::Panel panel{rec.names[j], {}};
+    panel.series.push_back({rec.names[j] + " (raw)", rec.time_s, rec.channels[j]});
+    panel.series.push_back({rec.names[j] + " (artefacts masked)", rec.time_s, ins.cleaned[j]});
+    figure.panels.push_back(panel);
+  }
+  std::vector<double> stuck(rec.time_s.size(), 0.0);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < rec.time_s.size(); ++i) {
+    while (k < ins.stuck.size() && ins.stuck[k].end_s < rec.time_s[i]) ++k;
+    stuck[i] = k < ins.stuck.size() && ins.stuck[k].begin_s <= rec.time_s[i] ? 1.0 : 0.0;
+  }
+  figure.panels.push_back({"bit at rest", {{"bit at rest (1)", rec.time_s, stuck}}});
+  io::WriteSvg(figure, out.Open("plot.svg"));
+
+  std::ostream& report = out.Open("report.md");
+  report << "# Inspection of " << rec.source << "\n\n"
+         << rec.names.size() << " channels, " << rec.time_s.size() << " samples every " << ins.sample_interval_s
+         << " s (" << ins.duration_s << " s).\n\n## Findings\n\n";
+  for (const std::string& f : ins.findings) report << "- " << f << "\n";
+  report << "\n## Stuck episodes of the bit\n\n| from [s] | to [s] | duration [s] |\n|---|---|---|\n";
+  for (const Interval& s : ins.stuck)
+    report << "| " << Fixed(s.begin_s, 3) << " | " << Fixed(s.end_s, 3) << " | " << Fixed(s.duration(), 3) << " |\n";
+  report << "\n## Correlations of the cleaned channels\n\n| channels | correlation |\n|---|---|\n";
+  for (const ChannelPair& p : ins.correlations) report << "| " << p.a << ", " << p.b << " | " << Fixed(p.correlation, 3) << " |\n";
+  report << "\nFiles: `findings.json` (every number above), `plot.svg` (raw and cleaned channels, the stuck flag).\n";
+  out.Commit();
+}
+
+}  // namespace drillwave::diagnosis

@@ -1,0 +1,54 @@
+#include "drillwave/diagnosis/recording.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "drillwave/core/error.hpp"
+#include "drillwave/io/csv.hpp"
+
+namespace drillwave::diagnosis {
+
+bool Recording::Has(const std::string& name) const {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+const std::vector<double>& Recording::Channel(const std::string& name) const {
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw InputError(name, "no such channel in " + source + " (channels: " + list + ")");
+  }
+  return channels[static_cast<std::size_t>(it - names.begin())];
+}
+
+Recording LoadRecording(const std::string& csv_file) {
+  const io::CsvTable table = io::ReadCsv(csv_file);
+  Recording r;
+  r.source = csv_file;
+  bool has_time = false;
+  for (std::size_t j = 0; j < table.header.size(); ++j) {
+    if (table.header[j] == "time_s") {
+      r.time_s = table.columns[j];
+      has_time = true;
+    } else {
+      r.names.push_back(table.header[j]);
+      r.channels.push_back(table.columns[j]);
+    }
+  }
+  if (!has_time) throw InputError("time_s", csv_file + ": expected a column named time_s");
+  if (r.names.empty()) throw InputError("", csv_file + ": no channel besides time_s");
+  if (r.time_s.size() < 3) throw InputError("time_s", csv_file + ": fewer than 3 samples");
+  std::vector<double> spacing;
+  for (std::size_t i = 1; i < r.time_s.size(); ++i) {
+    const double dt = r.time_s[i] - r.time_s[i - 1];
+    if (!(dt > 0))
+      throw InputError("time_s", csv_file + ": time does not increase at row " + std::to_string(i + 1));
+    spacing.push_back(dt);
+  }
+  std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
+  r.sample_interval_s = spacing[spacing.size() / 2];
+  return r;
+}
+
+}  // namespace drillwave::diagnosis

@@ -1,0 +1,77 @@
+#include "drillwave/diagnosis/signals.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace drillwave::diagnosis {
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  const std::size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+  if (v.size() % 2 == 1) return v[mid];
+  const double upper = v[mid];
+  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
+}
+
+HampelResult HampelFilter(const std::vector<double>& x, int half_window, double threshold, double min_deviation,
+                          double grow_threshold) {
+  if (half_window < 1) throw std::invalid_argument("Hampel half window must be >= 1");
+  const int n = static_cast<int>(x.size());
+  HampelResult r{x, std::vector<char>(x.size(), 0)};
+  std::vector<double> window, deviation, median(x.size()), sigma(x.size());
+  for (int i = 0; i < n; ++i) {
+    const int lo = std::max(0, i - half_window), hi = std::min(n - 1, i + half_window);
+    window.assign(x.begin() + lo, x.begin() + hi + 1);
+    median[i] = Median(window);
+    deviation.resize(window.size());
+    for (std::size_t k = 0; k < window.size(); ++k) deviation[k] = std::abs(window[k] - median[i]);
+    sigma[i] = 1.4826 * Median(deviation);
+    const double d = std::abs(x[i] - median[i]);
+    if (d > threshold * sigma[i] && d > min_deviation) r.flagged[i] = 1;
+  }
+  auto outside = [&](int i) {
+    const double d = std::abs(x[i] - median[i]);
+    return d > grow_threshold * sigma[i] && d > min_deviation;
+  };
+  for (int i = 1; i < n; ++i)  // grow forwards, then backwards
+    if (r.flagged[i - 1] && !r.flagged[i] && outside(i)) r.flagged[i] = 2;
+  for (int i = n - 2; i >= 0; --i)
+    if (r.flagged[i + 1] && !r.flagged[i] && outside(i)) r.flagged[i] = 2;
+  for (int i = 0; i < n; ++i)
+    if (r.flagged[i]) r.flagged[i] = 1, r.cleaned[i] = median[i];
+  return r;
+}
+
+std::vector<Interval> Runs(const std::vector<double>& time_s, const std::vector<char>& on, int merge_gap,
+                           double min_duration_s) {
+  std::vector<std::pair<std::size_t, std::size_t>> runs;  // first, last index
+  for (std::size_t i = 0; i < on.size(); ++i) {
+    if (!on[i]) continue;
+    if (!runs.empty() && i - runs.back().second <= static_cast<std::size_t>(merge_gap) + 1)
+      runs.back().second = i;
+    else
+      runs.push_back({i, i});
+  }
+  std::vector<Interval> out;
+  for (const auto& [a, b] : runs)
+    if (time_s[b] - time_s[a] >= min_duration_s) out.push_back({time_s[a], time_s[b]});
+  return out;
+}
+
+double Correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  const std::size_t n = std::min(a.size(), b.size());
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < n; ++i) ma += a[i], mb += b[i];
+  ma /= n, mb /= n;
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : std::nan("");
+}
+
+}  // namespace drillwave::diagnosis

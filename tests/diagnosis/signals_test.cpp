@@ -1,0 +1,71 @@
+// Robust signal tools: the Hampel filter masks spikes (with their ramped flanks) and leaves an honest noisy signal
+// alone; runs of flags become intervals.
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/diagnosis/signals.hpp"
+
+namespace drillwave::diagnosis {
+namespace {
+
+TEST(Hampel, MasksRampedSpikesAndNothingElse) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  const int n = 20000;
+  std::vector<double> x(n), truth(n);
+  for (int i = 0; i < n; ++i) truth[i] = x[i] = 80 + 40 * std::sin(2 * M_PI * i / 400.0) + noise(rng);
+  // Ten glitches: a dip to -250 with 4-sample flanks on each side (like the rig's encoder artefacts).
+  std::vector<char> injected(n, 0);
+  for (int g = 0; g < 10; ++g) {
+    const int c = 1000 + 1800 * g;
+    for (int k = -6; k <= 6; ++k) {
+      const double depth = std::abs(k) <= 2 ? 1.0 : 1.0 - (std::abs(k) - 2) / 5.0;
+      x[c + k] = truth[c + k] + depth * (-250 - truth[c + k]);
+      injected[c + k] = std::abs(k) <= 5;
+    }
+  }
+  const HampelResult h = HampelFilter(x, 100, 5, 4.0, 2);
+  std::vector<char> near(n, 0);  // within 6 samples of a glitch
+  for (int g = 0; g < 10; ++g)
+    for (int k = -6; k <= 6; ++k) near[1000 + 1800 * g + k] = 1;
+  int missed = 0, false_flags = 0;
+  double worst_centre = 0;
+  for (int i = 0; i < n; ++i) {
+    if (injected[i] && !h.flagged[i]) ++missed;
+    if (!near[i] && h.flagged[i]) ++false_flags;
+  }
+  for (int g = 0; g < 10; ++g) {
+    const int c = 1000 + 1800 * g;
+    worst_centre = std::max(worst_centre, std::abs(h.cleaned[c] - truth[c]));
+  }
+  std::printf("[ measured ] Hampel: %d of 110 glitch samples missed, %d false flags in %d clean samples, worst "
+              "centre %.1f from the truth\n", missed, false_flags, n - 130, worst_centre);
+  EXPECT_EQ(missed, 0);
+  EXPECT_LT(false_flags, n / 1000);
+  EXPECT_LT(worst_centre, 50.0);  // instead of 330 below it: the window median of a sine, not its value
+  const auto bursts = Runs(std::vector<double>(), std::vector<char>(), 0, 0.0);
+  EXPECT_TRUE(bursts.empty());
+}
+
+TEST(Signals, RunsMergeAndFilter) {
+  const std::vector<double> t{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  const std::vector<char> on{1, 1, 0, 1, 0, 0, 0, 1, 0, 0};
+  auto runs = Runs(t, on, 1, 0.0);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].begin_s, 0);
+  EXPECT_EQ(runs[0].end_s, 3);
+  EXPECT_EQ(runs[1].begin_s, 7);
+  runs = Runs(t, on, 0, 0.5);
+  ASSERT_EQ(runs.size(), 1u);  // only [0, 1] lasts 0.5 s or more
+  EXPECT_DOUBLE_EQ(Correlation({1, 2, 3, 4}, {3, 5, 7, 9}), 1.0);
+  EXPECT_DOUBLE_EQ(Correlation({1, 2, 3, 4}, {4, 3, 2, 1}), -1.0);
+  EXPECT_TRUE(std::isnan(Correlation({1, 1, 1}, {1, 2, 3})));
+  EXPECT_EQ(Median({5, 1, 3}), 3);
+  EXPECT_EQ(Median({4, 1, 3, 2}), 2.5);
+}
+
+}  // namespace
+}  // namespace drillwave::diagnosis
