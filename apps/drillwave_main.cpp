@@ -14,6 +14,7 @@
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
+#include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/diagnosis/inspection.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -136,6 +137,37 @@ int Inspect(const std::string& file, const std::string& out_dir, const std::stri
   return 0;
 }
 
+int Compare(const std::string& file, const std::string& recording_file, const std::vector<std::string>& overrides,
+            const std::vector<std::string>& map_texts, const std::string& window, const std::string& out_dir) {
+  namespace dg = drillwave::diagnosis;
+  const drillwave::cases::Case c = drillwave::cases::ParseCase(LoadCaseDocument(file, overrides));
+  const dg::Recording recording = dg::LoadRecording(recording_file);
+  std::vector<dg::ChannelMap> maps;
+  for (const std::string& m : map_texts) maps.push_back(dg::ParseChannelMap(m));
+  double begin = -1e300, end = 1e300;
+  if (!window.empty()) {
+    const auto values = drillwave::cases::ParseSweepValues(window, "--window");
+    if (values.size() != 2 || !(values[1] > values[0]))
+      throw drillwave::InputError("--window", "'" + window + "': expected begin,end with end > begin");
+    begin = values[0], end = values[1];
+  }
+  std::cout << "drillwave: running case '" << c.name << "' (kind " << c.kind << ", " << c.settings.duration_s
+            << " s simulated) against " << recording_file << std::endl;
+  const auto run = drillwave::cases::RunCase(c);
+  // Recording channels not mapped explicitly are compared with the model channel of the same name, if any.
+  for (const std::string& name : recording.names) {
+    const bool mapped = std::any_of(maps.begin(), maps.end(), [&](const dg::ChannelMap& m) { return m.recording == name; });
+    for (const auto& ch : run.result.channels)
+      if (!mapped && ch.name == name) maps.push_back({name, name, 1.0});
+  }
+  const dg::Comparison comparison = dg::Compare(recording, run.result, maps, begin, end);
+  dg::WriteComparison(recording, run.result, maps, comparison, out_dir);
+  for (const auto& f : comparison.findings) std::cout << "  - " << f << "\n";
+  std::cout << "wrote " << std::filesystem::absolute(out_dir).string() << "/comparison.json, report.md, plot.svg"
+            << std::endl;
+  return 0;
+}
+
 int ListKinds() {
   for (const auto& kind : drillwave::cases::AllKinds()) {
     std::cout << kind->name() << ": " << kind->description() << "\n" << kind->FieldSchema().dump(2) << "\n\n";
@@ -195,6 +227,19 @@ int main(int argc, char** argv) {
   inspect->add_option("--top", top_channel, "the top speed channel (default top_rpm)");
   inspect->add_option("--out,-o", inspect_out, "output folder (written all or nothing)");
 
+  auto* compare = app.add_subcommand(
+      "compare", "run a case and compare it with a recording: features side by side (periods, stick fraction, "
+                 "speed levels, top-drive stiffness) and point-by-point residuals");
+  std::vector<std::string> maps;
+  std::string window, compare_out = "drillwave-compare";
+  compare->add_option("case", case_file, "case JSON file")->required();
+  compare->add_option("recording", recording_file, "recording CSV file (time_s and channels)")->required();
+  compare->add_option("--map", maps, "recording_channel=model_channel[*scale], e.g. tob_Nm=bit_torque_Nm; channels "
+                                     "not mapped are compared with the model channel of the same name");
+  compare->add_option("--window", window, "begin,end [s] of the comparison (default: all both cover)");
+  compare->add_option("--out,-o", compare_out, "output folder (written all or nothing)");
+  compare->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
+
   auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
 
   CLI11_PARSE(app, argc, argv);
@@ -205,6 +250,7 @@ int main(int argc, char** argv) {
       std::cout << "case '" << c.name << "' is valid (kind " << c.kind << ")\n";
       return 0;
     }
+    if (compare->parsed()) return Compare(case_file, recording_file, overrides, maps, window, compare_out);
     if (inspect->parsed()) return Inspect(recording_file, inspect_out, bit_channel, top_channel);
     if (stability->parsed()) {
       if (sweep_pointer.empty() != sweep_values.empty())

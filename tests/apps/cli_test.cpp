@@ -202,6 +202,25 @@ TEST_F(Cli, InspectNamesAMissingChannel) {
   EXPECT_TRUE(fs::exists(fs::path(out) / "findings.json"));
 }
 
+TEST_F(Cli, CompareChecksItsChannelMapsBeforeWriting) {
+  auto doc = base_;
+  const std::string file = Write(doc.dump());
+  const std::string csv = (dir_ / "rec.csv").string();
+  {
+    std::ofstream out(csv);
+    out << "time_s,top_rpm,bit_rpm,tob_Nm\n";
+    for (int i = 0; i < 1000; ++i) out << 0.01 * i << ",95," << 50 + 40 * (i % 300 < 150) << ",7000\n";
+  }
+  const std::string out = (dir_ / "cmp").string();
+  Outcome o = RunTool("compare " + file + " " + csv + " --map tob_Nm=no_such_channel -o " + out);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("no_such_channel"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(out));
+  o = RunTool("compare " + file + " " + csv + " --map tob_Nm=bit_torque_Nm -o " + out);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  for (const char* f : {"comparison.json", "report.md", "plot.svg"}) EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+}
+
 TEST_F(Cli, KindsListsFieldsWithUnits) {
   const Outcome o = RunTool("kinds");
   EXPECT_EQ(o.exit_code, 0);

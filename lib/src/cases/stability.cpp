@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -25,13 +26,6 @@ double SteadySpeed(const nlohmann::json& steady) {
 
 // JSON has no infinities: -inf (no essential spectrum, no roots) is written as null.
 nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-std::string Format(double v) {
-  std::ostringstream s;
-  s.precision(8);
-  s << v;
-  return s.str();
-}
 
 }  // namespace
 
@@ -84,13 +78,13 @@ void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStabil
     const auto& r = result[k];
     report << "## Operating point " << k << ": " << (r.spectrum.stable ? "stable" : "UNSTABLE") << "\n\n"
            << "Steady state: `" << r.point.steady_state.dump() << "`\n\n"
-           << "Rightmost root real part " << Format(r.spectrum.spectral_abscissa)
-           << " 1/s; essential spectrum of the difference operator at Re s = " << Format(r.spectrum.essential_abscissa)
+           << "Rightmost root real part " << Significant(r.spectrum.spectral_abscissa, 8)
+           << " 1/s; essential spectrum of the difference operator at Re s = " << Significant(r.spectrum.essential_abscissa, 8)
            << " 1/s (-inf: retarded or delay-free). " << r.spectrum.roots.size() << " roots found (upper half plane)."
            << "\n\n| Re s [1/s] | Im s [rad/s] | residual |\n|---|---|---|\n";
     for (std::size_t j = 0; j < r.spectrum.roots.size() && j < 12; ++j)
-      report << "| " << Format(r.spectrum.roots[j].s.real()) << " | " << Format(r.spectrum.roots[j].s.imag()) << " | "
-             << Format(r.spectrum.roots[j].residual) << " |\n";
+      report << "| " << Significant(r.spectrum.roots[j].s.real(), 8) << " | " << Significant(r.spectrum.roots[j].s.imag(), 8) << " | "
+             << Significant(r.spectrum.roots[j].residual, 8) << " |\n";
     report << "\n";
   }
   report << "A steady state is stable when every characteristic root and the essential spectrum lie in the left "
@@ -110,7 +104,7 @@ std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const 
     try {
       cases.push_back(ParseCase(doc));
     } catch (const InputError& e) {
-      throw InputError(e.json_path(), std::string(e.what()) + " (sweep value " + spec.pointer + " = " + Format(v) + ")");
+      throw InputError(e.json_path(), std::string(e.what()) + " (sweep value " + spec.pointer + " = " + Significant(v, 8) + ")");
     }
   }
   cases.front().model->Linearize();  // a kind without linearization fails here, before the threads start
@@ -186,9 +180,9 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
          << "\n\n| " << spec.pointer << " | branch | steady speed [rad/s] | rightmost Re s [1/s] | Im s [rad/s] | "
          << "essential [1/s] | verdict |\n|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows)
-    report << "| " << Format(r.value) << " | " << r.branch << " | " << Format(r.speed_rad_s) << " | "
-           << Format(r.spectral_abscissa) << " | " << Format(r.frequency_rad_s) << " | "
-           << Format(r.essential_abscissa) << " | " << (r.stable ? "stable" : "unstable") << " |\n";
+    report << "| " << Significant(r.value, 8) << " | " << r.branch << " | " << Significant(r.speed_rad_s, 8) << " | "
+           << Significant(r.spectral_abscissa, 8) << " | " << Significant(r.frequency_rad_s, 8) << " | "
+           << Significant(r.essential_abscissa, 8) << " | " << (r.stable ? "stable" : "unstable") << " |\n";
   // Crossings of the rightmost real part through zero along branch 0, located by linear interpolation.
   report << "\nStability changes along branch 0 (linear interpolation between neighbouring values):\n";
   const StabilityMapRow* prev = nullptr;
@@ -198,8 +192,8 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
         std::isfinite(r.spectral_abscissa)) {
       const double x = prev->value + (r.value - prev->value) * prev->spectral_abscissa /
                                          (prev->spectral_abscissa - r.spectral_abscissa);
-      report << "- near " << spec.pointer << " = " << Format(x) << " (" << (r.stable ? "becomes stable" : "loses stability")
-             << ", frequency " << Format(r.frequency_rad_s) << " rad/s)\n";
+      report << "- near " << spec.pointer << " = " << Significant(x, 8) << " (" << (r.stable ? "becomes stable" : "loses stability")
+             << ", frequency " << Significant(r.frequency_rad_s, 8) << " rad/s)\n";
     }
     prev = &r;
   }

@@ -12,6 +12,7 @@
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -42,13 +43,6 @@ nlohmann::json Variant(const nlohmann::json& document, const std::string& pointe
   nlohmann::json doc = document;
   io::SetByPointer(doc, pointer, v);
   return doc;
-}
-
-std::string Format(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
 }
 
 }  // namespace
@@ -82,7 +76,7 @@ SweepResult RunSweep(const nlohmann::json& document, const SweepSpec& spec, cons
     try {
       cases.push_back(ParseCase(Variant(document, spec.pointer, v)));
     } catch (const InputError& e) {
-      throw InputError(e.json_path(), std::string(e.what()) + " (sweep value " + spec.pointer + " = " + Format(v) + ")");
+      throw InputError(e.json_path(), std::string(e.what()) + " (sweep value " + spec.pointer + " = " + Significant(v, 10) + ")");
     }
   }
 
@@ -171,7 +165,7 @@ void WriteSweepOutputs(const nlohmann::json& document, const SweepSpec& spec, co
   report << "| " << spec.pointer << " | stick onsets | stick fraction | bit speed min | mean | max [rad/s] |\n"
          << "|---|---|---|---|---|---|\n";
   for (const SweepPoint& p : result.points) {
-    report << "| " << Format(p.value) << " | ";
+    report << "| " << Significant(p.value, 10) << " | ";
     if (!p.ok) {
       report << "failed: " << p.error << " | | | | |\n";
       continue;

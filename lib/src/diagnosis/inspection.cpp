@@ -6,19 +6,12 @@
 #include <sstream>
 
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
-
-std::string Fixed(double v, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v;
-  return s.str();
-}
 
 bool Overlaps(const Interval& a, const Interval& b) { return a.begin_s <= b.end_s && b.begin_s <= a.end_s; }
 
@@ -46,7 +39,9 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
     std::vector<double> magnitude(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) magnitude[i] = std::abs(x[i]);
     const double floor = o.hampel_floor_fraction * Median(magnitude);
-    HampelResult h = HampelFilter(x, half_window, o.hampel_threshold, floor, o.hampel_grow_threshold);
+    HampelResult h = o.mask_artefacts
+                         ? HampelFilter(x, half_window, o.hampel_threshold, floor, o.hampel_grow_threshold)
+                         : HampelResult{x, std::vector<char>(x.size(), 0)};
     ChannelArtefacts a;
     a.channel = rec.names[j];
     a.samples_flagged = static_cast<int>(std::count(h.flagged.begin(), h.flagged.end(), 1));

@@ -16,6 +16,7 @@ namespace drillwave::diagnosis {
 struct InspectOptions {
   std::string bit_speed = "bit_rpm";  // channel names
   std::string top_speed = "top_rpm";
+  bool mask_artefacts = true;           // false for clean signals (a simulation): nothing is flagged
   double hampel_half_window_s = 0.1;    // windows of 2 x 0.1 s around each sample
   double hampel_threshold = 5;          // robust standard deviations that flag a sample
   double hampel_grow_threshold = 2;     // and that extend a flagged run to its flanks

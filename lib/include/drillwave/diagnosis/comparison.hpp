@@ -1,0 +1,57 @@
+#pragma once
+// Simulation against recording (DESIGN.md §5, "locate the mismatch"): the model's channels are mapped onto the
+// recording's, both are inspected the same way, and the report puts their features side by side (periods, stick
+// fraction, speed levels, top-drive stiffness, ...) with the point-by-point residuals over a common window. In
+// stick-slip the point-by-point residual is dominated by phase drift, so the features are what locate a mismatch.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "drillwave/cases/model_kind.hpp"
+#include "drillwave/diagnosis/inspection.hpp"
+
+namespace drillwave::diagnosis {
+
+struct ChannelMap {
+  std::string recording;  // the recording's channel name, e.g. "tob_Nm"
+  std::string model;      // the model's channel name, e.g. "bit_torque_Nm"
+  double scale = 1;       // model value times scale is in the recording's unit
+};
+
+// "rec=model" or "rec=model*scale"; throws InputError naming the option for anything else.
+ChannelMap ParseChannelMap(const std::string& text);
+
+struct ChannelResidual {
+  std::string channel;       // recording name
+  double rms = 0;            // of (model - recording) over the window, the model interpolated to the recording's times
+  double bias = 0;           // mean of (model - recording)
+  double recording_std = 0;  // scale of the recording channel over the window
+};
+
+struct FeatureDifference {
+  std::string feature;
+  double recording = 0, model = 0;
+  double relative = 0;  // (model - recording) / |recording| (NaN where the recording's value is 0 or undefined)
+};
+
+struct Comparison {
+  double window_begin_s = 0, window_end_s = 0;
+  Inspection recording, model;
+  std::vector<ChannelResidual> residuals;
+  std::vector<FeatureDifference> features;  // largest relative difference first
+  std::vector<std::string> findings;
+};
+
+// The model's sampled channels (scaled and renamed by `maps`) become a recording over the same window; both are
+// inspected with `options`. Throws InputError for a channel missing on either side or a window without samples.
+Comparison Compare(const Recording& recording, const cases::RunResult& model, const std::vector<ChannelMap>& maps,
+                   double window_begin_s, double window_end_s, const InspectOptions& options = {});
+
+nlohmann::json ComparisonToJson(const Comparison& c);
+
+// comparison.json, report.md, plot.svg (each mapped channel: recording, artefacts masked, against the model).
+void WriteComparison(const Recording& recording, const cases::RunResult& model, const std::vector<ChannelMap>& maps,
+                     const Comparison& c, const std::string& out_dir);
+
+}  // namespace drillwave::diagnosis
