@@ -5,6 +5,8 @@
 #include <iostream>
 #include <string>
 #include <thread>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -15,6 +17,7 @@
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
+#include "drillwave/diagnosis/fit.hpp"
 #include "drillwave/diagnosis/inspection.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -137,34 +140,75 @@ int Inspect(const std::string& file, const std::string& out_dir, const std::stri
   return 0;
 }
 
+// Explicit channel maps, then every recording channel not mapped paired with the model channel of the same name.
+std::vector<drillwave::diagnosis::ChannelMap> ChannelMaps(const std::vector<std::string>& texts,
+                                                          const drillwave::diagnosis::Recording& recording,
+                                                          const std::vector<drillwave::cases::Channel>& model) {
+  namespace dg = drillwave::diagnosis;
+  std::vector<dg::ChannelMap> maps;
+  for (const std::string& m : texts) maps.push_back(dg::ParseChannelMap(m));
+  for (const std::string& name : recording.names) {
+    const bool mapped = std::any_of(maps.begin(), maps.end(), [&](const dg::ChannelMap& m) { return m.recording == name; });
+    for (const auto& ch : model)
+      if (!mapped && ch.name == name) maps.push_back({name, name, 1.0});
+  }
+  return maps;
+}
+
+// "begin,end" (empty: everything).
+std::pair<double, double> Window(const std::string& text) {
+  if (text.empty()) return {-1e300, 1e300};
+  const auto values = drillwave::cases::ParseSweepValues(text, "--window");
+  if (values.size() != 2 || !(values[1] > values[0]))
+    throw drillwave::InputError("--window", "'" + text + "': expected begin,end with end > begin");
+  return {values[0], values[1]};
+}
+
 int Compare(const std::string& file, const std::string& recording_file, const std::vector<std::string>& overrides,
             const std::vector<std::string>& map_texts, const std::string& window, const std::string& out_dir) {
   namespace dg = drillwave::diagnosis;
   const drillwave::cases::Case c = drillwave::cases::ParseCase(LoadCaseDocument(file, overrides));
   const dg::Recording recording = dg::LoadRecording(recording_file);
-  std::vector<dg::ChannelMap> maps;
-  for (const std::string& m : map_texts) maps.push_back(dg::ParseChannelMap(m));
-  double begin = -1e300, end = 1e300;
-  if (!window.empty()) {
-    const auto values = drillwave::cases::ParseSweepValues(window, "--window");
-    if (values.size() != 2 || !(values[1] > values[0]))
-      throw drillwave::InputError("--window", "'" + window + "': expected begin,end with end > begin");
-    begin = values[0], end = values[1];
-  }
+  const auto [begin, end] = Window(window);
   std::cout << "drillwave: running case '" << c.name << "' (kind " << c.kind << ", " << c.settings.duration_s
             << " s simulated) against " << recording_file << std::endl;
   const auto run = drillwave::cases::RunCase(c);
-  // Recording channels not mapped explicitly are compared with the model channel of the same name, if any.
-  for (const std::string& name : recording.names) {
-    const bool mapped = std::any_of(maps.begin(), maps.end(), [&](const dg::ChannelMap& m) { return m.recording == name; });
-    for (const auto& ch : run.result.channels)
-      if (!mapped && ch.name == name) maps.push_back({name, name, 1.0});
-  }
+  const auto maps = ChannelMaps(map_texts, recording, run.result.channels);
   const dg::Comparison comparison = dg::Compare(recording, run.result, maps, begin, end);
   dg::WriteComparison(recording, run.result, maps, comparison, out_dir);
   for (const auto& f : comparison.findings) std::cout << "  - " << f << "\n";
   std::cout << "wrote " << std::filesystem::absolute(out_dir).string() << "/comparison.json, report.md, plot.svg"
             << std::endl;
+  return 0;
+}
+
+int Fit(const std::string& file, const std::string& recording_file, const std::vector<std::string>& overrides,
+        const std::vector<std::string>& map_texts, const std::string& window, const std::vector<std::string>& params,
+        const std::vector<std::string>& features, int max_evaluations, const std::string& out_dir) {
+  namespace dg = drillwave::diagnosis;
+  const nlohmann::json doc = LoadCaseDocument(file, overrides);
+  const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
+  const dg::Recording recording = dg::LoadRecording(recording_file);
+  dg::FitOptions options;
+  options.maps = ChannelMaps(map_texts, recording, drillwave::cases::RunCase(c).result.channels);
+  std::tie(options.window_begin_s, options.window_end_s) = Window(window);
+  if (!features.empty()) options.features = features;
+  options.max_evaluations = max_evaluations;
+  std::vector<dg::FitParameter> parameters;
+  for (const std::string& p : params) parameters.push_back(dg::ParseFitParameter(p));
+  std::cout << "drillwave: fitting " << parameters.size() << " parameter(s) of '" << c.name << "' to "
+            << recording_file << std::endl;
+  const dg::FitResult r = dg::FitFeatures(doc, recording, parameters, options, [](int n, double f, const std::vector<double>& v) {
+    std::cout << "  [" << n << "] objective " << f << " at";
+    for (double x : v) std::cout << " " << x;
+    std::cout << std::endl;
+  });
+  dg::WriteFit(recording, options, parameters, r, out_dir);
+  std::cout << "objective " << r.objective_start << " -> " << r.objective_fitted << " in " << r.evaluations
+            << " runs; fitted:";
+  for (std::size_t i = 0; i < parameters.size(); ++i) std::cout << " " << parameters[i].pointer << " = " << r.fitted[i];
+  std::cout << "\nwrote " << std::filesystem::absolute(out_dir).string()
+            << "/fitted-case.json, fit.json, report.md, plot.svg" << std::endl;
   return 0;
 }
 
@@ -240,6 +284,23 @@ int main(int argc, char** argv) {
   compare->add_option("--out,-o", compare_out, "output folder (written all or nothing)");
   compare->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 
+  auto* fit = app.add_subcommand(
+      "fit", "fit parameters of a case (by JSON pointer, with bounds) so that its features match a recording's "
+             "(derivative-free Nelder-Mead; writes the fitted case)");
+  std::vector<std::string> fit_params, fit_features;
+  int max_evaluations = 200;
+  std::string fit_out = "drillwave-fit";
+  fit->add_option("case", case_file, "case JSON file")->required();
+  fit->add_option("recording", recording_file, "recording CSV file")->required();
+  fit->add_option("--param,-p", fit_params, "/json/pointer:lower:upper (repeat for several)")->required();
+  fit->add_option("--feature", fit_features, "a feature to match (repeat; default: bit_oscillation_period_s, "
+                                             "stick_fraction, bit_speed_mean, bit_speed_max)");
+  fit->add_option("--map", maps, "recording_channel=model_channel[*scale]");
+  fit->add_option("--window", window, "begin,end [s]");
+  fit->add_option("--max-evaluations", max_evaluations, "model runs at most (default 200)");
+  fit->add_option("--out,-o", fit_out, "output folder (written all or nothing)");
+  fit->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
+
   auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
 
   CLI11_PARSE(app, argc, argv);
@@ -250,6 +311,8 @@ int main(int argc, char** argv) {
       std::cout << "case '" << c.name << "' is valid (kind " << c.kind << ")\n";
       return 0;
     }
+    if (fit->parsed())
+      return Fit(case_file, recording_file, overrides, maps, window, fit_params, fit_features, max_evaluations, fit_out);
     if (compare->parsed()) return Compare(case_file, recording_file, overrides, maps, window, compare_out);
     if (inspect->parsed()) return Inspect(recording_file, inspect_out, bit_channel, top_channel);
     if (stability->parsed()) {

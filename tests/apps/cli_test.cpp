@@ -221,6 +221,23 @@ TEST_F(Cli, CompareChecksItsChannelMapsBeforeWriting) {
   for (const char* f : {"comparison.json", "report.md", "plot.svg"}) EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
 }
 
+TEST_F(Cli, FitWritesTheFittedCaseOrNothing) {
+  auto doc = base_;
+  const std::string file = Write(doc.dump());
+  const std::string truth = (dir_ / "truth").string();
+  ASSERT_EQ(RunTool("run " + file + " -o " + truth).exit_code, 0);
+  const std::string out = (dir_ / "fit").string();
+  Outcome o = RunTool("fit " + file + " " + truth + "/trajectory.csv -p /model/bit/friction/mu_s:0.9:0.5 -o " + out);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("lower < upper"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(out));
+  o = RunTool("fit " + file + " " + truth + "/trajectory.csv -p /model/bit/friction/mu_s:0.6:0.9 --set "
+              "/model/bit/friction/mu_s=0.75 --max-evaluations 6 -o " + out);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  for (const char* f : {"fitted-case.json", "fit.json", "report.md", "plot.svg"})
+    EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+}
+
 TEST_F(Cli, KindsListsFieldsWithUnits) {
   const Outcome o = RunTool("kinds");
   EXPECT_EQ(o.exit_code, 0);

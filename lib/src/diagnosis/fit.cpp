@@ -1,0 +1,228 @@
+#include "drillwave/diagnosis/fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <numeric>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
+#include "drillwave/io/json_reader.hpp"
+#include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/svg_plot.hpp"
+
+namespace drillwave::diagnosis {
+namespace {
+
+constexpr double kFailed = 1e6;  // objective of a run that cannot be made (invalid combination, numerical failure)
+
+double Objective(const Comparison& c, const std::vector<std::string>& features) {
+  double sum = 0;
+  for (const std::string& name : features)
+    for (const FeatureDifference& d : c.features)
+      if (d.feature == name) {
+        // A feature the recording has and the model lacks (no stick-slip at all, say) counts as 100 % off.
+        const double rel = std::isfinite(d.relative) ? d.relative : (std::isfinite(d.recording) ? 1.0 : 0.0);
+        sum += rel * rel;
+      }
+  return sum;
+}
+
+}  // namespace
+
+FitParameter ParseFitParameter(const std::string& text) {
+  const auto a = text.find(':'), b = text.rfind(':');
+  if (text.empty() || text[0] != '/' || a == std::string::npos || a == b)
+    throw InputError("--param", "'" + text + "': expected /json/pointer:lower:upper");
+  FitParameter p{text.substr(0, a), 0, 0};
+  char* end = nullptr;
+  const std::string lo = text.substr(a + 1, b - a - 1), hi = text.substr(b + 1);
+  p.lower = std::strtod(lo.c_str(), &end);
+  const bool lo_ok = !lo.empty() && end == lo.c_str() + lo.size();
+  p.upper = std::strtod(hi.c_str(), &end);
+  const bool hi_ok = !hi.empty() && end == hi.c_str() + hi.size();
+  if (!lo_ok || !hi_ok || !std::isfinite(p.lower) || !std::isfinite(p.upper) || !(p.lower < p.upper))
+    throw InputError("--param", "'" + text + "': the bounds must be finite numbers with lower < upper");
+  return p;
+}
+
+FitResult FitFeatures(const nlohmann::json& document, const Recording& recording,
+                      const std::vector<FitParameter>& parameters, const FitOptions& o, const FitProgress& progress) {
+  if (parameters.empty()) throw InputError("--param", "no parameter to fit");
+  const std::size_t k = parameters.size();
+  std::vector<double> start(k);
+  for (std::size_t i = 0; i < k; ++i) {
+    const FitParameter& p = parameters[i];
+    nlohmann::json::json_pointer ptr;
+    try {
+      ptr = nlohmann::json::json_pointer(p.pointer);
+    } catch (const nlohmann::json::exception&) {
+      throw InputError(p.pointer, "not a JSON pointer");
+    }
+    if (!document.contains(ptr) || !document.at(ptr).is_number())
+      throw InputError(p.pointer, "expected a number in the case at this pointer");
+    if (!(p.lower < p.upper)) throw InputError(p.pointer, "expected lower < upper");
+    start[i] = std::clamp(document.at(ptr).get<double>(), p.lower, p.upper);
+  }
+  FitResult result;
+  result.start = start;
+
+  auto values_of = [&](const std::vector<double>& u) {
+    std::vector<double> v(k);
+    for (std::size_t i = 0; i < k; ++i)
+      v[i] = parameters[i].lower + std::clamp(u[i], 0.0, 1.0) * (parameters[i].upper - parameters[i].lower);
+    return v;
+  };
+  auto document_with = [&](const std::vector<double>& v) {
+    nlohmann::json doc = document;
+    for (std::size_t i = 0; i < k; ++i) io::SetByPointer(doc, parameters[i].pointer, v[i]);
+    return doc;
+  };
+  auto compare = [&](const std::vector<double>& v) {
+    const cases::CaseRun run = cases::RunCase(cases::ParseCase(document_with(v)));
+    return Compare(recording, run.result, o.maps, o.window_begin_s, o.window_end_s);
+  };
+
+  // The start must run, and every feature asked for must exist: bad input stops here.
+  result.before = compare(start);
+  for (const std::string& name : o.features)
+    if (std::none_of(result.before.features.begin(), result.before.features.end(),
+                     [&](const FeatureDifference& d) { return d.feature == name; })) {
+      std::string list;
+      for (const auto& d : result.before.features) list += (list.empty() ? "" : ", ") + d.feature;
+      throw InputError("--feature", "no feature named " + name + " (there are: " + list + ")");
+    }
+  result.objective_start = Objective(result.before, o.features);
+
+  auto objective = [&](const std::vector<double>& u) {
+    ++result.evaluations;
+    const std::vector<double> v = values_of(u);
+    double f;
+    try {
+      f = Objective(compare(v), o.features);
+    } catch (const InputError&) {  // a combination the case rejects (e.g. mu_s below mu_c)
+      f = kFailed, ++result.failed_runs;
+    } catch (const NumericalError&) {
+      f = kFailed, ++result.failed_runs;
+    }
+    if (progress) progress(result.evaluations, f, v);
+    return f;
+  };
+
+  // Nelder-Mead in the unit cube of the bounds (points are clamped onto it).
+  std::vector<std::vector<double>> simplex(k + 1, std::vector<double>(k));
+  for (std::size_t i = 0; i < k; ++i)
+    simplex[0][i] = (start[i] - parameters[i].lower) / (parameters[i].upper - parameters[i].lower);
+  for (std::size_t j = 1; j <= k; ++j) {
+    simplex[j] = simplex[0];
+    simplex[j][j - 1] += simplex[0][j - 1] <= 0.85 ? 0.15 : -0.15;
+  }
+  auto clamp_unit = [](std::vector<double> u) {
+    for (double& x : u) x = std::clamp(x, 0.0, 1.0);
+    return u;
+  };
+  std::vector<double> f(k + 1);
+  for (std::size_t j = 0; j <= k; ++j) f[j] = objective(simplex[j]);
+  while (result.evaluations < o.max_evaluations) {
+    std::vector<std::size_t> order(k + 1);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return f[a] < f[b]; });
+    std::vector<std::vector<double>> s2;
+    std::vector<double> f2;
+    for (std::size_t j : order) s2.push_back(simplex[j]), f2.push_back(f[j]);
+    simplex.swap(s2), f.swap(f2);
+    double spread = 0;
+    for (std::size_t j = 1; j <= k; ++j)
+      for (std::size_t i = 0; i < k; ++i) spread = std::max(spread, std::abs(simplex[j][i] - simplex[0][i]));
+    if (spread < o.tolerance) break;
+    std::vector<double> centroid(k, 0.0);
+    for (std::size_t j = 0; j < k; ++j)
+      for (std::size_t i = 0; i < k; ++i) centroid[i] += simplex[j][i] / k;
+    auto along = [&](double t) {
+      std::vector<double> u(k);
+      for (std::size_t i = 0; i < k; ++i) u[i] = centroid[i] + t * (simplex[k][i] - centroid[i]);
+      return clamp_unit(u);
+    };
+    const std::vector<double> reflected = along(-1.0);
+    const double fr = objective(reflected);
+    if (fr < f[0]) {
+      const std::vector<double> expanded = along(-2.0);
+      const double fe = objective(expanded);
+      if (fe < fr) simplex[k] = expanded, f[k] = fe;
+      else simplex[k] = reflected, f[k] = fr;
+    } else if (fr < f[k - 1]) {
+      simplex[k] = reflected, f[k] = fr;
+    } else {
+      const std::vector<double> contracted = along(fr < f[k] ? -0.5 : 0.5);
+      const double fc = objective(contracted);
+      if (fc < std::min(fr, f[k])) {
+        simplex[k] = contracted, f[k] = fc;
+      } else {  // shrink towards the best point
+        for (std::size_t j = 1; j <= k; ++j) {
+          for (std::size_t i = 0; i < k; ++i) simplex[j][i] = simplex[0][i] + 0.5 * (simplex[j][i] - simplex[0][i]);
+          f[j] = objective(simplex[j]);
+        }
+      }
+    }
+  }
+  const std::size_t best = static_cast<std::size_t>(std::min_element(f.begin(), f.end()) - f.begin());
+  result.fitted = values_of(simplex[best]);
+  result.document = document_with(result.fitted);
+  result.after = compare(result.fitted);
+  result.objective_fitted = Objective(result.after, o.features);
+  return result;
+}
+
+void WriteFit(const Recording& recording, const FitOptions& o, const std::vector<FitParameter>& parameters,
+              const FitResult& r, const std::string& out_dir) {
+  io::OutputDirectory out(out_dir);
+  out.Open("fitted-case.json") << r.document.dump(2) << "\n";
+  nlohmann::json fitted = nlohmann::json::array();
+  for (std::size_t i = 0; i < parameters.size(); ++i)
+    fitted.push_back({{"pointer", parameters[i].pointer},
+                      {"bounds", {parameters[i].lower, parameters[i].upper}},
+                      {"start", r.start[i]},
+                      {"fitted", r.fitted[i]}});
+  out.Open("fit.json") << nlohmann::json{{"parameters", fitted},
+                                         {"features", o.features},
+                                         {"objective_start", r.objective_start},
+                                         {"objective_fitted", r.objective_fitted},
+                                         {"evaluations", r.evaluations},
+                                         {"failed_runs", r.failed_runs},
+                                         {"before", ComparisonToJson(r.before)},
+                                         {"after", ComparisonToJson(r.after)}}
+                                      .dump(2)
+                               << "\n";
+  io::Figure figure;
+  figure.title = "fitted model against " + recording.source;
+  figure.x_label = "time [s]";
+  std::vector<double> t;
+  for (double ti : recording.time_s)
+    if (ti >= r.after.window_begin_s && ti <= r.after.window_end_s) t.push_back(ti);
+  for (std::size_t j = 0; j < o.maps.size(); ++j)
+    figure.panels.push_back({o.maps[j].recording,
+                             {{o.maps[j].recording + " (recording, artefacts masked)", t, r.after.recording.cleaned[j]},
+                              {o.maps[j].model + " (fitted model)", t, r.after.model.cleaned[j]}}});
+  io::WriteSvg(figure, out.Open("plot.svg"));
+  std::ostream& report = out.Open("report.md");
+  report << "# Fit against " << recording.source << "\n\n" << r.evaluations << " model runs (" << r.failed_runs
+         << " rejected or failed); objective (sum of squared relative feature differences) "
+         << Significant(r.objective_start, 4) << " at the start, " << Significant(r.objective_fitted, 4)
+         << " fitted.\n\n| parameter | bounds | start | fitted |\n|---|---|---|---|\n";
+  for (std::size_t i = 0; i < parameters.size(); ++i)
+    report << "| " << parameters[i].pointer << " | [" << Significant(parameters[i].lower, 6) << ", "
+           << Significant(parameters[i].upper, 6) << "] | " << Significant(r.start[i], 6) << " | "
+           << Significant(r.fitted[i], 6) << " |\n";
+  report << "\n| feature | recording | model before | model after |\n|---|---|---|---|\n";
+  for (const FeatureDifference& b : r.before.features)
+    for (const FeatureDifference& a : r.after.features)
+      if (a.feature == b.feature)
+        report << "| " << b.feature << (std::find(o.features.begin(), o.features.end(), b.feature) != o.features.end() ? " (fitted)" : "")
+               << " | " << Significant(b.recording, 5) << " | " << Significant(b.model, 5) << " | "
+               << Significant(a.model, 5) << " |\n";
+  report << "\nFiles: `fitted-case.json` (run it with `drillwave run`), `fit.json`, `plot.svg`.\n";
+  out.Commit();
+}
+
+}  // namespace drillwave::diagnosis
