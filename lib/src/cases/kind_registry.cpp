@@ -12,6 +12,7 @@ const std::vector<std::unique_ptr<ModelKind>>& AllKinds() {
     k.push_back(MakeTwoMassKind());
     k.push_back(MakeTwoDiscKind());
     k.push_back(MakeJeffcottKind());
+    k.push_back(MakeAxialTorsionalKind());
     return k;
   }();
   return kinds;

@@ -10,5 +10,6 @@ std::unique_ptr<ModelKind> MakeTorsionalWaveKind();
 std::unique_ptr<ModelKind> MakeTwoMassKind();
 std::unique_ptr<ModelKind> MakeTwoDiscKind();
 std::unique_ptr<ModelKind> MakeJeffcottKind();
+std::unique_ptr<ModelKind> MakeAxialTorsionalKind();
 
 }  // namespace drillwave::cases

@@ -42,6 +42,10 @@ struct IntegratorOptions {
   // exact for the stages, not between steps). When on, a step is redone shorter if its cubic Hermite interpolant
   // misses the continuous extension's midpoint by more than the tolerance.
   bool control_history_error = true;
+  // A piece whose history error stays above tolerance is accepted once its step is below this floor (and always
+  // below 1e-9 t): a jump or kink nobody announced as a breakpoint cannot be resolved by shrinking the step, and a
+  // model whose waves carry many unannounced kinks can trade that error for speed here.
+  double history_step_floor = 0;
 };
 
 // One accepted piece of the solution: values and derivatives at both ends (one-sided limits) and the value at the
@@ -226,7 +230,7 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
       dt_history = h * std::min(5.0, std::max(0.2, 0.9 / std::sqrt(std::sqrt(worst))));
       // Redo the step shorter; but a jump nobody announced as a breakpoint cannot be resolved by shrinking the
       // step, so below a floor the piece is accepted as it is.
-      if (worst > 1.0 && h > 1e-9 * std::max(1.0, std::abs(t))) {
+      if (worst > 1.0 && h > std::max(options_.history_step_floor, 1e-9 * std::max(1.0, std::abs(t)))) {
         ++stats_.history_rejections;
         dt = dt_history;
         dense.initialize(x, t, dt);
