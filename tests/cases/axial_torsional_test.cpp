@@ -1,0 +1,97 @@
+// The coupled axial-torsional kind against what is known of it: the steady drilling state in closed form (and that
+// the assembled model holds it), the regimes BASELINE.md describes for the independent simulator of the synthetic
+// recordings, and the features of its base recording rec03 (read from ../shared; skipped where absent).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/diagnosis/comparison.hpp"
+#include "drillwave/io/json_reader.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+nlohmann::json Baseline(double rpm) {
+  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  const double w = rpm * M_PI / 30;
+  doc["model"]["top_drive"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}}}};
+  return doc;
+}
+
+// d0 = (W0 - a sigma l) / (a zeta eps) per revolution, V0 = d0 Omega / 2 pi, T0 = a^2 eps d0 / 2 + a gamma mu a sigma l / 2;
+// BASELINE.md lists 0.01279 m/rev, 46 m/h at 60 rpm and 5300 N m for W0 = 90 kN.
+TEST(AxialTorsional, SteadyDrillingIsHeldExactlyWithoutADisturbance) {
+  nlohmann::json doc = Baseline(60);
+  doc["model"]["top_drive"]["speed_rad_s"] = 2 * M_PI;  // no disturbance at all
+  doc["simulation"]["duration_s"] = 2;
+  doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-9;
+  doc["statistics"]["window_s"] = {0, 2};
+  const auto run = RunCase(ParseCase(doc));
+  const auto& s = run.summary;
+  EXPECT_NEAR(s["steady_depth_of_cut_m"].get<double>(), 0.01279, 1e-5);
+  EXPECT_NEAR(s["steady_rop_m_h"].get<double>(), 46.0, 0.1);
+  EXPECT_NEAR(s["steady_bit_torque_Nm"].get<double>(), 5300, 1);
+  std::printf("[ measured ] unstable equilibrium held for 2 s: bit speed %.12f..%.12f rad/s, mean WOB %.6f N, "
+              "mean ROP %.6f m/h\n", s["bit_speed_min_rad_s"].get<double>(), s["bit_speed_max_rad_s"].get<double>(),
+              s["wob_mean_N"].get<double>(), s["rop_mean_m_h"].get<double>());
+  EXPECT_NEAR(s["bit_speed_min_rad_s"].get<double>(), 2 * M_PI, 1e-7);
+  EXPECT_NEAR(s["bit_speed_max_rad_s"].get<double>(), 2 * M_PI, 1e-7);
+  EXPECT_NEAR(s["wob_mean_N"].get<double>(), 90000, 1e-3);
+  EXPECT_NEAR(s["rop_mean_m_h"].get<double>(), s["steady_rop_m_h"].get<double>(), 1e-6);
+  EXPECT_EQ(s["events"].get<int>(), 0);
+}
+
+TEST(AxialTorsional, StickSlipAt60RpmSmoothDrillingAt150Rpm) {
+  const auto slow = RunCase(ParseCase(Baseline(60))).summary;
+  const auto fast = RunCase(ParseCase(Baseline(150))).summary;
+  std::printf("[ measured ] 60 rpm: %d stick onsets in [30, 60] s, period %.4f s, stick fraction %.3f; 150 rpm: %d, "
+              "bit speed %.3f..%.3f rad/s\n", slow["stick_onsets"].get<int>(), slow["stick_slip_period_s"].get<double>(),
+              slow["stick_fraction"].get<double>(), fast["stick_onsets"].get<int>(),
+              fast["bit_speed_min_rad_s"].get<double>(), fast["bit_speed_max_rad_s"].get<double>());
+  EXPECT_GE(slow["stick_onsets"].get<int>(), 5);
+  EXPECT_EQ(fast["stick_onsets"].get<int>(), 0);
+  EXPECT_EQ(fast["off_bottom_fraction"].get<double>(), 0.0);
+}
+
+TEST(AxialTorsional, ReproducesTheFeaturesOfTheBaseRecording) {
+  const std::string dir = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/synthetic";
+  if (!std::filesystem::exists(dir + "/rec03.csv")) GTEST_SKIP() << "the synthetic recordings are not at " << dir;
+  // rec03: the baseline with no concealed effect (its sidecar: 2000 m, 90 kN, 60 rpm, then 150 rpm from 55-65 s).
+  nlohmann::json doc = Baseline(60);
+  const double w = 2 * M_PI;
+  doc["model"]["top_drive"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}, {55, w}, {65, 2.5 * w}, {120, 2.5 * w}}}};
+  doc["simulation"]["duration_s"] = 120;
+  const auto model = RunCase(ParseCase(doc)).result;
+  const auto recording = diagnosis::LoadRecording(dir + "/rec03.csv");
+  const auto c = diagnosis::Compare(recording, model,
+                                    {{"bit_rpm", "bit_rpm", 1}, {"top_rpm", "top_rpm", 1},
+                                     {"top_torque_kNm", "top_torque_Nm", 1e-3}, {"wob_kN", "wob_N", 1e-3},
+                                     {"hookload_kN", "hookload_N", 1e-3}},
+                                    20, 55);  // the 60 rpm stretch, after the model's stick-slip has developed
+  auto feature = [&](const std::string& name) {
+    for (const auto& d : c.features)
+      if (d.feature == name) return d;
+    ADD_FAILURE() << "no feature " << name;
+    return diagnosis::FeatureDifference{};
+  };
+  for (const char* name : {"bit_oscillation_period_s", "bit_speed_max", "top_torque_kNm mean", "top_torque_kNm std",
+                           "wob_kN mean", "hookload_kN mean", "stick_fraction"}) {
+    const auto d = feature(name);
+    std::printf("[ measured ] rec03 %s: recording %.4f, model %.4f (%+.1f %%)\n", name, d.recording, d.model,
+                100 * d.relative);
+  }
+  EXPECT_LT(std::abs(feature("bit_oscillation_period_s").relative), 0.10);
+  EXPECT_LT(std::abs(feature("bit_speed_max").relative), 0.05);
+  EXPECT_LT(std::abs(feature("top_torque_kNm mean").relative), 0.10);
+  EXPECT_LT(std::abs(feature("top_torque_kNm std").relative), 0.20);
+  EXPECT_LT(std::abs(feature("wob_kN mean").relative), 0.02);
+  EXPECT_LT(std::abs(feature("hookload_kN mean").relative), 0.005);
+  EXPECT_LT(std::abs(feature("stick_fraction").relative), 0.35);
+}
+
+}  // namespace
+}  // namespace drillwave::cases
