@@ -179,8 +179,11 @@ class Process {
         return k == 2 ? md_.ContactForce() - net : net;
       }
       case 4: {
+        // 1 nm of hysteresis: right after a landing (or lift-off) the depth of cut is zero to rounding, and the cut
+        // delay's root finding may place it on either side; without it the contact would chatter.
+        constexpr double kHysteresis = 1e-9;
         const double d = DepthOfCut(x, t, side);
-        return contact_ ? d : -d;
+        return contact_ ? d + kHysteresis : kHysteresis - d;
       }
     }
     return 1.0;
