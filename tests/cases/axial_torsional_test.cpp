@@ -57,6 +57,25 @@ TEST(AxialTorsional, StickSlipAt60RpmSmoothDrillingAt150Rpm) {
   EXPECT_EQ(fast["off_bottom_fraction"].get<double>(), 0.0);
 }
 
+// Deep and heavy (3000 m, 150 kN, 60 rpm): the bit bounces. The rock under the blades is where a blade last cut, so
+// the bit cannot drift upwards while bouncing: over the window it drills at about the steady rate, with the mean
+// weight on bit the hook force was set for.
+TEST(AxialTorsional, BouncingBitKeepsDrilling) {
+  nlohmann::json doc = Baseline(60);
+  doc["model"]["string"]["length_m"] = 3000;
+  doc["model"]["hoist"]["weight_on_bit_N"] = 150000;
+  doc["simulation"]["duration_s"] = 50;
+  doc["statistics"]["window_s"] = {30, 50};
+  const auto s = RunCase(ParseCase(doc)).summary;
+  std::printf("[ measured ] 3000 m, 150 kN, 60 rpm: off bottom %.3f of the time, mean ROP %.1f m/h (steady %.1f), "
+              "mean WOB %.1f kN, %d stick onsets\n", s["off_bottom_fraction"].get<double>(),
+              s["rop_mean_m_h"].get<double>(), s["steady_rop_m_h"].get<double>(), 1e-3 * s["wob_mean_N"].get<double>(),
+              s["stick_onsets"].get<int>());
+  EXPECT_GT(s["off_bottom_fraction"].get<double>(), 0.1);
+  EXPECT_NEAR(s["rop_mean_m_h"].get<double>(), s["steady_rop_m_h"].get<double>(), 0.35 * s["steady_rop_m_h"].get<double>());
+  EXPECT_NEAR(s["wob_mean_N"].get<double>(), 150000, 0.1 * 150000);
+}
+
 TEST(AxialTorsional, ReproducesTheFeaturesOfTheBaseRecording) {
   const std::string dir = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/synthetic";
   if (!std::filesystem::exists(dir + "/rec03.csv")) GTEST_SKIP() << "the synthetic recordings are not at " << dir;

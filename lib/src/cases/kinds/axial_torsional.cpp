@@ -8,7 +8,8 @@
 // force S = Z (D - U) onto its lower node; a node feels sum Z (2 w_in - v) from its sections (DESIGN.md §1).
 // Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by a constant hook
 // force H. Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
-//   t_n: Phi(t) - Phi(t - t_n) = 2 pi / n,  d = n (U(t) - U(t - t_n))   (from the stored bit angle and position)
+//   t_n: Phi(t) - Phi(t - t_n) = 2 pi / n,  d = n (U(t) - U(t - t_n))   (from the stored bit angle and position;
+//        after a bounce, against the deepest of the last four blade passes at that angle)
 //   cutting (d > 0, not turning backwards): W_c = a zeta eps d, T_c = a^2 eps d / 2
 //   wear-flat contact (d > 0): W_f = a sigma l advancing, in [0, a sigma l] held axially, 0 lifting
 //   friction: T_f = a gamma mu W_f / 2 sign(w), set-valued at w = 0 (stuck while the torque stays within T_c + T_f)
@@ -196,6 +197,7 @@ class Process {
     const bool contact_before = contact_;
     if (k == 4) {
       contact_ = !contact_;
+      last_contact_change_ = t;
       if (!contact_) {  // lift-off: no contact forces; both motions free
         if (turn_ == Turn::kStuck) turn_ = Forces(x, t, side).drive_torque >= 0 ? Turn::kForward : Turn::kBackward;
         axial_ = x[kVbit] >= 0 ? Axial::kAdvancing : Axial::kLifting;
@@ -286,11 +288,11 @@ class Process {
     return waves_.Derivative(t - ch.tau, comp, side);
   }
 
-  // The cut delay and the depth of cut, from the stored bit angle and position.
-  double DelayedTime(const State& x, double t, Side side) const {
-    const double target = x[kPhi] - 2 * kPi / md_.blades;
+  // When the bit angle last stood `back` radians behind its present value (the latest such time, by bisection on
+  // the stored angle).
+  double TimeAngleBehind(const State& x, double t, Side side, double back, double guess) const {
+    const double target = x[kPhi] - back;
     auto phi = [&](double s) { return s >= t ? x[kPhi] : bit_history_.Value(s, 0, side); };
-    double guess = tn_last_ > 0 ? tn_last_ : 2 * kPi / (md_.blades * std::max(steady_.omega, 1e-3));
     double lo = t - guess, hi = t;
     for (int i = 0; i < 60 && phi(lo) > target; ++i) hi = lo, lo = t - (t - lo) * 2;
     for (int i = 0; i < 60 && hi - lo > 1e-12 * (1 + std::abs(t)); ++i) {
@@ -299,11 +301,24 @@ class Process {
     }
     return 0.5 * (lo + hi);
   }
+  // The depth of cut against the rock surface under the blades: the deepest position any of the last kProfilePasses
+  // blades reached at the present angle. After a bounce the previous blade may have passed in the air; the rock is
+  // where a blade last cut, not where the previous one happened to be (with continuous contact the previous blade
+  // is the deepest, and d = n (U(t) - U(t - t_n)) as in RGD).
   double DepthOfCut(const State& x, double t, Side side) const {
-    const double s = DelayedTime(x, t, side);
-    tn_last_ = t - s;
-    const double u_then = s >= t ? x[kU] : bit_history_.Value(s, 1, side);
-    return md_.blades * (x[kU] - u_then);
+    constexpr int kProfilePasses = 4;
+    const double pitch = 2 * kPi / md_.blades;
+    double guess = tn_last_ > 0 ? tn_last_ : pitch / std::max(steady_.omega, 1e-3);
+    double surface = -kInf;
+    for (int k = 1; k <= kProfilePasses; ++k) {
+      const double s = TimeAngleBehind(x, t, side, k * pitch, k * guess);
+      if (k == 1) tn_last_ = t - s, guess = tn_last_;
+      surface = std::max(surface, s >= t ? x[kU] : bit_history_.Value(s, 1, side));
+      // In contact ever since the previous blade passed (no lift-off or landing, no backward turn since then): that
+      // blade is the deepest.
+      if (k == 1 && contact_ && last_contact_change_ < s && phi_max_ <= x[kPhi]) break;
+    }
+    return md_.blades * (x[kU] - surface);
   }
 
   BitForces Forces(const State& x, double t, Side side) const {
@@ -406,6 +421,7 @@ class Process {
   Axial axial_ = Axial::kAdvancing;
   bool contact_ = true;
   double phi_max_ = 0, phi_max_before_ = 0, last_end_ = 0;
+  double last_contact_change_ = -kInf;
   mutable double tn_last_ = 0;
   double step_start_ = 0, passed_ = 0;
   int stick_onsets_ = 0;
