@@ -1,6 +1,7 @@
 // drillwave command-line tool: thin layer over the library. Exit codes: 0 success, 1 expectation failed,
 // 2 bad input (the message names the JSON path), 3 numerical failure (with time and state).
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -17,6 +18,8 @@
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
+#include "drillwave/diagnosis/diagnose.hpp"
+#include "drillwave/io/output_dir.hpp"
 #include "drillwave/diagnosis/fit.hpp"
 #include "drillwave/diagnosis/inspection.hpp"
 #include "drillwave/io/json_reader.hpp"
@@ -140,17 +143,28 @@ int Inspect(const std::string& file, const std::string& out_dir, const std::stri
   return 0;
 }
 
-// Explicit channel maps, then every recording channel not mapped paired with the model channel of the same name.
+// Explicit channel maps, then every recording channel not mapped paired with the model channel of the same name (or
+// of the same quantity in base units).
 std::vector<drillwave::diagnosis::ChannelMap> ChannelMaps(const std::vector<std::string>& texts,
                                                           const drillwave::diagnosis::Recording& recording,
                                                           const std::vector<drillwave::cases::Channel>& model) {
   namespace dg = drillwave::diagnosis;
   std::vector<dg::ChannelMap> maps;
   for (const std::string& m : texts) maps.push_back(dg::ParseChannelMap(m));
+  // Then the same quantity in kilo-units: a recording's x_kNm / x_kN against the model's x_Nm / x_N.
+  auto kilo = [](const std::string& name) -> std::pair<std::string, double> {
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"_kNm", "_Nm"}, {"_kN", "_N"}})
+      if (name.size() > from.size() && name.compare(name.size() - from.size(), from.size(), from) == 0)
+        return {name.substr(0, name.size() - from.size()) + to, 1e-3};
+    return {"", 0};
+  };
   for (const std::string& name : recording.names) {
     const bool mapped = std::any_of(maps.begin(), maps.end(), [&](const dg::ChannelMap& m) { return m.recording == name; });
+    if (mapped) continue;
+    const auto [base, scale] = kilo(name);
     for (const auto& ch : model)
-      if (!mapped && ch.name == name) maps.push_back({name, name, 1.0});
+      if (ch.name == name) maps.push_back({name, name, 1.0});
+      else if (!base.empty() && ch.name == base) maps.push_back({name, base, scale});
   }
   return maps;
 }
@@ -209,6 +223,48 @@ int Fit(const std::string& file, const std::string& recording_file, const std::v
   for (std::size_t i = 0; i < parameters.size(); ++i) std::cout << " " << parameters[i].pointer << " = " << r.fitted[i];
   std::cout << "\nwrote " << std::filesystem::absolute(out_dir).string()
             << "/fitted-case.json, fit.json, report.md, plot.svg" << std::endl;
+  return 0;
+}
+
+int Diagnose(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
+             const std::vector<std::string>& overrides, const std::vector<std::string>& map_texts,
+             const std::string& window, const std::string& out_dir) {
+  namespace dg = drillwave::diagnosis;
+  constexpr double kWarmup = 30;  // the synthetic recordings start after 30 s of drilling
+  nlohmann::json doc = LoadCaseDocument(file, overrides);
+  if (!sidecar_file.empty()) doc = dg::CaseFromSidecar(drillwave::io::LoadJsonFile(sidecar_file), doc, kWarmup);
+  const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
+  const dg::Recording recording = dg::LoadRecording(recording_file);
+  auto [begin, end] = Window(window);
+  if (window.empty() && !sidecar_file.empty()) begin = 5;  // leave the recording's first seconds to settle
+  std::cout << "drillwave: diagnosing " << recording_file << " with '" << c.name << "' (" << c.settings.duration_s
+            << " s simulated)" << std::endl;
+  auto run = drillwave::cases::RunCase(c);
+  if (!sidecar_file.empty())
+    for (double& t : run.result.time_s) t -= kWarmup;  // recording time
+  const auto maps = ChannelMaps(map_texts, recording, run.result.channels);
+  const dg::Diagnosis d = dg::Diagnose(recording, run.result, maps, begin, end);
+  drillwave::io::OutputDirectory out(out_dir);
+  out.Open("diagnosis.json") << dg::DiagnosisToJson(d).dump(2) << "\n";
+  out.Open("case.json") << doc.dump(2) << "\n";
+  drillwave::io::WriteSvg(dg::ComparisonFigure(recording, maps, d.comparison), out.Open("plot.svg"));
+  std::ostream& report = out.Open("report.md");
+  report << "# Diagnosis of " << recording_file << "\n\nModel: `" << c.name << "` (kind " << c.kind
+         << "). Window [" << d.comparison.window_begin_s << ", " << d.comparison.window_end_s << "] s.\n\n## Effects the model leaves out\n\n";
+  if (d.hypotheses.empty()) report << "None of the rules fired.\n";
+  for (const auto& h : d.hypotheses) {
+    report << "- **" << h.effect << "**: " << h.evidence;
+    if (std::isfinite(h.estimate)) report << " (first estimate " << h.estimate << " " << h.unit << ")";
+    report << "\n";
+  }
+  report << "\n## Unexplained differences\n\n";
+  for (const auto& u : d.unexplained) report << "- " << u << "\n";
+  report << "\nThe features side by side are in `diagnosis.json` (comparison); `plot.svg` overlays the channels.\n";
+  out.Commit();
+  for (const auto& h : d.hypotheses) std::cout << "  effect " << h.effect << ": " << h.evidence << std::endl;
+  for (const auto& u : d.unexplained) std::cout << "  unexplained: " << u << std::endl;
+  std::cout << "wrote " << std::filesystem::absolute(out_dir).string() << "/diagnosis.json, report.md, plot.svg, case.json"
+            << std::endl;
   return 0;
 }
 
@@ -301,6 +357,20 @@ int main(int argc, char** argv) {
   fit->add_option("--out,-o", fit_out, "output folder (written all or nothing)");
   fit->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 
+  auto* diagnose = app.add_subcommand(
+      "diagnose", "compare a case with a recording and read the feature differences as effects the model leaves "
+                  "out (soft top drive, side friction, velocity weakening, no axial coupling)");
+  std::string sidecar_file, diagnose_out = "drillwave-diagnose";
+  diagnose->add_option("case", case_file, "case JSON file (for the synthetic recordings: json-cases/baseline-60rpm.json)")
+      ->required();
+  diagnose->add_option("recording", recording_file, "recording CSV file")->required();
+  diagnose->add_option("--sidecar", sidecar_file, "the synthetic recording's operator sidecar (recNN.json): sets "
+                                                  "depth, WOB and the rpm schedule, with a 30 s warm-up");
+  diagnose->add_option("--map", maps, "recording_channel=model_channel[*scale]");
+  diagnose->add_option("--window", window, "begin,end [s] in recording time");
+  diagnose->add_option("--out,-o", diagnose_out, "output folder (written all or nothing)");
+  diagnose->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
+
   auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
 
   CLI11_PARSE(app, argc, argv);
@@ -311,6 +381,8 @@ int main(int argc, char** argv) {
       std::cout << "case '" << c.name << "' is valid (kind " << c.kind << ")\n";
       return 0;
     }
+    if (diagnose->parsed())
+      return Diagnose(case_file, recording_file, sidecar_file, overrides, maps, window, diagnose_out);
     if (fit->parsed())
       return Fit(case_file, recording_file, overrides, maps, window, fit_params, fit_features, max_evaluations, fit_out);
     if (compare->parsed()) return Compare(case_file, recording_file, overrides, maps, window, compare_out);

@@ -166,10 +166,7 @@ nlohmann::json ComparisonToJson(const Comparison& c) {
           {"model_inspection", InspectionToJson(c.model)}};
 }
 
-void WriteComparison(const Recording& rec, const cases::RunResult&, const std::vector<ChannelMap>& maps,
-                     const Comparison& c, const std::string& out_dir) {
-  io::OutputDirectory out(out_dir);
-  out.Open("comparison.json") << ComparisonToJson(c).dump(2) << "\n";
+io::Figure ComparisonFigure(const Recording& rec, const std::vector<ChannelMap>& maps, const Comparison& c) {
   io::Figure figure;
   figure.title = "model against " + rec.source;
   figure.x_label = "time [s]";
@@ -182,7 +179,14 @@ void WriteComparison(const Recording& rec, const cases::RunResult&, const std::v
     panel.series.push_back({maps[j].model + " (model)", t, c.model.cleaned[j]});
     figure.panels.push_back(panel);
   }
-  io::WriteSvg(figure, out.Open("plot.svg"));
+  return figure;
+}
+
+void WriteComparison(const Recording& rec, const cases::RunResult&, const std::vector<ChannelMap>& maps,
+                     const Comparison& c, const std::string& out_dir) {
+  io::OutputDirectory out(out_dir);
+  out.Open("comparison.json") << ComparisonToJson(c).dump(2) << "\n";
+  io::WriteSvg(ComparisonFigure(rec, maps, c), out.Open("plot.svg"));
   std::ostream& report = out.Open("report.md");
   report << "# Model against " << rec.source << "\n\nWindow [" << c.window_begin_s << ", " << c.window_end_s
          << "] s.\n\n## Findings\n\n";

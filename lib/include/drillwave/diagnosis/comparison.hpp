@@ -10,6 +10,7 @@
 
 #include "drillwave/cases/model_kind.hpp"
 #include "drillwave/diagnosis/inspection.hpp"
+#include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::diagnosis {
 
@@ -49,6 +50,9 @@ Comparison Compare(const Recording& recording, const cases::RunResult& model, co
                    double window_begin_s, double window_end_s, const InspectOptions& options = {});
 
 nlohmann::json ComparisonToJson(const Comparison& c);
+
+// The figure of a comparison: each mapped channel, the recording (artefacts masked) against the model.
+io::Figure ComparisonFigure(const Recording& recording, const std::vector<ChannelMap>& maps, const Comparison& c);
 
 // comparison.json, report.md, plot.svg (each mapped channel: recording, artefacts masked, against the model).
 void WriteComparison(const Recording& recording, const cases::RunResult& model, const std::vector<ChannelMap>& maps,
