@@ -119,7 +119,8 @@ class Process {
     // Top drive and hoist.
     const double a_top_t = Arrival(0, 0, t, side, false), a_top_a = Arrival(1, 0, t, side, false);
     const double u = md_.kp * (omega_ref - x[kWtop]) + md_.ki * x[kZ];
-    dx[kWtop] = (md_.torsion.z * (2 * a_top_t - x[kWtop]) - md_.torsion.damping[0] * x[kWtop] + u) / md_.top_inertia;
+    dx[kWtop] = (md_.torsion.z * (2 * a_top_t - x[kWtop]) - md_.torsion.damping[0] * x[kWtop] + md_.torsion.load[0] + u) /
+                md_.top_inertia;
     dx[kVtop] = (md_.axial.z * (2 * a_top_a - x[kVtop]) - md_.axial.damping[0] * x[kVtop] + md_.axial.load[0] -
                  md_.hook_force) / md_.hoist_mass;
     dx[kZ] = omega_ref - x[kWtop];
@@ -325,7 +326,8 @@ class Process {
     BitForces f;
     const double w = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
     const double v = axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
-    f.drive_torque = md_.torsion.z * (2 * Arrival(0, m_, t, side, true) - w) - md_.torsion.damping[m_] * w;
+    f.drive_torque = md_.torsion.z * (2 * Arrival(0, m_, t, side, true) - w) - md_.torsion.damping[m_] * w +
+                     md_.torsion.load[m_];
     f.drive_force = md_.axial.z * (2 * Arrival(1, m_, t, side, true) - v) - md_.axial.damping[m_] * v +
                     md_.axial.load[m_];
     f.depth = DepthOfCut(x, t, side);
@@ -404,7 +406,7 @@ class Process {
         initial[2 * m_ * c + 2 * j + 1] = 0.5 * (v - s / ch.z);
         if (j > 0) s += ch.damping[j] * v - ch.load[j];
       }
-      if (c == 0) top_torque0_ = s + ch.damping[0] * v;  // the top drive balances the top section and its damper
+      if (c == 0) top_torque0_ = s + ch.damping[0] * v - ch.load[0];  // the top drive balances the top section
     }
     waves_ = integration::HermiteHistory(4 * m_, [initial](double, double* value, double* rate) {
       std::copy(initial.begin(), initial.end(), value);
@@ -528,6 +530,9 @@ class AxialTorsionalKind : public ModelKind {
             {"string/torsional_damping_Nms_per_rad_m", "c_t >= 0, viscous, per metre"},
             {"string/axial_damping_Ns_per_m2", "c_a >= 0, viscous, per metre"},
             {"string/subsections", "integer in [2, 400], default 20: damping and weight lumped at this many nodes"},
+            {"string/side_torque_Nm", ">= 0, default 0: side friction along the string (deviated or tortuous hole), "
+                                      "spread evenly and opposing the forward rotation (a Coulomb torque while the "
+                                      "string turns forward)"},
             {"bit/inertia_kgm2", "J_b > 0 (bit and lumped BHA)"},
             {"bit/mass_kg", "M_b > 0"},
             {"bit/radius_m", "a > 0"},
@@ -561,6 +566,7 @@ class AxialTorsionalKind : public ModelKind {
     if (rho_mud >= rho) throw InputError(s.PathOf("mud_density_kg_m3"), "expected a value below density_kg_m3");
     const double c_t = s.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative());
     const double c_a = s.Number("axial_damping_Ns_per_m2", Range::NonNegative());
+    const double side_torque = s.Number("side_torque_Nm", Range::NonNegative(), 0.0);
     md.m = s.Integer("subsections", 2, 400, 20);
     s.Finish();
     const JsonReader b = r.Object("bit");
@@ -610,6 +616,7 @@ class AxialTorsionalKind : public ModelKind {
       md.torsion.damping[j] = share * c_t * piece;
       md.axial.damping[j] = share * c_a * piece;
       md.axial.load[j] = share * weight_per_m * piece;
+      md.torsion.load[j] = -share * side_torque / md.m;  // side friction, spread along the string
     }
     md.axial.load[md.m] += md.bit_mass * g * (1 - rho_mud / rho);
     // Hook force for steady drilling with W0 at the initial set-point: H = buoyant weight - W0 - c_a L V0.
