@@ -196,16 +196,22 @@ int Compare(const std::string& file, const std::string& recording_file, const st
   return 0;
 }
 
-int Fit(const std::string& file, const std::string& recording_file, const std::vector<std::string>& overrides,
+int Fit(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
+        const std::vector<std::string>& overrides,
         const std::vector<std::string>& map_texts, const std::string& window, const std::vector<std::string>& params,
         const std::vector<std::string>& features, int max_evaluations, const std::string& out_dir) {
   namespace dg = drillwave::diagnosis;
-  const nlohmann::json doc = LoadCaseDocument(file, overrides);
+  nlohmann::json doc = LoadCaseDocument(file, overrides);
+  dg::FitOptions options;
+  if (!sidecar_file.empty()) {  // the synthetic recordings' operating point, 30 s of warm-up before the recording
+    doc = dg::CaseFromSidecar(drillwave::io::LoadJsonFile(sidecar_file), doc, 30);
+    options.model_time_offset_s = 30;
+    options.window_begin_s = 5;
+  }
   const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
   const dg::Recording recording = dg::LoadRecording(recording_file);
-  dg::FitOptions options;
   options.maps = ChannelMaps(map_texts, recording, drillwave::cases::RunCase(c).result.channels);
-  std::tie(options.window_begin_s, options.window_end_s) = Window(window);
+  if (!window.empty()) std::tie(options.window_begin_s, options.window_end_s) = Window(window);
   if (!features.empty()) options.features = features;
   options.max_evaluations = max_evaluations;
   std::vector<dg::FitParameter> parameters;
@@ -331,7 +337,7 @@ int main(int argc, char** argv) {
       "compare", "run a case and compare it with a recording: features side by side (periods, stick fraction, "
                  "speed levels, top-drive stiffness) and point-by-point residuals");
   std::vector<std::string> maps;
-  std::string window, compare_out = "drillwave-compare";
+  std::string window, compare_out = "drillwave-compare", sidecar_file;
   compare->add_option("case", case_file, "case JSON file")->required();
   compare->add_option("recording", recording_file, "recording CSV file (time_s and channels)")->required();
   compare->add_option("--map", maps, "recording_channel=model_channel[*scale], e.g. tob_Nm=bit_torque_Nm; channels "
@@ -352,6 +358,7 @@ int main(int argc, char** argv) {
   fit->add_option("--feature", fit_features, "a feature to match (repeat; default: bit_oscillation_period_s, "
                                              "stick_fraction, bit_speed_mean, bit_speed_max)");
   fit->add_option("--map", maps, "recording_channel=model_channel[*scale]");
+  fit->add_option("--sidecar", sidecar_file, "a synthetic recording's operator sidecar (as for diagnose)");
   fit->add_option("--window", window, "begin,end [s]");
   fit->add_option("--max-evaluations", max_evaluations, "model runs at most (default 200)");
   fit->add_option("--out,-o", fit_out, "output folder (written all or nothing)");
@@ -360,7 +367,7 @@ int main(int argc, char** argv) {
   auto* diagnose = app.add_subcommand(
       "diagnose", "compare a case with a recording and read the feature differences as effects the model leaves "
                   "out (soft top drive, side friction, velocity weakening, no axial coupling)");
-  std::string sidecar_file, diagnose_out = "drillwave-diagnose";
+  std::string diagnose_out = "drillwave-diagnose";
   diagnose->add_option("case", case_file, "case JSON file (for the synthetic recordings: json-cases/baseline-60rpm.json)")
       ->required();
   diagnose->add_option("recording", recording_file, "recording CSV file")->required();
@@ -384,7 +391,8 @@ int main(int argc, char** argv) {
     if (diagnose->parsed())
       return Diagnose(case_file, recording_file, sidecar_file, overrides, maps, window, diagnose_out);
     if (fit->parsed())
-      return Fit(case_file, recording_file, overrides, maps, window, fit_params, fit_features, max_evaluations, fit_out);
+      return Fit(case_file, recording_file, sidecar_file, overrides, maps, window, fit_params, fit_features,
+                 max_evaluations, fit_out);
     if (compare->parsed()) return Compare(case_file, recording_file, overrides, maps, window, compare_out);
     if (inspect->parsed()) return Inspect(recording_file, inspect_out, bit_channel, top_channel);
     if (stability->parsed()) {

@@ -57,5 +57,38 @@ TEST(Diagnose, NamesTheConcealedEffectsItsRulesCover) {
   EXPECT_EQ(total, 12);
 }
 
+// The named effect, modelled: Coulomb side friction over rec07's concealed stretch makes the baseline explain it.
+TEST(Diagnose, SideFrictionModelledExplainsItsRecording) {
+  const std::string dir = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/synthetic";
+  if (!std::filesystem::exists(dir + "/rec07.csv")) GTEST_SKIP() << "the synthetic recordings are not at " << dir;
+  nlohmann::json baseline = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  baseline["simulation"]["abs_tol"] = baseline["simulation"]["rel_tol"] = 1e-4;
+  const Recording rec = LoadRecording(dir + "/rec07.csv");
+  auto diagnose = [&](const nlohmann::json& side_friction) {
+    nlohmann::json doc = CaseFromSidecar(io::LoadJsonFile(dir + "/rec07.json"), baseline, 30);
+    doc["model"]["string"]["side_friction"] = side_friction;
+    cases::RunResult model = cases::RunCase(cases::ParseCase(doc)).result;
+    for (double& t : model.time_s) t -= 30;
+    return Diagnose(rec, model,
+                    {{"bit_rpm", "bit_rpm", 1}, {"top_rpm", "top_rpm", 1}, {"top_torque_kNm", "top_torque_Nm", 1e-3},
+                     {"wob_kN", "wob_N", 1e-3}},
+                    5, 1e9);
+  };
+  auto torque_mismatch = [](const Diagnosis& d) {
+    for (const auto& f : d.comparison.features)
+      if (f.feature == "top_torque_kNm mean") return f.relative;
+    return std::nan("");
+  };
+  const Diagnosis before = diagnose({{"torque_per_m_Nm", 0.0}});
+  const Diagnosis after = diagnose({{"torque_per_m_Nm", 3.4602}, {"from_m", 853.7}, {"to_m", 2337.1}});
+  std::printf("[ measured ] rec07 mean top torque: baseline %+.1f %%, with the side friction %+.1f %%; rules firing "
+              "%zu -> %zu\n", 100 * torque_mismatch(before), 100 * torque_mismatch(after), before.hypotheses.size(),
+              after.hypotheses.size());
+  EXPECT_LT(torque_mismatch(before), -0.4);
+  EXPECT_LT(std::abs(torque_mismatch(after)), 0.05);
+  EXPECT_FALSE(before.hypotheses.empty());
+  EXPECT_TRUE(after.hypotheses.empty());
+}
+
 }  // namespace
 }  // namespace drillwave::diagnosis

@@ -80,7 +80,8 @@ FitResult FitFeatures(const nlohmann::json& document, const Recording& recording
     return doc;
   };
   auto compare = [&](const std::vector<double>& v) {
-    const cases::CaseRun run = cases::RunCase(cases::ParseCase(document_with(v)));
+    cases::CaseRun run = cases::RunCase(cases::ParseCase(document_with(v)));
+    for (double& t : run.result.time_s) t -= o.model_time_offset_s;
     return Compare(recording, run.result, o.maps, o.window_begin_s, o.window_end_s);
   };
 

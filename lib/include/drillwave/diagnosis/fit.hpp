@@ -27,6 +27,7 @@ struct FitOptions {
   double window_begin_s = -1e300, window_end_s = 1e300;
   // Features to match (names as Comparison::features reports them); each enters as its squared relative difference.
   std::vector<std::string> features = {"bit_oscillation_period_s", "stick_fraction", "bit_speed_mean", "bit_speed_max"};
+  double model_time_offset_s = 0;  // subtracted from the model's time before comparing (a warm-up before the recording)
   int max_evaluations = 200;
   double tolerance = 1e-4;  // on the spread of the simplex, in units of each parameter's range
 };

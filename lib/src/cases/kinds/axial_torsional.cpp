@@ -42,6 +42,7 @@ struct Channel {  // one wave channel: m sections of impedance z and travel time
   double z = 0, tau = 0;
   std::vector<double> damping;  // per node (ground dashpot)
   std::vector<double> load;     // per node (constant force: buoyant weight, axial only)
+  std::vector<double> coulomb;  // per node (Coulomb friction level against the borehole, torsion only)
 };
 
 struct Model {
@@ -363,7 +364,11 @@ class Process {
       return axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
     }
     const double in = Arrival(c, j, t, side, true) + Arrival(c, j, t, side, false);
-    return (2 * ch.z * in + ch.load[j]) / (2 * ch.z + ch.damping[j]);
+    // A massless node with Coulomb friction T_f: 0 in (2Z + c) v - q + T_f sign(v), q = 2 Z (a + b) + load, solved in
+    // closed form: the node stands still while |q| <= T_f and slides with the excess otherwise.
+    const double q = 2 * ch.z * in + ch.load[j];
+    const double excess = std::max(std::abs(q) - ch.coulomb[j], 0.0);
+    return std::copysign(excess, q) / (2 * ch.z + ch.damping[j]);
   }
 
   // Waves leaving every node at time t (and their rates when rate != nullptr).
@@ -377,7 +382,7 @@ class Process {
         if (rate) {
           if (j == 0) dv = c == 0 ? dx[kWtop] : dx[kVtop];
           else if (j == m_) dv = c == 0 ? dx[kWbit] : dx[kVbit];
-          else
+          else if (v != 0 || ch.coulomb[j] == 0)
             dv = 2 * ch.z * (ArrivalRate(c, j, t, side, true) + ArrivalRate(c, j, t, side, false)) /
                  (2 * ch.z + ch.damping[j]);
         }
@@ -400,11 +405,12 @@ class Process {
     for (int c = 0; c < 2; ++c) {
       const Channel& ch = c == 0 ? md_.torsion : md_.axial;
       const double v = c == 0 ? steady_.omega : steady_.rop;
-      double s = (c == 0 ? steady_.tob : steady_.wob) + ch.damping[m_] * v - ch.load[m_];
+      // Steady forward rotation: the Coulomb friction of the nodes acts as a constant torque against it.
+      double s = (c == 0 ? steady_.tob : steady_.wob) + ch.damping[m_] * v - ch.load[m_] + ch.coulomb[m_];
       for (int j = m_ - 1; j >= 0; --j) {
         initial[2 * m_ * c + 2 * j] = 0.5 * (v + s / ch.z);      // D - U = S / Z, D + U = v
         initial[2 * m_ * c + 2 * j + 1] = 0.5 * (v - s / ch.z);
-        if (j > 0) s += ch.damping[j] * v - ch.load[j];
+        if (j > 0) s += ch.damping[j] * v - ch.load[j] + ch.coulomb[j];
       }
       if (c == 0) top_torque0_ = s + ch.damping[0] * v - ch.load[0];  // the top drive balances the top section
     }
@@ -530,9 +536,10 @@ class AxialTorsionalKind : public ModelKind {
             {"string/torsional_damping_Nms_per_rad_m", "c_t >= 0, viscous, per metre"},
             {"string/axial_damping_Ns_per_m2", "c_a >= 0, viscous, per metre"},
             {"string/subsections", "integer in [2, 400], default 20: damping and weight lumped at this many nodes"},
-            {"string/side_torque_Nm", ">= 0, default 0: side friction along the string (deviated or tortuous hole), "
-                                      "spread evenly and opposing the forward rotation (a Coulomb torque while the "
-                                      "string turns forward)"},
+            {"string/side_friction/torque_per_m_Nm", ">= 0: Coulomb friction of the pipe against the borehole "
+                                                     "(set-valued: a stopped piece of pipe is held)"},
+            {"string/side_friction/from_m", ">= 0, default 0 (measured depth where it starts)"},
+            {"string/side_friction/to_m", "> from_m, default: the bit"},
             {"bit/inertia_kgm2", "J_b > 0 (bit and lumped BHA)"},
             {"bit/mass_kg", "M_b > 0"},
             {"bit/radius_m", "a > 0"},
@@ -566,7 +573,15 @@ class AxialTorsionalKind : public ModelKind {
     if (rho_mud >= rho) throw InputError(s.PathOf("mud_density_kg_m3"), "expected a value below density_kg_m3");
     const double c_t = s.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative());
     const double c_a = s.Number("axial_damping_Ns_per_m2", Range::NonNegative());
-    const double side_torque = s.Number("side_torque_Nm", Range::NonNegative(), 0.0);
+    double side_torque_per_m = 0, side_from = 0, side_to = 0;
+    if (s.Has("side_friction")) {
+      const JsonReader f = s.Object("side_friction");
+      side_torque_per_m = f.Number("torque_per_m_Nm", Range::NonNegative());
+      side_from = f.Number("from_m", Range::NonNegative(), 0.0);
+      side_to = f.Number("to_m", Range::NonNegative(), 1e300);
+      if (side_to <= side_from) throw InputError(f.PathOf("to_m"), "expected a depth below from_m");
+      f.Finish();
+    }
     md.m = s.Integer("subsections", 2, 400, 20);
     s.Finish();
     const JsonReader b = r.Object("bit");
@@ -610,13 +625,19 @@ class AxialTorsionalKind : public ModelKind {
     for (Channel* ch : {&md.torsion, &md.axial}) {
       ch->damping.assign(md.m + 1, 0.0);
       ch->load.assign(md.m + 1, 0.0);
+      ch->coulomb.assign(md.m + 1, 0.0);
     }
     for (int j = 0; j <= md.m; ++j) {
       const double share = (j == 0 || j == md.m) ? 0.5 : 1.0;
       md.torsion.damping[j] = share * c_t * piece;
       md.axial.damping[j] = share * c_a * piece;
       md.axial.load[j] = share * weight_per_m * piece;
-      md.torsion.load[j] = -share * side_torque / md.m;  // side friction, spread along the string
+      // Side friction of the pipe between from_m and to_m, on the internal (massless) nodes that stand for it.
+      const double depth = j * piece;
+      if (j > 0 && j < md.m) {
+        const double lo = std::max(depth - 0.5 * piece, side_from), hi = std::min(depth + 0.5 * piece, side_to);
+        md.torsion.coulomb[j] = side_torque_per_m * std::max(0.0, hi - lo);
+      }
     }
     md.axial.load[md.m] += md.bit_mass * g * (1 - rho_mud / rho);
     // Hook force for steady drilling with W0 at the initial set-point: H = buoyant weight - W0 - c_a L V0.
