@@ -238,11 +238,30 @@ TEST_F(Cli, FitWritesTheFittedCaseOrNothing) {
     EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
 }
 
+TEST_F(Cli, DiagnoseRejectsABadSidecarAndWritesNothing) {
+  const std::string sidecar = (dir_ / "side.json").string();
+  std::ofstream(sidecar) << R"({"recording": "x", "duration_s": 10})";
+  const std::string csv = (dir_ / "rec.csv").string();
+  {
+    std::ofstream out(csv);
+    out << "time_s,top_rpm,bit_rpm\n";
+    for (int i = 0; i < 100; ++i) out << 0.1 * i << ",60,60\n";
+  }
+  const std::string out = (dir_ / "dg").string();
+  const Outcome o = RunTool("diagnose " + std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/baseline-60rpm.json " +
+                            csv + " --sidecar " + sidecar + " -o " + out);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--sidecar"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST_F(Cli, KindsListsFieldsWithUnits) {
   const Outcome o = RunTool("kinds");
   EXPECT_EQ(o.exit_code, 0);
   EXPECT_NE(o.output.find("torsional_wave"), std::string::npos);
   EXPECT_NE(o.output.find("length_m"), std::string::npos);
+  for (const char* kind : {"two_mass", "two_disc", "jeffcott", "axial_torsional"})
+    EXPECT_NE(o.output.find(kind), std::string::npos) << kind;
 }
 
 }  // namespace
