@@ -76,6 +76,31 @@ TEST(AxialTorsional, BouncingBitKeepsDrilling) {
   EXPECT_NEAR(s["wob_mean_N"].get<double>(), 150000, 0.1 * 150000);
 }
 
+// BASELINE.md's regime map of the independent simulator at the nominal point: stick-slip at low rpm, smooth at 100,
+// "around 110-130 rpm, axial regenerative chatter drives a large torsional oscillation without sticking (a stability
+// lobe)", smooth again at 140-160 rpm. Each run starts in steady drilling, is disturbed by the set-point bump and
+// then left to itself.
+TEST(AxialTorsional, RegimeMapOfTheBaseline) {
+  struct Point {
+    double rpm;
+    bool sticks;
+    double range_min, range_max;  // peak-to-peak bit speed over the window [rad/s]
+  };
+  for (const Point& p : {Point{60, true, 10, 40}, Point{100, false, 0, 3}, Point{120, false, 10, 40},
+                         Point{150, false, 0, 1.5}}) {  // smooth: within a few % of the set-point
+    nlohmann::json doc = Baseline(p.rpm);  // with the set-point bump, so nothing rests on rounding to start
+    doc["simulation"]["duration_s"] = 80;
+    doc["statistics"]["window_s"] = {50, 80};
+    const auto s = RunCase(ParseCase(doc)).summary;
+    const double range = s["bit_speed_max_rad_s"].get<double>() - s["bit_speed_min_rad_s"].get<double>();
+    std::printf("[ measured ] %g rpm: %d stick onsets, bit speed %.3f..%.3f rad/s\n", p.rpm, s["stick_onsets"].get<int>(),
+                s["bit_speed_min_rad_s"].get<double>(), s["bit_speed_max_rad_s"].get<double>());
+    EXPECT_EQ(s["stick_onsets"].get<int>() > 0, p.sticks) << p.rpm << " rpm";
+    EXPECT_GE(range, p.range_min) << p.rpm << " rpm";
+    EXPECT_LE(range, p.range_max) << p.rpm << " rpm";
+  }
+}
+
 TEST(AxialTorsional, ReproducesTheFeaturesOfTheBaseRecording) {
   const std::string dir = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/synthetic";
   if (!std::filesystem::exists(dir + "/rec03.csv")) GTEST_SKIP() << "the synthetic recordings are not at " << dir;
