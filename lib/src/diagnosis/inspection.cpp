@@ -24,8 +24,8 @@ nlohmann::json IntervalsToJson(const std::vector<Interval>& v) {
 }  // namespace
 
 Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
-  const std::vector<double>& bit_raw = rec.Channel(o.bit_speed);
-  rec.Channel(o.top_speed);  // both are needed; fail early, naming the one that is missing
+  rec.Channel(o.bit_speed);  // both are needed; fail early, naming the one that is missing
+  rec.Channel(o.top_speed);
   Inspection ins;
   ins.source = rec.source;
   ins.duration_s = rec.time_s.back() - rec.time_s.front();
@@ -73,7 +73,6 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
     }
   }
   const std::vector<double>& top = ins.cleaned[index(o.top_speed)];
-  (void)bit_raw;
 
   // Stuck episodes of the bit.
   std::vector<double> magnitude(bit.size());

@@ -494,21 +494,9 @@ NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& opti
       v->reserve(samples);
     if (options.record_energy) tr.energy_j.reserve(samples);
   }
-  State xs(x.size());
-  double next_sample = 0.0;
   process.Sample(0.0, x, run.trajectory);
-  next_sample = options.output_interval_s;
-  auto observer = [&](const integration::Piece& p) {
-    if (options.output_interval_s <= 0) {
-      process.Sample(p.t1, p.x1, run.trajectory);
-      return;
-    }
-    while (next_sample <= p.t1 + 1e-12 * std::max(1.0, p.t1)) {
-      integration::InterpolatePiece(p, std::min(next_sample, p.t1), xs);
-      process.Sample(next_sample, xs, run.trajectory);
-      next_sample = run.trajectory.time_s.size() * options.output_interval_s;
-    }
-  };
+  const auto observer = integration::SampleEvery(
+      options.output_interval_s, [&](double t, const State& xs) { process.Sample(t, xs, run.trajectory); });
   integration::Simulator<NetworkProcess> simulator(process, options.integrator);
   const State x_end = simulator.Integrate(0.0, x, options.t_end_s, observer);
   run.stats = simulator.stats();

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include <boost/numeric/odeint.hpp>
@@ -79,6 +80,22 @@ struct IntegrationStats {
 };
 
 using PieceObserver = std::function<void(const Piece&)>;
+
+// An observer that samples the solution at k * interval, k = 1, 2, ... (the caller samples t0 = 0 itself), from each
+// accepted piece's quartic; with interval <= 0 it samples every piece's end instead. Sample times are counted, not
+// summed, so they do not drift.
+inline PieceObserver SampleEvery(double interval, std::function<void(double t, const std::vector<double>& x)> sample) {
+  auto taken = std::make_shared<long>(1);
+  auto x = std::make_shared<std::vector<double>>();
+  return [=](const Piece& p) {
+    if (interval <= 0) return sample(p.t1, p.x1);
+    x->resize(p.x1.size());
+    for (double next = *taken * interval; next <= p.t1 + 1e-12 * std::max(1.0, p.t1); next = ++*taken * interval) {
+      InterpolatePiece(p, std::min(next, p.t1), *x);
+      sample(next, *x);
+    }
+  };
+}
 
 template <class Process>
 class Simulator {

@@ -114,16 +114,7 @@ class JeffcottModel : public PreparedModel {
       normalized.push_back(omega != 0 ? beta_dot / omega : std::nan(""));
     };
     sample(0.0, x);
-    std::vector<double> xi(7);
-    auto observer = [&](const integration::Piece& p) {
-      if (settings.output_interval_s <= 0) return sample(p.t1, p.x1);
-      double next = time.size() * settings.output_interval_s;
-      while (next <= p.t1 + 1e-12 * std::max(1.0, p.t1)) {
-        integration::InterpolatePiece(p, std::min(next, p.t1), xi);
-        sample(next, xi);
-        next = time.size() * settings.output_interval_s;
-      }
-    };
+    const auto observer = integration::SampleEvery(settings.output_interval_s, sample);
     integration::Simulator<RotorProcess> sim(process, settings.integrator);
     sim.Integrate(0.0, x, settings.duration_s, observer);
 

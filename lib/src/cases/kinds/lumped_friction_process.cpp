@@ -256,16 +256,7 @@ ChainRun RunChain(const Chain& chain, const RunSettings& settings) {
                                     (process.StoredEnergy(s, t) - stored0));
   };
   sample(0.0, x);
-  std::vector<double> xs(x.size());
-  auto observer = [&](const integration::Piece& p) {
-    if (settings.output_interval_s <= 0) return sample(p.t1, p.x1);
-    double next = run.time_s.size() * settings.output_interval_s;
-    while (next <= p.t1 + 1e-12 * std::max(1.0, p.t1)) {
-      integration::InterpolatePiece(p, std::min(next, p.t1), xs);
-      sample(next, xs);
-      next = run.time_s.size() * settings.output_interval_s;
-    }
-  };
+  const auto observer = integration::SampleEvery(settings.output_interval_s, sample);
   integration::Simulator<ChainProcess> sim(process, settings.integrator);
   const std::vector<double> x_end = sim.Integrate(0.0, x, settings.duration_s, observer);
 
