@@ -16,12 +16,33 @@ double Interpolate(const std::vector<double>& t, const std::vector<double>& y, d
   return y[i - 1] + w * (y[i] - y[i - 1]);
 }
 
+// See StickSlipStatistics::oscillation_period_s. Crossing times are interpolated linearly between samples.
+double OscillationPeriod(const std::vector<double>& t, const std::vector<double>& v, double begin, double end,
+                         double mean, double max, double min) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // A swing of less than a thousandth of the speed scale is no oscillation (it is the solver's noise).
+  if (!(max - min > 1e-3 * std::max({std::abs(max), std::abs(min), 1e-9}))) return nan;
+  const double level = 0.5 * (mean + max);
+  std::vector<double> crossings;
+  bool armed = false;
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    if (t[i - 1] < begin || t[i] > end) continue;
+    if (v[i] < mean) armed = true;
+    if (armed && v[i - 1] < level && v[i] >= level) {
+      crossings.push_back(t[i - 1] + (level - v[i - 1]) / (v[i] - v[i - 1]) * (t[i] - t[i - 1]));
+      armed = false;
+    }
+  }
+  return crossings.size() >= 2 ? (crossings.back() - crossings.front()) / (crossings.size() - 1) : nan;
+}
+
 nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 }  // namespace
 
 nlohmann::json StickSlipStatistics::ToJson() const {
   return {{"stick_slip_period_s", NumberOrNull(stick_slip_period_s)},
+          {"oscillation_period_s", NumberOrNull(oscillation_period_s)},
           {"stick_onsets", stick_onsets},
           {"stick_fraction", stick_fraction},
           {"bit_speed_max_rad_s", speed_max},
@@ -56,6 +77,8 @@ StickSlipStatistics ComputeStickSlipStatistics(const std::vector<StuckInterval>&
   }
   if (!angle_rad.empty() && length > 0)
     s.speed_mean = (Interpolate(time_s, angle_rad, window_end_s) - Interpolate(time_s, angle_rad, window_begin_s)) / length;
+  s.oscillation_period_s =
+      OscillationPeriod(time_s, speed_rad_s, window_begin_s, window_end_s, s.speed_mean, s.speed_max, s.speed_min);
   return s;
 }
 

@@ -16,7 +16,6 @@ using State = std::vector<double>;
 
 constexpr int kNone = -1;
 constexpr int kBitAngle = 0;
-constexpr double kJumpWeightThreshold = 1e-15;
 
 struct Arrivals {
   double above = 0, below = 0;
@@ -35,6 +34,7 @@ class NetworkProcess {
         options_(options),
         kink_threshold_(options.echo_weight_threshold > 0 ? options.echo_weight_threshold
                                                           : AutomaticKinkThreshold(options.integrator)),
+        jump_threshold_(AutomaticJumpThreshold(options.integrator)),
         num_nodes_(static_cast<int>(net.nodes.size())),
         waves_(2 * static_cast<int>(net.sections.size())) {
     int next = 1;  // index 0: bit angle
@@ -418,8 +418,10 @@ class NetworkProcess {
   }
 
   // A discontinuity at node i at time t travels into each of its sections and reaches the far node one travel time
-  // later. After a massless node its size is scaled by that node's transmission or reflection coefficient; an
-  // inertial node reflects a jump as a jump but passes it on to its other sections smoothed by one order.
+  // later. After a massless node its signed size is scaled by that node's reflection or transmission coefficient;
+  // an inertial node (or an imposed speed) reflects a jump as a jump of opposite sign but passes it on to its other
+  // sections smoothed by one order. Echoes arriving together are merged (BreakpointQueue), so that the signed sum of
+  // all paths decides, as the waves themselves do, and an echo is dropped once it falls below its threshold.
   void Echo(const integration::Breakpoint& b) {
     const int i = b.site;
     const Node& node = net_.nodes[i];
@@ -431,18 +433,23 @@ class NetworkProcess {
       int order = b.order;
       if (scatters) {
         const double share = 2 * net_.sections[b.via].impedance / sum;
-        w *= k == b.via ? std::abs(share - 1) : std::abs(share);
-      } else if (!node.massless() && (b.via == kNone || k != b.via)) {
+        w *= k == b.via ? share - 1 : share;
+      } else if (b.via != kNone && k == b.via) {
+        w = -w;  // w_out = v - w_in with v continuous (inertia) or imposed
+      } else if (!node.massless()) {
         order = std::max(order + (b.via == kNone ? 0 : 1), 1);  // the node's speed is continuous
       }
-      // A jump inside a step cannot be resolved by shrinking it: follow jumps until they are below rounding.
-      if (w < (order == 0 ? kJumpWeightThreshold : kink_threshold_)) continue;
-      if (order > 0 && breakpoints_.size() >= options_.max_pending_kinks) continue;
+      if (std::abs(w) < (order == 0 ? jump_threshold_ : kink_threshold_)) continue;
       const int far = k == i - 1 ? i - 1 : i + 1;
       const double arrival = b.time + net_.sections[k].travel_time_s;
-      if (arrival < t_end_) breakpoints_.Push({arrival, far, w, order, k, b.generation + 1});
+      if (arrival >= t_end_) continue;
+      const integration::Breakpoint echo{arrival, far, w, order, k, b.generation + 1};
+      // Past the cap a kink may still join one that is pending, but not add to their number.
+      if (order > 0 && breakpoints_.size() >= options_.max_pending_kinks) breakpoints_.Merge(echo, MergeWindow(arrival));
+      else breakpoints_.Push(echo, MergeWindow(arrival));
     }
   }
+  static double MergeWindow(double t) { return 1e-10 * std::max(1.0, std::abs(t)); }
   // A new discontinuity at node i: a regime change (kink, order 1) or an input knot (jump if the schedule jumps).
   void Source(int i, double t, int order) { Echo({t, i, 1.0, order, kNone, 0}); }
 
@@ -452,7 +459,7 @@ class NetworkProcess {
  private:
   const Network& net_;
   const NetworkRunOptions& options_;
-  double kink_threshold_;
+  double kink_threshold_, jump_threshold_;
   int num_nodes_;
   int dimension_ = 0;
   std::vector<int> speed_index_, integral_index_;
@@ -473,7 +480,11 @@ class NetworkProcess {
 }  // namespace
 
 double AutomaticKinkThreshold(const integration::IntegratorOptions& integrator) {
-  return std::clamp(std::sqrt(std::max(integrator.abs_tol, integrator.rel_tol)), 1e-3, 3e-2);
+  return std::clamp(std::sqrt(std::max(integrator.abs_tol, integrator.rel_tol)), 1e-5, 3e-2);
+}
+
+double AutomaticJumpThreshold(const integration::IntegratorOptions& integrator) {
+  return std::clamp(0.1 * std::min(integrator.abs_tol, integrator.rel_tol), 1e-15, 1e-6);
 }
 
 NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& options) {

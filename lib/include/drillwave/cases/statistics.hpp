@@ -12,6 +12,10 @@ struct StuckInterval {
 
 struct StickSlipStatistics {
   double stick_slip_period_s = 0;  // mean interval between successive stick onsets in the window; NaN if < 2
+  // Period of the oscillation read from the speed itself: mean interval between the upward crossings of the level
+  // halfway between the mean and the maximum speed, each counted once the speed has fallen back below the mean.
+  // A short re-stick inside a cycle adds a stick onset but no such crossing. NaN without an oscillation.
+  double oscillation_period_s = 0;
   int stick_onsets = 0;
   double stick_fraction = 0;       // time stuck / window length
   double speed_max = 0, speed_min = 0, speed_mean = 0;  // rad/s

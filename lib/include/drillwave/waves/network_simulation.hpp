@@ -13,14 +13,13 @@ struct NetworkRunOptions {
   double t_end_s = 10;
   double output_interval_s = 1e-3;  // trajectory sampling; 0 samples only the integrator's steps
   integration::IntegratorOptions integrator;
-  // Breakpoint echoes: a jump or kink travels on after each node. Value jumps are followed while their weight
-  // (product of reflection/transmission coefficients) exceeds the threshold; kinks, which the step-size control
-  // can resolve by itself, only while fewer than max_pending_kinks are pending, since in a network of several
-  // sections their arrival times multiply. A kink the loop does not step onto costs the step control a few rejected
-  // steps; a tracked one costs a forced step end. At loose tolerances the former is cheaper for weak kinks, so the
-  // kink threshold follows the tolerance unless set: 0 means AutomaticKinkThreshold(tolerance).
+  // Breakpoint echoes: a jump or kink travels on after each node, scaled by the node's reflection or transmission
+  // coefficient; echoes that arrive together are merged. Value jumps are followed while their weight exceeds
+  // AutomaticJumpThreshold. Kinks, which the step-size control can resolve by itself at the price of rejected steps,
+  // are followed while their weight exceeds echo_weight_threshold and fewer than max_pending_kinks are pending.
+  // 0 means AutomaticKinkThreshold(tolerance).
   double echo_weight_threshold = 0;
-  std::size_t max_pending_kinks = 64;
+  std::size_t max_pending_kinks = 4096;
   bool record_energy = false;           // sample the mechanical energy (for conservation checks; costs time)
 };
 
@@ -52,10 +51,16 @@ struct NetworkRun {
   double t_end_s = 0;
 };
 
-// sqrt(max(abs_tol, rel_tol)) clamped to [1e-3, 3e-2]: 1e-3 (about 23 round trips of the saldivar string) at
-// tolerances of 1e-6 and tighter, 3e-2 (about 11) at 1e-3. Measured on saldivar-stickslip at tol 1e-3: 40% fewer
-// derivative evaluations with a period error of 2e-6 instead of 8e-6 (apps/bench).
+// sqrt(max(abs_tol, rel_tol)) clamped to [1e-5, 3e-2]. A kink left inside a step costs the stored waves a few
+// rejected steps; a followed one costs a forced step end. Measured (80 s of saldivar-stickslip with 200 m of collars,
+// tol 1e-8): threshold 1e-3 with at most 64 pending kinks, 3.9e6 derivative evaluations of which 228 000 steps were
+// redone; 1e-4 and 4096 pending, 1.7e6 and 3 700; 1e-5, 2.4e6 and 111. At tol 1e-3, 3e-2 (about 11 round trips
+// of the single-section string) saves 40% of the evaluations against 1e-3 (apps/bench).
 double AutomaticKinkThreshold(const integration::IntegratorOptions& integrator);
+
+// Value jumps are followed while their weight exceeds a tenth of the tighter tolerance (clamped to [1e-15, 1e-6]):
+// a smaller jump, left inside a step, changes the stored waves by less than the tolerance allows.
+double AutomaticJumpThreshold(const integration::IntegratorOptions& integrator);
 
 NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& options);
 

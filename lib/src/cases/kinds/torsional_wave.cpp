@@ -113,6 +113,7 @@ class TorsionalWaveModel : public PreparedModel {
     result.summary["steps"] = run.stats.steps;
     result.summary["events"] = run.stats.events;
     result.summary["breakpoints"] = run.stats.breakpoints;
+    result.summary["history_rejections"] = run.stats.history_rejections;
     result.summary["derivative_evaluations"] = run.stats.derivative_evaluations;
     result.summary["integration_wall_time_s"] = run.stats.wall_time_s;
 
