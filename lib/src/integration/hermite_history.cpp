@@ -142,6 +142,23 @@ void HermiteHistory::Values(double t, double* out, Side side) const {
   for (int i = 0; i < n; ++i) out[i] = QuarticValue(loc.s, h, p[i], p[n + i], p[2 * n + i], p[3 * n + i], p[4 * n + i]);
 }
 
+void HermiteHistory::Derivatives(double t, double* out, Side side) const {
+  if (FromStart(t)) {
+    std::copy(start_rate_.begin(), start_rate_.end(), out);
+    return;
+  }
+  const Location loc = Locate(t, side);
+  if (loc.piece == kPrehistory) {
+    prehistory_(std::min(t, empty() ? t : begin_time()), scratch_value_.data(), out);
+    return;
+  }
+  const double* p = PieceData(loc.piece);
+  const int n = dimension_;
+  const double h = t_end_[loc.piece] - t_begin_[loc.piece];
+  for (int i = 0; i < n; ++i)
+    out[i] = QuarticDerivative(loc.s, h, p[i], p[n + i], p[2 * n + i], p[3 * n + i], p[4 * n + i]);
+}
+
 double HermiteHistory::IntegrateSquare(int i, double a, double b) const {
   static constexpr double kNodes[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                                        0.9061798459386640};

@@ -19,8 +19,11 @@
 // U = V t). Disturb it through the inputs (a set-point schedule), which keeps the waves free of jumps: a jump in a
 // node speed would travel through every sub-section, and only inputs are tracked as breakpoints here.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+
+#include <boost/math/tools/toms748_solve.hpp>
 
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/cases/statistics.hpp"
@@ -88,7 +91,7 @@ class Process {
   using State = std::vector<double>;
   explicit Process(const Model& md)
       : md_(md), m_(md.m), steady_(SteadyDrilling(md, md.top_speed.Value(0.0))),
-        waves_(4 * md.m), bit_history_(2, [this](double t, double* v, double* d) {
+        waves_{integration::HermiteHistory(2 * md.m), integration::HermiteHistory(2 * md.m)}, bit_history_(2, [this](double t, double* v, double* d) {
           v[0] = steady_.omega * t, v[1] = steady_.rop * t;
           d[0] = steady_.omega, d[1] = steady_.rop;
         }) {
@@ -147,7 +150,11 @@ class Process {
   }
 
   void Commit(const integration::Piece& p) {
-    waves_.Append(p.t0, out0_.data(), d0_.data(), p.t1, out1_.data(), d1_.data(), outm_.data());
+    for (int c = 0; c < 2; ++c) {
+      const int base = 2 * m_ * c;
+      waves_[c].Append(p.t0, out0_.data() + base, d0_.data() + base, p.t1, out1_.data() + base, d1_.data() + base,
+                       outm_.data() + base);
+    }
     const double b0[2] = {p.x0[kPhi], p.x0[kU]}, b1[2] = {p.x1[kPhi], p.x1[kU]}, bm[2] = {p.x_mid[kPhi], p.x_mid[kU]};
     const double e0[2] = {p.f0[kPhi], p.f0[kU]}, e1[2] = {p.f1[kPhi], p.f1[kU]};
     bit_history_.Append(p.t0, b0, e0, p.t1, b1, e1, bm);
@@ -155,8 +162,9 @@ class Process {
     phi_max_ = std::max({phi_max_, p.x0[kPhi], p.x1[kPhi]});
     last_end_ = p.t1;
     const double keep = 2 * std::max(md_.torsion.tau, md_.axial.tau) * m_ + 1.0;
-    waves_.DiscardBefore(p.t1 - keep);
-    bit_history_.DiscardBefore(p.t1 - std::max(keep, 20.0 * tn_last_ + 5.0));
+    for (auto& w : waves_) w.DiscardBefore(p.t1 - keep);
+    DepthOfCut(p.x1, p.t1, Side::kLeft, &tn_committed_);
+    bit_history_.DiscardBefore(p.t1 - std::max(keep, 20.0 * tn_committed_ + 5.0));
   }
 
   // Witnesses: 0 rotation, 1 rotation (second margin while stuck), 2 axial, 3 axial (second margin), 4 contact.
@@ -278,42 +286,41 @@ class Process {
   // Arrival at node j of channel c (0 torsion, 1 axial) from above (from_above) or below, at time t.
   double Arrival(int c, int j, double t, Side side, bool from_above) const {
     const Channel& ch = c == 0 ? md_.torsion : md_.axial;
-    const int base = 2 * m_ * c;
-    const int comp = from_above ? base + 2 * (j - 1) : base + 2 * j + 1;  // D_{j-1} leaves node j-1; U_j leaves node j+1
-    return waves_.Value(t - ch.tau, comp, side);
-  }
-  double ArrivalRate(int c, int j, double t, Side side, bool from_above) const {
-    const Channel& ch = c == 0 ? md_.torsion : md_.axial;
-    const int base = 2 * m_ * c;
-    const int comp = from_above ? base + 2 * (j - 1) : base + 2 * j + 1;
-    return waves_.Derivative(t - ch.tau, comp, side);
+    const int comp = from_above ? 2 * (j - 1) : 2 * j + 1;  // D_{j-1} leaves node j-1; U_j leaves node j+1
+    return waves_[c].Value(t - ch.tau, comp, side);
   }
 
-  // When the bit angle last stood `back` radians behind its present value (the latest such time, by bisection on
-  // the stored angle).
+  // When the bit angle last stood `back` radians behind its present value, from the stored angle. The root lies near
+  // t - guess (t_n changes little from one evaluation to the next): a bracket around it, widened if needed, and
+  // TOMS 748 inside it take a handful of look-ups where bisection took sixty.
   double TimeAngleBehind(const State& x, double t, Side side, double back, double guess) const {
     const double target = x[kPhi] - back;
-    auto phi = [&](double s) { return s >= t ? x[kPhi] : bit_history_.Value(s, 0, side); };
+    auto behind = [&](double s) { return (s >= t ? x[kPhi] : bit_history_.Value(s, 0, side)) - target; };
     double lo = t - guess, hi = t;
-    for (int i = 0; i < 60 && phi(lo) > target; ++i) hi = lo, lo = t - (t - lo) * 2;
-    for (int i = 0; i < 60 && hi - lo > 1e-12 * (1 + std::abs(t)); ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (phi(mid) > target ? hi : lo) = mid;
-    }
-    return 0.5 * (lo + hi);
+    double g_lo = behind(lo), g_hi = back;
+    for (int i = 0; i < 60 && g_lo > 0; ++i) hi = lo, g_hi = g_lo, lo = t - (t - lo) * 2, g_lo = behind(lo);
+    if (g_lo >= 0) return lo;  // on the root, or the history holds no such angle (then the oldest time looked at)
+    const double width = 1e-12 * (1 + std::abs(t));
+    std::uintmax_t iterations = 60;
+    const auto [a, b] = boost::math::tools::toms748_solve(
+        behind, lo, hi, g_lo, g_hi, [width](double l, double h) { return h - l <= width; }, iterations);
+    return 0.5 * (a + b);
   }
   // The depth of cut against the rock surface under the blades: the deepest position any of the last kProfilePasses
   // blades reached at the present angle. After a bounce the previous blade may have passed in the air; the rock is
   // where a blade last cut, not where the previous one happened to be (with continuous contact the previous blade
   // is the deepest, and d = n (U(t) - U(t - t_n)) as in RGD).
-  double DepthOfCut(const State& x, double t, Side side) const {
+  // The cut delay t_n is returned through tn. The search starts from the t_n of the last committed step end, so
+  // that no evaluation depends on the ones before it (trial stages, samples).
+  double DepthOfCut(const State& x, double t, Side side, double* tn = nullptr) const {
     constexpr int kProfilePasses = 4;
     const double pitch = 2 * kPi / md_.blades;
-    double guess = tn_last_ > 0 ? tn_last_ : pitch / std::max(steady_.omega, 1e-3);
+    double guess = tn_committed_ > 0 ? tn_committed_ : pitch / std::max(steady_.omega, 1e-3);
     double surface = -kInf;
     for (int k = 1; k <= kProfilePasses; ++k) {
       const double s = TimeAngleBehind(x, t, side, k * pitch, k * guess);
-      if (k == 1) tn_last_ = t - s, guess = tn_last_;
+      if (k == 1) guess = t - s;
+      if (k == 1 && tn) *tn = t - s;
       surface = std::max(surface, s >= t ? x[kU] : bit_history_.Value(s, 1, side));
       // In contact ever since the previous blade passed (no lift-off or landing, no backward turn since then): that
       // blade is the deepest.
@@ -330,8 +337,7 @@ class Process {
                      md_.torsion.load[m_];
     f.drive_force = md_.axial.z * (2 * Arrival(1, m_, t, side, true) - v) - md_.axial.damping[m_] * v +
                     md_.axial.load[m_];
-    f.depth = DepthOfCut(x, t, side);
-    f.tn = tn_last_;
+    f.depth = DepthOfCut(x, t, side, &f.tn);
     if (!contact_) return f;
     const double d = std::max(f.depth, 0.0);
     // Cutting only into new rock: not while turning backwards, nor before the bit is back past its furthest angle.
@@ -354,15 +360,15 @@ class Process {
     return f;
   }
 
-  // Speed of node j of channel c: from the state for the ends, algebraic for the massless nodes between.
-  double NodeSpeed(int c, int j, const State& x, double t, Side side) const {
+  // Speed of node j of channel c: from the state for the ends, algebraic for the massless nodes between, which
+  // feel the waves `in` arriving from both sides.
+  double NodeSpeed(int c, int j, const State& x, double in) const {
     const Channel& ch = c == 0 ? md_.torsion : md_.axial;
     if (j == 0) return c == 0 ? x[kWtop] : x[kVtop];
     if (j == m_) {
       if (c == 0) return turn_ == Turn::kStuck ? 0.0 : x[kWbit];
       return axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
     }
-    const double in = Arrival(c, j, t, side, true) + Arrival(c, j, t, side, false);
     // A massless node with Coulomb friction T_f: 0 in (2Z + c) v - q + T_f sign(v), q = 2 Z (a + b) + load, solved in
     // closed form: the node stands still while |q| <= T_f and slides with the excess otherwise.
     const double q = 2 * ch.z * in + ch.load[j];
@@ -370,29 +376,29 @@ class Process {
     return std::copysign(excess, q) / (2 * ch.z + ch.damping[j]);
   }
 
-  // Waves leaving every node at time t (and their rates when rate != nullptr).
+  // Waves leaving every node at time t (and their rates when rate != nullptr). Each channel's arriving waves are read
+  // in one look-up: component 2k left the top of section k one travel time ago, 2k + 1 its bottom.
   void Outgoing(double t, const State& x, const State& dx, Side side, double* out, double* rate) const {
+    arriving_.resize(2 * m_), arriving_rate_.resize(2 * m_);
     for (int c = 0; c < 2; ++c) {
       const Channel& ch = c == 0 ? md_.torsion : md_.axial;
+      waves_[c].Values(t - ch.tau, arriving_.data(), side);
+      if (rate) waves_[c].Derivatives(t - ch.tau, arriving_rate_.data(), side);
       const int base = 2 * m_ * c;
       for (int j = 0; j <= m_; ++j) {
-        const double v = NodeSpeed(c, j, x, t, side);
+        const double above = j > 0 ? arriving_[2 * (j - 1)] : 0.0, below = j < m_ ? arriving_[2 * j + 1] : 0.0;
+        const double v = NodeSpeed(c, j, x, above + below);
+        if (j < m_) out[base + 2 * j] = v - below;            // down-going into section j
+        if (j > 0) out[base + 2 * (j - 1) + 1] = v - above;   // up-going into section j-1
+        if (!rate) continue;
+        const double above_rate = j > 0 ? arriving_rate_[2 * (j - 1)] : 0.0;
+        const double below_rate = j < m_ ? arriving_rate_[2 * j + 1] : 0.0;
         double dv = 0;
-        if (rate) {
-          if (j == 0) dv = c == 0 ? dx[kWtop] : dx[kVtop];
-          else if (j == m_) dv = c == 0 ? dx[kWbit] : dx[kVbit];
-          else if (v != 0 || ch.coulomb[j] == 0)
-            dv = 2 * ch.z * (ArrivalRate(c, j, t, side, true) + ArrivalRate(c, j, t, side, false)) /
-                 (2 * ch.z + ch.damping[j]);
-        }
-        if (j < m_) {  // down-going into section j: D_j = v - U_j(arriving)
-          out[base + 2 * j] = v - Arrival(c, j, t, side, false);
-          if (rate) rate[base + 2 * j] = dv - ArrivalRate(c, j, t, side, false);
-        }
-        if (j > 0) {  // up-going into section j-1: U_{j-1} = v - D_{j-1}(arriving)
-          out[base + 2 * (j - 1) + 1] = v - Arrival(c, j, t, side, true);
-          if (rate) rate[base + 2 * (j - 1) + 1] = dv - ArrivalRate(c, j, t, side, true);
-        }
+        if (j == 0) dv = c == 0 ? dx[kWtop] : dx[kVtop];
+        else if (j == m_) dv = c == 0 ? dx[kWbit] : dx[kVbit];
+        else if (v != 0 || ch.coulomb[j] == 0) dv = 2 * ch.z * (above_rate + below_rate) / (2 * ch.z + ch.damping[j]);
+        if (j < m_) rate[base + 2 * j] = dv - below_rate;
+        if (j > 0) rate[base + 2 * (j - 1) + 1] = dv - above_rate;
       }
     }
   }
@@ -413,27 +419,33 @@ class Process {
       }
       if (c == 0) top_torque0_ = s + ch.damping[0] * v - ch.load[0];  // the top drive balances the top section
     }
-    waves_ = integration::HermiteHistory(4 * m_, [initial](double, double* value, double* rate) {
-      std::copy(initial.begin(), initial.end(), value);
-      std::fill(rate, rate + initial.size(), 0.0);
-    });
+    for (int c = 0; c < 2; ++c) {
+      const std::vector<double> channel(initial.begin() + 2 * m_ * c, initial.begin() + 2 * m_ * (c + 1));
+      waves_[c] = integration::HermiteHistory(2 * m_, [channel](double, double* value, double* rate) {
+        std::copy(channel.begin(), channel.end(), value);
+        std::fill(rate, rate + channel.size(), 0.0);
+      });
+    }
   }
 
   const Model& md_;
   int m_;
   Steady steady_;
-  integration::HermiteHistory waves_, bit_history_;
+  // One history per channel: each is read at its own travel time, so its look-up hint stays valid.
+  std::array<integration::HermiteHistory, 2> waves_;
+  integration::HermiteHistory bit_history_;
   double top_torque0_ = 0;
   Turn turn_ = Turn::kForward;
   Axial axial_ = Axial::kAdvancing;
   bool contact_ = true;
   double phi_max_ = 0, phi_max_before_ = 0, last_end_ = 0;
   double last_contact_change_ = -kInf;
-  mutable double tn_last_ = 0;
+  double tn_committed_ = 0;  // t_n at the end of the last committed piece: where the next searches start
   double step_start_ = 0, passed_ = 0;
   int stick_onsets_ = 0;
   std::vector<StuckInterval> stuck_;
   std::vector<double> out0_, out1_, outm_, d0_, d1_;
+  mutable std::vector<double> arriving_, arriving_rate_;  // Outgoing's scratch
 };
 
 class AxialTorsionalModel : public PreparedModel {
