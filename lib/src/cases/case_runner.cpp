@@ -54,6 +54,8 @@ Case ParseCase(const nlohmann::json& document) {
   const ModelKind& kind = FindKind(c.kind, model.PathOf("kind"));
   c.model = kind.Prepare(model);
 
+  if (root.Has("sensors")) c.sensors = ReadSensors(root.Object("sensors"));
+
   if (root.Has("expect")) {
     c.expect = root.Raw("expect");
     if (!c.expect.is_object()) throw InputError("/expect", "expected an object of summary keys");
@@ -74,6 +76,7 @@ Case ParseCase(const nlohmann::json& document) {
 CaseRun RunCase(const Case& c) {
   const auto start = std::chrono::steady_clock::now();
   CaseRun run{c.model->Run(c.settings), nlohmann::json::object()};
+  ApplySensors(c.sensors, run.result);
   run.summary = run.result.summary;
   run.summary["case"] = c.name;
   run.summary["kind"] = c.kind;

@@ -4,6 +4,7 @@
 //    "model": {"kind": "<kind>", ...kind's fields...},
 //    "simulation": {"duration_s", "output_interval_s", "abs_tol", "rel_tol", "max_step_s"},
 //    "statistics": {"window_s": [begin, end]},
+//    "sensors": {"seed": n, "channels": {"<channel>": {"time_constant_s", "delay_s", "hold_s", "noise_std"}}},
 //    "expect": {"<summary key>": {"min": a, "max": b} | {"value": v, "rel_tol": r} | null}}
 // Every parameter is addressable by its JSON pointer (e.g. /model/bit/inertia_kgm2), so sweeps and fits patch the
 // document and parse it again: parsing is cheap and a PreparedModel is immutable.
@@ -14,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "drillwave/cases/model_kind.hpp"
+#include "drillwave/cases/sensors.hpp"
 
 namespace drillwave::cases {
 
@@ -23,6 +25,7 @@ struct Case {
   std::string kind;
   RunSettings settings;
   std::shared_ptr<const PreparedModel> model;
+  SensorSet sensors;  // "<channel>_measured" channels (sensors.hpp)
   nlohmann::json expect = nlohmann::json::object();
 };
 

@@ -1,0 +1,95 @@
+#include "drillwave/cases/sensors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "drillwave/core/error.hpp"
+
+namespace drillwave::cases {
+
+using io::JsonReader;
+using Range = io::Range;
+
+SensorSet ReadSensors(const JsonReader& block) {
+  SensorSet set;
+  set.seed = static_cast<unsigned long long>(block.Integer("seed", 0, 2147483647, 1));
+  const JsonReader channels = block.Object("channels");
+  for (const auto& item : block.Raw("channels").items()) {
+    const JsonReader s = channels.Object(item.key());
+    SensorModel m;
+    m.channel = item.key();
+    m.time_constant_s = s.Number("time_constant_s", Range::Between(0, 1e4), 0.0);
+    m.delay_s = s.Number("delay_s", Range::Between(0, 1e4), 0.0);
+    m.hold_s = s.Number("hold_s", Range::Between(0, 1e4), 0.0);
+    m.noise_std = s.Number("noise_std", Range::NonNegative(), 0.0);
+    s.Finish();
+    set.sensors.push_back(m);
+  }
+  block.Finish();
+  return set;
+}
+
+namespace {
+
+// Linear interpolation in (t, v) at time s, held at the first value before the start and the last after the end.
+double At(const std::vector<double>& t, const std::vector<double>& v, double s) {
+  if (s <= t.front()) return v.front();
+  if (s >= t.back()) return v.back();
+  const auto k = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), s) - t.begin());
+  const double w = (s - t[k - 1]) / (t[k] - t[k - 1]);
+  return w == 0 ? v[k - 1] : v[k - 1] + w * (v[k] - v[k - 1]);
+}
+
+}  // namespace
+
+std::vector<double> Measure(const SensorModel& sensor, const std::vector<double>& t, const std::vector<double>& values,
+                            unsigned long long seed) {
+  if (t.empty()) return {};
+  // Low-pass, exact for an input held between samples; settled at the first value.
+  std::vector<double> filtered(values);
+  if (sensor.time_constant_s > 0)
+    for (std::size_t k = 1; k < t.size(); ++k) {
+      const double a = 1 - std::exp(-(t[k] - t[k - 1]) / sensor.time_constant_s);
+      filtered[k] = filtered[k - 1] + a * (values[k] - filtered[k - 1]);
+    }
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<double> measured(t.size());
+  long held = -1;  // index of the telemetry sample last received
+  double held_value = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const double sent = t[k] - sensor.delay_s;  // when what arrives now left the sensor
+    if (sensor.hold_s > 0) {
+      const long j = std::max(0L, static_cast<long>(std::floor((sent - t.front()) / sensor.hold_s + 1e-9)));
+      while (held < j) {  // draw noise for every sample, received or skipped, so the noise does not depend on the output grid
+        ++held;
+        held_value = At(t, filtered, t.front() + held * sensor.hold_s) + sensor.noise_std * noise(rng);
+      }
+      measured[k] = held_value;
+    } else {
+      measured[k] = At(t, filtered, sent) + (sensor.noise_std > 0 ? sensor.noise_std * noise(rng) : 0.0);
+    }
+  }
+  return measured;
+}
+
+void ApplySensors(const SensorSet& set, RunResult& result) {
+  for (std::size_t i = 0; i < set.sensors.size(); ++i) {
+    const SensorModel& sensor = set.sensors[i];
+    const auto it = std::find_if(result.channels.begin(), result.channels.end(),
+                                 [&](const Channel& c) { return c.name == sensor.channel; });
+    if (it == result.channels.end()) {
+      std::string names;
+      for (const Channel& c : result.channels) names += (names.empty() ? "" : ", ") + c.name;
+      throw InputError("/sensors/channels/" + sensor.channel, "this model has no such channel; it has " + names);
+    }
+    // Each sensor its own noise stream, so adding a sensor does not change the others.
+    std::vector<double> measured = Measure(sensor, result.time_s, it->values, set.seed + 7919 * i);
+    for (auto& panel : result.plot_panels)
+      if (std::find(panel.begin(), panel.end(), sensor.channel) != panel.end()) panel.push_back(sensor.channel + "_measured");
+    result.channels.push_back({sensor.channel + "_measured", std::move(measured)});
+  }
+}
+
+}  // namespace drillwave::cases
