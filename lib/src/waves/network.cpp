@@ -22,6 +22,10 @@ void Network::Validate() const {
       throw std::invalid_argument("node '" + n.name + "': set-valued friction needs an inertia > 0");
     if (n.drive == Drive::kPiSpeedController && n.massless())
       throw std::invalid_argument("node '" + n.name + "': a PI speed controller needs an inertia > 0");
+    if (n.has_dc_motor() && (n.massless() || !(n.motor.motor_constant > 0) || !(n.motor.armature_resistance > 0) ||
+                             !(n.motor.armature_inductance > 0) || !(n.motor.voltage_limit >= 0)))
+      throw std::invalid_argument("node '" + n.name + "': a DC motor needs an inertia, a motor constant, armature "
+                                  "resistance and inductance > 0 and a voltage limit >= 0");
     if (n.drive == Drive::kPrescribedSpeed && !n.massless())
       throw std::invalid_argument("node '" + n.name + "': a prescribed-speed node has no inertia");
   }

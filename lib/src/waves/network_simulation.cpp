@@ -40,11 +40,14 @@ class NetworkProcess {
     int next = 1;  // index 0: bit angle
     speed_index_.assign(num_nodes_, kNone);
     integral_index_.assign(num_nodes_, kNone);
+    current_index_.assign(num_nodes_, kNone);
     regime_.assign(num_nodes_, Regime::kSlipPositive);
     for (int i = 0; i < num_nodes_; ++i)
       if (!net.nodes[i].massless()) speed_index_[i] = next++;
     for (int i = 0; i < num_nodes_; ++i)
-      if (net.nodes[i].drive == Drive::kPiSpeedController) integral_index_[i] = next++;
+      if (net.nodes[i].has_speed_integral()) integral_index_[i] = next++;
+    for (int i = 0; i < num_nodes_; ++i)
+      if (net.nodes[i].has_dc_motor()) current_index_[i] = next++;
     dimension_ = next;
     for (int i = 0; i < num_nodes_; ++i)
       if (net.nodes[i].has_set_valued_friction()) frictional_nodes_.push_back(i);
@@ -60,10 +63,17 @@ class NetworkProcess {
     State x(dimension_, 0.0);
     for (int i = 0; i < num_nodes_; ++i)
       if (speed_index_[i] != kNone) x[speed_index_[i]] = net_.initial.speed_rad_s;
-    // A PI controller in steady state holds the steady torque with its integral part.
-    for (int i = 0; i < num_nodes_; ++i)
-      if (integral_index_[i] != kNone && net_.nodes[i].ki > 0)
-        x[integral_index_[i]] = steady_torque_ / net_.nodes[i].ki;
+    // In steady state a PI controller holds the steady torque (a DC motor: the steady voltage) with its integral part,
+    // and a DC motor carries the current of the steady torque.
+    for (int i = 0; i < num_nodes_; ++i) {
+      const Node& node = net_.nodes[i];
+      double held = steady_torque_;
+      if (current_index_[i] != kNone) {
+        x[current_index_[i]] = steady_torque_ / node.motor.motor_constant;
+        held = node.motor.armature_resistance * x[current_index_[i]] + node.motor.motor_constant * net_.initial.speed_rad_s;
+      }
+      if (integral_index_[i] != kNone && node.ki > 0) x[integral_index_[i]] = held / node.ki;
+    }
     return x;
   }
 
@@ -87,9 +97,15 @@ class NetworkProcess {
     dxdt[kBitAngle] = Speed(num_nodes_ - 1, x, t, side);
     for (int i = 0; i < num_nodes_; ++i) {
       const Node& node = net_.nodes[i];
-      if (speed_index_[i] == kNone && integral_index_[i] == kNone) continue;
+      if (speed_index_[i] == kNone && integral_index_[i] == kNone && current_index_[i] == kNone) continue;
       const double v = Speed(i, x, t, side);
       if (integral_index_[i] != kNone) dxdt[integral_index_[i]] = Setpoint(node, t, side) - v;
+      if (current_index_[i] != kNone) {
+        const DcMotor& m = node.motor;
+        const double current = x[current_index_[i]];
+        dxdt[current_index_[i]] =
+            (MotorVoltage(i, x, v, t, side) - m.armature_resistance * current - m.motor_constant * v) / m.armature_inductance;
+      }
       if (speed_index_[i] == kNone) continue;
       double& a = dxdt[speed_index_[i]];
       if (regime_[i] == Regime::kStuck) {
@@ -215,6 +231,7 @@ class NetworkProcess {
     out.bit_torque_nm.push_back(BitTorque(bit, x, t, side));
     out.bit_angle_rad.push_back(x[kBitAngle]);
     out.bit_stuck.push_back(regime_[bit] == Regime::kStuck && net_.nodes[bit].has_set_valued_friction() ? 1.0 : 0.0);
+    if (current_index_[top] != kNone) out.top_current_a.push_back(x[current_index_[top]]);
     if (options_.record_energy) out.energy_j.push_back(StoredEnergy(t, x));
   }
 
@@ -290,8 +307,20 @@ class NetworkProcess {
         const double u = node.kp * (Setpoint(node, t, side) - v) + node.ki * x[integral_index_[i]];
         return node.torque_limit > 0 ? std::clamp(u, -node.torque_limit, node.torque_limit) : u;
       }
+      case Drive::kDcMotorVoltage:
+      case Drive::kDcMotorSpeed: return node.motor.motor_constant * x[current_index_[i]];
     }
     return 0;
+  }
+
+  // The armature voltage of a DC motor: the setpoint (open loop) or the speed controller's output, clamped.
+  double MotorVoltage(int i, const State& x, double v, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    const double u = node.drive == Drive::kDcMotorVoltage
+                         ? Setpoint(node, t, side)
+                         : node.kp * (Setpoint(node, t, side) - v) + node.ki * x[integral_index_[i]];
+    const double limit = node.motor.voltage_limit;
+    return limit > 0 ? std::clamp(u, -limit, limit) : u;
   }
 
   double SlipFriction(int i, double v) const {
@@ -462,7 +491,7 @@ class NetworkProcess {
   double kink_threshold_, jump_threshold_;
   int num_nodes_;
   int dimension_ = 0;
-  std::vector<int> speed_index_, integral_index_;
+  std::vector<int> speed_index_, integral_index_, current_index_;
   std::vector<int> frictional_nodes_;
   std::vector<Regime> regime_;
   integration::HermiteHistory waves_;

@@ -32,6 +32,18 @@ enum class Drive {
   kSpeedDashpot,      // torque beta (setpoint(t) - v): the dissipative top of the chapter's eq. 2.10 family
   kPiSpeedController, // torque kp (setpoint - v) + ki * integral(setpoint - v), clamped to +/- torque_limit
   kTorque,            // torque = setpoint(t)
+  // DC motor (chapter eq. 2.15): torque k I with L dI/dt = V - R I - k v (k_T = k_e = k). V is the setpoint in volts
+  // (open loop) or comes from a PI speed controller, kp (setpoint - v) + ki * integral, in volts; both clamped to
+  // +/- voltage_limit.
+  kDcMotorVoltage,
+  kDcMotorSpeed,
+};
+
+struct DcMotor {
+  double motor_constant = 0;       // k [N·m/A = V·s/rad]
+  double armature_resistance = 0;  // R [ohm]
+  double armature_inductance = 0;  // L [H]
+  double voltage_limit = 0;        // [V], 0: unlimited
 };
 
 struct Node {
@@ -43,9 +55,12 @@ struct Node {
   double drive_damping = 0;          // beta of kSpeedDashpot [N·m·s/rad]
   double kp = 0, ki = 0;             // PI gains [N·m·s/rad], [N·m/rad]
   double torque_limit = 0;           // 0: unlimited
+  DcMotor motor;                     // kDcMotorVoltage, kDcMotorSpeed; kp [V·s/rad], ki [V/rad] for the latter
   std::optional<bitrock::FrictionLaw> friction;  // contact torque (bit–rock); set-valued laws need inertia > 0
 
   bool massless() const { return inertia == 0; }
+  bool has_dc_motor() const { return drive == Drive::kDcMotorVoltage || drive == Drive::kDcMotorSpeed; }
+  bool has_speed_integral() const { return drive == Drive::kPiSpeedController || drive == Drive::kDcMotorSpeed; }
   bool has_set_valued_friction() const { return friction && friction->IsSetValued(); }
 };
 

@@ -58,7 +58,7 @@ void AddSectionsWithDamping(const std::vector<waves::Section>& sections, double 
 waves::Node ReadTop(const JsonReader& r) {
   waves::Node top;
   top.name = "top";
-  const std::string type = r.String("type", {"prescribed_speed", "dissipative", "top_drive", "torque"});
+  const std::string type = r.String("type", {"prescribed_speed", "dissipative", "top_drive", "torque", "dc_motor"});
   if (type == "prescribed_speed") {
     top.drive = waves::Drive::kPrescribedSpeed;
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
@@ -73,6 +73,24 @@ waves::Node ReadTop(const JsonReader& r) {
     top.ki = r.Number("ki_Nm_per_rad", Range::NonNegative());
     top.torque_limit = r.Number("torque_limit_Nm", Range::NonNegative(), 0.0);
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
+  } else if (type == "dc_motor") {
+    top.inertia = r.Number("inertia_kgm2", Range::Positive());
+    top.motor.motor_constant = r.Number("motor_constant_Nm_per_A", Range::Positive());
+    top.motor.armature_resistance = r.Number("resistance_ohm", Range::Positive());
+    top.motor.armature_inductance = r.Number("inductance_H", Range::Positive());
+    top.motor.voltage_limit = r.Number("voltage_limit_V", Range::NonNegative(), 0.0);
+    if (r.Has("voltage_V")) {
+      if (r.Has("speed_rad_s"))
+        throw InputError(r.PathOf("speed_rad_s"), "a DC motor top takes either voltage_V (open loop) or speed_rad_s "
+                                                  "(speed controller), not both");
+      top.drive = waves::Drive::kDcMotorVoltage;
+      top.setpoint = model::Schedule::FromJson(r.Raw("voltage_V"), r.PathOf("voltage_V"));
+    } else {
+      top.drive = waves::Drive::kDcMotorSpeed;
+      top.kp = r.Number("kp_V_s_per_rad", Range::NonNegative());
+      top.ki = r.Number("ki_V_per_rad", Range::NonNegative());
+      top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
+    }
   } else {
     top.drive = waves::Drive::kTorque;
     top.inertia = r.Number("inertia_kgm2", Range::NonNegative(), 0.0);  // 0: a force-controlled end (eq. 2.9)
@@ -126,6 +144,10 @@ class TorsionalWaveModel : public PreparedModel {
     result.channels.push_back({"bit_angle_rad", std::move(tr.bit_angle_rad)});
     result.channels.push_back({"bit_stuck", std::move(tr.bit_stuck)});
     result.plot_panels = {{"top_rpm", "bit_rpm"}, {"top_torque_Nm", "bit_torque_Nm"}};
+    if (!tr.top_current_a.empty()) {
+      result.channels.push_back({"top_current_A", std::move(tr.top_current_a)});
+      result.plot_panels.push_back({"top_current_A"});
+    }
     result.time_s = std::move(tr.time_s);
     return result;
   }
@@ -169,10 +191,17 @@ class TorsionalWaveKind : public ModelKind {
         {"string/sections/*/name", "optional label"},
         {"string/viscous_damping_Nms_per_rad_m", "distributed viscous damping gamma [N·m·s/rad per m], >= 0, default 0"},
         {"string/damping_subsections", "dashpot nodes per section for the damping, 1..1000, default 20"},
-        {"top/type", "prescribed_speed | dissipative | top_drive | torque"},
+        {"top/type", "prescribed_speed | dissipative | top_drive | torque | dc_motor"},
+        {"top/motor_constant_Nm_per_A", "dc_motor (chapter eq. 2.15): k_T = k_e [N·m/A], > 0"},
+        {"top/resistance_ohm", "dc_motor: armature resistance R [ohm], > 0"},
+        {"top/inductance_H", "dc_motor: armature inductance L [H], > 0"},
+        {"top/voltage_limit_V", "dc_motor: armature voltage limit [V], >= 0, default 0 = unlimited"},
+        {"top/voltage_V", "dc_motor, open loop: armature voltage schedule [V] (instead of speed_rad_s)"},
+        {"top/kp_V_s_per_rad", "dc_motor with speed_rad_s: proportional gain of the speed controller, >= 0"},
+        {"top/ki_V_per_rad", "dc_motor with speed_rad_s: integral gain of the speed controller, >= 0"},
         {"top/speed_rad_s", "set-point [rad/s]: a number or {\"knots\": [[t, v], ...]}"},
         {"top/beta_Nms_per_rad", "dissipative top: beta > 0"},
-        {"top/inertia_kgm2", "top_drive: inertia > 0; torque: >= 0, default 0 (force-controlled end)"},
+        {"top/inertia_kgm2", "top_drive, dc_motor: inertia > 0; torque: >= 0, default 0 (force-controlled end)"},
         {"top/kp_Nms_per_rad", "top_drive: proportional gain >= 0"},
         {"top/ki_Nm_per_rad", "top_drive: integral gain >= 0"},
         {"top/torque_limit_Nm", "top_drive: >= 0, 0 = unlimited"},
