@@ -39,13 +39,6 @@ HermiteHistory::HermiteHistory(int dimension, Prehistory prehistory)
   if (dimension <= 0) throw std::invalid_argument("HermiteHistory: dimension must be positive");
 }
 
-void HermiteHistory::SetStart(double t0, const double* x0, const double* d0) {
-  has_start_ = true;
-  start_time_ = t0;
-  start_value_.assign(x0, x0 + dimension_);
-  start_rate_.assign(d0, d0 + dimension_);
-}
-
 double HermiteHistory::begin_time() const { return empty() ? 0.0 : t_begin_[first_]; }
 double HermiteHistory::end_time() const { return empty() ? 0.0 : t_end_.back(); }
 
@@ -102,7 +95,6 @@ HermiteHistory::Location HermiteHistory::Locate(double t, Side side) const {
 }
 
 double HermiteHistory::Value(double t, int i, Side side) const {
-  if (FromStart(t)) return start_value_[i] + (t - start_time_) * start_rate_[i];
   const Location loc = Locate(t, side);
   if (loc.piece == kPrehistory) {
     prehistory_(std::min(t, empty() ? t : begin_time()), scratch_value_.data(), scratch_deriv_.data());
@@ -114,7 +106,6 @@ double HermiteHistory::Value(double t, int i, Side side) const {
 }
 
 double HermiteHistory::Derivative(double t, int i, Side side) const {
-  if (FromStart(t)) return start_rate_[i];
   const Location loc = Locate(t, side);
   if (loc.piece == kPrehistory) {
     prehistory_(std::min(t, empty() ? t : begin_time()), scratch_value_.data(), scratch_deriv_.data());
@@ -127,10 +118,6 @@ double HermiteHistory::Derivative(double t, int i, Side side) const {
 }
 
 void HermiteHistory::Values(double t, double* out, Side side) const {
-  if (FromStart(t)) {
-    for (int i = 0; i < dimension_; ++i) out[i] = start_value_[i] + (t - start_time_) * start_rate_[i];
-    return;
-  }
   const Location loc = Locate(t, side);
   if (loc.piece == kPrehistory) {
     prehistory_(std::min(t, empty() ? t : begin_time()), out, scratch_deriv_.data());
@@ -143,10 +130,6 @@ void HermiteHistory::Values(double t, double* out, Side side) const {
 }
 
 void HermiteHistory::Derivatives(double t, double* out, Side side) const {
-  if (FromStart(t)) {
-    std::copy(start_rate_.begin(), start_rate_.end(), out);
-    return;
-  }
   const Location loc = Locate(t, side);
   if (loc.piece == kPrehistory) {
     prehistory_(std::min(t, empty() ? t : begin_time()), scratch_value_.data(), out);

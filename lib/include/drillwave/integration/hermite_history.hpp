@@ -25,16 +25,12 @@ class HermiteHistory {
   double end_time() const;    // end of the newest piece
   std::size_t num_pieces() const { return t_begin_.size() - first_; }
 
-  // The solution's start (t0, x0, x0'): while no piece is stored, look-ups after t0 (vanishing delays in the
-  // first step) extrapolate from it instead of calling the prehistory past its end.
-  void SetStart(double t0, const double* x0, const double* d0);
-
   // Appends the piece [t0, t1]; t0 must equal end_time() (up to rounding) unless the history is empty.
   void Append(double t0, const double* x0, const double* d0, double t1, const double* x1, const double* d1,
               const double* x_mid);
 
-  // Component i at time t. Before the history: the prehistory; after its end: the last piece extrapolated
-  // (only vanishing delays ask for that, and the step-size control keeps it accurate).
+  // Component i at time t. Before the history: the prehistory; after its end: the last piece extrapolated (a
+  // predictor for look-ups inside the step being taken, which the delay solver then iterates on).
   double Value(double t, int i, Side side = Side::kRight) const;
   double Derivative(double t, int i, Side side = Side::kRight) const;
   void Values(double t, double* out, Side side = Side::kRight) const;
@@ -64,11 +60,7 @@ class HermiteHistory {
   std::vector<double> t_end_;
   std::vector<double> data_;    // per piece: x0[dim], x1[dim], d0[dim], d1[dim], bubble[dim]
   mutable std::vector<double> scratch_value_, scratch_deriv_;
-  mutable std::size_t hint_ = 0;
-  bool has_start_ = false;
-  double start_time_ = 0;
-  std::vector<double> start_value_, start_rate_;
-  bool FromStart(double t) const { return has_start_ && empty() && t > start_time_; }  // piece of the last look-up (a cache; makes a history unsafe to share across threads)
+  mutable std::size_t hint_ = 0;  // piece of the last look-up (a cache; makes a history unsafe to share across threads)
 };
 
 }  // namespace drillwave::integration

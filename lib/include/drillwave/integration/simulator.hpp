@@ -18,68 +18,100 @@
 //   bool OnEvent(int i, double t, std::vector<double>& x);  // apply the event; true if mode or state changed
 //   double NextBreakpoint() const;     // +inf if none
 //   void OnBreakpoint(double t);       // the loop has stepped exactly onto NextBreakpoint()
+// and optionally (detected at compile time; a process without them is integrated exactly as before)
+//   bool ReadsAhead() const;           // a look-up since BeginStep/SetTrial asked for a time after the step start
+//   void SetTrial(const Piece& trial); // serve such look-ups from this trial of the current step
+//   bool CutAt(const Piece& piece);    // true if the process found (and queued) a breakpoint inside the piece: the
+//                                      // step is redone up to it
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <memory>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include <boost/numeric/odeint.hpp>
 
 #include "drillwave/core/error.hpp"
+#include "drillwave/integration/options.hpp"
 
 namespace drillwave::integration {
 
-struct IntegratorOptions {
-  double abs_tol = 1e-8;
-  double rel_tol = 1e-8;
-  double initial_step = 1e-4;
-  double max_step = std::numeric_limits<double>::infinity();  // further capped by Process::MaxStep()
-  double event_time_tol = 1e-12;                              // width of the bracket that locates an event
-  int max_events_at_one_instant = 16;                         // guards against chattering mode changes
-  // Delayed values come from the stored interpolant, whose error the stepper's own control never sees (it is
-  // exact for the stages, not between steps). When on, a step is redone shorter if its cubic Hermite interpolant
-  // misses the continuous extension's midpoint by more than the tolerance.
-  bool control_history_error = true;
-  // A piece whose history error stays above tolerance is accepted once its step is below this floor (and always
-  // below 1e-9 t): a jump or kink nobody announced as a breakpoint cannot be resolved by shrinking the step, and a
-  // model whose waves carry many unannounced kinks can trade that error for speed here.
-  double history_step_floor = 0;
-};
-
-// One accepted piece of the solution: values and derivatives at both ends (one-sided limits) and the value at the
-// midpoint from the stepper's continuous extension, which together fix a quartic interpolant.
-struct Piece {
-  double t0, t1;
-  const std::vector<double>& x0;
-  const std::vector<double>& f0;
-  const std::vector<double>& x1;
-  const std::vector<double>& f1;
-  const std::vector<double>& x_mid;
-};
-
-// The piece's quartic at time t in [t0, t1]: the interpolant the history stores, for sampling outputs.
-inline void InterpolatePiece(const Piece& p, double t, std::vector<double>& x) {
-  const double h = p.t1 - p.t0, s = (t - p.t0) / h, s2 = s * s, s3 = s2 * s, r = 1 - s;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double cubic_mid = 0.5 * (p.x0[i] + p.x1[i]) + 0.125 * h * (p.f0[i] - p.f1[i]);
-    x[i] = (2 * s3 - 3 * s2 + 1) * p.x0[i] + (s3 - 2 * s2 + s) * h * p.f0[i] + (-2 * s3 + 3 * s2) * p.x1[i] +
-           (s3 - s2) * h * p.f1[i] + 16.0 * (p.x_mid[i] - cubic_mid) * s2 * r * r;
-  }
-}
-
-struct IntegrationStats {
-  long steps = 0;                // accepted pieces
-  long derivative_evaluations = 0;
-  long events = 0;               // mode changes applied
-  long breakpoints = 0;          // breakpoints stepped onto
-  long history_rejections = 0;   // steps redone because their interpolant was not accurate enough
-  double wall_time_s = 0;
-};
-
 using PieceObserver = std::function<void(const Piece&)>;
+
+namespace detail {
+template <class P, class = void>
+struct ReadsItsOwnStep : std::false_type {};
+template <class P>
+struct ReadsItsOwnStep<P, std::void_t<decltype(std::declval<const P&>().ReadsAhead()),
+                                      decltype(std::declval<P&>().SetTrial(std::declval<const Piece&>()))>>
+    : std::true_type {};
+template <class P, class = void>
+struct CutsSteps : std::false_type {};
+template <class P>
+struct CutsSteps<P, std::void_t<decltype(std::declval<P&>().CutAt(std::declval<const Piece&>()))>> : std::true_type {};
+
+// Anderson acceleration (Walker & Ni 2011) of a fixed-point iteration z = G(z): the next trial is the combination
+// of the last few images whose residuals G(z) - z cancel best (least squares, in the caller's scaled units). A
+// neutral term with coefficient c contracts the plain iteration only by c per trial; on such a nearly linear map
+// the mixing converges in a few trials.
+class AndersonMixer {
+ public:
+  void Reset() { size_ = 0; }
+  // Records the trial z and its image g (both scaled) and overwrites z with the next trial.
+  void Next(std::vector<double>& z, const std::vector<double>& g) {
+    const std::size_t n = z.size();
+    if (size_ == kMemory + 1) {  // forget the oldest pair
+      std::rotate(std::begin(z_), std::begin(z_) + 1, std::end(z_));
+      std::rotate(std::begin(g_), std::begin(g_) + 1, std::end(g_));
+      --size_;
+    }
+    z_[size_] = z;
+    g_[size_] = g;
+    ++size_;
+    const int k = static_cast<int>(size_) - 1;  // differences available
+    z = g;
+    if (k == 0) return;
+    // Normal equations of min |r_k - sum_j gamma_j (r_j+1 - r_j)|, r = g - z (k <= 3: tiny and well scaled).
+    double a[kMemory][kMemory + 1] = {};
+    auto dr = [&](int j, std::size_t i) { return (g_[j + 1][i] - z_[j + 1][i]) - (g_[j][i] - z_[j][i]); };
+    for (int p = 0; p < k; ++p) {
+      for (int q = 0; q < k; ++q)
+        for (std::size_t i = 0; i < n; ++i) a[p][q] += dr(p, i) * dr(q, i);
+      for (std::size_t i = 0; i < n; ++i) a[p][k] += dr(p, i) * (g_[k][i] - z_[k][i]);
+      a[p][p] *= 1 + 1e-10;  // keeps nearly dependent differences solvable
+    }
+    double gamma[kMemory];
+    for (int p = 0; p < k; ++p) {  // Gaussian elimination with partial pivoting
+      int best = p;
+      for (int q = p + 1; q < k; ++q)
+        if (std::abs(a[q][p]) > std::abs(a[best][p])) best = q;
+      std::swap(a[p], a[best]);
+      if (a[p][p] == 0) return;  // degenerate: keep the plain step
+      for (int q = p + 1; q < k; ++q) {
+        const double f = a[q][p] / a[p][p];
+        for (int c = p; c <= k; ++c) a[q][c] -= f * a[p][c];
+      }
+    }
+    for (int p = k - 1; p >= 0; --p) {
+      double v = a[p][k];
+      for (int c = p + 1; c < k; ++c) v -= a[p][c] * gamma[c];
+      gamma[p] = v / a[p][p];
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      for (int j = 0; j < k; ++j) z[i] -= gamma[j] * (g_[j + 1][i] - g_[j][i]);
+  }
+
+ private:
+  static constexpr int kMemory = 3;
+  std::vector<double> z_[kMemory + 1], g_[kMemory + 1];
+  std::size_t size_ = 0;
+};
+}  // namespace detail
 
 // An observer that samples the solution at k * interval, k = 1, 2, ... (the caller samples t0 = 0 itself), from each
 // accepted piece's quartic; with interval <= 0 it samples every piece's end instead. Sample times are counted, not
@@ -116,6 +148,10 @@ class Simulator {
   template <class Dense>
   double LocateEvent(const Dense& dense, int i, double ta, double tb, State& x_at) const;
 
+  // Trials of one step reading its own interpolant: at most this many, settled at this change (tolerance units).
+  static constexpr int kMaxTrials = 12;
+  static constexpr double kTrialTolerance = 0.05;
+
   Process& process_;
   IntegratorOptions options_;
   IntegrationStats stats_;
@@ -147,12 +183,28 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
   // restart point) and the last one (after do_step: the first-same-as-last stage f(t1, x1), a left limit), so the
   // history gets exact end derivatives without extra evaluations.
   bool capture_first = false;
+  bool reuse_f0 = false;  // a redo of the same step: its first stage f(t, x) is f0 already
   double last_t = std::numeric_limits<double>::quiet_NaN();
   State f0(n), f1(n);
   auto system = [&](const State& xs, State& dxdt, double t) {
+    last_t = t;
+    if (reuse_f0) {
+      reuse_f0 = capture_first = false;
+      std::copy(f0.begin(), f0.end(), dxdt.begin());
+      std::copy(f0.begin(), f0.end(), f1.begin());
+      return;
+    }
+    if (options_.max_evaluations > 0 && stats_.derivative_evaluations >= options_.max_evaluations)
+      throw NumericalError("evaluation budget exhausted (max_evaluations = " +
+                               std::to_string(options_.max_evaluations) + " right-hand-side evaluations)",
+                           t, xs);
     process_.Derivatives(xs, dxdt, t);
     ++stats_.derivative_evaluations;
-    last_t = t;
+    // NaN from a finite state is the model's, not the integrator's (an infinite value may still be stepped around).
+    if (std::any_of(dxdt.begin(), dxdt.end(), [](double v) { return std::isnan(v); }) &&
+        std::all_of(xs.begin(), xs.end(), [](double v) { return std::isfinite(v); }))
+      throw NumericalError("the right-hand side returned NaN for a finite state (a model function is undefined here)",
+                           t, xs);
     std::copy(dxdt.begin(), dxdt.end(), f1.begin());
     if (capture_first) {
       std::copy(dxdt.begin(), dxdt.end(), f0.begin());
@@ -175,7 +227,9 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
   double t = t0;
   double dt = std::min(options_.initial_step, max_step);
   bool restart = true;  // derivative and witnesses at t must be (re)computed: start, breakpoint or event
-  State x_event(n), x_try(n), f_event(n), x_mid(n), x_mid_event(n);
+  State x1(n), x_event(n), x_try(n), f_event(n), x_mid(n), x_mid_event(n);
+  State trial_x1(n), trial_f1(n), trial_mid(n), guess(3 * n), image(3 * n), weight(n);
+  detail::AndersonMixer mixer;
   bool history_limited = false;  // the last piece asked for a shorter step than the stepper's suggestion
   int events_here = 0;
   double events_here_time = t0;
@@ -191,7 +245,51 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
     if (process_.OnEvent(i, te, xe)) ++stats_.events;
   };
 
+  // The step size underflows either at a discontinuity nobody announced or because the solution escapes to infinity
+  // at a finite time (then the state has grown by many orders of magnitude): say which.
+  double start_size = 1;
+  for (double v : x) start_size = std::max(start_size, std::abs(v));
+  auto underflow = [&](const std::string& why) {
+    double size = 0;
+    for (double v : x) size = std::max(size, std::abs(v));
+    if (size > 1e6 * start_size)
+      throw NumericalError("blow-up: the solution has grown to |x| = " + std::to_string(size) + " (from " +
+                               std::to_string(start_size) + " at the start) and the step size underflows",
+                           t, x);
+    throw NumericalError(why, t, x);
+  };
+  // One attempt at the step from (t, x) as initialized: its end, state and midpoint (f0, f1 filled by system).
+  auto attempt = [&]() {
+    for (;;) {
+      try {
+        dense.do_step(system);
+      } catch (const odeint::step_adjustment_error&) {
+        underflow("step size underflow (the error tolerance cannot be met)");
+      }
+      const double t1 = dense.current_time();
+      x1 = dense.current_state();
+      if (!(t1 - t > 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))))
+        underflow("step size underflow (a discontinuity the integrator cannot step over?)");
+      if (!std::all_of(x1.begin(), x1.end(), [](double v) { return std::isfinite(v); })) {
+        // The error estimate of an overflowing step says nothing: retry a quarter as long. Only a solution that
+        // escapes to infinity keeps overflowing down to a vanishing step.
+        if (t1 - t > 1e-12 * std::max(1.0, std::abs(t))) {
+          dense.initialize(x, t, 0.25 * (t1 - t));
+          reuse_f0 = true;
+          continue;
+        }
+        throw NumericalError("blow-up: the state becomes infinite within ever shorter steps after this point", t, x);
+      }
+      if (last_t != t1) throw NumericalError("internal: the last stage is not at the step end", t1, x1);
+      dense.calc_state(0.5 * (t + t1), x_mid);
+      return t1;
+    }
+  };
   while (t < t_end) {
+    if (options_.max_steps > 0 && stats_.steps >= options_.max_steps)
+      throw NumericalError("step budget exhausted (max_steps = " + std::to_string(options_.max_steps) +
+                               " accepted steps) before the end time " + std::to_string(t_end),
+                           t, x);
     const double t_stop = std::min(process_.NextBreakpoint(), t_end);
     if (t_stop <= t + 1e-13 * std::max(1.0, std::abs(t))) {  // standing on a breakpoint
       if (t_stop >= t_end) break;
@@ -217,20 +315,65 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
         }
       }
     }
-    try {
-      dense.do_step(system);
-    } catch (const odeint::step_adjustment_error&) {
-      throw NumericalError("step size underflow (the error tolerance cannot be met)", t, x);
+    double t1 = attempt();
+    if constexpr (detail::ReadsItsOwnStep<Process>::value) {
+      // A look-up reached into the step itself (a delay shorter than the step, or vanishing), so it read an
+      // extrapolation. Redo the step reading its previous trial until two trials agree to a small fraction of the
+      // tolerance (fixed-point iteration on the step's own interpolant); one that does not settle is halved.
+      int redo = 0;
+      bool settled = true;
+      mixer.Reset();
+      while (process_.ReadsAhead()) {
+        // The trial just computed, in tolerance units (fixed for the iteration): end value, midpoint, end slope
+        // times h.
+        const double h = t1 - t;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (redo == 0)
+            weight[i] = options_.abs_tol + options_.rel_tol * std::max(std::abs(x[i]), std::abs(x1[i]));
+          image[i] = x1[i] / weight[i];
+          image[n + i] = x_mid[i] / weight[i];
+          image[2 * n + i] = h * f1[i] / weight[i];
+        }
+        if (redo > 0) {
+          double change = 0;  // between this trial's input and its result
+          for (std::size_t i = 0; i < 3 * n; ++i) change = std::max(change, std::abs(image[i] - guess[i]));
+          if (change <= kTrialTolerance) break;
+          mixer.Next(guess, image);
+        } else {
+          guess = image;  // the first attempt read a predictor: its result is the first trial
+        }
+        if (++redo > kMaxTrials) {
+          settled = false;
+          break;
+        }
+        const double trial_t1 = t1;
+        for (std::size_t i = 0; i < n; ++i) {
+          trial_x1[i] = guess[i] * weight[i];
+          trial_mid[i] = guess[n + i] * weight[i];
+          trial_f1[i] = guess[2 * n + i] * weight[i] / h;
+        }
+        process_.SetTrial(Piece{t, t1, x, f0, trial_x1, trial_f1, trial_mid});
+        dense.initialize(x, t, h);
+        reuse_f0 = true;
+        t1 = attempt();
+        ++stats_.trial_redos;
+        if (t1 != trial_t1) {  // the error control shortened the step: start the iteration afresh on it
+          redo = 0;
+          mixer.Reset();
+        }
+      }
+      if (!settled) {
+        if (t1 - t <= 1e-12 * std::max(1.0, std::abs(t)))
+          throw NumericalError("no solution beyond this point: the step reads its own future (a delayed argument "
+                               "inside it) and its trials do not settle even for a step of " +
+                                   std::to_string(t1 - t) + " (a neutral term whose coefficient reaches 1 there?)",
+                               t, x);
+        dt = 0.5 * (t1 - t);
+        dense.initialize(x, t, dt);
+        capture_first = true;
+        continue;
+      }
     }
-    const double t1 = dense.current_time();
-    const State& x1 = dense.current_state();
-    if (!(t1 - t > 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))))
-      throw NumericalError("step size underflow (a discontinuity the integrator cannot step over?)", t, x);
-    if (!std::all_of(x1.begin(), x1.end(), [](double v) { return std::isfinite(v); }))
-      throw NumericalError("non-finite state in the step after this point (diverged, or a model function gave NaN)",
-                           t, x);
-    if (last_t != t1) throw NumericalError("internal: the last stage is not at the step end", t1, x1);
-    dense.calc_state(0.5 * (t + t1), x_mid);
     double dt_history = std::numeric_limits<double>::infinity();
     if (options_.control_history_error) {
       const double h = t1 - t;
@@ -252,6 +395,12 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
         dt = dt_history;
         dense.initialize(x, t, dt);
         capture_first = true;
+        continue;
+      }
+    }
+    if constexpr (detail::CutsSteps<Process>::value) {
+      if (process_.CutAt(Piece{t, t1, x, f0, x1, f1, x_mid})) {  // the loop's next stop is now inside this step
+        dt = t1 - t;
         continue;
       }
     }
