@@ -1,15 +1,13 @@
 #include "drillwave/cases/stability.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/parallel.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -108,23 +106,17 @@ std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const 
     }
   }
   cases.front().model->Linearize();  // a kind without linearization fails here, before the threads start
-  std::vector<std::vector<StabilityMapRow>> per_value(cases.size());
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t i = next++; i < cases.size(); i = next++) {
-      const auto analysis = AnalyzeStability(cases[i], options);
-      for (std::size_t b = 0; b < analysis.size(); ++b) {
-        const auto& sp = analysis[b].spectrum;
-        per_value[i].push_back({spec.values[i], static_cast<int>(b), SteadySpeed(analysis[b].point.steady_state),
-                                sp.spectral_abscissa, sp.roots.empty() ? 0.0 : sp.roots.front().s.imag(),
-                                sp.essential_abscissa, sp.stable});
-      }
+  const auto per_value = ParallelMap(cases.size(), spec.jobs, [&](std::size_t i) {
+    std::vector<StabilityMapRow> rows;
+    const auto analysis = AnalyzeStability(cases[i], options);
+    for (std::size_t b = 0; b < analysis.size(); ++b) {
+      const auto& sp = analysis[b].spectrum;
+      rows.push_back({spec.values[i], static_cast<int>(b), SteadySpeed(analysis[b].point.steady_state),
+                      sp.spectral_abscissa, sp.roots.empty() ? 0.0 : sp.roots.front().s.imag(), sp.essential_abscissa,
+                      sp.stable});
     }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::min<int>(spec.jobs, static_cast<int>(cases.size())); ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+    return rows;
+  });
   std::vector<StabilityMapRow> rows;
   for (auto& v : per_value) rows.insert(rows.end(), v.begin(), v.end());
   return rows;

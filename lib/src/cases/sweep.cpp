@@ -1,18 +1,16 @@
 #include "drillwave/cases/sweep.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <mutex>
 #include <set>
 #include <sstream>
-#include <thread>
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/parallel.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -82,30 +80,22 @@ SweepResult RunSweep(const nlohmann::json& document, const SweepSpec& spec, cons
 
   const auto wall_start = std::chrono::steady_clock::now();
   SweepResult result;
-  result.points.resize(spec.values.size());
-  std::atomic<std::size_t> next{0};
-  std::mutex report_mutex;
-  int done = 0;
-  auto worker = [&] {
-    for (std::size_t i = next++; i < cases.size(); i = next++) {
-      SweepPoint& p = result.points[i];
-      p.value = spec.values[i];
-      try {
-        p.summary = RunCase(cases[i]).summary;
-        p.ok = true;
-      } catch (const NumericalError& e) {
-        p.error = e.what();
-      }
-      const std::lock_guard<std::mutex> lock(report_mutex);
-      ++done;
-      if (progress) progress(p, done, static_cast<int>(cases.size()));
-    }
-  };
-  const int threads = std::min<int>(spec.jobs, static_cast<int>(cases.size()));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  result.points = ParallelMap(
+      cases.size(), spec.jobs,
+      [&](std::size_t i) {
+        SweepPoint p;
+        p.value = spec.values[i];
+        try {
+          p.summary = RunCase(cases[i]).summary;
+          p.ok = true;
+        } catch (const NumericalError& e) {
+          p.error = e.what();
+        }
+        return p;
+      },
+      [&](const SweepPoint& p, std::size_t done, std::size_t total) {
+        if (progress) progress(p, static_cast<int>(done), static_cast<int>(total));
+      });
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return result;
 }

@@ -38,7 +38,8 @@ struct StabilityMapRow {
   double essential_abscissa = 0;      // -inf for retarded systems
   bool stable = false;
 };
-// Values are checked first (InputError naming the pointer and value); spec.jobs threads.
+// Values are checked first (InputError naming the pointer and value); spec.jobs threads (core/parallel.hpp): an
+// analysis that throws stops the map and its exception (the lowest failing value's) reaches the caller.
 std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const SweepSpec& spec,
                                           const analysis::SpectrumOptions& options = {});
 // stability_map.csv, stability_map.svg (steady speed and rightmost Re s against the parameter), report.md.

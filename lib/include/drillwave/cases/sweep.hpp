@@ -38,8 +38,9 @@ struct SweepResult {
 
 // Checks the spec and parses every variant of the document before running anything, so bad input (an unknown
 // pointer, a value out of the field's range) throws InputError naming the pointer and the value and runs nothing.
-// A run that fails numerically is recorded in its point (ok = false) and the sweep goes on. `progress`, if given,
-// is called after each run (from one thread at a time) with the point, the number done and the total.
+// A run that fails numerically is recorded in its point (ok = false) and the sweep goes on; any other exception
+// stops it and reaches the caller (core/parallel.hpp). `progress`, if given, is called after each run (from one
+// thread at a time) with the point, the number done and the total.
 using SweepProgress = std::function<void(const SweepPoint& point, int done, int total)>;
 SweepResult RunSweep(const nlohmann::json& document, const SweepSpec& spec, const SweepProgress& progress);
 

@@ -1,0 +1,36 @@
+# cmake -P script behind the package tests: configures, builds and runs tests/package/consumer against drillwave.
+#   MODE=install:      installs the drillwave build DRILLWAVE_BUILD into PREFIX and uses it by find_package
+#   MODE=subdirectory: uses the source tree DRILLWAVE_SOURCE by add_subdirectory (its build directory is kept, so
+#                      only the first run compiles the library)
+# Also: CONSUMER (the consumer's source), WORK (a scratch folder), GENERATOR, CXX_COMPILER.
+foreach(var MODE CONSUMER WORK GENERATOR CXX_COMPILER)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "run_consumer.cmake: ${var} is not set")
+  endif()
+endforeach()
+set(build ${WORK}/${MODE}-build)
+if(MODE STREQUAL "install")
+  set(prefix ${WORK}/prefix)
+  file(REMOVE_RECURSE ${prefix} ${build})
+  execute_process(COMMAND ${CMAKE_COMMAND} --install ${DRILLWAVE_BUILD} --prefix ${prefix} COMMAND_ERROR_IS_FATAL ANY)
+  foreach(file lib/cmake/drillwave/drillwaveConfig.cmake lib/cmake/drillwave/drillwaveConfigVersion.cmake
+               include/drillwave/cases/case_runner.hpp bin/drillwave)
+    if(NOT EXISTS ${prefix}/${file})
+      message(FATAL_ERROR "not installed: ${file}")
+    endif()
+  endforeach()
+  file(READ ${prefix}/lib/cmake/drillwave/drillwaveTargets.cmake targets)
+  string(FIND "${targets}" "${DRILLWAVE_SOURCE}" at)
+  if(NOT at EQUAL -1)
+    message(FATAL_ERROR "the installed package refers to the source tree ${DRILLWAVE_SOURCE}")
+  endif()
+  set(options -DCMAKE_PREFIX_PATH=${prefix})
+elseif(MODE STREQUAL "subdirectory")
+  set(options -DDRILLWAVE_SOURCE=${DRILLWAVE_SOURCE})
+else()
+  message(FATAL_ERROR "run_consumer.cmake: MODE must be install or subdirectory, not '${MODE}'")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER} -B ${build} -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release
+                        -DCMAKE_CXX_COMPILER=${CXX_COMPILER} ${options} COMMAND_ERROR_IS_FATAL ANY)
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${build} -j 2 COMMAND_ERROR_IS_FATAL ANY)
+execute_process(COMMAND ${build}/consumer COMMAND_ERROR_IS_FATAL ANY)
