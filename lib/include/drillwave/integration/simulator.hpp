@@ -47,6 +47,9 @@ struct IntegratorOptions {
   // below 1e-9 t): a jump or kink nobody announced as a breakpoint cannot be resolved by shrinking the step, and a
   // model whose waves carry many unannounced kinks can trade that error for speed here.
   double history_step_floor = 0;
+  // The most steps a run may need at the longest step the process allows (its shortest delay): refused before the
+  // first step, with InputError("/model", ...), rather than integrated for hours (a string of G = 1e300 Pa).
+  double max_steps = std::numeric_limits<double>::infinity();
 };
 
 // One accepted piece of the solution: values and derivatives at both ends (one-sided limits) and the value at the
@@ -140,6 +143,12 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
   const auto wall_start = std::chrono::steady_clock::now();
   const std::size_t n = x.size();
   const double max_step = std::min(options_.max_step, process_.MaxStep());
+  if ((t_end - t0) / max_step > options_.max_steps)
+    throw InputError("/model", "its shortest delay limits steps to " + ReadableNumber(max_step) + " s, so " +
+                                   ReadableNumber(t_end - t0) + " s need at least " +
+                                   ReadableNumber((t_end - t0) / max_step) + " steps, above the limit of " +
+                                   ReadableNumber(options_.max_steps) +
+                                   " (--max-samples); check the model's lengths, moduli and densities");
   auto dense = odeint::make_dense_output(options_.abs_tol, options_.rel_tol,
                                          std::isfinite(max_step) ? max_step : 0.0, Stepper());
 
