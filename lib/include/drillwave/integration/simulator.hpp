@@ -48,7 +48,8 @@ struct IntegratorOptions {
   // model whose waves carry many unannounced kinks can trade that error for speed here.
   double history_step_floor = 0;
   // The most steps a run may need at the longest step the process allows (its shortest delay): refused before the
-  // first step, with InputError("/model", ...), rather than integrated for hours (a string of G = 1e300 Pa).
+  // first step, with InputError("/model", ...), rather than integrated for hours (a string of G = 1e300 Pa). A run
+  // that makes more than 2 x max_steps derivative evaluations anyway (stiffness) stops with a NumericalError.
   double max_steps = std::numeric_limits<double>::infinity();
 };
 
@@ -226,6 +227,9 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
         }
       }
     }
+    if (static_cast<double>(stats_.derivative_evaluations) > 2 * options_.max_steps)  // a budget, not a guess
+      throw NumericalError("more than " + ReadableNumber(2 * options_.max_steps) + " derivative evaluations (a step "
+                           "size collapsed by stiffness; the limit is 2 x --max-samples)", t, x);
     try {
       dense.do_step(system);
     } catch (const odeint::step_adjustment_error&) {
