@@ -1,9 +1,11 @@
-// drillwave command-line tool: thin layer over the library. Exit codes: 0 success, 1 expectation failed,
-// 2 bad input (the message names the JSON path), 3 numerical failure (with time and state).
+// drillwave command-line tool: thin layer over the library. Exit codes: 0 success, 1 an expectation failed (--check),
+// 2 bad input (the message names the JSON path or option, the value and what was expected; checked before any work
+// starts), 3 numerical failure (with time and state), 4 internal error (with its message).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -29,16 +31,12 @@ namespace {
 using drillwave::cases::Case;
 
 nlohmann::json LoadCaseDocument(const std::string& file, const std::vector<std::string>& overrides) {
-  nlohmann::json doc;
-  if (file.empty()) {
-    doc = nlohmann::json::parse(drillwave::cases::DefaultCaseText());
-  } else {
-    doc = drillwave::io::LoadJsonFile(file);
-  }
+  nlohmann::json doc = file.empty() ? drillwave::io::ParseJsonText(drillwave::cases::DefaultCaseText(), "the default case")
+                                    : drillwave::io::LoadJsonFile(file);
   for (const std::string& o : overrides) {
     const auto eq = o.find('=');
     if (eq == std::string::npos || o.empty() || o[0] != '/')
-      throw drillwave::InputError(o, "--set expects /json/pointer=value");
+      throw drillwave::InputError("--set", "'" + drillwave::ReadableText(o) + "': expected /json/pointer=value");
     drillwave::io::SetByPointer(doc, o.substr(0, eq), drillwave::io::ParseScalarText(o.substr(eq + 1)));
   }
   return doc;
@@ -47,6 +45,7 @@ nlohmann::json LoadCaseDocument(const std::string& file, const std::vector<std::
 int RunAndWrite(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
                 bool check) {
   const Case c = drillwave::cases::ParseCase(LoadCaseDocument(file, overrides));
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: running case '" << c.name << "' (kind " << c.kind << ", " << c.settings.duration_s
             << " s simulated)" << (file.empty() ? " [embedded default case]" : "") << std::endl;
   const auto run = drillwave::cases::RunCase(c);
@@ -70,6 +69,7 @@ int Sweep(const std::string& file, const std::string& out_dir, const std::vector
           const std::string& pointer, const std::string& values_text, int jobs) {
   const nlohmann::json doc = LoadCaseDocument(file, overrides);
   drillwave::cases::SweepSpec spec{pointer, drillwave::cases::ParseSweepValues(values_text, "--values"), jobs};
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: sweeping " << pointer << " over " << spec.values.size() << " values on " << jobs
             << " thread(s)" << (file.empty() ? " [embedded default case]" : "") << std::endl;
   const auto result = drillwave::cases::RunSweep(
@@ -100,6 +100,7 @@ int Stability(const std::string& file, const std::string& out_dir, const std::ve
               const std::string& pointer, const std::string& values_text, int jobs) {
   const nlohmann::json doc = LoadCaseDocument(file, overrides);
   const auto dir = std::filesystem::absolute(out_dir).string();
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   if (!pointer.empty()) {
     const drillwave::cases::SweepSpec spec{pointer, drillwave::cases::ParseSweepValues(values_text, "--values"), jobs};
     const auto rows = drillwave::cases::StabilityMap(doc, spec);
@@ -130,6 +131,7 @@ int Stability(const std::string& file, const std::string& out_dir, const std::ve
 
 int Inspect(const std::string& file, const std::string& out_dir, const std::string& bit, const std::string& top) {
   const auto recording = drillwave::diagnosis::LoadRecording(file);
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   drillwave::diagnosis::InspectOptions options;
   options.bit_speed = bit;
   options.top_speed = top;
@@ -143,14 +145,42 @@ int Inspect(const std::string& file, const std::string& out_dir, const std::stri
   return 0;
 }
 
-// Explicit channel maps, then every recording channel not mapped paired with the model channel of the same name (or
-// of the same quantity in base units).
+// The model's channels, from a run of a few output samples: which channels a kind writes does not depend on the
+// duration, and checking the channel maps against them must not wait for the whole run.
+std::vector<drillwave::cases::Channel> ProbeChannels(const Case& c) {
+  drillwave::cases::RunSettings settings = c.settings;
+  settings.duration_s = std::min(c.settings.duration_s, std::max(4 * c.settings.output_interval_s, 1e-3));
+  settings.window_begin_s = 0;
+  settings.window_end_s = settings.duration_s;
+  return c.model->Run(settings).channels;
+}
+
+// Explicit channel maps, each checked against the recording and the model, then every recording channel not
+// mapped paired with the model channel of the same name (or of the same quantity in base units).
 std::vector<drillwave::diagnosis::ChannelMap> ChannelMaps(const std::vector<std::string>& texts,
                                                           const drillwave::diagnosis::Recording& recording,
                                                           const std::vector<drillwave::cases::Channel>& model) {
   namespace dg = drillwave::diagnosis;
   std::vector<dg::ChannelMap> maps;
-  for (const std::string& m : texts) maps.push_back(dg::ParseChannelMap(m));
+  auto list = [](const std::vector<std::string>& names) {
+    std::string text;
+    for (std::size_t j = 0; j < names.size() && j < 20; ++j) text += (text.empty() ? "" : ", ") + names[j];
+    return names.size() > 20 ? text + ", ..." : text;
+  };
+  std::vector<std::string> model_names;
+  for (const auto& ch : model) model_names.push_back(ch.name);
+  for (const std::string& m : texts) {
+    const dg::ChannelMap map = dg::ParseChannelMap(m);
+    if (!recording.Has(map.recording))
+      throw drillwave::InputError("--map", "'" + drillwave::ReadableText(m) + "': " + recording.source +
+                                               " has no channel " + drillwave::ReadableText(map.recording) +
+                                               " (it has: " + list(recording.names) + ")");
+    if (std::find(model_names.begin(), model_names.end(), map.model) == model_names.end())
+      throw drillwave::InputError("--map", "'" + drillwave::ReadableText(m) + "': the model has no channel " +
+                                               drillwave::ReadableText(map.model) + " (it has: " + list(model_names) +
+                                               ")");
+    maps.push_back(map);
+  }
   // Then the same quantity in kilo-units: a recording's x_kNm / x_kN against the model's x_Nm / x_N.
   auto kilo = [](const std::string& name) -> std::pair<std::string, double> {
     for (const auto& [from, to] : {std::pair<std::string, std::string>{"_kNm", "_Nm"}, {"_kN", "_N"}})
@@ -171,11 +201,23 @@ std::vector<drillwave::diagnosis::ChannelMap> ChannelMaps(const std::vector<std:
 
 // "begin,end" (empty: everything).
 std::pair<double, double> Window(const std::string& text) {
-  if (text.empty()) return {-1e300, 1e300};
+  const double inf = std::numeric_limits<double>::infinity();
+  if (text.empty()) return {-inf, inf};
   const auto values = drillwave::cases::ParseSweepValues(text, "--window");
-  if (values.size() != 2 || !(values[1] > values[0]))
-    throw drillwave::InputError("--window", "'" + text + "': expected begin,end with end > begin");
+  if (values.size() != 2)
+    throw drillwave::InputError("--window", "'" + drillwave::ReadableText(text) + "': expected begin,end [s]");
+  if (values[1] < values[0])
+    throw drillwave::InputError("--window", "'" + drillwave::ReadableText(text) +
+                                                "' is reversed; expected begin,end with begin < end");
+  if (!(values[1] > values[0]))
+    throw drillwave::InputError("--window", "'" + drillwave::ReadableText(text) +
+                                                "' is empty; expected begin,end with begin < end");
   return {values[0], values[1]};
+}
+
+// The model's time span as the comparison sees it (recording time: the warm-up before the recording subtracted).
+std::pair<double, double> ModelSpan(const Case& c, double offset_s) {
+  return {-offset_s, c.settings.duration_s - offset_s};
 }
 
 int Compare(const std::string& file, const std::string& recording_file, const std::vector<std::string>& overrides,
@@ -184,16 +226,23 @@ int Compare(const std::string& file, const std::string& recording_file, const st
   const drillwave::cases::Case c = drillwave::cases::ParseCase(LoadCaseDocument(file, overrides));
   const dg::Recording recording = dg::LoadRecording(recording_file);
   const auto [begin, end] = Window(window);
+  const auto [model_begin, model_end] = ModelSpan(c, 0);
+  dg::CheckWindow(recording, model_begin, model_end, begin, end);
+  const auto maps = ChannelMaps(map_texts, recording, ProbeChannels(c));
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: running case '" << c.name << "' (kind " << c.kind << ", " << c.settings.duration_s
             << " s simulated) against " << recording_file << std::endl;
   const auto run = drillwave::cases::RunCase(c);
-  const auto maps = ChannelMaps(map_texts, recording, run.result.channels);
   const dg::Comparison comparison = dg::Compare(recording, run.result, maps, begin, end);
   dg::WriteComparison(recording, run.result, maps, comparison, out_dir);
   for (const auto& f : comparison.findings) std::cout << "  - " << f << "\n";
   std::cout << "wrote " << std::filesystem::absolute(out_dir).string() << "/comparison.json, report.md, plot.svg"
             << std::endl;
   return 0;
+}
+
+nlohmann::json LoadSidecar(const std::string& sidecar_file, const nlohmann::json& doc, double warmup_s) {
+  return drillwave::diagnosis::CaseFromSidecar(drillwave::io::LoadJsonFile(sidecar_file), doc, warmup_s, sidecar_file);
 }
 
 int Fit(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
@@ -204,18 +253,45 @@ int Fit(const std::string& file, const std::string& recording_file, const std::s
   nlohmann::json doc = LoadCaseDocument(file, overrides);
   dg::FitOptions options;
   if (!sidecar_file.empty()) {  // the synthetic recordings' operating point, 30 s of warm-up before the recording
-    doc = dg::CaseFromSidecar(drillwave::io::LoadJsonFile(sidecar_file), doc, 30);
+    doc = LoadSidecar(sidecar_file, doc, 30);
     options.model_time_offset_s = 30;
     options.window_begin_s = 5;
   }
   const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
   const dg::Recording recording = dg::LoadRecording(recording_file);
-  options.maps = ChannelMaps(map_texts, recording, drillwave::cases::RunCase(c).result.channels);
   if (!window.empty()) std::tie(options.window_begin_s, options.window_end_s) = Window(window);
+  const auto [model_begin, model_end] = ModelSpan(c, options.model_time_offset_s);
+  dg::CheckWindow(recording, model_begin, model_end, options.window_begin_s, options.window_end_s);
+  options.maps = ChannelMaps(map_texts, recording, ProbeChannels(c));
   if (!features.empty()) options.features = features;
+  const std::vector<std::string> known = dg::FeatureNames(options.maps);
+  for (const std::string& f : options.features)
+    if (std::find(known.begin(), known.end(), f) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw drillwave::InputError("--feature", "no feature named '" + drillwave::ReadableText(f) +
+                                                   "' (with these channel maps there are: " + list + ")");
+    }
+  if (max_evaluations < 1)
+    throw drillwave::InputError("--max-evaluations", "expected a whole number >= 1, got " +
+                                                         std::to_string(max_evaluations));
   options.max_evaluations = max_evaluations;
   std::vector<dg::FitParameter> parameters;
-  for (const std::string& p : params) parameters.push_back(dg::ParseFitParameter(p));
+  for (const std::string& p : params) {
+    parameters.push_back(dg::ParseFitParameter(p));
+    nlohmann::json probe = doc;  // the pointer must lead to a number in the case, and both bounds must be valid
+    for (const double bound : {parameters.back().lower, parameters.back().upper}) {
+      drillwave::io::SetByPointer(probe, parameters.back().pointer, bound);
+      try {
+        drillwave::cases::ParseCase(probe);
+      } catch (const drillwave::InputError& e) {  // the bound itself out of the field's range; combinations may fail
+        if (e.json_path() == parameters.back().pointer)
+          throw drillwave::InputError("--param", "'" + drillwave::ReadableText(p) + "': the bound " +
+                                                     drillwave::ReadableNumber(bound) + " is not valid: " + e.what());
+      }
+    }
+  }
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: fitting " << parameters.size() << " parameter(s) of '" << c.name << "' to "
             << recording_file << std::endl;
   const dg::FitResult r = dg::FitFeatures(doc, recording, parameters, options, [](int n, double f, const std::vector<double>& v) {
@@ -238,17 +314,20 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
   namespace dg = drillwave::diagnosis;
   constexpr double kWarmup = 30;  // the synthetic recordings start after 30 s of drilling
   nlohmann::json doc = LoadCaseDocument(file, overrides);
-  if (!sidecar_file.empty()) doc = dg::CaseFromSidecar(drillwave::io::LoadJsonFile(sidecar_file), doc, kWarmup);
+  if (!sidecar_file.empty()) doc = LoadSidecar(sidecar_file, doc, kWarmup);
   const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
   const dg::Recording recording = dg::LoadRecording(recording_file);
   auto [begin, end] = Window(window);
   if (window.empty() && !sidecar_file.empty()) begin = 5;  // leave the recording's first seconds to settle
+  const double offset = sidecar_file.empty() ? 0 : kWarmup;
+  const auto [model_begin, model_end] = ModelSpan(c, offset);
+  dg::CheckWindow(recording, model_begin, model_end, begin, end);
+  const auto maps = ChannelMaps(map_texts, recording, ProbeChannels(c));
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: diagnosing " << recording_file << " with '" << c.name << "' (" << c.settings.duration_s
             << " s simulated)" << std::endl;
   auto run = drillwave::cases::RunCase(c);
-  if (!sidecar_file.empty())
-    for (double& t : run.result.time_s) t -= kWarmup;  // recording time
-  const auto maps = ChannelMaps(map_texts, recording, run.result.channels);
+  for (double& t : run.result.time_s) t -= offset;  // recording time
   const dg::Diagnosis d = dg::Diagnose(recording, run.result, maps, begin, end);
   drillwave::io::OutputDirectory out(out_dir);
   out.Open("diagnosis.json") << dg::DiagnosisToJson(d).dump(2) << "\n";
@@ -284,8 +363,14 @@ int ListKinds() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  drillwave::io::InstallTerminationCleanup();  // before any thread exists: SIGTERM/SIGINT remove unfinished outputs
   CLI::App app{"drillwave: drill-string vibration simulation (d'Alembert wave networks, delay equations)"};
   app.require_subcommand(0, 1);
+  app.fallthrough();  // options of the tool (--max-samples) may follow the subcommand
+  double max_samples = drillwave::cases::MaxSamples();
+  app.add_option("--max-samples", max_samples,
+                 "refuse cases asking for more output samples (duration / output_interval_s) or integration steps "
+                 "(duration / max_step_s) than this (default 1e7)");
   std::string case_file, out_dir = "drillwave-out";
   std::vector<std::string> overrides;
   bool check = false;
@@ -380,8 +465,27 @@ int main(int argc, char** argv) {
 
   auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
 
-  CLI11_PARSE(app, argc, argv);
   try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {  // --help
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // Bad options are bad input: exit 2 like every other, not CLI11's own codes.
+    std::cerr << "drillwave: bad input: " << e.what() << " (see drillwave --help)" << std::endl;
+    return 2;
+  }
+  try {
+    drillwave::cases::SetMaxSamples(max_samples);
+    // An argument given as "" is an error, never the same as leaving it out (which may mean the default case).
+    for (CLI::App* sub : app.get_subcommands())
+      for (const CLI::Option* option : sub->get_options())
+        if (option->count() > 0 && option->get_type_size() != 0)
+          for (const std::string& value : option->as<std::vector<std::string>>())
+            if (value.empty())
+              throw drillwave::InputError(option->get_name(), "empty value; expected " +
+                                                                  std::string(option->get_description().empty()
+                                                                                  ? "a value"
+                                                                                  : option->get_description()));
     if (kinds->parsed()) return ListKinds();
     if (validate->parsed()) {
       const Case c = drillwave::cases::ParseCase(LoadCaseDocument(case_file, overrides));
@@ -409,7 +513,10 @@ int main(int argc, char** argv) {
     std::cerr << "drillwave: numerical failure: " << e.what() << std::endl;
     return 3;
   } catch (const std::exception& e) {
-    std::cerr << "drillwave: error: " << e.what() << std::endl;
-    return 1;
+    std::cerr << "drillwave: internal error: " << e.what() << std::endl;
+    return 4;
+  } catch (...) {
+    std::cerr << "drillwave: internal error: an exception of unknown type" << std::endl;
+    return 4;
   }
 }

@@ -95,20 +95,52 @@ TEST(ReadCsv, EmptyFieldsAndNanAreNaN_CrLfAndBlankLinesAccepted) {
 
 TEST(ReadCsv, RaggedRowsNameFileAndLine) {
   const TempFile short_row("short.csv", "a,b\n1,2\n3\n");
-  EXPECT_EQ(ReadErrorOf(short_row.path()), "/: " + short_row.path() + ":3: 1 fields, but the header has 2");
+  EXPECT_EQ(ReadErrorOf(short_row.path()), short_row.path() + ":3: 1 fields, but the header has 2");
   const TempFile long_row("long.csv", "a,b\n1,2,3\n");
-  EXPECT_EQ(ReadErrorOf(long_row.path()), "/: " + long_row.path() + ":2: 3 fields, but the header has 2");
+  EXPECT_EQ(ReadErrorOf(long_row.path()), long_row.path() + ":2: 3 fields, but the header has 2");
 }
 
 TEST(ReadCsv, BadNumbersNameTheColumn) {
   const TempFile file("bad-number.csv", "a,b\n1,2\n\n3,4x\n");
-  EXPECT_EQ(ReadErrorOf(file.path()), "/: " + file.path() + ":4: column b: \"4x\" is not a number");
+  EXPECT_EQ(ReadErrorOf(file.path()), file.path() + ":4: column b (2): \"4x\" is not a number");
 }
 
 TEST(ReadCsv, MissingOrEmptyFile) {
   EXPECT_NE(ReadErrorOf("/no/such/file.csv").find("cannot open CSV file /no/such/file.csv"), std::string::npos);
   const TempFile empty("empty.csv", "");
-  EXPECT_EQ(ReadErrorOf(empty.path()), "/: " + empty.path() + ":1: no header line");
+  EXPECT_EQ(ReadErrorOf(empty.path()), empty.path() + ":1: no header line");
+  EXPECT_EQ(ReadErrorOf(""), "empty file name; expected the path of a CSV file");
+}
+
+// Recordings (issue 16): every cell a finite number, named by file, line and column; headers with unique UTF-8 names.
+TEST(ReadCsv, FiniteOnlyRejectsBlankAndNonFiniteCellsAndEmptyTables) {
+  const CsvOptions strict{true};
+  auto error = [&](const std::string& name, const std::string& text) {
+    const TempFile file(name, text);
+    try {
+      ReadCsv(file.path(), strict);
+    } catch (const InputError& e) {
+      return std::string(e.what()).substr(file.path().size());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error("blank.csv", "t,a\n0,1\n1,\n"), ":3: column a (2): blank cell; every cell must hold a finite number");
+  EXPECT_EQ(error("nan.csv", "t,a\n0,nan\n"), ":2: column a (2): \"nan\" is not a finite number");
+  EXPECT_EQ(error("inf.csv", "t,a\ninf,1\n"), ":2: column t (1): \"inf\" is not a finite number");
+  EXPECT_EQ(error("overflow.csv", "t,a\n0,1e999\n"), ":2: column a (2): \"1e999\" is not a finite number");
+  EXPECT_EQ(error("header-only.csv", "t,a\n"), ":2: no data rows below the header");
+  const TempFile good("good.csv", "t,a\n0,1\n1,2\n");
+  EXPECT_EQ(ReadCsv(good.path(), strict).Column("a")[1], 2);
+}
+
+TEST(ReadCsv, HeaderNamesMustBeUniqueNonEmptyUtf8) {
+  const TempFile dup("dup.csv", "t,a,a\n0,1,2\n");
+  EXPECT_EQ(ReadErrorOf(dup.path()), dup.path() + ":1: columns 2 and 3 are both named \"a\"; names must be unique");
+  const TempFile latin1("latin1.csv", "t,caf\xE9\n0,1\n");
+  EXPECT_EQ(ReadErrorOf(latin1.path()), latin1.path() + ":1: column 2 of the header (\"caf\\xE9\") has a byte that is "
+                                                        "not UTF-8 at byte 4; channel names must be UTF-8 text");
+  const TempFile unnamed("unnamed.csv", "t,,b\n0,1,2\n");
+  EXPECT_EQ(ReadErrorOf(unnamed.path()), unnamed.path() + ":1: column 2 of the header has no name");
 }
 
 TEST(ReadCsv, HundredThousandRowsAreFast) {

@@ -46,13 +46,13 @@ TEST(LoadJsonFile, ReadsAValidFile) {
 TEST(LoadJsonFile, MissingFileIsAnInputError) {
   const InputError e = ErrorOf([] { LoadJsonFile("/no/such/dir/case.json"); });
   EXPECT_EQ(e.json_path(), "");
-  EXPECT_STREQ(e.what(), "/: cannot open case file /no/such/dir/case.json");
+  EXPECT_STREQ(e.what(), "cannot open case file /no/such/dir/case.json");
 }
 
 TEST(LoadJsonFile, MalformedJsonGivesLineAndColumn) {
   const std::string file = WriteTempFile("trailing-comma.json", "{\n  \"a\": 1,\n}");
   const InputError e = ErrorOf([&] { LoadJsonFile(file); });
-  EXPECT_EQ(std::string(e.what()), "/: malformed JSON in " + file +
+  EXPECT_EQ(std::string(e.what()), "malformed JSON in " + file +
                                        " at line 3, column 1: syntax error while parsing object key - unexpected "
                                        "'}'; expected string literal");
   fs::remove(file);
@@ -73,6 +73,33 @@ TEST(LoadJsonFile, NumberOverflowIsLocated) {
   EXPECT_NE(std::string(e.what()).find("at line 2, column 8: number overflow parsing '1e999'"), std::string::npos)
       << e.what();
   fs::remove(file);
+}
+
+// Issue 16: inputs that were half read. Each is an error naming where, never silently accepted.
+TEST(LoadJsonFile, NulBytesDuplicateKeysDeepNestingAndEmptyNamesAreErrors) {
+  auto message = [](const std::string& name, const std::string& text) {
+    const std::string file = WriteTempFile(name, text);
+    const std::string what = ErrorOf([&] { LoadJsonFile(file); }).what();
+    fs::remove(file);
+    return what;
+  };
+  EXPECT_NE(message("nul.json", std::string("{\"name\": \"a\"}\0{\"more\": 1}", 27)).find("line 1, column 14: a NUL byte"),
+            std::string::npos);
+  const std::string dup = message("dup.json", "{\"model\": {\"k\": 1,\n \"k\": 2}}");
+  EXPECT_NE(dup.find("/model/k: "), std::string::npos) << dup;
+  EXPECT_NE(dup.find("line 2, column 2: duplicate key \"k\""), std::string::npos) << dup;
+  // Equal keys in different objects, in arrays of objects, and a value equal to a key are fine.
+  const std::string ok = WriteTempFile("nodup.json", R"({"a": {"k": 1}, "b": [{"k": 1}, {"k": "k"}], "k": ["k", {}]})");
+  EXPECT_NO_THROW(LoadJsonFile(ok));
+  fs::remove(ok);
+  EXPECT_NE(message("dup-in-array.json", R"({"a": [1, {"x": 1, "x": 2}]})").find("/a/1/x: "), std::string::npos);
+  // 100 000 levels crashed the recursive parser (SIGSEGV); now a message at the 65th bracket.
+  const std::string deep = message("deep.json", std::string(100000, '[') + std::string(100000, ']'));
+  EXPECT_NE(deep.find("column 65: nested more than 64 levels deep"), std::string::npos) << deep;
+  EXPECT_NE(message("latin1.json", "{\"name\": \"caf\xE9\"}").find("not UTF-8 (\\xE9)"), std::string::npos);
+  EXPECT_NE(message("big.json", "[" + std::string(kMaxJsonBytes, ' ') + "]").find("bytes are read"), std::string::npos);
+  EXPECT_EQ(std::string(ErrorOf([] { LoadJsonFile(""); }).what()),
+            "empty file name; expected the path of a JSON file");
 }
 
 TEST(Range, Describes) {

@@ -2,13 +2,17 @@
 #include "drillwave/io/output_dir.hpp"
 
 #include <filesystem>
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include "drillwave/core/error.hpp"
 
 namespace drillwave::io {
 namespace {
@@ -73,27 +77,71 @@ TEST_F(OutputDirectoryTest, WithoutCommitNothingIsLeftBehind) {
   EXPECT_TRUE(Entries().empty());
 }
 
-TEST_F(OutputDirectoryTest, AnExistingFolderIsUntouchedWithoutCommitAndUpdatedWithIt) {
+TEST_F(OutputDirectoryTest, AnExistingFolderIsUntouchedWithoutCommitAndReplacedAsAWholeWithIt) {
+  const fs::path dir = scratch_ / "run";
+  fs::create_directories(dir / "summary.json");  // even a folder where a file will go (issue 16)
+  std::ofstream(dir / "trajectory.csv") << "old";
+  std::ofstream(dir / "report.md") << "old";
+  {
+    OutputDirectory out(dir.string());
+    out.Open("trajectory.csv") << "new";
+  }
+  EXPECT_EQ(Contents(dir / "trajectory.csv"), "old");
+  EXPECT_EQ(Entries(), std::vector<std::string>{"run"});
+  {
+    OutputDirectory out(dir.string());
+    out.Open("trajectory.csv") << "new";
+    out.Open("summary.json") << "{}";
+    out.Commit();
+  }
+  EXPECT_EQ(Contents(dir / "trajectory.csv"), "new");
+  EXPECT_EQ(Contents(dir / "summary.json"), "{}");
+  EXPECT_FALSE(fs::exists(dir / "report.md")) << "an old file the new run did not write must not stay: no mix";
+  EXPECT_EQ(Entries(), std::vector<std::string>{"run"});
+}
+
+TEST_F(OutputDirectoryTest, AFolderWithFilesDrillwaveDidNotWriteIsRefusedAndKept) {
+  // Replacing the whole folder would delete them, so it is bad input, found before anything is staged.
   const fs::path dir = scratch_ / "run";
   fs::create_directories(dir);
   std::ofstream(dir / "summary.json") << "old";
   std::ofstream(dir / "notes.txt") << "mine";
-  {
+  try {
     OutputDirectory out(dir.string());
-    out.Open("summary.json") << "new";
+    ADD_FAILURE() << "accepted a folder holding notes.txt";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("notes.txt"), std::string::npos) << e.what();
   }
+  EXPECT_THROW(OutputDirectory::CheckReplaceable(dir.string()), InputError);
+  EXPECT_EQ(Contents(dir / "notes.txt"), "mine");
   EXPECT_EQ(Contents(dir / "summary.json"), "old");
   EXPECT_EQ(Entries(), std::vector<std::string>{"run"});
+  EXPECT_THROW(OutputDirectory(""), InputError);
+}
+
+TEST_F(OutputDirectoryTest, StagingFoldersOfDeadProcessesAreRemoved) {
+  // A child process that exits at once leaves a pid that is no longer alive.
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ASSERT_GT(child, 0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  const fs::path stale = scratch_ / (".run.staging-" + std::to_string(child) + "-0");
+  const fs::path other = scratch_ / (".other.staging-" + std::to_string(child) + "-3");
+  const fs::path alive = scratch_ / (".run.staging-" + std::to_string(::getppid()) + "-0");  // our parent lives
+  for (const fs::path& p : {stale, other, alive}) {
+    fs::create_directories(p);
+    std::ofstream(p / "trajectory.csv") << "half a file";
+  }
   {
-    OutputDirectory out(dir.string());
-    out.Open("summary.json") << "new";
-    out.Open("plot.svg") << "<svg/>";
+    OutputDirectory out((scratch_ / "run").string());
+    out.Open("a.txt") << "a";
     out.Commit();
   }
-  EXPECT_EQ(Contents(dir / "summary.json"), "new");
-  EXPECT_EQ(Contents(dir / "plot.svg"), "<svg/>");
-  EXPECT_EQ(Contents(dir / "notes.txt"), "mine");
-  EXPECT_EQ(Entries(), std::vector<std::string>{"run"});
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_FALSE(fs::exists(other));
+  EXPECT_TRUE(fs::exists(alive)) << "a live process's staging folder is not ours to remove";
+  EXPECT_FALSE(fs::exists(scratch_ / "run" / "trajectory.csv"));
 }
 
 TEST_F(OutputDirectoryTest, TrailingSlashStagesBesideNotInside) {

@@ -1,4 +1,5 @@
 #include "drillwave/analysis/spectrum.hpp"
+#include "drillwave/core/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -167,6 +168,10 @@ void LinearDelaySystem::Validate() const {
   const auto n = a0.rows();
   if (n < 1 || a0.cols() != n) throw std::invalid_argument("A_0 must be a non-empty square matrix");
   if (!AllFinite(a0)) throw std::invalid_argument("A_0 has a non-finite entry");
+  // Entries beyond 1e100 overflow the characteristic matrix and the eigenvalue solver (roots at -inf, "stable").
+  if (a0.cwiseAbs().maxCoeff() > 1e100)
+    throw std::invalid_argument("A_0 has an entry of magnitude " + ReadableNumber(a0.cwiseAbs().maxCoeff()) +
+                                "; beyond 1e100 the roots overflow");
   for (std::size_t k = 0; k < delays.size(); ++k) {
     const DelayTerm& d = delays[k];
     const std::string which = "delay term " + std::to_string(k);
@@ -226,6 +231,10 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
         if (r == 0) continue;
         // The chain of roots that approaches Re s = ln|mu| / tau0, Im s = (arg mu + 2 pi j) / tau0.
         const double re = std::log(r) / tau0;
+        // The chain has about im_max tau0 / 2 pi roots in the region: refuse rather than loop for ever (tau0 = 1e300).
+        if (!(o.im_max * tau0 / (2 * kPi) < 1e5))
+          throw std::invalid_argument("the neutral delay " + ReadableNumber(tau0) + " s puts more than 1e5 roots of a "
+                                      "chain below Im s = " + ReadableNumber(o.im_max) + "; the delay is out of range");
         for (int j = 0;; ++j) {
           const double im = (std::arg(mu) + 2 * kPi * j) / tau0;
           if (im > o.im_max) break;

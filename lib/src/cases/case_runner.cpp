@@ -1,8 +1,10 @@
 #include "drillwave/cases/case_runner.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "drillwave/core/error.hpp"
@@ -14,6 +16,93 @@ namespace drillwave::cases {
 
 using io::JsonReader;
 using Range = io::Range;
+
+namespace {
+
+std::atomic<double> max_samples{1e7};
+
+// The work a case asks for, estimated before it runs: output samples (duration / output interval) and the fewest
+// integration steps (duration / max_step_s). Each is refused above MaxSamples(), with how to raise the limit.
+void CheckWork(const RunSettings& s, const JsonReader& sim) {
+  const double limit = MaxSamples();
+  auto refuse = [&](const std::string& key, double count, const std::string& what) {
+    throw InputError(sim.PathOf(key), ReadableNumber(s.duration_s) + " s simulated " + what + " is " +
+                                          ReadableNumber(count) + ", above the limit of " + ReadableNumber(limit) +
+                                          "; choose a larger " + key + ", a shorter duration_s, or raise the limit "
+                                          "with --max-samples");
+  };
+  if (s.output_interval_s > 0 && s.duration_s / s.output_interval_s > limit)
+    refuse("output_interval_s", s.duration_s / s.output_interval_s,
+           "every " + ReadableNumber(s.output_interval_s) + " s: the number of output samples");
+  if (std::isfinite(s.integrator.max_step) && s.duration_s / s.integrator.max_step > limit)
+    refuse("max_step_s", s.duration_s / s.integrator.max_step,
+           "in steps of at most " + ReadableNumber(s.integrator.max_step) + " s: the number of integration steps");
+}
+
+// An expect entry: null, {"min", "max"} (either or both, min <= max) or {"value", "rel_tol", "abs_tol"}.
+void CheckExpectation(const nlohmann::json& e, const std::string& path) {
+  if (e.is_null()) return;
+  if (!e.is_object())
+    throw InputError(path, "expected {\"min\": a, \"max\": b}, {\"value\": v, \"rel_tol\": r} or null, got " +
+                               ReadableText(e.dump()));
+  const JsonReader r(e, path);
+  const double inf = std::numeric_limits<double>::infinity();
+  const double lo = r.Number("min", Range::Any(), -inf), hi = r.Number("max", Range::Any(), inf);
+  if (lo > hi)
+    throw InputError(path, "the range [min, max] = [" + ReadableNumber(lo) + ", " + ReadableNumber(hi) +
+                               "] is reversed; expected min <= max");
+  const bool has_value = r.Has("value");
+  if (has_value) r.Number("value", Range::Any());
+  for (const char* tol : {"rel_tol", "abs_tol"}) {
+    if (!r.Has(tol)) continue;
+    r.Number(tol, Range::NonNegative());
+    if (!has_value) throw InputError(r.PathOf(tol), "a tolerance needs a \"value\" to apply to");
+  }
+  r.Finish();
+  if (!has_value && !r.Has("min") && !r.Has("max"))
+    throw InputError(path, "expected min and/or max, or value with rel_tol/abs_tol; got an empty object");
+}
+
+// A run whose outputs are not finite has failed numerically, however far it got: the first such sample, with the
+// channel that went bad and every channel's value there.
+void CheckFinite(const RunResult& r) {
+  for (std::size_t i = 0; i < r.time_s.size(); ++i) {
+    std::string bad = std::isfinite(r.time_s[i]) ? "" : "time_s";
+    for (const Channel& ch : r.channels)
+      if (bad.empty() && i < ch.values.size() && !std::isfinite(ch.values[i])) bad = ch.name;
+    if (bad.empty()) continue;
+    std::vector<double> state;
+    std::string names;
+    for (const Channel& ch : r.channels) {
+      state.push_back(i < ch.values.size() ? ch.values[i] : std::nan(""));
+      names += (names.empty() ? "" : ", ") + ch.name;
+    }
+    const std::string where = i == 0 ? "at the first sample" : "after t = " + ReadableNumber(r.time_s[i - 1]) + " s";
+    throw NumericalError("output " + bad + " is not finite (" + where + "; channels " + names + ")", r.time_s[i],
+                         state);
+  }
+}
+
+// Summaries hold measured numbers or null (undefined, e.g. a period with fewer than two onsets), never NaN, inf or
+// a sentinel such as -1e300 left by an empty window.
+void NullifySentinels(nlohmann::json& value) {
+  if (value.is_structured()) {
+    for (auto& item : value) NullifySentinels(item);
+  } else if (value.is_number_float()) {
+    const double x = value.get<double>();
+    if (!std::isfinite(x) || std::abs(x) >= 1e300) value = nullptr;
+  }
+}
+
+}  // namespace
+
+void SetMaxSamples(double limit) {
+  if (!(limit >= 1) || !std::isfinite(limit))
+    throw InputError("--max-samples", "expected a finite number >= 1, got " + ReadableNumber(limit));
+  max_samples = limit;
+}
+
+double MaxSamples() { return max_samples; }
 
 Case ParseCase(const nlohmann::json& document) {
   Case c;
@@ -31,8 +120,11 @@ Case ParseCase(const nlohmann::json& document) {
   c.settings.integrator.rel_tol = sim.Number("rel_tol", Range::Between(1e-14, 1e-2), 1e-8);
   c.settings.integrator.max_step = sim.Number("max_step_s", Range::Positive(), c.settings.integrator.max_step);
   sim.Finish();
-  if (c.settings.output_interval_s > 0 && c.settings.duration_s / c.settings.output_interval_s > 5e7)
-    throw InputError(sim.PathOf("output_interval_s"), "more than 5e7 samples; choose a larger interval");
+  CheckWork(c.settings, sim);
+  // A run that would need more steps than samples allowed is refused before it starts; one that makes more than
+  // ten times as many derivative evaluations anyway (a step size collapsed by stiffness) stops with a NumericalError.
+  c.settings.integrator.max_planned_steps = MaxSamples();
+  c.settings.integrator.max_evaluations = static_cast<long>(std::min(10 * MaxSamples(), 9e18));
 
   c.settings.window_begin_s = 0;
   c.settings.window_end_s = c.settings.duration_s;
@@ -58,16 +150,9 @@ Case ParseCase(const nlohmann::json& document) {
 
   if (root.Has("expect")) {
     c.expect = root.Raw("expect");
-    if (!c.expect.is_object()) throw InputError("/expect", "expected an object of summary keys");
-    for (const auto& item : c.expect.items()) {
-      const std::string path = "/expect/" + item.key();
-      const auto& e = item.value();
-      if (e.is_null()) continue;
-      if (!e.is_object()) throw InputError(path, "expected {\"min\", \"max\"}, {\"value\", \"rel_tol\"} or null");
-      for (const auto& f : e.items())
-        if (f.key() != "min" && f.key() != "max" && f.key() != "value" && f.key() != "rel_tol" && f.key() != "abs_tol")
-          throw InputError(path + "/" + f.key(), "unknown field; expected one of: min, max, value, rel_tol, abs_tol");
-    }
+    if (!c.expect.is_object())
+      throw InputError("/expect", "expected an object of summary keys, got " + ReadableText(c.expect.dump()));
+    for (const auto& item : c.expect.items()) CheckExpectation(item.value(), "/expect/" + item.key());
   }
   root.Finish();
   return c;
@@ -77,7 +162,9 @@ CaseRun RunCase(const Case& c) {
   const auto start = std::chrono::steady_clock::now();
   CaseRun run{c.model->Run(c.settings), nlohmann::json::object()};
   ApplySensors(c.sensors, run.result);
+  CheckFinite(run.result);
   run.summary = run.result.summary;
+  NullifySentinels(run.summary);
   run.summary["case"] = c.name;
   run.summary["kind"] = c.kind;
   run.summary["window_s"] = {c.settings.window_begin_s, c.settings.window_end_s};

@@ -30,7 +30,12 @@ nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analysis::SpectrumOptions& options) {
   std::vector<OperatingPointStability> out;
   for (LinearizedOperatingPoint& p : c.model->Linearize()) {
-    analysis::Spectrum sp = analysis::ComputeSpectrum(p.system, options);
+    analysis::Spectrum sp;
+    try {
+      sp = analysis::ComputeSpectrum(p.system, options);
+    } catch (const std::invalid_argument& e) {  // parameters so extreme that the linearization is out of range
+      throw InputError("/model", std::string("the linearization cannot be analysed: ") + e.what());
+    }
     out.push_back({std::move(p), std::move(sp)});
   }
   return out;

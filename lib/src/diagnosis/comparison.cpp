@@ -37,12 +37,51 @@ double Std(const std::vector<double>& v) {
   return v.empty() ? std::nan("") : std::sqrt(s / v.size());
 }
 
+// The features read from the two inspections, in the order Compare lists them before sorting.
+const std::pair<const char*, double Inspection::*> kInspectionFeatures[] = {
+    {"bit_oscillation_period_s", &Inspection::bit_oscillation_period_s},
+    {"stick_slip_period_s", &Inspection::stick_slip_period_s},
+    {"stick_fraction", &Inspection::stick_fraction},
+    {"bit_speed_mean", &Inspection::bit_speed_mean},
+    {"bit_speed_max", &Inspection::bit_speed_max},
+    {"top_speed_mean", &Inspection::top_speed_mean},
+    {"top_speed_fluctuation", &Inspection::top_speed_fluctuation}};
+
 }  // namespace
+
+std::vector<std::string> FeatureNames(const std::vector<ChannelMap>& maps) {
+  std::vector<std::string> names;
+  for (const auto& feature : kInspectionFeatures) names.push_back(feature.first);
+  for (const ChannelMap& m : maps) {
+    names.push_back(m.recording + " mean");
+    names.push_back(m.recording + " std");
+  }
+  return names;
+}
+
+void CheckWindow(const Recording& rec, double model_begin_s, double model_end_s, double window_begin_s,
+                 double window_end_s) {
+  const double lo = std::max({window_begin_s, rec.time_s.front(), model_begin_s});
+  const double hi = std::min({window_end_s, rec.time_s.back(), model_end_s});
+  std::size_t samples = 0;
+  for (double t : rec.time_s) samples += t >= lo && t <= hi ? 1 : 0;
+  const bool whole = !(std::abs(window_begin_s) < 1e300) && !(std::abs(window_end_s) < 1e300);  // no --window
+  if (samples < 10)
+    throw InputError("--window", "fewer than 10 recorded samples in [" + Fixed(lo, 3) + ", " + Fixed(hi, 3) +
+                                     "] s, where " +
+                                     (whole ? std::string()
+                                            : "the window (" + ReadableNumber(window_begin_s) + " to " +
+                                                  ReadableNumber(window_end_s) + " s), ") +
+                                     "the recording (" +
+                                     ReadableNumber(rec.time_s.front()) + " to " + ReadableNumber(rec.time_s.back()) +
+                                     " s) and the model (" + ReadableNumber(model_begin_s) + " to " +
+                                     ReadableNumber(model_end_s) + " s) overlap");
+}
 
 ChannelMap ParseChannelMap(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
-    throw InputError("--map", "'" + text + "': expected recording_channel=model_channel[*scale]");
+    throw InputError("--map", "'" + ReadableText(text) + "': expected recording_channel=model_channel[*scale]");
   ChannelMap m{text.substr(0, eq), text.substr(eq + 1), 1.0};
   const auto star = m.model.find('*');
   if (star != std::string::npos) {
@@ -51,7 +90,7 @@ ChannelMap ParseChannelMap(const std::string& text) {
     char* end = nullptr;
     m.scale = std::strtod(factor.c_str(), &end);
     if (factor.empty() || end != factor.c_str() + factor.size() || !std::isfinite(m.scale) || m.scale == 0)
-      throw InputError("--map", "'" + text + "': the scale must be a finite non-zero number");
+      throw InputError("--map", "'" + ReadableText(text) + "': the scale must be a finite non-zero number");
   }
   return m;
 }
@@ -60,6 +99,7 @@ Comparison Compare(const Recording& rec, const cases::RunResult& model, const st
                    double window_begin_s, double window_end_s, const InspectOptions& options) {
   if (maps.empty()) throw InputError("--map", "no channels to compare");
   Comparison c;
+  CheckWindow(rec, model.time_s.front(), model.time_s.back(), window_begin_s, window_end_s);
   c.window_begin_s = std::max({window_begin_s, rec.time_s.front(), model.time_s.front()});
   c.window_end_s = std::min({window_end_s, rec.time_s.back(), model.time_s.back()});
   for (const std::string& needed : {options.bit_speed, options.top_speed})
@@ -72,9 +112,6 @@ Comparison Compare(const Recording& rec, const cases::RunResult& model, const st
   m.source = "model";
   for (std::size_t i = 0; i < rec.time_s.size(); ++i)
     if (rec.time_s[i] >= c.window_begin_s && rec.time_s[i] <= c.window_end_s) r.time_s.push_back(rec.time_s[i]);
-  if (r.time_s.size() < 10)
-    throw InputError("--window", "fewer than 10 recorded samples in [" + Fixed(c.window_begin_s, 3) + ", " +
-                                     Fixed(c.window_end_s, 3) + "] s");
   r.sample_interval_s = m.sample_interval_s = rec.sample_interval_s;
   m.time_s = r.time_s;
   for (const ChannelMap& map : maps) {
@@ -111,13 +148,7 @@ Comparison Compare(const Recording& rec, const cases::RunResult& model, const st
     c.features.push_back({name, rv, mv, rel});
   };
   const Inspection &ri = c.recording, &mi = c.model;
-  add("bit_oscillation_period_s", ri.bit_oscillation_period_s, mi.bit_oscillation_period_s);
-  add("stick_slip_period_s", ri.stick_slip_period_s, mi.stick_slip_period_s);
-  add("stick_fraction", ri.stick_fraction, mi.stick_fraction);
-  add("bit_speed_mean", ri.bit_speed_mean, mi.bit_speed_mean);
-  add("bit_speed_max", ri.bit_speed_max, mi.bit_speed_max);
-  add("top_speed_mean", ri.top_speed_mean, mi.top_speed_mean);
-  add("top_speed_fluctuation", ri.top_speed_fluctuation, mi.top_speed_fluctuation);
+  for (const auto& [name, member] : kInspectionFeatures) add(name, ri.*member, mi.*member);
   for (std::size_t j = 0; j < maps.size(); ++j) {
     add(maps[j].recording + " mean", Mean(ri.cleaned[j]), Mean(mi.cleaned[j]));
     add(maps[j].recording + " std", Std(ri.cleaned[j]), Std(mi.cleaned[j]));

@@ -43,7 +43,9 @@ FitParameter ParseFitParameter(const std::string& text) {
   p.upper = std::strtod(hi.c_str(), &end);
   const bool hi_ok = !hi.empty() && end == hi.c_str() + hi.size();
   if (!lo_ok || !hi_ok || !std::isfinite(p.lower) || !std::isfinite(p.upper) || !(p.lower < p.upper))
-    throw InputError("--param", "'" + text + "': the bounds must be finite numbers with lower < upper");
+    throw InputError("--param", "'" + ReadableText(text) + "': " +
+                                    (lo_ok && hi_ok && p.lower > p.upper ? "the bounds are reversed; " : "") +
+                                    "the bounds must be finite numbers with lower < upper");
   return p;
 }
 

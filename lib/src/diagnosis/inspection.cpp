@@ -13,6 +13,9 @@
 namespace drillwave::diagnosis {
 namespace {
 
+constexpr std::size_t kAllPairsChannels = 24;  // above: correlations with the speeds only
+constexpr std::size_t kPlottedChannels = 16;
+
 bool Overlaps(const Interval& a, const Interval& b) { return a.begin_s <= b.end_s && b.begin_s <= a.end_s; }
 
 nlohmann::json IntervalsToJson(const std::vector<Interval>& v) {
@@ -28,6 +31,8 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
   rec.Channel(o.top_speed);
   Inspection ins;
   ins.source = rec.source;
+  ins.bit_speed = o.bit_speed;
+  ins.top_speed = o.top_speed;
   ins.duration_s = rec.time_s.back() - rec.time_s.front();
   ins.sample_interval_s = rec.sample_interval_s;
   const int half_window = std::max(1, static_cast<int>(std::lround(o.hampel_half_window_s / rec.sample_interval_s)));
@@ -102,7 +107,7 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
         ++a.bursts_while_stuck;
 
   // Speeds.
-  double sum = 0, max_bit = -1e300;
+  double sum = 0, max_bit = -std::numeric_limits<double>::infinity();
   for (double v : bit) sum += v, max_bit = std::max(max_bit, v);
   ins.bit_speed_mean = sum / bit.size(), ins.bit_speed_max = max_bit;
   sum = 0;
@@ -158,10 +163,14 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
     ins.bit_oscillation_period_s = gaps.empty() ? std::nan("") : Median(gaps);
   }
 
-  // Which channels move together.
+  // Which channels move together: every pair of a few channels; with many, each channel with the two speeds only,
+  // so that the cost (and the size of the outputs) grows linearly with the number of channels.
+  const std::size_t bit_index = index(o.bit_speed), top_index = index(o.top_speed);
+  const bool all_pairs = rec.names.size() <= kAllPairsChannels;
   for (std::size_t a = 0; a < rec.names.size(); ++a)
     for (std::size_t b = a + 1; b < rec.names.size(); ++b)
-      ins.correlations.push_back({rec.names[a], rec.names[b], Correlation(ins.cleaned[a], ins.cleaned[b])});
+      if (all_pairs || a == bit_index || a == top_index || b == bit_index || b == top_index)
+        ins.correlations.push_back({rec.names[a], rec.names[b], Correlation(ins.cleaned[a], ins.cleaned[b])});
   std::sort(ins.correlations.begin(), ins.correlations.end(), [](const ChannelPair& x, const ChannelPair& y) {
     return std::abs(x.correlation) > std::abs(y.correlation);
   });
@@ -215,7 +224,7 @@ nlohmann::json InspectionToJson(const Inspection& ins) {
   for (const ChannelPair& p : ins.correlations) correlations.push_back({p.a, p.b, p.correlation});
   auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   return {{"source", ins.source},
-          {"duration_s", ins.duration_s},
+          {"duration_s", number(ins.duration_s)},
           {"sample_interval_s", ins.sample_interval_s},
           {"artefacts", artefacts},
           {"stuck_threshold", ins.stuck_threshold},
@@ -223,8 +232,8 @@ nlohmann::json InspectionToJson(const Inspection& ins) {
           {"slip_without_stick_s", IntervalsToJson(ins.slip_without_stick)},
           {"stick_fraction", ins.stick_fraction},
           {"stick_slip_period_s", number(ins.stick_slip_period_s)},
-          {"bit_speed_mean", ins.bit_speed_mean},
-          {"bit_speed_max", ins.bit_speed_max},
+          {"bit_speed_mean", number(ins.bit_speed_mean)},
+          {"bit_speed_max", number(ins.bit_speed_max)},
           {"top_speed", {{"mean", ins.top_speed_mean}, {"std", ins.top_speed_std}, {"min", ins.top_speed_min},
                          {"max", ins.top_speed_max}, {"fluctuation", ins.top_speed_fluctuation},
                          {"noise", ins.top_speed_noise}, {"fluctuation_ratio", number(ins.top_speed_fluctuation_ratio)},
@@ -241,7 +250,14 @@ void WriteInspection(const Recording& rec, const Inspection& ins, const std::str
   io::Figure figure;
   figure.title = "inspection of " + rec.source;
   figure.x_label = "time [s]";
-  for (std::size_t j = 0; j < rec.names.size(); ++j) {
+  // One panel per channel, the speeds first, at most kPlottedChannels of them (the report says which are left out).
+  std::vector<std::size_t> plotted;
+  for (const std::string& name : {ins.bit_speed, ins.top_speed})
+    for (std::size_t j = 0; j < rec.names.size(); ++j)
+      if (rec.names[j] == name && std::find(plotted.begin(), plotted.end(), j) == plotted.end()) plotted.push_back(j);
+  for (std::size_t j = 0; j < rec.names.size() && plotted.size() < kPlottedChannels; ++j)
+    if (std::find(plotted.begin(), plotted.end(), j) == plotted.end()) plotted.push_back(j);
+  for (const std::size_t j : plotted) {
     io::Panel panel{rec.names[j], {}};
     panel.series.push_back({rec.names[j] + " (raw)", rec.time_s, rec.channels[j]});
     panel.series.push_back({rec.names[j] + " (artefacts masked)", rec.time_s, ins.cleaned[j]});
@@ -266,6 +282,12 @@ void WriteInspection(const Recording& rec, const Inspection& ins, const std::str
     report << "| " << Fixed(s.begin_s, 3) << " | " << Fixed(s.end_s, 3) << " | " << Fixed(s.duration(), 3) << " |\n";
   report << "\n## Correlations of the cleaned channels\n\n| channels | correlation |\n|---|---|\n";
   for (const ChannelPair& p : ins.correlations) report << "| " << p.a << ", " << p.b << " | " << Fixed(p.correlation, 3) << " |\n";
+  if (rec.names.size() > kAllPairsChannels)
+    report << "\nWith " << rec.names.size() << " channels (more than " << kAllPairsChannels
+           << "), each channel is correlated with the two speeds only.\n";
+  if (plotted.size() < rec.names.size())
+    report << "\n`plot.svg` shows " << plotted.size() << " of the " << rec.names.size()
+           << " channels (the speeds first, then in the file's order).\n";
   report << "\nFiles: `findings.json` (every number above), `plot.svg` (raw and cleaned channels, the stuck flag).\n";
   out.Commit();
 }

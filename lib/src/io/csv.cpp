@@ -67,7 +67,8 @@ const std::vector<double>& CsvTable::Column(const std::string& name) const {
   return columns[static_cast<std::size_t>(it - header.begin())];
 }
 
-CsvTable ReadCsv(const std::string& file) {
+CsvTable ReadCsv(const std::string& file, const CsvOptions& options) {
+  if (file.empty()) throw InputError("", "empty file name; expected the path of a CSV file");
   // The whole file in one string, parsed in place with strtod; no stream formatting per cell.
   std::string text;
   {
@@ -109,6 +110,21 @@ CsvTable ReadCsv(const std::string& file) {
   }
   if (table.header.size() == 1 && table.header[0].empty()) throw fail(1, "no header line");
   const std::size_t width = table.header.size();
+  for (std::size_t j = 0; j < width; ++j) {
+    const std::string& name = table.header[j];
+    const std::string column = "column " + std::to_string(j + 1) + " of the header";
+    std::size_t bad = 0;
+    if (name.empty()) throw fail(1, column + " has no name");
+    if (!IsValidUtf8(name, &bad))
+      throw fail(1, column + " (\"" + ReadableText(name) + "\") has a byte that is not UTF-8 at byte " +
+                        std::to_string(bad + 1) + "; channel names must be UTF-8 text");
+    if (std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; }))
+      throw fail(1, column + " (\"" + ReadableText(name) + "\") has a control character");
+    for (std::size_t k = 0; k < j; ++k)
+      if (table.header[k] == name)
+        throw fail(1, "columns " + std::to_string(k + 1) + " and " + std::to_string(j + 1) + " are both named \"" +
+                          ReadableText(name) + "\"; names must be unique");
+  }
   table.columns.resize(width);
   const auto rows = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
   for (auto& column : table.columns) column.reserve(rows);
@@ -131,12 +147,19 @@ CsvTable ReadCsv(const std::string& file) {
         const char *begin = field, *stop = comma;
         Trim(begin, stop);
         double v = std::numeric_limits<double>::quiet_NaN();
+        const auto column = [&] { return "column " + ReadableText(table.header[j]) + " (" + std::to_string(j + 1) + ")"; };
         if (begin != stop) {
           // strtod stops at the ',' or '\n' after the field at the latest, so it never reads past the row.
           char* parsed_end = nullptr;
           v = std::strtod(begin, &parsed_end);
           if (parsed_end != stop)
-            throw fail(line, "column " + table.header[j] + ": \"" + std::string(begin, stop) + "\" is not a number");
+            throw fail(line, column() + ": \"" + ReadableText(std::string_view(begin, stop - begin)) +
+                                 "\" is not a number");
+          if (options.finite_only && !std::isfinite(v))
+            throw fail(line, column() + ": \"" + ReadableText(std::string_view(begin, stop - begin)) +
+                                 "\" is not a finite number");
+        } else if (options.finite_only) {
+          throw fail(line, column() + ": blank cell; every cell must hold a finite number");
         }
         table.columns[j].push_back(v);
       }
@@ -147,6 +170,8 @@ CsvTable ReadCsv(const std::string& file) {
       throw fail(line, std::to_string(j + 1) + " fields, but the header has " + std::to_string(width));
     p = end;
   }
+  if (options.finite_only && !table.columns.empty() && table.columns.front().empty())
+    throw fail(line, "no data rows below the header");
   return table;
 }
 

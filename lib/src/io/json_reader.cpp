@@ -14,6 +14,8 @@
 namespace drillwave::io {
 namespace {
 
+constexpr std::size_t kMaxJsonDepth = 64;
+
 // A bound or limit as people write it: "0", "0.01", "1e-14".
 std::string FormatBound(double v) {
   char buffer[32];
@@ -21,10 +23,7 @@ std::string FormatBound(double v) {
   return buffer;
 }
 
-std::string Shortened(const std::string& text) {
-  constexpr std::size_t kMax = 60;
-  return text.size() <= kMax ? text : text.substr(0, kMax) + "...";
-}
+std::string Shortened(const std::string& text) { return ReadableText(text, 60); }
 
 // What was found, for "expected X, got <Found>": -3, a string "abc", true, null, an array [1,2], inf.
 std::string Found(const nlohmann::json& v) {
@@ -77,10 +76,10 @@ TextPosition PositionOf(const std::string& text, std::size_t offset) {
   return p;
 }
 
-// nlohmann reports a number that overflows a double (1e999) without its position. The parser stops at the first
-// such number, and everything before it is valid JSON, so it is the first number token outside strings that does
-// not convert to a finite double.
-std::size_t FirstNonFiniteNumber(const std::string& text) {
+// Offers every byte outside string literals (quotes excluded) to `visit(i)`, which may move i forward past a token it
+// has read and returns true to stop there. Returns where it stopped, or npos.
+template <class Visit>
+std::size_t ScanOutsideStrings(const std::string& text, Visit visit) {
   bool in_string = false;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
@@ -89,14 +88,26 @@ std::size_t FirstNonFiniteNumber(const std::string& text) {
       else if (c == '"') in_string = false;
     } else if (c == '"') {
       in_string = true;
-    } else if (c == '-' || (c >= '0' && c <= '9')) {
-      char* end = nullptr;
-      const double v = std::strtod(text.c_str() + i, &end);
-      if (!std::isfinite(v)) return i;
-      i = std::max(i, static_cast<std::size_t>(end - text.c_str()) - 1);
+    } else if (visit(i)) {
+      return i;
     }
   }
   return std::string::npos;
+}
+
+// nlohmann reports a number that overflows a double (1e999) without its position. The parser stops at the first
+// such number, and everything before it is valid JSON, so it is the first number token outside strings that does
+// not convert to a finite double.
+std::size_t FirstNonFiniteNumber(const std::string& text) {
+  return ScanOutsideStrings(text, [&](std::size_t& i) {
+    const char c = text[i];
+    if (c != '-' && (c < '0' || c > '9')) return false;
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str() + i, &end);
+    if (!std::isfinite(v)) return true;
+    i = std::max(i, static_cast<std::size_t>(end - text.c_str()) - 1);
+    return false;
+  });
 }
 
 std::string MalformedJson(const std::string& file, const std::string& text, std::size_t offset,
@@ -106,22 +117,107 @@ std::string MalformedJson(const std::string& file, const std::string& text, std:
          ": " + description;
 }
 
+// How deep objects and arrays nest before the first bracket beyond kMaxJsonDepth (outside strings), or npos. A cheap
+// scan before nlohmann parses, whose recursion through deeply nested values (dump, copy, destruction) would overflow
+// the stack; it does not need valid JSON.
+std::size_t FirstTooDeep(const std::string& text) {
+  std::size_t depth = 0;
+  return ScanOutsideStrings(text, [&](std::size_t& i) {
+    const char c = text[i];
+    if (c == '[' || c == '{') return ++depth > kMaxJsonDepth;
+    if ((c == ']' || c == '}') && depth > 0) --depth;
+    return false;
+  });
+}
+
+// JSON (RFC 8259) leaves duplicate keys to the reader, and nlohmann keeps the last one silently; a case with two
+// values for one field is ambiguous, so it is an error naming the key's path and position. Runs on text nlohmann has
+// accepted, so the structure is valid here. Keys are compared as written (escapes not decoded).
+void CheckDuplicateKeys(const std::string& text, const std::string& source) {
+  struct Level {
+    bool object;
+    std::size_t index = 0;  // of the next array element
+    std::string key;        // the current key of an object
+    std::set<std::string> keys;
+  };
+  std::vector<Level> stack;
+  bool expect_key = false;
+  auto path = [&] {
+    std::string p;
+    for (const Level& l : stack) p += "/" + (l.object ? l.key : std::to_string(l.index));
+    return p;
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '"') {
+      const std::size_t start = i;
+      for (++i; i < text.size() && text[i] != '"'; ++i)
+        if (text[i] == '\\') ++i;
+      if (!expect_key) continue;
+      Level& level = stack.back();
+      level.key = text.substr(start + 1, i - start - 1);
+      if (!level.keys.insert(level.key).second)
+        throw InputError(path(), MalformedJson(source, text, start,
+                                               "duplicate key \"" + ReadableText(level.key) +
+                                                   "\"; every field may appear once"));
+      expect_key = false;
+    } else if (c == '{') {
+      stack.push_back(Level{true, 0, {}, {}});
+      expect_key = true;
+    } else if (c == '[') {
+      stack.push_back(Level{false, 0, {}, {}});
+    } else if (c == '}' || c == ']') {
+      if (!stack.empty()) stack.pop_back();
+      expect_key = false;
+    } else if (c == ',' && !stack.empty()) {
+      expect_key = stack.back().object;
+      if (!expect_key) ++stack.back().index;
+    }
+  }
+}
+
 }  // namespace
 
+nlohmann::json ParseJsonText(const std::string& text, const std::string& source) {
+  if (text.size() > kMaxJsonBytes)
+    throw InputError(source, "JSON text of " + std::to_string(text.size()) + " bytes; at most " +
+                                 std::to_string(kMaxJsonBytes) + " bytes are read");
+  const std::size_t nul = text.find('\0');
+  if (nul != std::string::npos)
+    throw InputError("", MalformedJson(source, text, nul, "a NUL byte; a JSON file is text"));
+  std::size_t bad_byte = 0;
+  if (!IsValidUtf8(text, &bad_byte))
+    throw InputError("", MalformedJson(source, text, bad_byte, "a byte that is not UTF-8 (" +
+                                                                   ReadableText(text.substr(bad_byte, 1)) + ")"));
+  const std::size_t too_deep = FirstTooDeep(text);
+  if (too_deep != std::string::npos)
+    throw InputError("", MalformedJson(source, text, too_deep,
+                                       "nested more than " + std::to_string(kMaxJsonDepth) + " levels deep"));
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte counts the bytes read, including the offending one.
+    throw InputError("", MalformedJson(source, text, e.byte == 0 ? 0 : e.byte - 1, ParserDescription(e.what())));
+  } catch (const nlohmann::json::out_of_range& e) {  // 1e999
+    throw InputError("", MalformedJson(source, text, FirstNonFiniteNumber(text),
+                                       ParserDescription(e.what()) + " (numbers must be finite doubles)"));
+  }
+  CheckDuplicateKeys(text, source);
+  return doc;
+}
+
 nlohmann::json LoadJsonFile(const std::string& file) {
+  if (file.empty()) throw InputError("", "empty file name; expected the path of a JSON file");
   std::ifstream in(file, std::ios::binary);
   std::error_code ignored;  // a folder opens, but then cannot be read
   if (!in || std::filesystem::is_directory(file, ignored)) throw InputError("", "cannot open case file " + file);
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // e.byte counts the bytes read, including the offending one.
-    throw InputError("", MalformedJson(file, text, e.byte == 0 ? 0 : e.byte - 1, ParserDescription(e.what())));
-  } catch (const nlohmann::json::out_of_range& e) {  // 1e999
-    throw InputError("", MalformedJson(file, text, FirstNonFiniteNumber(text),
-                                       ParserDescription(e.what()) + " (numbers must be finite doubles)"));
-  }
+  // Read at most one byte more than the limit, so that a huge file (or an endless pipe) is refused, not read.
+  std::string text(kMaxJsonBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) throw InputError("", "cannot read case file " + file);
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return ParseJsonText(text, file);
 }
 
 bool Range::Contains(double v) const {

@@ -35,7 +35,7 @@ std::pair<double, double> Schedule::Evaluate(double t, bool left_limit) const {
 Schedule Schedule::FromJson(const nlohmann::json& j, const std::string& json_path) {
   if (j.is_number()) {
     const double v = j.get<double>();
-    if (!std::isfinite(v)) throw InputError(json_path, "expected a finite number, got " + j.dump());
+    if (!std::isfinite(v)) throw InputError(json_path, "expected a finite number, got " + ReadableText(j.dump()));
     return Schedule(v);
   }
   if (!j.is_object())
@@ -51,12 +51,17 @@ Schedule Schedule::FromJson(const nlohmann::json& j, const std::string& json_pat
     const std::string path = kpath + "/" + std::to_string(i);
     const auto& e = k[i];
     if (!e.is_array() || e.size() != 2 || !e[0].is_number() || !e[1].is_number())
-      throw InputError(path, "expected a pair [t_s, value] of numbers, got " + e.dump());
+      throw InputError(path, "expected a pair [t_s, value] of numbers, got " + ReadableText(e.dump()));
     const double t = e[0].get<double>(), v = e[1].get<double>();
-    if (!std::isfinite(t) || !std::isfinite(v)) throw InputError(path, "expected finite numbers, got " + e.dump());
+    if (!std::isfinite(t) || !std::isfinite(v))
+      throw InputError(path, "expected finite numbers, got " + ReadableText(e.dump()));
     if (!knots.empty() && t < knots.back().first)
-      throw InputError(path, "knot times must not decrease (" + std::to_string(t) + " after " +
-                                 std::to_string(knots.back().first) + ")");
+      throw InputError(path + "/0", "knot times must not decrease (" + ReadableNumber(t) + " s after " +
+                                        ReadableNumber(knots.back().first) + " s)");
+    // Knots closer than the integrator can step (1e-300 s apart crashed a run) are a jump written wrongly.
+    if (!knots.empty() && t != knots.back().first && t - knots.back().first < 1e-9 * std::max(1.0, std::abs(t)))
+      throw InputError(path + "/0", "knot time " + ReadableNumber(t) + " s is within 1e-9 s of the previous knot's " +
+                                        ReadableNumber(knots.back().first) + " s; give both the same time for a jump");
     knots.emplace_back(t, v);
   }
   return Schedule(std::move(knots));

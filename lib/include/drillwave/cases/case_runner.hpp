@@ -29,16 +29,23 @@ struct Case {
   nlohmann::json expect = nlohmann::json::object();
 };
 
-// Validates the whole document (InputError names the JSON path); runs nothing.
+// Validates the whole document (InputError names the JSON path); runs nothing. The expect block is validated too,
+// and the work the case asks for is estimated and refused above MaxSamples() (see SetMaxSamples).
 Case ParseCase(const nlohmann::json& document);
+
+// The most output samples (duration / output interval) and the fewest integration steps (duration / max_step_s) a
+// case may ask for; 1e7 unless set (the command line's --max-samples). Process-wide; InputError if not >= 1.
+void SetMaxSamples(double limit);
+double MaxSamples();
 
 // The embedded default case (json-cases/saldivar-stickslip.json, compiled in).
 const std::string& DefaultCaseText();
 
 struct CaseRun {
   RunResult result;
-  nlohmann::json summary;  // the kind's statistics plus steps, events, wall_time_s
+  nlohmann::json summary;  // the kind's statistics plus steps, events, wall_time_s; never NaN, inf or +-1e300
 };
+// Throws NumericalError if the run fails or any output sample is not finite (time, channel and values there).
 CaseRun RunCase(const Case& c);
 
 struct ExpectationCheck {

@@ -23,6 +23,14 @@ struct ChannelMap {
 // "rec=model" or "rec=model*scale"; throws InputError naming the option for anything else.
 ChannelMap ParseChannelMap(const std::string& text);
 
+// The names of the features Compare reports for these maps (for checking --feature before anything runs).
+std::vector<std::string> FeatureNames(const std::vector<ChannelMap>& maps);
+
+// Throws InputError("--window", ...) unless the window, the recording and the model's time span [model_begin_s,
+// model_end_s] overlap in at least 10 recorded samples. Compare checks it too; callers check it before running.
+void CheckWindow(const Recording& recording, double model_begin_s, double model_end_s, double window_begin_s,
+                 double window_end_s);
+
 struct ChannelResidual {
   std::string channel;       // recording name
   double rms = 0;            // of (model - recording) over the window, the model interpolated to the recording's times

@@ -47,6 +47,7 @@ struct ChannelPair {
 
 struct Inspection {
   std::string source;
+  std::string bit_speed, top_speed;  // the channels read as the speeds (InspectOptions)
   double duration_s = 0, sample_interval_s = 0;
   std::vector<ChannelArtefacts> artefacts;  // one per channel
   double stuck_threshold = 0;               // in the bit channel's unit
@@ -68,7 +69,8 @@ struct Inspection {
   std::vector<std::vector<double>> cleaned;
 };
 
-// Throws InputError if the bit or top speed channel is missing.
+// Throws InputError if the bit or top speed channel is missing. Linear in the number of channels: with more than 24,
+// correlations are taken with the two speeds only.
 Inspection InspectRecording(const Recording& recording, const InspectOptions& options = {});
 
 nlohmann::json InspectionToJson(const Inspection& inspection);

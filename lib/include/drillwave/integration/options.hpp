@@ -27,6 +27,9 @@ struct IntegratorOptions {
   // NumericalError that says which budget ran out, instead of creeping on.
   long max_steps = 0;
   long max_evaluations = 0;
+  // The most steps a run may need at the longest step the process allows (its shortest delay): refused before the
+  // first step, with InputError("/model", ...), rather than integrated for hours (a string of G = 1e300 Pa).
+  double max_planned_steps = std::numeric_limits<double>::infinity();
 };
 
 // One accepted piece of the solution: values and derivatives at both ends (one-sided limits) and the value at the

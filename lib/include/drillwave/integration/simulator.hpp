@@ -176,6 +176,12 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
   const auto wall_start = std::chrono::steady_clock::now();
   const std::size_t n = x.size();
   const double max_step = std::min(options_.max_step, process_.MaxStep());
+  if ((t_end - t0) / max_step > options_.max_planned_steps)
+    throw InputError("/model", "its shortest delay limits steps to " + ReadableNumber(max_step) + " s, so " +
+                                   ReadableNumber(t_end - t0) + " s need at least " +
+                                   ReadableNumber((t_end - t0) / max_step) + " steps, above the limit of " +
+                                   ReadableNumber(options_.max_planned_steps) +
+                                   " (--max-samples); check the model's lengths, moduli and densities");
   auto dense = odeint::make_dense_output(options_.abs_tol, options_.rel_tol,
                                          std::isfinite(max_step) ? max_step : 0.0, Stepper());
 

@@ -20,10 +20,16 @@ struct CsvTable {
   const std::vector<double>& Column(const std::string& name) const;
 };
 
-// Reads a header line and rows of comma-separated numbers. Empty fields and "nan" read as NaN; blank lines are
-// skipped; "\r\n" line ends are accepted. Throws InputError("", "cannot open CSV file <file>"), or
-// InputError("", "<file>:<line>: ...") if a row has a different number of fields than the header or a field is
-// not a number.
-CsvTable ReadCsv(const std::string& file);
+struct CsvOptions {
+  // Recordings: every cell must be a finite number (no blank cells, nan, inf or 1e999), and there must be a row.
+  bool finite_only = false;
+};
+
+// Reads a header line and rows of comma-separated numbers. Unless options.finite_only, empty fields and "nan" read
+// as NaN. Blank lines are skipped; "\r\n" line ends are accepted. Throws InputError("", "cannot open CSV file
+// <file>"), or InputError("", "<file>:<line>: ...") naming the column if a row has a different number of fields than
+// the header, a field is not a number, or (finite_only) a cell is blank or not finite; and for a header with an
+// empty, duplicate or non-UTF-8 name.
+CsvTable ReadCsv(const std::string& file, const CsvOptions& options = {});
 
 }  // namespace drillwave::io

@@ -10,10 +10,16 @@
 
 namespace drillwave::io {
 
-// Reads and parses a JSON file. Throws InputError("", ...) if the file cannot be opened or is not valid JSON; the
-// message gives the line and column (in characters) of the problem. Numbers that overflow a double (1e999) are
-// reported there too.
+// Case files and sidecars are small; anything larger is refused before it is read.
+constexpr std::size_t kMaxJsonBytes = std::size_t{16} << 20;
+
+// Reads and parses a JSON file. Throws InputError if the name is empty, the file cannot be opened, is larger than
+// kMaxJsonBytes, or is not valid JSON; the message gives the line and column (in characters) of the problem.
+// Stricter than JSON itself: numbers that overflow a double (1e999), NUL bytes, bytes that are not UTF-8, nesting
+// deeper than 64 levels and duplicate keys in one object are errors too.
 nlohmann::json LoadJsonFile(const std::string& file);
+// The same checks on text already in memory; `source` names it in messages.
+nlohmann::json ParseJsonText(const std::string& text, const std::string& source);
 
 // The allowed values of a number field. Every Range also requires the number to be finite.
 struct Range {

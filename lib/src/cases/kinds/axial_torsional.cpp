@@ -615,7 +615,8 @@ class AxialTorsionalKind : public ModelKind {
     r.Finish();
     if (!(md.weight_on_bit > md.ContactForce()))
       throw InputError(h.PathOf("weight_on_bit_N"), "expected more than the wear-flat contact force a sigma l = " +
-                                                        std::to_string(md.ContactForce()) + " N (no cutting otherwise)");
+                                                        ReadableNumber(md.ContactForce()) + " N (no cutting otherwise; "
+                                                        "a = /model/bit/radius_m, sigma l = /model/rock/sigma_l_N_per_m)");
 
     // Channels: m sub-sections; damping and buoyant weight lumped at the nodes (half at the ends).
     const double area = kPi / 4 * (d_o * d_o - d_i * d_i), polar = kPi / 32 * (std::pow(d_o, 4) - std::pow(d_i, 4));

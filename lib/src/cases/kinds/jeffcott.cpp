@@ -111,7 +111,7 @@ class JeffcottModel : public PreparedModel {
       twist.push_back(s[2]), drive.push_back(omega), rotor.push_back(beta_dot);
       shaft_torque.push_back(r_.torsional_stiffness * s[2] + process.TorsionalDamping() * s[5]);
       torque.push_back(r_.torque.Value(t));
-      normalized.push_back(omega != 0 ? beta_dot / omega : std::nan(""));
+      normalized.push_back(omega != 0 ? beta_dot / omega : beta_dot == 0 ? 1.0 : std::nan(""));  // at rest: 1
     };
     sample(0.0, x);
     const auto observer = integration::SampleEvery(settings.output_interval_s, sample);

@@ -32,7 +32,12 @@ waves::Section ReadSection(const JsonReader& r) {
   }
   r.Allow("name");
   r.Finish();
-  return waves::Section::Torsional(length, g, rho, j);
+  const waves::Section s = waves::Section::Torsional(length, g, rho, j);  // extremes overflow: say which section
+  if (!(s.travel_time_s > 0 && s.impedance > 0 && std::isfinite(s.travel_time_s) && std::isfinite(s.impedance)))
+    throw InputError(r.path(), "travel time " + ReadableNumber(s.travel_time_s) + " s and impedance " +
+                                   ReadableNumber(s.impedance) + " N m s must be positive and finite: length_m, "
+                                   "shear_modulus_Pa, density_kg_m3 or the polar moment is out of range");
+  return s;
 }
 
 // Splits each section into m equal parts and puts a dashpot gamma * length / m to ground at each internal node:

@@ -1,0 +1,226 @@
+// The error policy (issues 15 and 16) as a user meets it: exit codes 0 / 1 / 2 / 3 / 4, bad input named with its
+// path and value before any work starts, non-finite runs as numerical failures, output folders replaced whole.
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using drillwave::test_support::Outcome;
+using drillwave::test_support::RunTool;
+
+const std::string kCases = std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/";
+
+std::string Contents(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+class ErrorPolicy : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = drillwave::test_support::ScratchFolder("policy");
+    std::ifstream in(kCases + "saldivar-stickslip.json");
+    base_ = nlohmann::json::parse(in);
+    base_["simulation"]["duration_s"] = 10;
+    base_["statistics"]["window_s"] = {5, 10};
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Write(const nlohmann::json& doc, const std::string& name = "case.json") {
+    const std::string file = (dir_ / name).string();
+    std::ofstream(file) << doc.dump();
+    return file;
+  }
+  // Expects `args` to exit with `code`, mention `text`, and write no `out` folder.
+  void Expect(const std::string& args, int code, const std::string& text) {
+    const Outcome o = RunTool(args);
+    EXPECT_EQ(o.exit_code, code) << args << "\n" << o.output;
+    EXPECT_NE(o.output.find(text), std::string::npos) << "expected '" << text << "' in: " << o.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out")) << args;
+  }
+  std::string Out() const { return " -o " + (dir_ / "out").string(); }
+
+  fs::path dir_;
+  nlohmann::json base_;
+};
+
+TEST_F(ErrorPolicy, OptionErrorsAreBadInputNotCli11Codes) {
+  // CLI11 exits 104-109 by itself; the policy says 2.
+  Expect("run " + Write(base_) + " --bogus" + Out(), 2, "--bogus");
+  Expect("sweep " + Write(base_) + " -v 1:2:2" + Out(), 2, "--param");
+  Expect("sweep " + Write(base_) + " -p /model/bit/inertia_kgm2 -v 80,90 -j many" + Out(), 2, "many");
+  EXPECT_EQ(RunTool("--help").exit_code, 0);
+}
+
+TEST_F(ErrorPolicy, EmptyPathsAreErrorsNotTheDefaultCase) {
+  Expect("run ''" + Out(), 2, "case: empty value");
+  Expect("validate ''", 2, "case: empty value");
+  Expect("inspect ''" + Out(), 2, "recording: empty value");
+  Expect("run " + Write(base_) + " -o ''", 2, "--out: empty value");
+  Expect("diagnose " + kCases + "baseline-60rpm.json " + Write(base_, "x.csv") + " --sidecar ''" + Out(), 2,
+         "--sidecar: empty value");
+}
+
+TEST_F(ErrorPolicy, ExpectBlocksAreValidated) {
+  auto doc = base_;
+  doc["expect"] = {{"stick_slip_period_s", {{"min", "3.2"}}}};  // was an uncaught type_error.302, exit 1
+  Expect("run " + Write(doc) + Out(), 2, "/expect/stick_slip_period_s/min: expected a finite number, got a string");
+  doc["expect"] = {{"stick_fraction", {{"min", 0.5}, {"max", 0.4}}}};
+  Expect("validate " + Write(doc), 2, "/expect/stick_fraction: the range [min, max] = [0.5, 0.4] is reversed");
+  doc["expect"] = {{"stick_fraction", {{"rel_tol", 0.1}}}};
+  Expect("validate " + Write(doc), 2, "/expect/stick_fraction/rel_tol: a tolerance needs a \"value\"");
+  doc["expect"] = {{"stick_fraction", {{"value", 0.4}, {"rel_tol", -1}}}};
+  Expect("validate " + Write(doc), 2, "/expect/stick_fraction/rel_tol: expected a number >= 0, got -1");
+  doc["expect"] = {{"stick_fraction", {{"maximum", 0.4}}}};
+  Expect("validate " + Write(doc), 2, "/expect/stick_fraction/maximum: unknown field");
+}
+
+TEST_F(ErrorPolicy, WorkIsEstimatedAndRefusedAboveTheLimit) {
+  auto doc = base_;
+  doc["simulation"]["output_interval_s"] = 1e-7;  // 1e8 samples
+  Expect("run " + Write(doc) + Out(), 2, "/simulation/output_interval_s: 10 s simulated every 1e-07 s: the number "
+                                          "of output samples is 100000000, above the limit of 10000000");
+  Expect("validate " + Write(doc), 2, "raise the limit with --max-samples");
+  EXPECT_EQ(RunTool("validate " + Write(doc) + " --max-samples 2e8").exit_code, 0);
+  doc["simulation"]["output_interval_s"] = 0.01;
+  doc["simulation"]["max_step_s"] = 1e-7;
+  Expect("validate " + Write(doc), 2, "/simulation/max_step_s: 10 s simulated in steps of at most 1e-07 s");
+  Expect("validate " + Write(base_) + " --max-samples 0", 2, "--max-samples: expected a finite number >= 1");
+}
+
+TEST_F(ErrorPolicy, NonFiniteOutputsAreANumericalFailureNeverExitZero) {
+  // Issue 16: beta = 1e308 wrote 15 852 NaN rows and a summary "stuck 100 % of the time", exit 0.
+  auto doc = base_;
+  doc["model"]["top"]["beta_Nms_per_rad"] = 1e308;
+  const Outcome o = RunTool("run " + Write(doc) + Out());
+  EXPECT_EQ(o.exit_code, 3) << o.output;
+  EXPECT_NE(o.output.find("is not finite"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find(" at t = "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("state = ["), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(ErrorPolicy, EveryChannelsFirstSampleIsDefined) {
+  // Every Jeffcott trajectory started with rotor_speed_norm = nan.
+  std::ifstream in(kCases + "jeffcott-unbalance.json");
+  auto doc = nlohmann::json::parse(in);
+  doc["simulation"]["duration_s"] = 0.5;
+  doc["statistics"]["window_s"] = {0, 0.5};
+  doc.erase("expect");
+  const Outcome o = RunTool("run " + Write(doc) + Out());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::ifstream csv(dir_ / "out" / "trajectory.csv");
+  std::string header, first;
+  std::getline(csv, header);
+  std::getline(csv, first);
+  EXPECT_NE(header.find("rotor_speed_norm"), std::string::npos);
+  EXPECT_EQ(first.find("nan"), std::string::npos) << header << "\n" << first;
+  EXPECT_EQ(Contents(dir_ / "out" / "summary.json").find("1e+300"), std::string::npos);
+}
+
+TEST_F(ErrorPolicy, AFailedWriteNeverLeavesAMixedFolder) {
+  // Issue 16's reproduction: a folder where summary.json should go, and an old trajectory.
+  const fs::path out = dir_ / "o";
+  fs::create_directories(out / "summary.json");
+  std::ofstream(out / "trajectory.csv") << "OLD\n";
+  std::ofstream(out / "report.md") << "OLD\n";
+  const Outcome o = RunTool("run " + Write(base_) + " -o " + out.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_TRUE(fs::is_regular_file(out / "summary.json"));
+  EXPECT_EQ(Contents(out / "trajectory.csv").rfind("time_s,", 0), 0u);
+  EXPECT_NE(Contents(out / "report.md"), "OLD\n");
+  // A folder holding something drillwave did not write is refused before the run, and left as it was.
+  std::ofstream(out / "notes.txt") << "mine";
+  const std::string before = Contents(out / "trajectory.csv");
+  const Outcome refused = RunTool("run " + Write(base_) + " -o " + out.string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("notes.txt"), std::string::npos) << refused.output;
+  EXPECT_EQ(refused.output.find("running case"), std::string::npos) << "checked before the run";
+  EXPECT_EQ(Contents(out / "trajectory.csv"), before);
+  EXPECT_EQ(Contents(out / "notes.txt"), "mine");
+}
+
+TEST_F(ErrorPolicy, RecordingsAreValidatedByFileLineAndColumn) {
+  auto recording = [&](const std::string& name, const std::string& header, const std::string& bad_row) {
+    std::ofstream out(dir_ / name);
+    out << header << "\n";
+    for (int i = 0; i < 50; ++i) out << 0.01 * i << ",60," << 50 + i % 7 << "\n";
+    if (!bad_row.empty()) out << bad_row << "\n";
+    return (dir_ / name).string();
+  };
+  const std::string header = "time_s,top_rpm,bit_rpm";
+  std::string file = recording("blank.csv", header, "0.5,60,");
+  Expect("inspect " + file + Out(), 2, file + ":52: column bit_rpm (3): blank cell");
+  file = recording("inf.csv", header, "0.5,inf,60");
+  Expect("inspect " + file + Out(), 2, file + ":52: column top_rpm (2): \"inf\" is not a finite number");
+  file = recording("time.csv", header, "1e999,60,60");
+  Expect("inspect " + file + Out(), 2, file + ":52: column time_s (1): \"1e999\" is not a finite number");
+  file = recording("dup.csv", "time_s,bit_rpm,bit_rpm", "");
+  Expect("inspect " + file + Out(), 2, "columns 2 and 3 are both named \"bit_rpm\"");
+  file = recording("latin1.csv", "time_s,top_rpm,bit_rpm,caf\xE9", "");
+  Expect("inspect " + file + Out(), 2, "column 4 of the header (\"caf\\xE9\") has a byte that is not UTF-8");
+  file = recording("back.csv", header, "0.2,60,60");
+  Expect("inspect " + file + Out(), 2, file + ": column time_s: time does not increase at data row 51 (0.2 s after 0.49 s)");
+  Expect("inspect " + (dir_ / "none.csv").string() + Out(), 2, "cannot open CSV file " + (dir_ / "none.csv").string());
+}
+
+TEST_F(ErrorPolicy, WindowsFeaturesAndBoundsAreCheckedBeforeAnyRun) {
+  auto doc = base_;
+  const std::string file = Write(doc);
+  const std::string truth = (dir_ / "truth").string();
+  ASSERT_EQ(RunTool("run " + file + " -o " + truth).exit_code, 0);
+  const std::string csv = truth + "/trajectory.csv";
+  Expect("compare " + file + " " + csv + " --window 8,3" + Out(), 2, "--window: '8,3' is reversed");
+  Expect("compare " + file + " " + csv + " --window 50,60" + Out(), 2, "--window: fewer than 10 recorded samples");
+  Expect("compare " + file + " " + csv + " --map bit_rpm=nothing" + Out(), 2, "the model has no channel nothing");
+  Expect("compare " + file + " " + csv + " --map nothing=bit_rpm" + Out(), 2, "has no channel nothing");
+  const auto start = std::chrono::steady_clock::now();
+  Expect("fit " + file + " " + csv + " -p /model/bit/friction/mu_s:0.6:0.9 --feature no_such" + Out(), 2,
+         "--feature: no feature named 'no_such'");
+  Expect("fit " + file + " " + csv + " -p /model/bit/friction/mu_s:0.9:0.6" + Out(), 2, "the bounds are reversed");
+  Expect("fit " + file + " " + csv + " -p /model/bit/inertia_kgm2:-5:90" + Out(), 2, "the bound -5 is not valid");
+  Expect("fit " + file + " " + csv + " -p /model/bit/friction/mu_s:0.6:0.9 --window 9,2" + Out(), 2, "reversed");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+}
+
+TEST_F(ErrorPolicy, InspectGrowsLinearlyWithTheNumberOfChannels) {
+  // 2 000 channels made 276 MB of outputs from an 8 MB CSV (every pair of channels correlated and listed).
+  auto write = [&](int channels) {
+    const fs::path file = dir_ / ("wide-" + std::to_string(channels) + ".csv");
+    std::ofstream out(file);
+    out << "time_s,top_rpm,bit_rpm";
+    for (int j = 0; j < channels; ++j) out << ",c" << j;
+    out << "\n";
+    for (int i = 0; i < 200; ++i) {
+      out << 0.01 * i << ",60," << (i % 40 < 20 ? 0 : 90);
+      for (int j = 0; j < channels; ++j) out << "," << (i * (j + 3)) % 17;
+      out << "\n";
+    }
+    return file.string();
+  };
+  auto output_bytes = [&](int channels) {
+    const fs::path out = dir_ / ("insp-" + std::to_string(channels));
+    const Outcome o = RunTool("inspect " + write(channels) + " -o " + out.string());
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    std::uintmax_t bytes = 0;
+    for (const auto& e : fs::directory_iterator(out)) bytes += fs::file_size(e.path());
+    return static_cast<double>(bytes);
+  };
+  const double small = output_bytes(100), large = output_bytes(800);
+  std::cout << "[ measured ] inspect outputs: " << small << " bytes for 100 channels, " << large << " for 800 (ratio "
+            << large / small << "; quadratic growth would give ~64)\n";
+  EXPECT_LT(large / small, 12);
+}
+
+}  // namespace
