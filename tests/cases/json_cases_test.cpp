@@ -56,7 +56,29 @@ TEST(ParameterPaths, EveryParameterIsAddressableByItsJsonPointer) {
   io::SetByPointer(doc, "/statistics/window_s", nlohmann::json::array({20.0, 30.0}));
   const CaseRun run = RunCase(ParseCase(doc));
   EXPECT_EQ(run.summary.at("stick_onsets").get<int>(), 0);  // 20 rad/s: smooth drilling
-  EXPECT_THROW(io::SetByPointer(doc, "/model/bit/no_such_field", 1.0), InputError);
+  io::SetByPointer(doc, "/model/bit/no_such_field", 1.0);  // added, then refused by the kind's reader
+  EXPECT_THROW(ParseCase(doc), InputError);
+}
+
+}  // namespace
+}  // namespace drillwave::cases
+
+namespace drillwave::cases {
+namespace {
+
+// --set reaches every documented optional field, also one the case leaves out; a misspelt one is refused by the
+// kind's reader with its path.
+TEST(SetOptionalFields, AMissingOptionalFieldCanBeSetAndAMisspeltOneIsRefused) {
+  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+  io::SetByPointer(doc, "/model/initial/bit_speed_rad_s", 6.0);
+  EXPECT_NO_THROW(ParseCase(doc));
+  io::SetByPointer(doc, "/model/bit/inertia_kgm3", 1.0);
+  try {
+    ParseCase(doc);
+    FAIL() << "a misspelt field was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("inertia_kgm3"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -361,7 +361,15 @@ void SetByPointer(nlohmann::json& doc, const std::string& pointer, const nlohman
     nlohmann::json* child = nullptr;
     if (node->is_object()) {
       const auto it = node->find(token);
-      if (it != node->end()) child = &*it;
+      if (it != node->end()) {
+        child = &*it;
+      } else {
+        // A documented optional field the case leaves out: add it (and the objects on its way). A misspelt one is
+        // refused by the case's own reader as an unknown field, with its path, before anything runs.
+        // (Once a member is added, everything below it is added too: a failure can only come before.)
+        child = &(*node)[token];
+        if (slash != std::string::npos) *child = nlohmann::json::object();
+      }
     } else if (node->is_array()) {
       const bool is_index = !token.empty() && token.size() <= 9 &&
                             token.find_first_not_of("0123456789") == std::string::npos &&

@@ -88,9 +88,10 @@ class JsonReader {
   mutable std::set<std::string> known_;
 };
 
-// Replaces the value at an existing JSON pointer (parameter sweeps, fits, `--set /a/b=3`). Throws
-// InputError(pointer, "no such field in the case") if the pointer does not lead to an existing value; it never adds
-// fields, so a misspelt override cannot pass unnoticed.
+// Sets the value at a JSON pointer (parameter sweeps, fits, `--set /a/b=3`). A missing object member is added (with
+// the objects on its way), so that optional fields the case leaves out can be set; a misspelt one is then refused by
+// the case's reader as an unknown field. Array elements must exist. Throws InputError(pointer, "no such field in the
+// case") where the pointer cannot lead (past a number, an index out of range) and leaves doc unchanged.
 void SetByPointer(nlohmann::json& doc, const std::string& pointer, const nlohmann::json& value);
 
 // Command-line text to a JSON value: "3.5" -> 3.5, "true" -> true, "[0, 5]" -> an array; text that is not JSON is
