@@ -59,6 +59,13 @@ TEST(CaseStability, SaldivarSteadySlidingIsStableWhileStickSlipCoexists) {
   // Linearly stable (the simulation from rest still ends in stick-slip: bistability), decay rate 0.209 1/s.
   EXPECT_TRUE(r[0].spectrum.stable);
   EXPECT_NEAR(r[0].spectrum.spectral_abscissa, -0.2094, 1e-3);
+  // The chapter's NDDE coefficients, as DESIGN.md §1 works them out for this string.
+  const auto& ndde = r[0].point.steady_state.at("neutral_dde");
+  EXPECT_NEAR(ndde.at("impedance_Nms_per_rad").get<double>(), 299.7, 0.05);
+  EXPECT_NEAR(ndde.at("round_trip_s").get<double>(), 0.7445, 5e-5);
+  EXPECT_NEAR(ndde.at("upsilon").get<double>(), 0.7393, 5e-5);
+  EXPECT_NEAR(ndde.at("psi_per_s").get<double>(), 3.368, 5e-4);
+  EXPECT_NEAR(ndde.at("pi_per_s").get<double>(), 5.858, 5e-4);
   // The smooth case's steady state is the speed its expect block holds.
   const auto smooth = Analyze(LoadCase("saldivar-smooth"));
   ASSERT_EQ(smooth.size(), 1u);

@@ -166,12 +166,22 @@ class TorsionalWaveModel : public PreparedModel {
                                      (net_.sections.size() > 1 ? " (sections and damping_subsections both count)" : ""));
     }
     const double omega = net_.top().setpoint.knots().back().second;
+    // The chapter's neutral form (DESIGN.md §1): z'' - Y z''(t - 2 tau) = -Psi z' - Y Psi z'(t - 2 tau)
+    // + Pi Omega(t - tau) - [T(z') - Y T(z'(t - 2 tau))] / I_B, with the top's own ground damping in beta.
+    const double z = net_.sections.front().impedance, beta = net_.top().drive_damping + net_.top().ground_damping;
+    const double inertia = net_.bit().inertia;
+    const nlohmann::json ndde = {{"upsilon", (beta - z) / (beta + z)},
+                                 {"psi_per_s", z / inertia},
+                                 {"pi_per_s", 2 * z * net_.top().drive_damping / (inertia * (beta + z))},
+                                 {"round_trip_s", 2 * net_.sections.front().travel_time_s},
+                                 {"impedance_Nms_per_rad", z}};
     std::vector<LinearizedOperatingPoint> points;
     for (const analysis::TorsionalOperatingPoint& p : analysis::SteadySlidingStates(net_, omega))
       points.push_back({{{"top_speed_rad_s", p.top_speed_rad_s},
                          {"bit_speed_rad_s", p.bit_speed_rad_s},
                          {"bit_torque_Nm", p.bit_torque_Nm},
-                         {"bit_torque_slope_Nms_per_rad", p.torque_slope_Nms_per_rad}},
+                         {"bit_torque_slope_Nms_per_rad", p.torque_slope_Nms_per_rad},
+                         {"neutral_dde", ndde}},
                         {"bit_speed_rad_s"},
                         analysis::LinearizeTorsionalString(net_, p)});
     return points;
