@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <boost/math/tools/roots.hpp>
+
 #include "drillwave/integration/breakpoints.hpp"
 #include "drillwave/integration/hermite_history.hpp"
 
@@ -355,17 +357,18 @@ class NetworkProcess {
     if (node.drive == Drive::kPrescribedSpeed) return Setpoint(node, t, side);
     const auto [a, b] = MasslessBalance(i, TwiceIncoming(i, in), t, side);
     if (!node.friction) return a / b;
-    // Smooth friction: solve a - b v - T(v) = 0 by Newton from the frictionless speed.
+    // Smooth friction: the root of r(v) = a - b v - T(v). r falls with v wherever b > -T'(v), so from the frictionless
+    // speed the root lies on the side r points to: bracket it by doubling steps, then Newton kept inside the bracket
+    // (a velocity-weakening law can send plain Newton out of it).
     const auto& f = *node.friction;
-    double v = a / b;
-    for (int iter = 0; iter < 50; ++iter) {
-      const double r = a - b * v - f.SlipTorque(v);
-      const double dr = -b - f.SlipTorqueDerivative(v);
-      const double step = r / dr;
-      v -= step;
-      if (std::abs(step) <= 1e-14 * (1 + std::abs(v))) break;
-    }
-    return v;
+    auto residual = [&](double v) { return a - b * v - f.SlipTorque(v); };
+    const double v0 = a / b, r0 = residual(v0);
+    if (r0 == 0) return v0;
+    double step = std::abs(r0) / b, v1 = v0 + std::copysign(step, r0);
+    for (int k = 0; k < 60 && (residual(v1) > 0) == (r0 > 0); ++k) step *= 2, v1 = v0 + std::copysign(step, r0);
+    return boost::math::tools::newton_raphson_iterate(
+        [&](double v) { return std::make_pair(residual(v), -b - f.SlipTorqueDerivative(v)); }, v0,
+        std::min(v0, v1), std::max(v0, v1), 46);
   }
 
   // Linear part of a massless node's balance: a - b v = sum Z(2 w_in - v) - c v + drive torque.
