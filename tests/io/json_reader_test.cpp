@@ -83,7 +83,8 @@ TEST(LoadJsonFile, NulBytesDuplicateKeysDeepNestingAndEmptyNamesAreErrors) {
     fs::remove(file);
     return what;
   };
-  EXPECT_NE(message("nul.json", std::string("{\"name\": \"a\"}\0{\"more\": 1}", 27)).find("line 1, column 14: a NUL byte"),
+  static const char kNulInside[] = "{\"name\": \"a\"}\0{\"more\": 1}";
+  EXPECT_NE(message("nul.json", std::string(kNulInside, sizeof kNulInside - 1)).find("line 1, column 14: a NUL byte"),
             std::string::npos);
   const std::string dup = message("dup.json", "{\"model\": {\"k\": 1,\n \"k\": 2}}");
   EXPECT_NE(dup.find("/model/k: "), std::string::npos) << dup;
