@@ -19,6 +19,7 @@
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/diagnosis/diagnose.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -42,19 +43,52 @@ nlohmann::json LoadCaseDocument(const std::string& file, const std::vector<std::
   return doc;
 }
 
+// Where the model linearizes, says when the motion the run found differs from the linear verdict at the same set-point:
+// stick-slip beside a stable steady state (two attractors: the start decides), or no sticking although every steady
+// state is unstable. The linearization costs a fraction of a second; sweeps and fits do not ask for it.
+void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
+  if (!summary.contains("stick_onsets") || !summary.at("stick_onsets").is_number()) return;
+  std::vector<drillwave::cases::OperatingPointStability> points;
+  try {
+    points = drillwave::cases::AnalyzeStability(c);
+  } catch (const drillwave::InputError&) {
+    return;  // this kind or configuration has no linearization
+  }
+  if (points.empty()) return;
+  const bool sticks = summary.at("stick_onsets").get<int>() > 0;
+  for (const auto& p : points) {
+    if (!sticks || !p.spectrum.stable) continue;
+    const auto& state = p.point.steady_state;  // wave kinds name the bit's speed, lumped kinds the common one
+    const double speed = state.contains("bit_speed_rad_s") ? state.value("bit_speed_rad_s", 0.0)
+                                                           : state.value("speed_rad_s", 0.0);
+    summary["linear_verdict"] =
+        "a stable steady state (bit at " + drillwave::Fixed(speed, 4) +
+        " rad/s, rightmost root Re s = " + drillwave::Fixed(p.spectrum.spectral_abscissa, 4) +
+        " 1/s) coexists with the stick-slip this run found: which motion appears depends on the start";
+    return;
+  }
+  if (!sticks && std::none_of(points.begin(), points.end(), [](const auto& p) { return p.spectrum.stable; }))
+    summary["linear_verdict"] = "every steady state is linearly unstable (rightmost root Re s = " +
+                                drillwave::Fixed(points.front().spectrum.spectral_abscissa, 4) +
+                                " 1/s), yet the bit did not stick: the run ends on an oscillation without sticking";
+}
+
 int RunAndWrite(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
                 bool check) {
   const Case c = drillwave::cases::ParseCase(LoadCaseDocument(file, overrides));
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: running case '" << c.name << "' (kind " << c.kind << ", " << c.settings.duration_s
             << " s simulated)" << (file.empty() ? " [embedded default case]" : "") << std::endl;
-  const auto run = drillwave::cases::RunCase(c);
+  auto run = drillwave::cases::RunCase(c);
+  AddLinearVerdict(c, run.summary);
   drillwave::cases::WriteCaseOutputs(c, run, out_dir);
   const auto dir = std::filesystem::absolute(out_dir).string();
   std::cout << "wall time " << run.summary.value("wall_time_s", 0.0) << " s, " << run.summary.value("steps", 0)
             << " steps, " << run.summary.value("events", 0) << " events\n";
   for (const char* key : {"stick_slip_period_s", "stick_fraction", "bit_speed_mean_rad_s", "bit_speed_max_rad_s"})
     if (run.summary.contains(key)) std::cout << "  " << key << " = " << run.summary.at(key).dump() << "\n";
+  if (run.summary.contains("linear_verdict"))
+    std::cout << "  note: " << run.summary.at("linear_verdict").get<std::string>() << "\n";
   std::cout << "wrote " << dir << "/trajectory.csv (sampled channels), summary.json (statistics), plot.svg (figure), "
             << "report.md (report), case.json (the case as run)\n";
   bool all_passed = true;

@@ -69,6 +69,24 @@ TEST_F(Cli, RunsACaseAndWritesEveryOutput) {
     EXPECT_TRUE(summary.contains(key)) << key;
 }
 
+// The saldivar string at 10 rad/s: steady sliding is linearly stable, yet the run from rest sticks and slips. `run`
+// says so (two attractors); at 20 rad/s it drills smoothly and there is nothing to say.
+TEST_F(Cli, RunSaysWhenAStableSteadyStateCoexistsWithTheStickSlipItFound) {
+  const std::string out = (dir_ / "out").string();
+  const Outcome o = RunTool("run " + Write(base_.dump()) + " --out " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  std::ifstream summary_file(fs::path(out) / "summary.json");
+  const auto summary = nlohmann::json::parse(summary_file);
+  ASSERT_TRUE(summary.contains("linear_verdict")) << summary.dump();
+  EXPECT_NE(summary["linear_verdict"].get<std::string>().find("6.2052 rad/s"), std::string::npos);
+  EXPECT_NE(o.output.find("coexists with the stick-slip"), std::string::npos) << o.output;
+  base_["model"]["top"]["speed_rad_s"]["knots"][1][1] = 20.0;
+  const std::string smooth = (dir_ / "smooth").string();
+  ASSERT_EQ(RunTool("run " + Write(base_.dump()) + " --out " + smooth).exit_code, 0);
+  std::ifstream smooth_file(fs::path(smooth) / "summary.json");
+  EXPECT_FALSE(nlohmann::json::parse(smooth_file).contains("linear_verdict"));
+}
+
 TEST_F(Cli, NoArgumentsRunsTheEmbeddedDefaultCase) {
   const Outcome o = RunTool("run --out " + (dir_ / "default").string());
   EXPECT_EQ(o.exit_code, 0) << o.output;
