@@ -5,6 +5,7 @@
 #include <random>
 
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/sampled.hpp"
 
 namespace drillwave::cases {
 
@@ -30,19 +31,6 @@ SensorSet ReadSensors(const JsonReader& block) {
   return set;
 }
 
-namespace {
-
-// Linear interpolation in (t, v) at time s, held at the first value before the start and the last after the end.
-double At(const std::vector<double>& t, const std::vector<double>& v, double s) {
-  if (s <= t.front()) return v.front();
-  if (s >= t.back()) return v.back();
-  const auto k = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), s) - t.begin());
-  const double w = (s - t[k - 1]) / (t[k] - t[k - 1]);
-  return w == 0 ? v[k - 1] : v[k - 1] + w * (v[k] - v[k - 1]);
-}
-
-}  // namespace
-
 std::vector<double> Measure(const SensorModel& sensor, const std::vector<double>& t, const std::vector<double>& values,
                             unsigned long long seed) {
   if (t.empty()) return {};
@@ -64,11 +52,11 @@ std::vector<double> Measure(const SensorModel& sensor, const std::vector<double>
       const long j = std::max(0L, static_cast<long>(std::floor((sent - t.front()) / sensor.hold_s + 1e-9)));
       while (held < j) {  // draw noise for every sample, received or skipped, so the noise does not depend on the output grid
         ++held;
-        held_value = At(t, filtered, t.front() + held * sensor.hold_s) + sensor.noise_std * noise(rng);
+        held_value = InterpolateSampled(t, filtered, t.front() + held * sensor.hold_s) + sensor.noise_std * noise(rng);
       }
       measured[k] = held_value;
     } else {
-      measured[k] = At(t, filtered, sent) + (sensor.noise_std > 0 ? sensor.noise_std * noise(rng) : 0.0);
+      measured[k] = InterpolateSampled(t, filtered, sent) + (sensor.noise_std > 0 ? sensor.noise_std * noise(rng) : 0.0);
     }
   }
   return measured;

@@ -4,17 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include "drillwave/core/sampled.hpp"
+
 namespace drillwave::cases {
 namespace {
-
-double Interpolate(const std::vector<double>& t, const std::vector<double>& y, double at) {
-  auto it = std::lower_bound(t.begin(), t.end(), at);
-  if (it == t.begin()) return y.front();
-  if (it == t.end()) return y.back();
-  const std::size_t i = static_cast<std::size_t>(it - t.begin());
-  const double w = (at - t[i - 1]) / (t[i] - t[i - 1]);
-  return y[i - 1] + w * (y[i] - y[i - 1]);
-}
 
 // See StickSlipStatistics::oscillation_period_s. Crossing times are interpolated linearly between samples.
 double OscillationPeriod(const std::vector<double>& t, const std::vector<double>& v, double begin, double end,
@@ -76,7 +69,7 @@ StickSlipStatistics ComputeStickSlipStatistics(const std::vector<StuckInterval>&
     s.speed_min = std::min(s.speed_min, speed_rad_s[i]);
   }
   if (!angle_rad.empty() && length > 0)
-    s.speed_mean = (Interpolate(time_s, angle_rad, window_end_s) - Interpolate(time_s, angle_rad, window_begin_s)) / length;
+    s.speed_mean = (InterpolateSampled(time_s, angle_rad, window_end_s) - InterpolateSampled(time_s, angle_rad, window_begin_s)) / length;
   s.oscillation_period_s =
       OscillationPeriod(time_s, speed_rad_s, window_begin_s, window_end_s, s.speed_mean, s.speed_max, s.speed_min);
   return s;
