@@ -474,7 +474,7 @@ int main(int argc, char** argv) {
 
   auto* fit = app.add_subcommand(
       "fit", "fit parameters of a case (by JSON pointer, with bounds) so that its features match a recording's "
-             "(derivative-free Nelder-Mead; writes the fitted case)");
+             "(bounded derivative-free search, NLopt Subplex; writes the fitted case)");
   std::vector<std::string> fit_params, fit_features;
   int max_evaluations = 200;
   std::string fit_out = "drillwave-fit";
