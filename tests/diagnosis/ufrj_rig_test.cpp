@@ -56,9 +56,10 @@ TEST(UfrjRig, FittedCasePredictsTheHeldOutFeaturesBetterThanItsStart) {
   ASSERT_NE(start, fitted);
   const double before = FeatureError(start, rec, 20, 30, "start");
   const double after = FeatureError(fitted, rec, 20, 30, "fitted");
-  // Measured: start 24.5 %, fitted 18.2 % (gcc, Release); the bound leaves room for another compiler's rounding.
+  // Measured: start 32.2 %, fitted 24.9 % (gcc, Release; the weight on bit after 20 s held at its fit-window mean);
+  // the bound leaves room for another compiler's rounding.
   EXPECT_LT(after, before);
-  EXPECT_LT(after, 0.21);
+  EXPECT_LT(after, 0.27);
 }
 
 }  // namespace
