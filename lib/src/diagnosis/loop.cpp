@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <mutex>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/sensors.hpp"
+#include "drillwave/io/json_reader.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
@@ -102,13 +106,34 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
 
   const double full_duration = o.model_time_offset_s + o.held_out_end_s;
   const double fit_duration = o.model_time_offset_s + o.fit_end_s + 0.5;
+  // Runs that differ only in their sensors (a telemetry delay, the noise's draw) share one simulation.
+  std::mutex cache_mutex;
+  std::map<std::string, std::shared_ptr<const cases::RunResult>> simulations;
   auto run = [&](nlohmann::json doc, double duration) {
     doc["simulation"]["duration_s"] = duration;
     const auto window = nlohmann::json::json_pointer("/statistics/window_s");
     if (doc.contains(window) && doc.at(window).is_array() && doc.at(window).size() == 2)  // kept inside the run
       doc.at(window) = {std::min(doc.at(window)[0].get<double>(), 0.5 * duration), duration};
-    cases::CaseRun r = cases::RunCase(cases::ParseCase(doc));
-    return ModelRecording(r.result, o.maps, rec, o.model_time_offset_s, o.fit_begin_s,
+    const cases::SensorSet sensors = doc.contains("sensors")
+                                         ? cases::ReadSensors(io::JsonReader(doc["sensors"], "/sensors"))
+                                         : cases::SensorSet{};
+    doc.erase("sensors");
+    const std::string key = doc.dump();
+    std::shared_ptr<const cases::RunResult> simulated;
+    {
+      const std::lock_guard<std::mutex> lock(cache_mutex);
+      const auto it = simulations.find(key);
+      if (it != simulations.end()) simulated = it->second;
+    }
+    if (!simulated) {
+      simulated = std::make_shared<const cases::RunResult>(cases::RunCase(cases::ParseCase(doc)).result);
+      const std::lock_guard<std::mutex> lock(cache_mutex);
+      if (simulations.size() >= 64) simulations.clear();  // a bound on memory; fits revisit recent points
+      simulations.emplace(key, simulated);
+    }
+    cases::RunResult measured = *simulated;
+    cases::ApplySensors(sensors, measured);
+    return ModelRecording(measured, o.maps, rec, o.model_time_offset_s, o.fit_begin_s,
                           std::min(o.held_out_end_s, duration - o.model_time_offset_s));
   };
 
