@@ -21,7 +21,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
-#include "drillwave/diagnosis/diagnose.hpp"
+#include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/diagnosis/loop_report.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/diagnosis/fit.hpp"
