@@ -1,4 +1,4 @@
-// The UFRJ laboratory rig (json-cases/ufrj-rig.json) against its recording (../shared; skipped where absent): the
+// The UFRJ laboratory rig (json-cases/ufrj-rig-wob-input.json) against its recording (../shared; skipped where absent): the
 // case was fitted on 2-20 s, and is judged here on the held-out 20-30 s by the features of the brief (stick fraction,
 // stick-slip period, bit speed mean and max, torque on bit mean and std), against the start values kept in its notes.
 #include <cmath>
@@ -50,7 +50,7 @@ TEST(UfrjRig, FittedCasePredictsTheHeldOutFeaturesBetterThanItsStart) {
   const std::string file = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/ufrj-rig/rig-0-30s.csv";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "the laboratory recording is not at " << file;
   const Recording rec = LoadRecording(file);
-  const nlohmann::json fitted = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/ufrj-rig.json");
+  const nlohmann::json fitted = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/ufrj-rig-wob-input.json");
   nlohmann::json start = fitted;
   for (const auto& [pointer, value] : kStartValues) start[nlohmann::json::json_pointer(pointer)] = value;
   ASSERT_NE(start, fitted);

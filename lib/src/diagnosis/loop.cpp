@@ -14,6 +14,7 @@
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/core/sampled.hpp"
 #include "drillwave/diagnosis/minimize.hpp"
+#include "drillwave/diagnosis/signals.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -49,6 +50,21 @@ Recording ModelRecording(const cases::RunResult& run, const std::vector<ChannelM
   return m;
 }
 
+// The recording with its sensor artefacts (spikes, dropouts) masked — replaced by their window's median, as the
+// inspection does — so that a glitch is not read as physics. Counts the masked samples per channel.
+Recording MaskArtefacts(const Recording& rec, std::vector<std::pair<std::string, int>>& masked) {
+  Recording clean = rec;
+  const int half_window = std::max(2, static_cast<int>(std::lround(0.1 / rec.sample_interval_s)));
+  for (std::size_t j = 0; j < rec.names.size(); ++j) {
+    std::vector<double> magnitude(rec.channels[j].size());
+    for (std::size_t i = 0; i < magnitude.size(); ++i) magnitude[i] = std::abs(rec.channels[j][i]);
+    const HampelResult h = HampelFilter(rec.channels[j], half_window, 5, 0.05 * Median(magnitude), 2);
+    clean.channels[j] = h.cleaned;
+    masked.push_back({rec.names[j], static_cast<int>(std::count(h.flagged.begin(), h.flagged.end(), 1))});
+  }
+  return clean;
+}
+
 double FiniteCount(const FeatureSet& s) {
   double n = 0;
   for (const Feature& f : s.features) n += std::isfinite(f.value) ? 1 : 0;
@@ -75,7 +91,7 @@ void CheckScale(const Recording& rec, const Recording& model, const std::vector<
 
 }  // namespace
 
-DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& rec, const LoopOptions& o,
+DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& raw, const LoopOptions& o,
                                const LoopProgress& progress) {
   auto say = [&](const std::string& s) {
     if (progress) progress(s);
@@ -87,6 +103,14 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
                                          "] s, each with begin < end");
   if (o.maps.empty()) throw InputError("--map", "no channels to compare");
   DiagnosisLoop loop;
+  // Only the mapped channels take part: a channel the model does not have says nothing about it.
+  Recording mapped = raw;
+  mapped.names.clear(), mapped.channels.clear();
+  for (const ChannelMap& map : o.maps) {
+    mapped.names.push_back(map.recording);
+    mapped.channels.push_back(raw.Channel(map.recording));
+  }
+  const Recording rec = MaskArtefacts(mapped, loop.masked_samples);
   loop.recording_fit = MeasureFeatures(rec, o.fit_begin_s, o.fit_end_s, o.features);
   loop.recording_held_out = MeasureFeatures(rec, o.held_out_begin_s, o.held_out_end_s, o.features);
 
@@ -358,6 +382,8 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
     }
   }
   for (const auto& [channel, sigma] : loop.noise) noise[channel] = sigma;
+  nlohmann::json masked = nlohmann::json::object();
+  for (const auto& [channel, count] : loop.masked_samples) masked[channel] = count;
   return {{"hypotheses", hypotheses},
           {"held_out", {{"window_s", {loop.recording_held_out.begin_s, loop.recording_held_out.end_s}},
                         {"error_before", loop.baseline_held_out_error},
@@ -371,6 +397,7 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
           {"proposals", proposals},
           {"unexplained", loop.unexplained},
           {"noise_std", noise},
+          {"artefact_samples_masked", masked},
           {"model_runs", loop.model_runs},
           {"features_held_out", FeatureSetToJson(loop.fitted_held_out, loop.recording_held_out)},
           {"features_fit_baseline", FeatureSetToJson(loop.baseline_fit, loop.recording_fit)}};

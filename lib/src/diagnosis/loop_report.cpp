@@ -100,6 +100,9 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
   if (loop.unexplained.empty()) out << "<li>none</li>\n";
   out << "</ul>\n<h2>Sensor noise estimated from the recording</h2>\n<ul>\n";
   for (const auto& [channel, sigma] : loop.noise) out << "<li>" << Html(channel) << ": " << Cell(sigma, 3) << "</li>\n";
+  out << "</ul>\n<h2>Artefacts masked (not modelled)</h2>\n<ul>\n";
+  for (const auto& [channel, count] : loop.masked_samples)
+    out << "<li>" << Html(channel) << ": " << count << " samples</li>\n";
   out << "</ul>\n</body></html>\n";
 }
 

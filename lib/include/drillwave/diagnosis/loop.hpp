@@ -2,7 +2,8 @@
 // The diagnosis loop (DESIGN.md §5, issue 13 item 2): name the physics a model leaves out, model it, refit, and
 // prove on data the fit did not see that the model got better.
 //
-//   1. The recording's sensor noise is estimated per channel and carried into the model's measured channels (a
+//   1. The recording's artefacts (spikes, dropouts) are masked, not modelled (Hampel filter, as the inspection).
+//      Its sensor noise is estimated per channel and carried into the model's measured channels (a
 //      sensors block), so that model and recording are compared as the recording was made.
 //   2. The usable recording is split into a fit window and a later held-out window. The baseline's error on each is
 //      the feature distance (features.hpp): differences counted in each feature's own variability.
@@ -61,6 +62,7 @@ struct Candidate {
 struct DiagnosisLoop {
   nlohmann::json baseline_document, fitted_document;
   std::vector<std::pair<std::string, double>> noise;  // recording channel, estimated noise std (its unit)
+  std::vector<std::pair<std::string, int>> masked_samples;  // recording channel, artefact samples masked
   FeatureSet recording_fit, recording_held_out;
   FeatureSet baseline_fit, baseline_held_out, fitted_fit, fitted_held_out;
   double baseline_fit_error = 0, baseline_held_out_error = 0, fitted_fit_error = 0, fitted_held_out_error = 0;
