@@ -637,7 +637,8 @@ class AxialTorsionalKind : public ModelKind {
   std::string description() const override {
     return "coupled axial-torsional waves in a uniform pipe with a lumped bit/BHA and the Richard-Germay-Detournay "
            "bit-rock law (state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); "
-           "PI top drive, hoist under constant hook force";
+           "PI top drive, hoist under constant hook force; optional Stribeck bit friction, DC motor, BHA mass "
+           "unbalance (Jeffcott rotor at the bit), axial coupling off";
   }
   nlohmann::json FieldSchema() const override {
     return {{"string/length_m", "> 0, top drive to bit"},
