@@ -398,4 +398,11 @@ nlohmann::json ParseScalarText(const std::string& text) {
   }
 }
 
+void ApplySetOption(nlohmann::json& doc, const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || text.empty() || text[0] != '/')
+    throw InputError("--set", "'" + ReadableText(text) + "': expected /json/pointer=value");
+  SetByPointer(doc, text.substr(0, eq), ParseScalarText(text.substr(eq + 1)));
+}
+
 }  // namespace drillwave::io

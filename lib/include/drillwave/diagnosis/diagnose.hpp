@@ -30,6 +30,9 @@ Diagnosis Diagnose(const Recording& recording, const cases::RunResult& model, co
 
 nlohmann::json DiagnosisToJson(const Diagnosis& d);
 
+// The synthetic recordings start after this much drilling: a case built from their sidecar runs it first.
+constexpr double kSidecarWarmupS = 30;
+
 // The operator's sidecar of the synthetic recordings (measured depth, WOB target, rpm set-point schedule in
 // recording time) applied to an axial_torsional case: length, weight on bit, and the set-point schedule shifted by
 // the warm-up that precedes the recording (with a 5 % bump in its first seconds to leave the unstable equilibrium).
