@@ -178,13 +178,16 @@ std::vector<double> Values(py::handle values) {
   std::vector<double> out;
   for (std::size_t i = 0; i < list.size(); ++i) {
     if (!list[i].is_number() || !std::isfinite(list[i].get<double>()))
-      throw InputError("values/" + std::to_string(i), "expected a finite number, got " + list[i].dump());
+      throw InputError("values/" + std::to_string(i),
+                       "expected a finite number, got " + (list[i].is_number()
+                                                               ? drillwave::ReadableNumber(list[i].get<double>())
+                                                               : drillwave::ReadableText(list[i].dump())));
     out.push_back(list[i].get<double>());
   }
   return out;
 }
 
-py::dict Run(py::handle case_, py::handle overrides, py::handle max_samples) {
+py::dict Run(const py::object& case_, const py::object& overrides, const py::object& max_samples) {
   const MaxSamplesScope limit(max_samples);
   const drillwave::cases::Case c = drillwave::cases::ParseCase(CaseDocument(case_, overrides));
   drillwave::cases::CaseRun run = drillwave::cases::RunCase(c);
@@ -205,8 +208,8 @@ py::dict Run(py::handle case_, py::handle overrides, py::handle max_samples) {
   return result;
 }
 
-py::dict Sweep(py::handle case_, const std::string& param, py::handle values, py::handle overrides, py::handle jobs,
-               py::handle max_samples) {
+py::dict Sweep(const py::object& case_, const std::string& param, const py::object& values,
+               const py::object& overrides, const py::object& jobs, const py::object& max_samples) {
   const MaxSamplesScope limit(max_samples);
   const json doc = CaseDocument(case_, overrides);
   const drillwave::cases::SweepSpec spec{param, Values(values), Jobs(jobs)};
@@ -222,8 +225,8 @@ py::dict Sweep(py::handle case_, const std::string& param, py::handle values, py
   return result;
 }
 
-py::dict Stability(py::handle case_, py::handle param, py::handle values, py::handle overrides, py::handle jobs,
-                   py::handle max_samples) {
+py::dict Stability(const py::object& case_, const py::object& param, const py::object& values,
+                   const py::object& overrides, const py::object& jobs, const py::object& max_samples) {
   const MaxSamplesScope limit(max_samples);
   const json doc = CaseDocument(case_, overrides);
   if (param.is_none() != values.is_none())
@@ -250,8 +253,9 @@ py::dict Stability(py::handle case_, py::handle param, py::handle values, py::ha
 
 // As `drillwave diagnose`: the sidecar (a file or a dict) sets the operating point and a warm-up before the
 // recording, whose first 5 s are then left out unless a window is given.
-py::dict Diagnose(py::handle case_, py::handle recording_file, py::handle sidecar, py::handle overrides,
-                  py::handle map_texts, py::handle window, py::handle max_samples) {
+py::dict Diagnose(const py::object& case_, const py::object& recording_file, const py::object& sidecar,
+                  const py::object& overrides, const py::object& map_texts, const py::object& window,
+                  const py::object& max_samples) {
   namespace dg = drillwave::diagnosis;
   const MaxSamplesScope limit(max_samples);
   json doc = CaseDocument(case_, overrides);

@@ -110,8 +110,12 @@ def test_sweep_returns_one_summary_per_value():
     assert [p["value"] for p in r["points"]] == [3.0, 12.0]
     assert all(p["ok"] for p in r["points"])
     assert r["points"][0]["summary"]["stick_fraction"] > r["points"][1]["summary"]["stick_fraction"]
-    with pytest.raises(ValueError, match=r"^values/1: expected a finite number"):
+    with pytest.raises(ValueError, match=r"^values/1: expected a finite number, got nan"):
         drillwave.sweep(CASE, "/model/top/speed_rad_s/knots/1/1", [3.0, float("nan")], set=SHORT)
+    with pytest.raises(ValueError, match=r"^jobs: expected a whole number in \[1, 1024\], got 0"):
+        drillwave.sweep(CASE, "/model/top/speed_rad_s/knots/1/1", [3.0], set=SHORT, jobs=0)
+    with pytest.raises(ValueError, match=r"^/model/bit_inertia_kgm2: .*got -1"):  # refused before any run
+        drillwave.sweep(CASE, "/model/bit_inertia_kgm2", [400, -1], set=SHORT)
 
 
 def test_stability_of_the_case_and_a_map():
