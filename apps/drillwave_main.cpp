@@ -35,43 +35,8 @@ using drillwave::cases::Case;
 nlohmann::json LoadCaseDocument(const std::string& file, const std::vector<std::string>& overrides) {
   nlohmann::json doc = file.empty() ? drillwave::io::ParseJsonText(drillwave::cases::DefaultCaseText(), "the default case")
                                     : drillwave::io::LoadJsonFile(file);
-  for (const std::string& o : overrides) {
-    const auto eq = o.find('=');
-    if (eq == std::string::npos || o.empty() || o[0] != '/')
-      throw drillwave::InputError("--set", "'" + drillwave::ReadableText(o) + "': expected /json/pointer=value");
-    drillwave::io::SetByPointer(doc, o.substr(0, eq), drillwave::io::ParseScalarText(o.substr(eq + 1)));
-  }
+  for (const std::string& o : overrides) drillwave::io::ApplySetOption(doc, o);
   return doc;
-}
-
-// Where the model linearizes, says when the motion the run found differs from the linear verdict at the same set-point:
-// stick-slip beside a stable steady state (two attractors: the start decides), or no sticking although every steady
-// state is unstable. The linearization costs a fraction of a second; sweeps and fits do not ask for it.
-void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
-  if (!summary.contains("stick_onsets") || !summary.at("stick_onsets").is_number()) return;
-  std::vector<drillwave::cases::OperatingPointStability> points;
-  try {
-    points = drillwave::cases::AnalyzeStability(c);
-  } catch (const drillwave::InputError&) {
-    return;  // this kind or configuration has no linearization
-  }
-  if (points.empty()) return;
-  const bool sticks = summary.at("stick_onsets").get<int>() > 0;
-  for (const auto& p : points) {
-    if (!sticks || !p.spectrum.stable) continue;
-    const auto& state = p.point.steady_state;  // wave kinds name the bit's speed, lumped kinds the common one
-    const double speed = state.contains("bit_speed_rad_s") ? state.value("bit_speed_rad_s", 0.0)
-                                                           : state.value("speed_rad_s", 0.0);
-    summary["linear_verdict"] =
-        "a stable steady state (bit at " + drillwave::Fixed(speed, 4) +
-        " rad/s, rightmost root Re s = " + drillwave::Fixed(p.spectrum.spectral_abscissa, 4) +
-        " 1/s) coexists with the stick-slip this run found: which motion appears depends on the start";
-    return;
-  }
-  if (!sticks && std::none_of(points.begin(), points.end(), [](const auto& p) { return p.spectrum.stable; }))
-    summary["linear_verdict"] = "every steady state is linearly unstable (rightmost root Re s = " +
-                                drillwave::Fixed(points.front().spectrum.spectral_abscissa, 4) +
-                                " 1/s), yet the bit did not stick: the run ends on an oscillation without sticking";
 }
 
 int RunAndWrite(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
@@ -81,7 +46,7 @@ int RunAndWrite(const std::string& file, const std::string& out_dir, const std::
   std::cout << "drillwave: running case '" << c.name << "' (kind " << c.kind << ", " << c.settings.duration_s
             << " s simulated)" << (file.empty() ? " [embedded default case]" : "") << std::endl;
   auto run = drillwave::cases::RunCase(c);
-  AddLinearVerdict(c, run.summary);
+  drillwave::cases::AddLinearVerdict(c, run.summary);
   drillwave::cases::WriteCaseOutputs(c, run, out_dir);
   const auto dir = std::filesystem::absolute(out_dir).string();
   std::cout << "wall time " << run.summary.value("wall_time_s", 0.0) << " s, " << run.summary.value("steps", 0)
@@ -180,60 +145,6 @@ int Inspect(const std::string& file, const std::string& out_dir, const std::stri
   return 0;
 }
 
-// The model's channels, from a run of a few output samples: which channels a kind writes does not depend on the
-// duration, and checking the channel maps against them must not wait for the whole run.
-std::vector<drillwave::cases::Channel> ProbeChannels(const Case& c) {
-  drillwave::cases::RunSettings settings = c.settings;
-  settings.duration_s = std::min(c.settings.duration_s, std::max(4 * c.settings.output_interval_s, 1e-3));
-  settings.window_begin_s = 0;
-  settings.window_end_s = settings.duration_s;
-  return c.model->Run(settings).channels;
-}
-
-// Explicit channel maps, each checked against the recording and the model, then every recording channel not
-// mapped paired with the model channel of the same name (or of the same quantity in base units).
-std::vector<drillwave::diagnosis::ChannelMap> ChannelMaps(const std::vector<std::string>& texts,
-                                                          const drillwave::diagnosis::Recording& recording,
-                                                          const std::vector<drillwave::cases::Channel>& model) {
-  namespace dg = drillwave::diagnosis;
-  std::vector<dg::ChannelMap> maps;
-  auto list = [](const std::vector<std::string>& names) {
-    std::string text;
-    for (std::size_t j = 0; j < names.size() && j < 20; ++j) text += (text.empty() ? "" : ", ") + names[j];
-    return names.size() > 20 ? text + ", ..." : text;
-  };
-  std::vector<std::string> model_names;
-  for (const auto& ch : model) model_names.push_back(ch.name);
-  for (const std::string& m : texts) {
-    const dg::ChannelMap map = dg::ParseChannelMap(m);
-    if (!recording.Has(map.recording))
-      throw drillwave::InputError("--map", "'" + drillwave::ReadableText(m) + "': " + recording.source +
-                                               " has no channel " + drillwave::ReadableText(map.recording) +
-                                               " (it has: " + list(recording.names) + ")");
-    if (std::find(model_names.begin(), model_names.end(), map.model) == model_names.end())
-      throw drillwave::InputError("--map", "'" + drillwave::ReadableText(m) + "': the model has no channel " +
-                                               drillwave::ReadableText(map.model) + " (it has: " + list(model_names) +
-                                               ")");
-    maps.push_back(map);
-  }
-  // Then the same quantity in kilo-units: a recording's x_kNm / x_kN against the model's x_Nm / x_N.
-  auto kilo = [](const std::string& name) -> std::pair<std::string, double> {
-    for (const auto& [from, to] : {std::pair<std::string, std::string>{"_kNm", "_Nm"}, {"_kN", "_N"}})
-      if (name.size() > from.size() && name.compare(name.size() - from.size(), from.size(), from) == 0)
-        return {name.substr(0, name.size() - from.size()) + to, 1e-3};
-    return {"", 0};
-  };
-  for (const std::string& name : recording.names) {
-    const bool mapped = std::any_of(maps.begin(), maps.end(), [&](const dg::ChannelMap& m) { return m.recording == name; });
-    if (mapped) continue;
-    const auto [base, scale] = kilo(name);
-    for (const auto& ch : model)
-      if (ch.name == name) maps.push_back({name, name, 1.0});
-      else if (!base.empty() && ch.name == base) maps.push_back({name, base, scale});
-  }
-  return maps;
-}
-
 // "begin,end" (empty: everything).
 std::pair<double, double> Window(const std::string& text) {
   const double inf = std::numeric_limits<double>::infinity();
@@ -263,7 +174,7 @@ int Compare(const std::string& file, const std::string& recording_file, const st
   const auto [begin, end] = Window(window);
   const auto [model_begin, model_end] = ModelSpan(c, 0);
   dg::CheckWindow(recording, model_begin, model_end, begin, end);
-  const auto maps = ChannelMaps(map_texts, recording, ProbeChannels(c));
+  const auto maps = dg::ResolveChannelMaps(map_texts, recording, dg::ProbeChannels(c));
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: running case '" << c.name << "' (kind " << c.kind << ", " << c.settings.duration_s
             << " s simulated) against " << recording_file << std::endl;
@@ -287,9 +198,9 @@ int Fit(const std::string& file, const std::string& recording_file, const std::s
   namespace dg = drillwave::diagnosis;
   nlohmann::json doc = LoadCaseDocument(file, overrides);
   dg::FitOptions options;
-  if (!sidecar_file.empty()) {  // the synthetic recordings' operating point, 30 s of warm-up before the recording
-    doc = LoadSidecar(sidecar_file, doc, 30);
-    options.model_time_offset_s = 30;
+  if (!sidecar_file.empty()) {  // the synthetic recordings' operating point, with the warm-up before the recording
+    doc = LoadSidecar(sidecar_file, doc, dg::kSidecarWarmupS);
+    options.model_time_offset_s = dg::kSidecarWarmupS;
     options.window_begin_s = 5;
   }
   const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
@@ -297,7 +208,7 @@ int Fit(const std::string& file, const std::string& recording_file, const std::s
   if (!window.empty()) std::tie(options.window_begin_s, options.window_end_s) = Window(window);
   const auto [model_begin, model_end] = ModelSpan(c, options.model_time_offset_s);
   dg::CheckWindow(recording, model_begin, model_end, options.window_begin_s, options.window_end_s);
-  options.maps = ChannelMaps(map_texts, recording, ProbeChannels(c));
+  options.maps = dg::ResolveChannelMaps(map_texts, recording, dg::ProbeChannels(c));
   if (!features.empty()) options.features = features;
   const std::vector<std::string> known = dg::FeatureNames(options.maps);
   for (const std::string& f : options.features)
@@ -354,20 +265,13 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
              const std::vector<std::string>& overrides, const std::vector<std::string>& map_texts,
              const DiagnoseArguments& a, const std::string& out_dir) {
   namespace dg = drillwave::diagnosis;
-  constexpr double kWarmup = 30;  // the synthetic recordings start after 30 s of drilling
   nlohmann::json doc = LoadCaseDocument(file, overrides);
-  if (!sidecar_file.empty()) doc = LoadSidecar(sidecar_file, doc, kWarmup);
+  if (!sidecar_file.empty()) doc = LoadSidecar(sidecar_file, doc, dg::kSidecarWarmupS);
   const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
   const dg::Recording recording = dg::LoadRecording(recording_file);
-  dg::LoopOptions o;
-  o.model_time_offset_s = sidecar_file.empty() ? 0 : kWarmup;
-  // The usable recording (its first 5 s left to settle after a sidecar's warm-up), split in halves by default.
-  const double usable_begin = recording.time_s.front() + (sidecar_file.empty() ? 0 : 5);
-  const double usable_end = std::min(recording.time_s.back(), c.settings.duration_s - o.model_time_offset_s);
-  const double middle = 0.5 * (usable_begin + usable_end);
-  std::tie(o.fit_begin_s, o.fit_end_s) = a.fit_window.empty() ? std::pair{usable_begin, middle} : Window(a.fit_window);
-  std::tie(o.held_out_begin_s, o.held_out_end_s) =
-      a.held_out.empty() ? std::pair{std::max(middle, o.fit_end_s), usable_end} : Window(a.held_out);
+  dg::LoopOptions o = dg::DefaultLoopOptions(c, recording, sidecar_file.empty() ? 0 : dg::kSidecarWarmupS);
+  if (!a.fit_window.empty()) std::tie(o.fit_begin_s, o.fit_end_s) = Window(a.fit_window);
+  if (!a.held_out.empty()) std::tie(o.held_out_begin_s, o.held_out_end_s) = Window(a.held_out);
   const auto [model_begin, model_end] = ModelSpan(c, o.model_time_offset_s);
   dg::CheckWindow(recording, model_begin, model_end, o.fit_begin_s, o.fit_end_s);
   dg::CheckWindow(recording, model_begin, model_end, o.held_out_begin_s, o.held_out_end_s);
@@ -380,7 +284,7 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
   o.margin = a.margin;
   o.threads = a.threads;
   o.evaluations_per_parameter = a.evaluations_per_parameter;
-  o.maps = ChannelMaps(map_texts, recording, ProbeChannels(c));
+  o.maps = dg::ResolveChannelMaps(map_texts, recording, dg::ProbeChannels(c));
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: diagnosing " << recording_file << " with '" << c.name << "': fit window ["
             << o.fit_begin_s << ", " << o.fit_end_s << "] s, held out [" << o.held_out_begin_s << ", "

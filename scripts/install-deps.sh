@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages drillwave needs, only those that are missing (run as root, or with sudo).
 set -euo pipefail
-packages=(g++ cmake make libeigen3-dev libboost-dev nlohmann-json3-dev libcli11-dev libgtest-dev libnlopt-cxx-dev)
+# NLopt: the fits of diagnosis. The Python module and its tests: pybind11-dev python3-dev (build), python3-numpy
+# python3-pytest (run). Chromium (headless): the test that opens diagnose's report.html.
+packages=(g++ cmake make libeigen3-dev libboost-dev nlohmann-json3-dev libcli11-dev libgtest-dev libnlopt-cxx-dev
+          pybind11-dev python3-dev python3-numpy python3-pytest chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

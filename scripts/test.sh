@@ -3,7 +3,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+# The Python module for Debian's interpreter, for which install-deps.sh installed NumPy and pytest (a python3 found
+# first on PATH, e.g. pyenv's, may have neither, and its tests would be skipped).
+python=()
+[[ -x /usr/bin/python3 ]] && python=(-DPython3_EXECUTABLE=/usr/bin/python3)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${python[@]}" >/dev/null
 cmake --build build -j"$(nproc)"
 # `scoring`: acceptance scores that do not pass yet (scripts/score-synthetic.sh runs them).
 ctest --test-dir build --output-on-failure -j"$(nproc)" -LE scoring

@@ -197,4 +197,31 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
   out.Commit();
 }
 
+void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
+  if (!summary.contains("stick_onsets") || !summary.at("stick_onsets").is_number()) return;
+  std::vector<OperatingPointStability> points;
+  try {
+    points = AnalyzeStability(c);
+  } catch (const InputError&) {
+    return;  // this kind or configuration has no linearization
+  }
+  if (points.empty()) return;
+  const bool sticks = summary.at("stick_onsets").get<int>() > 0;
+  for (const auto& p : points) {
+    if (!sticks || !p.spectrum.stable) continue;
+    const auto& state = p.point.steady_state;  // wave kinds name the bit's speed, lumped kinds the common one
+    const double speed = state.contains("bit_speed_rad_s") ? state.value("bit_speed_rad_s", 0.0)
+                                                           : state.value("speed_rad_s", 0.0);
+    summary["linear_verdict"] =
+        "a stable steady state (bit at " + Fixed(speed, 4) +
+        " rad/s, rightmost root Re s = " + Fixed(p.spectrum.spectral_abscissa, 4) +
+        " 1/s) coexists with the stick-slip this run found: which motion appears depends on the start";
+    return;
+  }
+  if (!sticks && std::none_of(points.begin(), points.end(), [](const auto& p) { return p.spectrum.stable; }))
+    summary["linear_verdict"] = "every steady state is linearly unstable (rightmost root Re s = " +
+                                Fixed(points.front().spectrum.spectral_abscissa, 4) +
+                                " 1/s), yet the bit did not stick: the run ends on an oscillation without sticking";
+}
+
 }  // namespace drillwave::cases

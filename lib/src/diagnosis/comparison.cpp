@@ -78,6 +78,54 @@ void CheckWindow(const Recording& rec, double model_begin_s, double model_end_s,
                                      ReadableNumber(model_end_s) + " s) overlap");
 }
 
+std::vector<cases::Channel> ProbeChannels(const cases::Case& c) {
+  cases::RunSettings settings = c.settings;
+  settings.duration_s = std::min(c.settings.duration_s, std::max(4 * c.settings.output_interval_s, 1e-3));
+  settings.window_begin_s = 0;
+  settings.window_end_s = settings.duration_s;
+  return c.model->Run(settings).channels;
+}
+
+std::vector<ChannelMap> ResolveChannelMaps(const std::vector<std::string>& texts, const Recording& recording,
+                                           const std::vector<cases::Channel>& model) {
+  std::vector<ChannelMap> maps;
+  auto list = [](const std::vector<std::string>& names) {
+    std::string text;
+    for (std::size_t j = 0; j < names.size() && j < 20; ++j) text += (text.empty() ? "" : ", ") + names[j];
+    return names.size() > 20 ? text + ", ..." : text;
+  };
+  std::vector<std::string> model_names;
+  for (const auto& ch : model) model_names.push_back(ch.name);
+  for (const std::string& m : texts) {
+    const ChannelMap map = ParseChannelMap(m);
+    if (!recording.Has(map.recording))
+      throw InputError("--map", "'" + ReadableText(m) + "': " + recording.source +
+                                               " has no channel " + ReadableText(map.recording) +
+                                               " (it has: " + list(recording.names) + ")");
+    if (std::find(model_names.begin(), model_names.end(), map.model) == model_names.end())
+      throw InputError("--map", "'" + ReadableText(m) + "': the model has no channel " +
+                                               ReadableText(map.model) + " (it has: " + list(model_names) +
+                                               ")");
+    maps.push_back(map);
+  }
+  // Then the same quantity in kilo-units: a recording's x_kNm / x_kN against the model's x_Nm / x_N.
+  auto kilo = [](const std::string& name) -> std::pair<std::string, double> {
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"_kNm", "_Nm"}, {"_kN", "_N"}})
+      if (name.size() > from.size() && name.compare(name.size() - from.size(), from.size(), from) == 0)
+        return {name.substr(0, name.size() - from.size()) + to, 1e-3};
+    return {"", 0};
+  };
+  for (const std::string& name : recording.names) {
+    const bool mapped = std::any_of(maps.begin(), maps.end(), [&](const ChannelMap& m) { return m.recording == name; });
+    if (mapped) continue;
+    const auto [base, scale] = kilo(name);
+    for (const auto& ch : model)
+      if (ch.name == name) maps.push_back({name, name, 1.0});
+      else if (!base.empty() && ch.name == base) maps.push_back({name, base, scale});
+  }
+  return maps;
+}
+
 ChannelMap ParseChannelMap(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())

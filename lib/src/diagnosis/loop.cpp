@@ -91,6 +91,17 @@ void CheckScale(const Recording& rec, const Recording& model, const std::vector<
 
 }  // namespace
 
+LoopOptions DefaultLoopOptions(const cases::Case& c, const Recording& rec, double offset_s, double settle_s) {
+  LoopOptions o;
+  o.model_time_offset_s = offset_s;
+  const double usable_begin = rec.time_s.front() + (offset_s > 0 ? settle_s : 0);
+  const double usable_end = std::min(rec.time_s.back(), c.settings.duration_s - offset_s);
+  o.fit_begin_s = usable_begin;
+  o.fit_end_s = o.held_out_begin_s = 0.5 * (usable_begin + usable_end);
+  o.held_out_end_s = usable_end;
+  return o;
+}
+
 DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& raw, const LoopOptions& o,
                                const LoopProgress& progress) {
   auto say = [&](const std::string& s) {

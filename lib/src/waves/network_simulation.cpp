@@ -355,7 +355,9 @@ class NetworkProcess {
   double MasslessSpeed(int i, const Arrivals& in, double t, Side side) const {
     const Node& node = net_.nodes[i];
     if (node.drive == Drive::kPrescribedSpeed) return Setpoint(node, t, side);
-    const auto [a, b] = MasslessBalance(i, TwiceIncoming(i, in), t, side);
+    // Named variables, not a structured binding: C++17 lets no lambda capture one (GCC allows it, clang refuses).
+    const std::pair<double, double> balance = MasslessBalance(i, TwiceIncoming(i, in), t, side);
+    const double a = balance.first, b = balance.second;
     if (!node.friction) return a / b;
     // Smooth friction: the root of r(v) = a - b v - T(v). r falls with v wherever b > -T'(v), so from the frictionless
     // speed the root lies on the side r points to: bracket it by doubling steps, then Newton kept inside the bracket

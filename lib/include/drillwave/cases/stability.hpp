@@ -46,4 +46,10 @@ std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const 
 void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
                        const std::vector<StabilityMapRow>& rows, const std::string& out_dir);
 
+// Where the model linearizes, sets summary["linear_verdict"] when the motion a run found (its summary's stick_onsets)
+// differs from the linear verdict at the same set-point: stick-slip beside a stable steady state (two attractors: the
+// start decides), or no sticking although every steady state is unstable. Otherwise leaves the summary as it is.
+// The linearization costs a fraction of a second; sweeps and fits do not ask for it.
+void AddLinearVerdict(const Case& c, nlohmann::json& summary);
+
 }  // namespace drillwave::cases

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/model_kind.hpp"
 #include "drillwave/diagnosis/inspection.hpp"
 #include "drillwave/io/svg_plot.hpp"
@@ -22,6 +23,16 @@ struct ChannelMap {
 
 // "rec=model" or "rec=model*scale"; throws InputError naming the option for anything else.
 ChannelMap ParseChannelMap(const std::string& text);
+
+// The model's channels, from a run of a few output samples: which channels a kind writes does not depend on the
+// duration, and checking the channel maps against them must not wait for the whole run.
+std::vector<cases::Channel> ProbeChannels(const cases::Case& c);
+
+// The explicit maps ("rec=model[*scale]"), each checked against the recording and the model's channels (InputError
+// naming --map and listing the channels there are), then every recording channel not mapped paired with the model
+// channel of the same name, or of the same quantity in base units (a recording's x_kNm / x_kN against x_Nm / x_N).
+std::vector<ChannelMap> ResolveChannelMaps(const std::vector<std::string>& texts, const Recording& recording,
+                                           const std::vector<cases::Channel>& model);
 
 // The names of the features Compare reports for these maps (for checking --feature before anything runs).
 std::vector<std::string> FeatureNames(const std::vector<ChannelMap>& maps);

@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/model_kind.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/diagnosis/effects.hpp"
@@ -75,6 +76,12 @@ struct DiagnosisLoop {
   Recording baseline_model, fitted_model;  // the models' measured channels on the recording's times and names
   int model_runs = 0;
 };
+
+// Options for a case and a recording: the model's time offset (a warm-up before the recording), and the usable
+// recording — after `settle_s` when there is a warm-up, up to the end of the recording or of the case's run — split
+// in halves, the fit window first. Everything else at its default; the channel maps are left to the caller.
+LoopOptions DefaultLoopOptions(const cases::Case& c, const Recording& recording, double model_time_offset_s,
+                               double settle_s = 5);
 
 // progress(message) reports each step (candidate started, fit evaluations, held-out errors) as it happens.
 using LoopProgress = std::function<void(const std::string&)>;

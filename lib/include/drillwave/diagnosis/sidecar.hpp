@@ -6,6 +6,9 @@
 
 namespace drillwave::diagnosis {
 
+// The synthetic recordings start after this much drilling: a case built from their sidecar runs it first.
+constexpr double kSidecarWarmupS = 30;
+
 // The operator's sidecar of the synthetic recordings (measured depth, WOB target, rpm set-point schedule in
 // recording time) applied to an axial_torsional case: length, weight on bit, and the set-point schedule shifted by
 // the warm-up that precedes the recording (with a 5 % bump in its first seconds to leave the unstable equilibrium).

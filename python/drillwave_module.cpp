@@ -1,0 +1,380 @@
+// drillwave's Python module: the library's run, sweep, stability and diagnose on a case given as a file, a dict or
+// None (the embedded default case), with --set-style overrides; results as dicts, channels as NumPy arrays.
+// Errors: the library's InputError becomes drillwave.InputError (a ValueError, with .path), its NumericalError
+// drillwave.NumericalError (a RuntimeError, with .time and .state); the messages are the command line's.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <nlohmann/json.hpp>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/model_kind.hpp"
+#include "drillwave/cases/stability.hpp"
+#include "drillwave/cases/sweep.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/diagnosis/comparison.hpp"
+#include "drillwave/diagnosis/loop.hpp"
+#include "drillwave/diagnosis/sidecar.hpp"
+#include "drillwave/io/json_reader.hpp"
+
+namespace py = pybind11;
+using drillwave::InputError;
+using nlohmann::json;
+
+namespace {
+
+constexpr int kMaxDepth = 64;  // as io::ParseJsonText allows a case file
+
+// A Python value as JSON: dict (string keys), list, tuple, str, bool, int, float, None, and NumPy scalars and arrays
+// (through their tolist()). Anything else is an InputError naming where in the value it is.
+json ToJson(py::handle value, const std::string& path, int depth = 0) {
+  const std::string where = path.empty() ? "/" : path;
+  if (depth > kMaxDepth) throw InputError(where, "nested deeper than 64 levels");
+  if (value.is_none()) return nullptr;
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
+  if (py::isinstance<py::int_>(value)) {
+    const long long i = PyLong_AsLongLong(value.ptr());
+    if (!(i == -1 && PyErr_Occurred())) return i;
+    PyErr_Clear();  // beyond 64 bits: as a double (inf beyond that), which the readers judge with the field's range
+    const double d = PyLong_AsDouble(value.ptr());
+    if (d == -1 && PyErr_Occurred()) {
+      PyErr_Clear();
+      return value.attr("__gt__")(0).cast<bool>() ? std::numeric_limits<double>::infinity()
+                                                  : -std::numeric_limits<double>::infinity();
+    }
+    return d;
+  }
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::dict>(value)) {
+    json object = json::object();
+    for (const auto& [key, item] : py::reinterpret_borrow<py::dict>(value)) {
+      if (!py::isinstance<py::str>(key))
+        throw InputError(where, "the key " + drillwave::ReadableText(py::repr(key).cast<std::string>()) +
+                                    " is not a string; keys must be strings");
+      const std::string name = key.cast<std::string>();
+      object[name] = ToJson(item, path + "/" + name, depth + 1);
+    }
+    return object;
+  }
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    json array = json::array();
+    std::size_t i = 0;
+    for (const auto& item : value) array.push_back(ToJson(item, path + "/" + std::to_string(i++), depth + 1));
+    return array;
+  }
+  if (py::hasattr(value, "tolist") && !py::isinstance<py::bytes>(value))  // NumPy: np.float32(2), np.array([0, 5])
+    return ToJson(value.attr("tolist")(), path, depth);
+  throw InputError(where, "a value of Python type " + std::string(py::str(py::type::of(value).attr("__name__"))) +
+                              "; expected a dict, list, str, number, bool or None");
+}
+
+py::object FromJson(const json& value) {
+  switch (value.type()) {
+    case json::value_t::null: return py::none();
+    case json::value_t::boolean: return py::bool_(value.get<bool>());
+    case json::value_t::number_integer: return py::int_(value.get<long long>());
+    case json::value_t::number_unsigned: return py::int_(value.get<unsigned long long>());
+    case json::value_t::number_float: return py::float_(value.get<double>());
+    case json::value_t::string: return py::str(value.get<std::string>());
+    case json::value_t::array: {
+      py::list list;
+      for (const json& item : value) list.append(FromJson(item));
+      return std::move(list);
+    }
+    case json::value_t::object: {
+      py::dict dict;
+      for (const auto& [key, item] : value.items()) dict[py::str(key)] = FromJson(item);
+      return std::move(dict);
+    }
+    default: return py::none();  // binary and discarded values never occur in drillwave's documents
+  }
+}
+
+py::array_t<double> ToArray(const std::vector<double>& values) {
+  return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
+}
+
+// A file name (str or os.PathLike) as a string; `what` names the argument in the error.
+std::string FileName(py::handle file, const std::string& what) {
+  if (!py::isinstance<py::str>(file) && !py::hasattr(file, "__fspath__"))
+    throw InputError(what, "expected a file name (str or os.PathLike), got a value of type " +
+                               std::string(py::str(py::type::of(file).attr("__name__"))));
+  return py::str(py::module_::import("os").attr("fspath")(file)).cast<std::string>();
+}
+
+// The case document: a file, a dict or None (the embedded default case), then the overrides: a dict
+// {"/json/pointer": value} or a list of "/json/pointer=value" strings (the command line's --set).
+json CaseDocument(py::handle case_, py::handle overrides) {
+  json doc;
+  if (case_.is_none())
+    doc = drillwave::io::ParseJsonText(drillwave::cases::DefaultCaseText(), "the default case");
+  else if (py::isinstance<py::dict>(case_))
+    doc = ToJson(case_, "");
+  else
+    doc = drillwave::io::LoadJsonFile(FileName(case_, "case"));
+  if (overrides.is_none()) return doc;
+  if (py::isinstance<py::dict>(overrides)) {
+    for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(overrides)) {
+      if (!py::isinstance<py::str>(key))
+        throw InputError("set", "the key " + drillwave::ReadableText(py::repr(key).cast<std::string>()) +
+                                    " is not a string; expected a JSON pointer such as /simulation/duration_s");
+      const std::string pointer = key.cast<std::string>();
+      drillwave::io::SetByPointer(doc, pointer, ToJson(value, pointer));
+    }
+  } else if (py::isinstance<py::list>(overrides) || py::isinstance<py::tuple>(overrides)) {
+    for (const auto& item : overrides) {
+      if (!py::isinstance<py::str>(item))
+        throw InputError("set", "expected \"/json/pointer=value\" strings, got " +
+                                    drillwave::ReadableText(py::repr(item).cast<std::string>()));
+      drillwave::io::ApplySetOption(doc, item.cast<std::string>());
+    }
+  } else {
+    throw InputError("set", "expected a dict {\"/json/pointer\": value} or a list of \"/json/pointer=value\"");
+  }
+  return doc;
+}
+
+// max_samples for the length of one call (the library's limit is process-wide), then the previous limit again.
+class MaxSamplesScope {
+ public:
+  explicit MaxSamplesScope(py::handle limit) : previous_(drillwave::cases::MaxSamples()) {
+    if (limit.is_none()) return;
+    const json value = ToJson(limit, "max_samples");
+    if (!value.is_number())
+      throw InputError("--max-samples", "expected a finite number >= 1, got " + drillwave::ReadableText(value.dump()));
+    drillwave::cases::SetMaxSamples(value.get<double>());
+  }
+  ~MaxSamplesScope() { drillwave::cases::SetMaxSamples(previous_); }
+  MaxSamplesScope(const MaxSamplesScope&) = delete;
+  MaxSamplesScope& operator=(const MaxSamplesScope&) = delete;
+
+ private:
+  double previous_;
+};
+
+int Jobs(py::handle jobs) {
+  if (jobs.is_none()) return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const json n = ToJson(jobs, "jobs");
+  if (!n.is_number_integer() || n.get<long long>() < 1 || n.get<long long>() > 1024)
+    throw InputError("jobs", "expected a whole number in [1, 1024], got " + drillwave::ReadableText(n.dump()));
+  return n.get<int>();
+}
+
+// A sweep's values: "first:last:count", "v1,v2,..." or a sequence of numbers.
+std::vector<double> Values(py::handle values) {
+  if (py::isinstance<py::str>(values)) return drillwave::cases::ParseSweepValues(values.cast<std::string>(), "values");
+  const json list = ToJson(values, "values");
+  if (!list.is_array() || list.empty())
+    throw InputError("values", "expected \"first:last:count\", \"v1,v2,...\" or a non-empty sequence of numbers");
+  std::vector<double> out;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (!list[i].is_number() || !std::isfinite(list[i].get<double>()))
+      throw InputError("values/" + std::to_string(i),
+                       "expected a finite number, got " + (list[i].is_number()
+                                                               ? drillwave::ReadableNumber(list[i].get<double>())
+                                                               : drillwave::ReadableText(list[i].dump())));
+    out.push_back(list[i].get<double>());
+  }
+  return out;
+}
+
+py::dict Run(const py::object& case_, const py::object& overrides, const py::object& max_samples) {
+  const MaxSamplesScope limit(max_samples);
+  const drillwave::cases::Case c = drillwave::cases::ParseCase(CaseDocument(case_, overrides));
+  drillwave::cases::CaseRun run = drillwave::cases::RunCase(c);
+  drillwave::cases::AddLinearVerdict(c, run.summary);
+  py::dict channels;
+  channels["time_s"] = ToArray(run.result.time_s);
+  for (const auto& ch : run.result.channels) channels[py::str(ch.name)] = ToArray(ch.values);
+  py::list expectations;
+  for (const auto& e : drillwave::cases::CheckExpectations(c.expect, run.summary))
+    expectations.append(py::dict(py::arg("key") = e.key, py::arg("passed") = e.passed, py::arg("detail") = e.detail));
+  py::dict result;
+  result["name"] = c.name;
+  result["kind"] = c.kind;
+  result["channels"] = channels;
+  result["summary"] = FromJson(run.summary);
+  result["expectations"] = expectations;
+  result["case"] = FromJson(c.document);
+  return result;
+}
+
+py::dict Sweep(const py::object& case_, const std::string& param, const py::object& values,
+               const py::object& overrides, const py::object& jobs, const py::object& max_samples) {
+  const MaxSamplesScope limit(max_samples);
+  const json doc = CaseDocument(case_, overrides);
+  const drillwave::cases::SweepSpec spec{param, Values(values), Jobs(jobs)};
+  const auto sweep = drillwave::cases::RunSweep(doc, spec, nullptr);
+  py::list points;
+  for (const auto& p : sweep.points)
+    points.append(py::dict(py::arg("value") = p.value, py::arg("ok") = p.ok, py::arg("summary") = FromJson(p.summary),
+                           py::arg("error") = p.error));
+  py::dict result;
+  result["param"] = param;
+  result["points"] = points;
+  result["wall_time_s"] = sweep.wall_time_s;
+  return result;
+}
+
+py::dict Stability(const py::object& case_, const py::object& param, const py::object& values,
+                   const py::object& overrides, const py::object& jobs, const py::object& max_samples) {
+  const MaxSamplesScope limit(max_samples);
+  const json doc = CaseDocument(case_, overrides);
+  if (param.is_none() != values.is_none())
+    throw InputError("param/values", "a stability map needs both param and values");
+  if (param.is_none()) {
+    const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
+    py::dict result = FromJson(drillwave::cases::StabilityToJson(drillwave::cases::AnalyzeStability(c)));
+    result["name"] = c.name;
+    result["kind"] = c.kind;
+    return result;
+  }
+  const drillwave::cases::SweepSpec spec{param.cast<std::string>(), Values(values), Jobs(jobs)};
+  py::list rows;
+  for (const auto& r : drillwave::cases::StabilityMap(doc, spec))
+    rows.append(py::dict(py::arg("value") = r.value, py::arg("branch") = r.branch,
+                         py::arg("speed_rad_s") = r.speed_rad_s, py::arg("spectral_abscissa") = r.spectral_abscissa,
+                         py::arg("frequency_rad_s") = r.frequency_rad_s,
+                         py::arg("essential_abscissa") = r.essential_abscissa, py::arg("stable") = r.stable));
+  py::dict result;
+  result["param"] = spec.pointer;
+  result["rows"] = rows;
+  return result;
+}
+
+// (begin, end) in seconds from a Python pair; InputError naming `name` otherwise.
+std::pair<double, double> WindowArgument(const py::object& window, const std::string& name) {
+  const json w = ToJson(window, name);
+  if (!w.is_array() || w.size() != 2 || !w[0].is_number() || !w[1].is_number())
+    throw InputError(name, "expected (begin, end) in seconds, got " + drillwave::ReadableText(w.dump()));
+  const double begin = w[0].get<double>(), end = w[1].get<double>();
+  if (!(end > begin))
+    throw InputError(name, "(" + drillwave::ReadableNumber(begin) + ", " + drillwave::ReadableNumber(end) +
+                               ") is empty or reversed; expected (begin, end) with begin < end");
+  return {begin, end};
+}
+
+// As `drillwave diagnose`: the sidecar (a file or a dict) sets the operating point and a warm-up before the
+// recording; the usable recording is split into a fit and a held-out window unless they are given.
+py::dict Diagnose(const py::object& case_, const py::object& recording_file, const py::object& sidecar,
+                  const py::object& overrides, const py::object& map_texts, const py::object& fit_window,
+                  const py::object& held_out, double margin, const py::object& jobs, const py::object& max_samples) {
+  namespace dg = drillwave::diagnosis;
+  const MaxSamplesScope limit(max_samples);
+  json doc = CaseDocument(case_, overrides);
+  if (!sidecar.is_none()) {
+    const bool dict = py::isinstance<py::dict>(sidecar);
+    const std::string source = dict ? "sidecar" : FileName(sidecar, "sidecar");
+    doc = dg::CaseFromSidecar(dict ? ToJson(sidecar, "") : drillwave::io::LoadJsonFile(source), doc,
+                              dg::kSidecarWarmupS, source);
+  }
+  const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
+  const dg::Recording recording = dg::LoadRecording(FileName(recording_file, "recording"));
+  dg::LoopOptions o = dg::DefaultLoopOptions(c, recording, sidecar.is_none() ? 0 : dg::kSidecarWarmupS);
+  if (!fit_window.is_none()) std::tie(o.fit_begin_s, o.fit_end_s) = WindowArgument(fit_window, "fit_window");
+  if (!held_out.is_none()) std::tie(o.held_out_begin_s, o.held_out_end_s) = WindowArgument(held_out, "held_out");
+  const double offset = o.model_time_offset_s;
+  dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.fit_begin_s, o.fit_end_s);
+  dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.held_out_begin_s, o.held_out_end_s);
+  if (!(margin >= 0 && margin < 1))
+    throw InputError("margin", "expected a fraction in [0, 1), got " + drillwave::ReadableNumber(margin));
+  o.margin = margin;
+  o.threads = Jobs(jobs);
+  std::vector<std::string> texts;
+  const json maps_given = map_texts.is_none() ? json::array() : ToJson(map_texts, "maps");
+  for (const json& m : maps_given.is_array() ? maps_given : json::array({nullptr})) {
+    if (!m.is_string())
+      throw InputError("maps", "expected a list of \"recording_channel=model_channel[*scale]\", got " +
+                                   drillwave::ReadableText(maps_given.dump()));
+    texts.push_back(m.get<std::string>());
+  }
+  o.maps = dg::ResolveChannelMaps(texts, recording, dg::ProbeChannels(c));
+  const dg::DiagnosisLoop loop = dg::RunDiagnosisLoop(doc, recording, o);
+  json result = dg::DiagnosisLoopToJson(loop);
+  result["fitted_case"] = loop.fitted_document;
+  return FromJson(result);
+}
+
+py::object* input_error_type = nullptr;
+py::object* numerical_error_type = nullptr;
+
+// drillwave.InputError(message) with .path, drillwave.NumericalError(message) with .time and .state.
+void TranslateErrors(std::exception_ptr p) {
+  try {
+    if (p) std::rethrow_exception(p);
+  } catch (const InputError& e) {
+    py::object error = (*input_error_type)(e.what());
+    error.attr("path") = e.json_path();
+    PyErr_SetObject(input_error_type->ptr(), error.ptr());
+  } catch (const drillwave::NumericalError& e) {
+    py::object error = (*numerical_error_type)(e.what());
+    error.attr("time") = e.time();
+    error.attr("state") = py::cast(e.state());
+    PyErr_SetObject(numerical_error_type->ptr(), error.ptr());
+  }
+}
+
+py::dict Kinds() {
+  py::dict kinds;
+  for (const auto& kind : drillwave::cases::AllKinds())
+    kinds[py::str(kind->name())] =
+        py::dict(py::arg("description") = kind->description(), py::arg("fields") = FromJson(kind->FieldSchema()));
+  return kinds;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(drillwave, m) {
+  m.doc() = "drillwave: drill-string vibration simulation (d'Alembert wave networks, delay equations)";
+  m.attr("__version__") = DRILLWAVE_VERSION;
+
+  // Created once and never destroyed: the translator may run until the interpreter exits.
+  input_error_type = new py::object(py::exception<InputError>(m, "InputError", PyExc_ValueError));
+  numerical_error_type =
+      new py::object(py::exception<drillwave::NumericalError>(m, "NumericalError", PyExc_RuntimeError));
+  py::register_exception_translator(&TranslateErrors);
+
+  m.def("run", &Run, py::arg("case") = py::none(), py::arg("set") = py::none(), py::arg("max_samples") = py::none(),
+        R"(Runs a case: a file name, a dict, or None for the embedded default case.
+
+set: overrides, {"/json/pointer": value} or ["/json/pointer=value", ...] (the command line's --set).
+max_samples: refuse cases asking for more output samples or integration steps (default 1e7).
+Returns {"name", "kind", "channels": {"time_s": array, <channel>: array, ...}, "summary": dict,
+"expectations": [{"key", "passed", "detail"}], "case": the document as run}.
+Raises drillwave.InputError (a ValueError naming the JSON path) for bad input, drillwave.NumericalError
+(a RuntimeError with .time and .state) if the integration fails.)");
+  m.def("sweep", &Sweep, py::arg("case"), py::arg("param"), py::arg("values"), py::arg("set") = py::none(),
+        py::arg("jobs") = py::none(), py::arg("max_samples") = py::none(),
+        R"(Runs a case once for each value of the parameter at the JSON pointer `param` (in parallel on `jobs`
+threads, default: every core). values: "first:last:count", "v1,v2,..." or a sequence of numbers.
+Returns {"param", "points": [{"value", "ok", "summary", "error"}], "wall_time_s"}; a run that fails
+numerically has ok False and its message in "error".)");
+  m.def("stability", &Stability, py::arg("case") = py::none(), py::arg("param") = py::none(),
+        py::arg("values") = py::none(), py::arg("set") = py::none(), py::arg("jobs") = py::none(),
+        py::arg("max_samples") = py::none(),
+        R"(Steady states at the inputs' final values and the characteristic roots of the linearization about each:
+{"name", "kind", "operating_points": [{"steady_state", "stable", "spectral_abscissa", "essential_abscissa",
+"roots": [[re, im, residual], ...]}]}. With param and values, a stability map over that parameter:
+{"param", "rows": [{"value", "branch", "speed_rad_s", "spectral_abscissa", "frequency_rad_s",
+"essential_abscissa", "stable"}]}.)");
+  m.def("diagnose", &Diagnose, py::arg("case"), py::arg("recording"), py::arg("sidecar") = py::none(),
+        py::arg("set") = py::none(), py::arg("maps") = py::none(), py::arg("fit_window") = py::none(),
+        py::arg("held_out") = py::none(), py::arg("margin") = 0.2, py::arg("jobs") = py::none(),
+        py::arg("max_samples") = py::none(),
+        R"(The diagnosis loop, as `drillwave diagnose`: effects proposed by evidence, fitted on the fit window and
+kept when the held-out error falls by the margin. recording: a CSV file with time_s. sidecar: a synthetic
+recording's operator sidecar (file or dict). maps: ["recording_channel=model_channel[*scale]", ...]; fit_window,
+held_out: (begin, end) in recording time [s] (default: the usable recording's halves). Returns diagnosis.json's
+content ("hypotheses", "held_out", "fit", "candidates", "fitted_parameters", ...) and "fitted_case".)");
+  m.def("kinds", &Kinds, "The model kinds: {kind: {\"description\", \"fields\": {field: description}}}.");
+}

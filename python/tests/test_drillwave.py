@@ -1,0 +1,156 @@
+"""The Python module against the library's command line: the same case gives the same summary, bad input raises
+ValueError naming the JSON path, and results come back as NumPy arrays and dicts."""
+import csv
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import drillwave
+
+SOURCE = os.environ.get("DRILLWAVE_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+CLI = os.environ.get("DRILLWAVE_CLI", "")
+CASE = os.path.join(SOURCE, "json-cases", "two-mass-stickslip.json")
+# 60 s of the 300 s case: a second or so of work, still a few stick-slip periods (7.5 s) in the window.
+SHORT = {"/simulation/duration_s": 60, "/statistics/window_s": [20, 60]}
+
+
+def load_case():
+    with open(CASE) as f:
+        return json.load(f)
+
+
+def test_run_from_file_gives_numpy_channels_and_a_summary():
+    r = drillwave.run(CASE, set=SHORT)
+    assert r["name"] == "two-mass-stickslip" and r["kind"] == "two_mass"
+    time = r["channels"]["time_s"]
+    assert isinstance(time, np.ndarray) and time.dtype == np.float64
+    assert len(time) == 6001 and time[0] == 0 and time[-1] == pytest.approx(60)  # every 0.01 s
+    for name, values in r["channels"].items():
+        assert values.shape == time.shape, name
+    assert "bit_rpm" in r["channels"]
+    assert r["summary"]["stick_onsets"] >= 4
+    assert r["case"]["simulation"]["duration_s"] == 60
+    assert {e["key"] for e in r["expectations"]} >= {"stick_slip_period_s", "stick_fraction"}
+
+
+def test_a_dict_with_an_override_is_the_same_case_changed():
+    case = load_case()
+    case["simulation"]["duration_s"] = 60
+    case["statistics"]["window_s"] = [20, 60]
+    slow = drillwave.run(case, set={"/model/top/speed_rad_s/knots/1/1": 3.0})
+    assert slow["case"]["model"]["top"]["speed_rad_s"]["knots"][1][1] == 3.0
+    fast = drillwave.run(case, set=["/model/top/speed_rad_s/knots/1/1=12"])  # the command line's form
+    # Driven at 3 rad/s the bit sticks longer than at 12 rad/s, above the stick-slip threshold (10.79 rad/s).
+    assert slow["summary"]["stick_fraction"] > 0.3
+    assert fast["summary"]["stick_fraction"] < slow["summary"]["stick_fraction"]
+
+
+@pytest.mark.skipif(not CLI, reason="the command-line tool is not built")
+def test_summary_matches_the_command_lines_summary_json(tmp_path):
+    out = tmp_path / "out"
+    args = [f"--set={p}={json.dumps(v)}" for p, v in SHORT.items()]
+    subprocess.run([CLI, "run", CASE, "--out", str(out), *args], check=True, capture_output=True)
+    with open(out / "summary.json") as f:
+        cli = json.load(f)
+    py = drillwave.run(CASE, set=SHORT)["summary"]
+    assert set(py) == set(cli)
+    assert py["stick_fraction"] > 0.3  # the comparison below is about a run that sticks
+    for key, value in cli.items():
+        if key != "wall_time_s":
+            assert py[key] == value, key  # the same library on the same case: the same numbers, to the last digit
+
+
+def test_a_bad_field_raises_value_error_naming_path_value_and_range():
+    with pytest.raises(ValueError) as e:
+        drillwave.run(CASE, set={"/model/bit_inertia_kgm2": -1})
+    message = str(e.value)
+    assert message.startswith("/model/bit_inertia_kgm2: ")
+    assert "-1" in message and "> 0" in message
+    assert isinstance(e.value, drillwave.InputError) and e.value.path == "/model/bit_inertia_kgm2"
+
+
+def test_an_unknown_field_in_a_dict_and_a_bad_file_are_value_errors():
+    case = load_case()
+    case["model"]["stiffnes_Nm_per_rad"] = 1
+    with pytest.raises(ValueError, match=r"^/model/stiffnes_Nm_per_rad: unknown field"):
+        drillwave.run(case)
+    with pytest.raises(ValueError, match="no-such-case.json"):
+        drillwave.run("no-such-case.json")
+    with pytest.raises(ValueError, match=r"^/model/top_inertia_kgm2: a value of Python type object"):
+        drillwave.run(case, set={"/model/top_inertia_kgm2": object()})
+    with pytest.raises(ValueError, match=r"^--set: 'top=3': expected /json/pointer=value"):
+        drillwave.run(CASE, set=["top=3"])
+    with pytest.raises(ValueError, match=r"^--max-samples: expected a finite number >= 1, got 0"):
+        drillwave.run(CASE, max_samples=0)
+
+
+def test_max_samples_refuses_a_long_run_for_one_call_only():
+    with pytest.raises(ValueError, match="max-samples"):
+        drillwave.run(CASE, set=SHORT, max_samples=1000)
+    assert len(drillwave.run(CASE, set=SHORT)["channels"]["time_s"]) == 6001  # the default limit again
+
+
+def test_numerical_failure_is_a_runtime_error_with_time_and_state():
+    # The default case (a torsional wave string) with an absurd top-drive damping: the outputs overflow (the command
+    # line's exit 3).
+    with pytest.raises(RuntimeError) as e:
+        drillwave.run(None, set={"/model/top/beta_Nms_per_rad": 1e308, "/simulation/duration_s": 10,
+                                 "/statistics/window_s": [5, 10]})
+    assert isinstance(e.value, drillwave.NumericalError)
+    assert "is not finite" in str(e.value) and " at t = " in str(e.value)
+    assert math.isfinite(e.value.time) and isinstance(e.value.state, list)
+
+
+def test_sweep_returns_one_summary_per_value():
+    r = drillwave.sweep(CASE, "/model/top/speed_rad_s/knots/1/1", [3.0, 12.0], set=SHORT, jobs=2)
+    assert [p["value"] for p in r["points"]] == [3.0, 12.0]
+    assert all(p["ok"] for p in r["points"])
+    assert r["points"][0]["summary"]["stick_fraction"] > r["points"][1]["summary"]["stick_fraction"]
+    with pytest.raises(ValueError, match=r"^values/1: expected a finite number, got nan"):
+        drillwave.sweep(CASE, "/model/top/speed_rad_s/knots/1/1", [3.0, float("nan")], set=SHORT)
+    with pytest.raises(ValueError, match=r"^jobs: expected a whole number in \[1, 1024\], got 0"):
+        drillwave.sweep(CASE, "/model/top/speed_rad_s/knots/1/1", [3.0], set=SHORT, jobs=0)
+    with pytest.raises(ValueError, match=r"^/model/bit_inertia_kgm2: .*got -1"):  # refused before any run
+        drillwave.sweep(CASE, "/model/bit_inertia_kgm2", [400, -1], set=SHORT)
+
+
+def test_stability_of_the_case_and_a_map():
+    r = drillwave.stability(CASE)
+    assert r["kind"] == "two_mass" and len(r["operating_points"]) >= 1
+    # At 5 rad/s smooth rotation is linearly stable (stable from 4.12 rad/s on; the case's notes).
+    assert r["operating_points"][0]["stable"]
+    m = drillwave.stability(CASE, param="/model/top/speed_rad_s/knots/1/1", values="3:6:2", jobs=1)
+    rows = m["rows"]
+    assert [row["value"] for row in rows] == [3.0, 6.0]
+    assert not rows[0]["stable"] and rows[1]["stable"]
+    with pytest.raises(ValueError, match="both param and values"):
+        drillwave.stability(CASE, param="/model/top/speed_rad_s/knots/1/1")
+
+
+def test_diagnose_a_recording_of_the_model_itself(tmp_path):
+    # The model's own run written as a recording: nothing to explain.
+    r = drillwave.run(CASE, set=SHORT)
+    recording = tmp_path / "recording.csv"
+    names = ["time_s", "top_rpm", "bit_rpm"]
+    with open(recording, "w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(names)
+        writer.writerows(zip(*(r["channels"][n] for n in names)))
+    d = drillwave.diagnose(CASE, str(recording), set=SHORT, fit_window=(20, 40), held_out=(40, 60))
+    assert d["hypotheses"] == [] and d["unexplained"] == []
+    assert d["held_out"]["window_s"] == [40, 60] and d["held_out"]["error_after"] < 1
+    assert d["fitted_case"]["model"]["kind"] == "two_mass"
+    with pytest.raises(ValueError, match=r"^held_out: \(60, 20\) is empty or reversed"):
+        drillwave.diagnose(CASE, str(recording), set=SHORT, held_out=(60, 20))
+    with pytest.raises(ValueError, match=r"^--map: 'bit_rpm=no_such': the model has no channel no_such"):
+        drillwave.diagnose(CASE, str(recording), set=SHORT, maps=["bit_rpm=no_such"])
+
+
+def test_kinds_lists_every_kind_with_its_fields():
+    kinds = drillwave.kinds()
+    assert {"two_mass", "two_disc", "torsional_wave"} <= set(kinds)
+    assert "bit_inertia_kgm2" in json.dumps(kinds["two_mass"]["fields"])
