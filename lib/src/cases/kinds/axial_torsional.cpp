@@ -1,5 +1,5 @@
-// Model kind "axial_torsional": coupled axial and torsional waves in a pipe and an optional BHA section, a lumped bit, and the
-// Richard-Germay-Detournay bit-rock law with the state-dependent cut delay t_n (DESIGN.md §1-3, chapter seed
+// Model kind "axial_torsional": coupled axial and torsional waves in a pipe and an optional BHA section, a lumped bit,
+// and the Richard-Germay-Detournay bit-rock law with the state-dependent cut delay t_n (DESIGN.md §1-3, chapter seed
 // 2.28-2.33; the baseline model of shared/recordings/synthetic/BASELINE.md).
 //
 // Each channel (torsion: angular speed and torque; axial: speed, down positive, and force) is a chain of m
@@ -650,7 +650,8 @@ Section ReadBha(const JsonReader& c, const Section& pipe, double string_length) 
   // By default pieces about as long as the pipe's, so that the travel times are near each other (the step is capped
   // at the shortest).
   const double pipe_piece = (string_length - bha.length) / pipe.pieces;
-  bha.pieces = c.Integer("subsections", 1, 400, std::clamp(static_cast<int>(std::lround(bha.length / pipe_piece)), 1, 400));
+  const int pieces = std::clamp(static_cast<int>(std::lround(bha.length / pipe_piece)), 1, 400);
+  bha.pieces = c.Integer("subsections", 1, 400, pieces);
   c.Finish();
   return bha;
 }
@@ -661,7 +662,8 @@ StringSpec ReadString(const JsonReader& s) {
   sp.length = s.Number("length_m", Range::Positive());
   pipe.outer = s.Number("outer_diameter_m", Range::Positive());
   pipe.inner = s.Number("inner_diameter_m", Range::NonNegative());
-  if (pipe.inner >= pipe.outer) throw InputError(s.PathOf("inner_diameter_m"), "expected a value below outer_diameter_m");
+  if (pipe.inner >= pipe.outer)
+    throw InputError(s.PathOf("inner_diameter_m"), "expected a value below outer_diameter_m");
   sp.e_mod = s.Number("youngs_modulus_Pa", Range::Positive());
   sp.g_mod = s.Number("shear_modulus_Pa", Range::Positive());
   sp.rho = s.Number("density_kg_m3", Range::Positive());
