@@ -21,7 +21,8 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
-#include "drillwave/diagnosis/diagnose.hpp"
+#include "drillwave/diagnosis/sidecar.hpp"
+#include "drillwave/diagnosis/loop_report.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/diagnosis/fit.hpp"
 #include "drillwave/diagnosis/inspection.hpp"
@@ -342,48 +343,54 @@ int Fit(const std::string& file, const std::string& recording_file, const std::s
   return 0;
 }
 
+struct DiagnoseArguments {
+  std::string fit_window, held_out;
+  double margin = 0.2;
+  int threads = 1;
+  int evaluations_per_parameter = 10;
+};
+
 int Diagnose(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
              const std::vector<std::string>& overrides, const std::vector<std::string>& map_texts,
-             const std::string& window, const std::string& out_dir) {
+             const DiagnoseArguments& a, const std::string& out_dir) {
   namespace dg = drillwave::diagnosis;
   constexpr double kWarmup = 30;  // the synthetic recordings start after 30 s of drilling
   nlohmann::json doc = LoadCaseDocument(file, overrides);
   if (!sidecar_file.empty()) doc = LoadSidecar(sidecar_file, doc, kWarmup);
   const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
   const dg::Recording recording = dg::LoadRecording(recording_file);
-  auto [begin, end] = Window(window);
-  if (window.empty() && !sidecar_file.empty()) begin = 5;  // leave the recording's first seconds to settle
-  const double offset = sidecar_file.empty() ? 0 : kWarmup;
-  const auto [model_begin, model_end] = ModelSpan(c, offset);
-  dg::CheckWindow(recording, model_begin, model_end, begin, end);
-  const auto maps = ChannelMaps(map_texts, recording, ProbeChannels(c));
+  dg::LoopOptions o;
+  o.model_time_offset_s = sidecar_file.empty() ? 0 : kWarmup;
+  // The usable recording (its first 5 s left to settle after a sidecar's warm-up), split in halves by default.
+  const double usable_begin = recording.time_s.front() + (sidecar_file.empty() ? 0 : 5);
+  const double usable_end = std::min(recording.time_s.back(), c.settings.duration_s - o.model_time_offset_s);
+  const double middle = 0.5 * (usable_begin + usable_end);
+  std::tie(o.fit_begin_s, o.fit_end_s) = a.fit_window.empty() ? std::pair{usable_begin, middle} : Window(a.fit_window);
+  std::tie(o.held_out_begin_s, o.held_out_end_s) =
+      a.held_out.empty() ? std::pair{std::max(middle, o.fit_end_s), usable_end} : Window(a.held_out);
+  const auto [model_begin, model_end] = ModelSpan(c, o.model_time_offset_s);
+  dg::CheckWindow(recording, model_begin, model_end, o.fit_begin_s, o.fit_end_s);
+  dg::CheckWindow(recording, model_begin, model_end, o.held_out_begin_s, o.held_out_end_s);
+  if (!(a.margin >= 0 && a.margin < 1))
+    throw drillwave::InputError("--margin", "expected a fraction in [0, 1), got " + drillwave::ReadableNumber(a.margin));
+  if (a.threads < 1) throw drillwave::InputError("-j", "expected a whole number >= 1, got " + std::to_string(a.threads));
+  if (a.evaluations_per_parameter < 1)
+    throw drillwave::InputError("--evaluations", "expected a whole number >= 1, got " +
+                                                     std::to_string(a.evaluations_per_parameter));
+  o.margin = a.margin;
+  o.threads = a.threads;
+  o.evaluations_per_parameter = a.evaluations_per_parameter;
+  o.maps = ChannelMaps(map_texts, recording, ProbeChannels(c));
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
-  std::cout << "drillwave: diagnosing " << recording_file << " with '" << c.name << "' (" << c.settings.duration_s
-            << " s simulated)" << std::endl;
-  auto run = drillwave::cases::RunCase(c);
-  for (double& t : run.result.time_s) t -= offset;  // recording time
-  const dg::Diagnosis d = dg::Diagnose(recording, run.result, maps, begin, end);
-  drillwave::io::OutputDirectory out(out_dir);
-  out.Open("diagnosis.json") << dg::DiagnosisToJson(d).dump(2) << "\n";
-  out.Open("case.json") << doc.dump(2) << "\n";
-  drillwave::io::WriteSvg(dg::ComparisonFigure(recording, maps, d.comparison), out.Open("plot.svg"));
-  std::ostream& report = out.Open("report.md");
-  report << "# Diagnosis of " << recording_file << "\n\nModel: `" << c.name << "` (kind " << c.kind
-         << "). Window [" << d.comparison.window_begin_s << ", " << d.comparison.window_end_s << "] s.\n\n## Effects the model leaves out\n\n";
-  if (d.hypotheses.empty()) report << "None of the rules fired.\n";
-  for (const auto& h : d.hypotheses) {
-    report << "- **" << h.effect << "**: " << h.evidence;
-    if (std::isfinite(h.estimate)) report << " (first estimate " << h.estimate << " " << h.unit << ")";
-    report << "\n";
-  }
-  report << "\n## Unexplained differences\n\n";
-  for (const auto& u : d.unexplained) report << "- " << u << "\n";
-  report << "\nThe features side by side are in `diagnosis.json` (comparison); `plot.svg` overlays the channels.\n";
-  out.Commit();
-  for (const auto& h : d.hypotheses) std::cout << "  effect " << h.effect << ": " << h.evidence << std::endl;
-  for (const auto& u : d.unexplained) std::cout << "  unexplained: " << u << std::endl;
-  std::cout << "wrote " << std::filesystem::absolute(out_dir).string() << "/diagnosis.json, report.md, plot.svg, case.json"
-            << std::endl;
+  std::cout << "drillwave: diagnosing " << recording_file << " with '" << c.name << "': fit window ["
+            << o.fit_begin_s << ", " << o.fit_end_s << "] s, held out [" << o.held_out_begin_s << ", "
+            << o.held_out_end_s << "] s" << std::endl;
+  const dg::DiagnosisLoop loop =
+      dg::RunDiagnosisLoop(doc, recording, o, [](const std::string& line) { std::cout << "  " << line << std::endl; });
+  dg::WriteDiagnosisLoop(loop, recording, out_dir);
+  for (const auto& u : loop.unexplained) std::cout << "  unexplained: " << u << std::endl;
+  std::cout << "wrote " << std::filesystem::absolute(out_dir).string()
+            << "/diagnosis.json, fitted-case.json, case.json, report.html, plot.svg" << std::endl;
   return 0;
 }
 
@@ -467,7 +474,7 @@ int main(int argc, char** argv) {
 
   auto* fit = app.add_subcommand(
       "fit", "fit parameters of a case (by JSON pointer, with bounds) so that its features match a recording's "
-             "(derivative-free Nelder-Mead; writes the fitted case)");
+             "(bounded derivative-free search, NLopt Subplex; writes the fitted case)");
   std::vector<std::string> fit_params, fit_features;
   int max_evaluations = 200;
   std::string fit_out = "drillwave-fit";
@@ -484,8 +491,9 @@ int main(int argc, char** argv) {
   fit->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 
   auto* diagnose = app.add_subcommand(
-      "diagnose", "compare a case with a recording and read the feature differences as effects the model leaves "
-                  "out (soft top drive, side friction, velocity weakening, no axial coupling)");
+      "diagnose", "name what a case leaves out of a recording, model it, refit and check on a held-out window: "
+                  "evidence proposes effects, each is fitted (NLopt) and kept only if the held-out error falls");
+  DiagnoseArguments diagnose_args;
   std::string diagnose_out = "drillwave-diagnose";
   diagnose->add_option("case", case_file, "case JSON file (for the synthetic recordings: json-cases/baseline-60rpm.json)")
       ->required();
@@ -493,7 +501,14 @@ int main(int argc, char** argv) {
   diagnose->add_option("--sidecar", sidecar_file, "the synthetic recording's operator sidecar (recNN.json): sets "
                                                   "depth, WOB and the rpm schedule, with a 30 s warm-up");
   diagnose->add_option("--map", maps, "recording_channel=model_channel[*scale]");
-  diagnose->add_option("--window", window, "begin,end [s] in recording time");
+  diagnose->add_option("--fit-window", diagnose_args.fit_window,
+                       "begin,end [s] in recording time (default: the first half of the usable recording)");
+  diagnose->add_option("--held-out", diagnose_args.held_out, "begin,end [s] (default: the second half)");
+  diagnose->add_option("--margin", diagnose_args.margin,
+                       "an effect is kept when the held-out error falls by at least this fraction (default 0.2)");
+  diagnose->add_option("--evaluations", diagnose_args.evaluations_per_parameter,
+                       "model runs per fitted parameter and candidate (default 10)");
+  diagnose->add_option("-j,--jobs", diagnose_args.threads, "candidates fitted in parallel (default 1)");
   diagnose->add_option("--out,-o", diagnose_out, "output folder (written all or nothing)");
   diagnose->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 
@@ -527,7 +542,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (diagnose->parsed())
-      return Diagnose(case_file, recording_file, sidecar_file, overrides, maps, window, diagnose_out);
+      return Diagnose(case_file, recording_file, sidecar_file, overrides, maps, diagnose_args, diagnose_out);
     if (fit->parsed())
       return Fit(case_file, recording_file, sidecar_file, overrides, maps, window, fit_params, fit_features,
                  max_evaluations, fit_out);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages drillwave needs, only those that are missing (run as root, or with sudo).
 set -euo pipefail
-packages=(g++ cmake make libeigen3-dev libboost-dev nlohmann-json3-dev libcli11-dev libgtest-dev)
+packages=(g++ cmake make libeigen3-dev libboost-dev nlohmann-json3-dev libcli11-dev libgtest-dev libnlopt-cxx-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

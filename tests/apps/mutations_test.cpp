@@ -22,7 +22,7 @@
 #include "cli_support.hpp"
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/error.hpp"
-#include "drillwave/diagnosis/diagnose.hpp"
+#include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/io/json_reader.hpp"
 
 namespace {

@@ -64,4 +64,49 @@ TEST(SimulatorEvents, WitnessStartingAtExactlyZeroAndGoingNegativeFires) {
   EXPECT_EQ(sim.stats().events, 1);
 }
 
+// A stiff state (x' = -5000 (x - cos t), as a motor current with La/R = 0.2 ms) whose steps the explicit method
+// keeps at its stability limit, where the cubic history interpolant misses the state's own midpoint; with a history
+// step floor above every step such pieces are accepted as they are, and must still have been prepared
+// (PrepareCommit) before they are committed.
+class StiffRelaxation {
+ public:
+  int Dimension() const { return 1; }
+  void Derivatives(const std::vector<double>& x, std::vector<double>& dxdt, double t) const {
+    dxdt[0] = -5000 * (x[0] - std::cos(t));
+  }
+  double MaxStep() const { return std::numeric_limits<double>::infinity(); }
+  void BeginStep(double) {}
+  double PrepareCommit(const Piece& p, double, double) {
+    prepared_t0_ = p.t0, prepared_t1_ = p.t1;
+    return 0;
+  }
+  void Commit(const Piece& p) {
+    ++commits_;
+    if (p.t0 != prepared_t0_ || p.t1 != prepared_t1_) ++unprepared_;
+  }
+  int NumWitnesses() const { return 0; }
+  double Witness(int, double, const std::vector<double>&) const { return 1.0; }
+  bool OnEvent(int, double, std::vector<double>&) { return false; }
+  double NextBreakpoint() const { return std::numeric_limits<double>::infinity(); }
+  void OnBreakpoint(double) {}
+
+  int commits() const { return commits_; }
+  int unprepared() const { return unprepared_; }
+
+ private:
+  double prepared_t0_ = -1, prepared_t1_ = -1;
+  int commits_ = 0, unprepared_ = 0;
+};
+
+TEST(SimulatorHistory, EveryPieceAcceptedBelowTheFloorIsPreparedBeforeItsCommit) {
+  StiffRelaxation process;
+  IntegratorOptions options;
+  options.abs_tol = options.rel_tol = 1e-7;
+  options.history_step_floor = 1e9;
+  Simulator<StiffRelaxation> sim(process, options);
+  sim.Integrate(0.0, {1.0}, 1.0);
+  EXPECT_GT(process.commits(), 10);
+  EXPECT_EQ(process.unprepared(), 0) << "of " << process.commits() << " pieces";
+}
+
 }  // namespace

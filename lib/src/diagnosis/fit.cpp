@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <numeric>
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/diagnosis/minimize.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/svg_plot.hpp"
@@ -113,64 +113,16 @@ FitResult FitFeatures(const nlohmann::json& document, const Recording& recording
     return f;
   };
 
-  // Nelder-Mead in the unit cube of the bounds (points are clamped onto it).
-  std::vector<std::vector<double>> simplex(k + 1, std::vector<double>(k));
+  // NLopt's bounded Subplex in the unit cube of the bounds (minimize.hpp).
+  std::vector<double> unit_start(k);
   for (std::size_t i = 0; i < k; ++i)
-    simplex[0][i] = (start[i] - parameters[i].lower) / (parameters[i].upper - parameters[i].lower);
-  for (std::size_t j = 1; j <= k; ++j) {
-    simplex[j] = simplex[0];
-    simplex[j][j - 1] += simplex[0][j - 1] <= 0.85 ? 0.15 : -0.15;
-  }
-  auto clamp_unit = [](std::vector<double> u) {
-    for (double& x : u) x = std::clamp(x, 0.0, 1.0);
-    return u;
-  };
-  std::vector<double> f(k + 1);
-  for (std::size_t j = 0; j <= k; ++j) f[j] = objective(simplex[j]);
-  while (result.evaluations < o.max_evaluations) {
-    std::vector<std::size_t> order(k + 1);
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return f[a] < f[b]; });
-    std::vector<std::vector<double>> s2;
-    std::vector<double> f2;
-    for (std::size_t j : order) s2.push_back(simplex[j]), f2.push_back(f[j]);
-    simplex.swap(s2), f.swap(f2);
-    double spread = 0;
-    for (std::size_t j = 1; j <= k; ++j)
-      for (std::size_t i = 0; i < k; ++i) spread = std::max(spread, std::abs(simplex[j][i] - simplex[0][i]));
-    if (spread < o.tolerance) break;
-    std::vector<double> centroid(k, 0.0);
-    for (std::size_t j = 0; j < k; ++j)
-      for (std::size_t i = 0; i < k; ++i) centroid[i] += simplex[j][i] / k;
-    auto along = [&](double t) {
-      std::vector<double> u(k);
-      for (std::size_t i = 0; i < k; ++i) u[i] = centroid[i] + t * (simplex[k][i] - centroid[i]);
-      return clamp_unit(u);
-    };
-    const std::vector<double> reflected = along(-1.0);
-    const double fr = objective(reflected);
-    if (fr < f[0]) {
-      const std::vector<double> expanded = along(-2.0);
-      const double fe = objective(expanded);
-      if (fe < fr) simplex[k] = expanded, f[k] = fe;
-      else simplex[k] = reflected, f[k] = fr;
-    } else if (fr < f[k - 1]) {
-      simplex[k] = reflected, f[k] = fr;
-    } else {
-      const std::vector<double> contracted = along(fr < f[k] ? -0.5 : 0.5);
-      const double fc = objective(contracted);
-      if (fc < std::min(fr, f[k])) {
-        simplex[k] = contracted, f[k] = fc;
-      } else {  // shrink towards the best point
-        for (std::size_t j = 1; j <= k; ++j) {
-          for (std::size_t i = 0; i < k; ++i) simplex[j][i] = simplex[0][i] + 0.5 * (simplex[j][i] - simplex[0][i]);
-          f[j] = objective(simplex[j]);
-        }
-      }
-    }
-  }
-  const std::size_t best = static_cast<std::size_t>(std::min_element(f.begin(), f.end()) - f.begin());
-  result.fitted = values_of(simplex[best]);
+    unit_start[i] = (start[i] - parameters[i].lower) / (parameters[i].upper - parameters[i].lower);
+  MinimizeOptions mo;
+  mo.max_evaluations = o.max_evaluations;
+  mo.x_tolerance = o.tolerance;
+  mo.starts = o.starts;
+  const MinimizeResult best = MinimizeInUnitCube(objective, unit_start, mo);
+  result.fitted = values_of(best.best);
   result.document = document_with(result.fitted);
   result.after = compare(result.fitted);
   result.objective_fitted = Objective(result.after, o.features);

@@ -1,6 +1,6 @@
 #pragma once
 // Fitting a case to a recording by its features (DESIGN.md §5, step 2): the parameters, addressed by JSON pointers
-// with bounds, are moved by a derivative-free Nelder-Mead search so that the model's features (oscillation period,
+// with bounds, are moved by a bounded derivative-free search (NLopt's Subplex, minimize.hpp) so that the model's features (oscillation period,
 // stick fraction, speed levels, ...) match the recording's, as `compare` measures them. Features rather than the
 // point-by-point trajectory, because stick-slip is a limit cycle whose phase drifts: its features are what a model
 // can be asked to reproduce.
@@ -29,7 +29,8 @@ struct FitOptions {
   std::vector<std::string> features = {"bit_oscillation_period_s", "stick_fraction", "bit_speed_mean", "bit_speed_max"};
   double model_time_offset_s = 0;  // subtracted from the model's time before comparing (a warm-up before the recording)
   int max_evaluations = 200;
-  double tolerance = 1e-4;  // on the spread of the simplex, in units of each parameter's range
+  double tolerance = 1e-4;  // on the parameters, in units of each parameter's range
+  int starts = 1;           // the case's values, then seeded random points within the bounds
 };
 
 struct FitResult {

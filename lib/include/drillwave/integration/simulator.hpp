@@ -389,7 +389,8 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
         const double scale = options_.abs_tol + options_.rel_tol * std::max(std::abs(x[i]), std::abs(x1[i]));
         worst = std::max(worst, std::abs(x_mid[i] - cubic_mid) / scale);
       }
-      if (worst <= 1.0)  // the stored signals need checking only if the state passed
+      const bool state_passed = worst <= 1.0;
+      if (state_passed)  // the stored signals need checking only if the state passed
         worst = std::max(worst, process_.PrepareCommit(Piece{t, t1, x, f0, x1, f1, x_mid}, options_.abs_tol,
                                                        options_.rel_tol));
       // Cubic interpolation error scales as h^4: the step this piece could have had.
@@ -403,6 +404,8 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
         capture_first = true;
         continue;
       }
+      // Accepted below the floor although the state failed: the process still has to prepare this piece's commit.
+      if (!state_passed) process_.PrepareCommit(Piece{t, t1, x, f0, x1, f1, x_mid}, options_.abs_tol, options_.rel_tol);
     }
     if constexpr (detail::CutsSteps<Process>::value) {
       if (process_.CutAt(Piece{t, t1, x, f0, x1, f1, x_mid})) {  // the loop's next stop is now inside this step

@@ -29,6 +29,10 @@ struct Figure {
 // which stick-slip spikes survive.
 void WriteSvg(const Figure& figure, std::ostream& out);
 
+// Text as XML (and HTML) character data or attribute value: markup characters escaped, characters XML 1.0 forbids
+// dropped.
+std::string EscapeXml(const std::string& text);
+
 // The building blocks of WriteSvg, exposed for testing.
 
 // Indices (increasing) of the points to draw when [x_lo, x_hi] spans `columns` pixel columns: in each run of

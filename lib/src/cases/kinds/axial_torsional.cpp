@@ -16,6 +16,13 @@
 //   wear-flat contact (d > 0): W_f = a sigma l advancing, in [0, a sigma l] held axially, 0 lifting
 //   friction: T_f = a gamma mu W_f / 2 sign(w), set-valued at w = 0 (stuck while the torque stays within T_c + T_f)
 //   off bottom (d <= 0): no contact at all.
+// Optional components, each switched on by its JSON object (absent: the baseline above):
+//   rock/stribeck: mu(w) = mu + (mu_s - mu) exp(-|w| / w_s) while turning; a stuck bit holds with mu_s.
+//   axial_coupling false: no axial dynamics; the weight on bit is held at W0 and the depth of cut at its steady value.
+//   top_drive/motor: a DC motor between the PI and the top: V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I,
+//        torque K I on the top drive.
+//   bit/unbalance: the BHA's lateral motion (x, y) as the Jeffcott rotor of the failure seed (eqs. 21-23), with the
+//        unbalance m at radius e turning with the bit angle Phi and reacting on the bit's torsion.
 // Three discrete regimes (rotation: forward / stuck / backward; axial: advancing / held / lifting; contact: on /
 // off) switch at located events. The run starts in steady drilling at the set-points (prehistory Phi = Omega t,
 // U = V t). Disturb it through the inputs (a set-point schedule), which keeps the waves free of jumps: a jump in a
@@ -61,6 +68,30 @@ struct Channel {
   }
 };
 
+// DC motor of the top drive (the torsional_wave kind's dc_motor top): torque constant K = back-emf constant.
+struct DcMotor {
+  bool on = false;
+  double k = 0, resistance = 0, inductance = 0;
+  // Armature voltage that makes the motor follow the PI: at steady state K I = u_PI with w_top = Omega_ref.
+  double Voltage(double u_pi, double omega_ref) const { return resistance / k * u_pi + k * omega_ref; }
+  double CurrentRate(double voltage, double w_top, double current) const {
+    return (voltage - k * w_top - resistance * current) / inductance;
+  }
+};
+
+// Lateral (Jeffcott) rotor of the BHA at the bit: mass M, stiffness k, damping c, unbalance m at radius e.
+struct LateralBha {
+  bool on = false;
+  double mass = 0, stiffness = 0, damping = 0, unbalance_mass = 0, eccentricity = 0;
+  double TotalMass() const { return mass + unbalance_mass; }  // M + m
+  double Moment() const { return unbalance_mass * eccentricity; }  // m e
+  double NaturalFrequency() const { return std::sqrt(stiffness / TotalMass()); }
+  // Steady whirl radius at a constant bit speed w: m e w^2 / sqrt((k - (M + m) w^2)^2 + (c w)^2).
+  double WhirlAmplitude(double w) const {
+    return Moment() * w * w / std::hypot(stiffness - TotalMass() * w * w, damping * w);
+  }
+};
+
 struct Model {
   int m = 20;
   double length = 0;
@@ -72,11 +103,27 @@ struct Model {
   double weight_on_bit = 0;   // W0 the hook force was set for [N]
   double a = 0, zeta = 0, eps = 0, sigma_l = 0, mu = 0, gamma = 0;
   int blades = 4;
+  double static_mu = 0, stribeck_speed = 0;  // Stribeck friction (stribeck_speed 0: Coulomb, static_mu = mu)
+  bool axial_coupling = true;
+  DcMotor motor;          // between the PI and the top drive when motor.on
+  LateralBha unbalance;   // Jeffcott rotor at the bit when unbalance.on
 
   double ContactForce() const { return a * sigma_l; }             // a sigma l
-  double FrictionArm() const { return 0.5 * a * gamma * mu; }      // T_f = arm * W_f
+  // Friction coefficient of the wear flats at bit speed w (Stribeck: decays from static_mu to mu).
+  double MuAt(double w) const {
+    return stribeck_speed > 0 ? mu + (static_mu - mu) * std::exp(-std::abs(w) / stribeck_speed) : mu;
+  }
+  double FrictionArm(double w) const { return 0.5 * a * gamma * MuAt(w); }  // T_f = arm * W_f while turning
+  double StaticFrictionArm() const { return 0.5 * a * gamma * static_mu; }  // the most a stuck bit holds
   double CutWeightPerDepth() const { return a * zeta * eps; }      // W_c / d
   double CutTorquePerDepth() const { return 0.5 * a * a * eps; }   // T_c / d
+  // The bit's inertia against its angular acceleration when the BHA moves laterally with it: eliminating x'' and
+  // y'' from seed eq. 23 leaves J_b + m e^2 - (m e)^2 / (M + m) (J_b itself without an unbalance).
+  double EffectiveBitInertia() const {
+    if (!unbalance.on) return bit_inertia;
+    const double me = unbalance.Moment();
+    return bit_inertia + me * unbalance.eccentricity - me * me / unbalance.TotalMass();
+  }
 };
 
 enum class Turn { kForward, kStuck, kBackward };
@@ -92,12 +139,13 @@ Steady SteadyDrilling(const Model& md, double omega) {
   s.wob = md.weight_on_bit;
   s.depth = std::max(0.0, (md.weight_on_bit - md.ContactForce()) / md.CutWeightPerDepth());
   s.rop = s.depth * omega / (2 * kPi);  // d = n V t_n with t_n = 2 pi / (n omega)
-  s.tob = md.CutTorquePerDepth() * s.depth + md.FrictionArm() * md.ContactForce();
+  s.tob = md.CutTorquePerDepth() * s.depth + md.FrictionArm(omega) * md.ContactForce();
   return s;
 }
 
-// State: 0 bit angle, 1 bit position, 2 top speed, 3 bit speed, 4 hoist speed, 5 bit axial speed, 6 PI integral.
-enum Index { kPhi = 0, kU, kWtop, kWbit, kVtop, kVbit, kZ, kDim };
+// State: 0 bit angle, 1 bit position, 2 top speed, 3 bit speed, 4 hoist speed, 5 bit axial speed, 6 PI integral;
+// with a motor 7 its current; with an unbalance 8-11 the BHA's lateral x, y, x', y' (and 7 unused, held at 0).
+enum Index { kPhi = 0, kU, kWtop, kWbit, kVtop, kVbit, kZ, kDim, kCurrent = kDim, kX, kY, kXd, kYd, kFullDim };
 
 class Process {
  public:
@@ -112,7 +160,7 @@ class Process {
   }
 
   // --- Simulator interface --------------------------------------------------------------------------------
-  int Dimension() const { return kDim; }
+  int Dimension() const { return md_.unbalance.on ? kFullDim : md_.motor.on ? kDim + 1 : kDim; }
   double MaxStep() const {
     double shortest = kInf;
     for (const Run& r : runs_) shortest = std::min(shortest, r.tau);
@@ -121,12 +169,13 @@ class Process {
   void BeginStep(double t0) { step_start_ = t0; }
 
   State InitialState() const {
-    State x(kDim, 0.0);
+    State x(Dimension(), 0.0);
     x[kWtop] = steady_.omega;
     x[kWbit] = steady_.omega;
     x[kVtop] = x[kVbit] = steady_.rop;
     // The PI holds the steady top torque with its integral part.
     x[kZ] = md_.ki > 0 ? top_torque0_ / md_.ki : 0.0;
+    if (md_.motor.on) x[kCurrent] = top_torque0_ / md_.motor.k;  // and the motor with its steady current
     return x;
   }
 
@@ -138,13 +187,21 @@ class Process {
     dx[kPhi] = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
     dx[kU] = axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
     // Top drive and hoist.
-    const double u = md_.kp * (omega_ref - x[kWtop]) + md_.ki * x[kZ];
+    const double u = TopTorque(x, omega_ref);
+    if (md_.motor.on)
+      dx[kCurrent] =
+          md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), x[kWtop], x[kCurrent]);
     dx[kWtop] = (ends.top[0] + u) / md_.top_inertia;
     dx[kVtop] = (ends.top[1] - md_.hook_force) / md_.hoist_mass;
     dx[kZ] = omega_ref - x[kWtop];
     // Bit.
-    dx[kWbit] = turn_ == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.bit_inertia;
+    dx[kWbit] = turn_ == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
     dx[kVbit] = axial_ == Axial::kHeld && contact_ ? 0.0 : (f.drive_force - f.weight) / md_.bit_mass;
+    if (!md_.axial_coupling) {  // no axial dynamics: the bit drills the steady depth per revolution
+      dx[kU] = steady_.depth / (2 * kPi) * std::max(BitSpeed(x), 0.0);
+      dx[kVtop] = dx[kVbit] = 0;
+    }
+    if (md_.unbalance.on) LateralRates(x, dx[kWbit], dx);
   }
 
   double PrepareCommit(const integration::Piece& p, double abs_tol, double rel_tol) {
@@ -186,6 +243,7 @@ class Process {
   int NumWitnesses() const { return 5; }
   double Witness(int k, double t, const State& x) const {
     const Side side = Side::kLeft;
+    if (k >= 2 && !md_.axial_coupling) return 1.0;  // always on bottom and advancing
     switch (k) {
       case 0:
       case 1: {
@@ -267,6 +325,7 @@ class Process {
   // --- Outputs --------------------------------------------------------------------------------------------
   struct Sample {
     double top_speed, bit_speed, top_torque, bit_torque, wob, hookload, depth, bit_axial_speed, tn, stuck, off_bottom;
+    double top_current, lateral_displacement;
   };
   Sample Sampled(double t, const State& x, const State& dx) const {
     const Side side = Side::kLeft;
@@ -275,15 +334,17 @@ class Process {
     Sample s;
     s.top_speed = x[kWtop];
     s.bit_speed = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
-    s.top_torque = md_.kp * (omega_ref - x[kWtop]) + md_.ki * x[kZ];
+    s.top_torque = TopTorque(x, omega_ref);
     s.bit_torque = turn_ == Turn::kStuck ? f.drive_torque : f.torque;
     s.wob = f.weight;
     s.hookload = md_.hook_force + md_.hoist_mass * dx[kVtop];
     s.depth = contact_ ? f.depth : std::min(f.depth, 0.0);
-    s.bit_axial_speed = axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
+    s.bit_axial_speed = !md_.axial_coupling ? dx[kU] : axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
     s.tn = f.tn;
     s.stuck = turn_ == Turn::kStuck ? 1.0 : 0.0;
     s.off_bottom = contact_ ? 0.0 : 1.0;
+    s.top_current = md_.motor.on ? x[kCurrent] : 0.0;
+    s.lateral_displacement = md_.unbalance.on ? std::hypot(x[kX], x[kY]) : 0.0;
     return s;
   }
   const std::vector<StuckInterval>& stuck_intervals() const { return stuck_; }
@@ -395,9 +456,12 @@ class Process {
   BitForces Forces(const State& x, double t, Side side) const { return Forces(x, t, side, StringEnds(x, t, side)); }
   BitForces Forces(const State& x, double t, Side side, const Ends& ends) const {
     BitForces f;
+    const double w = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
     f.drive_torque = ends.bit[0];
     f.drive_force = ends.bit[1];
+    if (md_.unbalance.on) f.drive_torque += LateralReaction(x);
     f.depth = DepthOfCut(x, t, side, &f.tn);
+    if (!md_.axial_coupling) f.depth = steady_.depth;
     if (!contact_) return f;
     const double d = std::max(f.depth, 0.0);
     // Cutting only into new rock: not while turning backwards, nor before the bit is back past its furthest angle.
@@ -412,12 +476,43 @@ class Process {
       case Axial::kLifting: contact = 0; break;
       case Axial::kHeld: contact = std::clamp(f.drive_force - f.cut_weight, 0.0, md_.ContactForce()); break;
     }
-    f.weight = f.cut_weight + contact;
-    const double friction = md_.FrictionArm() * contact;
+    f.weight = md_.axial_coupling ? f.cut_weight + contact : md_.weight_on_bit;
+    const double friction = md_.FrictionArm(w) * contact, holding = md_.StaticFrictionArm() * contact;
     f.torque = turn_ == Turn::kBackward ? -friction : cut_torque + friction;
-    f.static_forward = cut_torque + friction;
-    f.static_backward = friction;
+    f.static_forward = cut_torque + holding;
+    f.static_backward = holding;
     return f;
+  }
+
+  // --- Top drive and BHA components ---------------------------------------------------------------------------
+  double PiOutput(const State& x, double omega_ref) const { return md_.kp * (omega_ref - x[kWtop]) + md_.ki * x[kZ]; }
+  // Torque on the top drive: the PI's output, or the motor's K I when a DC motor sits between them.
+  double TopTorque(const State& x, double omega_ref) const {
+    return md_.motor.on ? md_.motor.k * x[kCurrent] : PiOutput(x, omega_ref);
+  }
+  double BitSpeed(const State& x) const { return turn_ == Turn::kStuck ? 0.0 : x[kWbit]; }
+
+  // Forces on the BHA's lateral motion other than its inertia and the unbalance's angular acceleration term
+  // (seed eqs. 21-22 with Phi'' = 0): m e Phi'^2 (cos Phi, sin Phi) - c (x', y') - k (x, y).
+  std::array<double, 2> LateralForces(const State& x) const {
+    const LateralBha& b = md_.unbalance;
+    const double w = BitSpeed(x), centrifugal = b.Moment() * w * w;
+    return {centrifugal * std::cos(x[kPhi]) - b.damping * x[kXd] - b.stiffness * x[kX],
+            centrifugal * std::sin(x[kPhi]) - b.damping * x[kYd] - b.stiffness * x[kY]};
+  }
+  // Torque of the lateral motion on the bit at zero angular acceleration, m e (x'' sin Phi - y'' cos Phi) of seed eq.
+  // 23; the part that goes with Phi'' is in EffectiveBitInertia. (The centrifugal force is radial: no torque.)
+  double LateralReaction(const State& x) const {
+    const auto [fx, fy] = LateralForces(x);
+    return md_.unbalance.Moment() / md_.unbalance.TotalMass() * (fx * std::sin(x[kPhi]) - fy * std::cos(x[kPhi]));
+  }
+  // x'', y'' (seed eqs. 21-22) given the bit's angular acceleration phi_dd.
+  void LateralRates(const State& x, double phi_dd, State& dx) const {
+    const auto [fx, fy] = LateralForces(x);
+    const double me = md_.unbalance.Moment(), mass = md_.unbalance.TotalMass();
+    dx[kX] = x[kXd], dx[kY] = x[kYd];
+    dx[kXd] = (fx + me * std::sin(x[kPhi]) * phi_dd) / mass;
+    dx[kYd] = (fy - me * std::cos(x[kPhi]) * phi_dd) / mass;
   }
 
   // Sum of Z (2 w_in) over the two pieces at an internal node (as 2 Z (a + b) for equal impedances: a uniform
@@ -558,6 +653,7 @@ class AxialTorsionalModel : public PreparedModel {
     Process process(md_);
     std::vector<double> x = process.InitialState();
     std::vector<double> time, top, bit, top_torque, bit_torque, wob, hook, depth, vbit, tn, stuck, off, angle;
+    std::vector<double> current, lateral;
     std::vector<double> dx(x.size());
     auto sample = [&](double t, const std::vector<double>& s) {
       process.BeginStep(t);  // look-ups at t from the committed history (left limits inside the last piece)
@@ -567,6 +663,8 @@ class AxialTorsionalModel : public PreparedModel {
       bit_torque.push_back(v.bit_torque), wob.push_back(v.wob), hook.push_back(v.hookload), depth.push_back(v.depth);
       vbit.push_back(v.bit_axial_speed), tn.push_back(v.tn), stuck.push_back(v.stuck), off.push_back(v.off_bottom);
       angle.push_back(s[kPhi]);
+      if (md_.motor.on) current.push_back(v.top_current);
+      if (md_.unbalance.on) lateral.push_back(v.lateral_displacement);
     };
     sample(0.0, x);
     const auto observer = integration::SampleEvery(settings.output_interval_s, sample);
@@ -582,11 +680,13 @@ class AxialTorsionalModel : public PreparedModel {
     result.summary = ComputeStickSlipStatistics(process.stuck_intervals(), time, bit, angle, settings.window_begin_s,
                                                 settings.window_end_s)
                          .ToJson();
-    double wob_sum = 0, rop_sum = 0, off_sum = 0, torque_sum = 0;
+    double wob_sum = 0, rop_sum = 0, off_sum = 0, torque_sum = 0, lateral_sum = 0, lateral_max = 0;
     int n = 0;
     for (std::size_t i = 0; i < time.size(); ++i)
-      if (time[i] >= settings.window_begin_s && time[i] <= settings.window_end_s)
+      if (time[i] >= settings.window_begin_s && time[i] <= settings.window_end_s) {
         wob_sum += wob[i], rop_sum += vbit[i], off_sum += off[i], torque_sum += bit_torque[i], ++n;
+        if (md_.unbalance.on) lateral_sum += lateral[i], lateral_max = std::max(lateral_max, lateral[i]);
+      }
     const Steady& s = process.steady();
     result.summary["wob_mean_N"] = n ? wob_sum / n : 0.0;
     result.summary["bit_torque_mean_Nm"] = n ? torque_sum / n : 0.0;
@@ -596,6 +696,12 @@ class AxialTorsionalModel : public PreparedModel {
     result.summary["steady_rop_m_h"] = 3600 * s.rop;
     result.summary["steady_bit_torque_Nm"] = s.tob;
     result.summary["hook_force_N"] = md_.hook_force;
+    if (md_.unbalance.on) {  // whirl radius over the window, and the closed form at the steady bit speed
+      result.summary["whirl_amplitude_mean_m"] = n ? lateral_sum / n : 0.0;
+      result.summary["whirl_amplitude_max_m"] = lateral_max;
+      result.summary["steady_whirl_amplitude_m"] = md_.unbalance.WhirlAmplitude(s.omega);
+      result.summary["lateral_natural_frequency_rad_s"] = md_.unbalance.NaturalFrequency();
+    }
     result.summary["steps"] = sim.stats().steps;
     result.summary["events"] = sim.stats().events;
     result.summary["derivative_evaluations"] = sim.stats().derivative_evaluations;
@@ -613,6 +719,14 @@ class AxialTorsionalModel : public PreparedModel {
                        {"cut_delay_s", std::move(tn)},
                        {"off_bottom", std::move(off)}};
     result.plot_panels = {{"top_rpm", "bit_rpm"}, {"top_torque_Nm", "bit_torque_Nm"}, {"wob_N"}, {"depth_of_cut_m"}};
+    if (md_.motor.on) {
+      result.channels.push_back({"top_current_A", std::move(current)});
+      result.plot_panels.push_back({"top_current_A"});
+    }
+    if (md_.unbalance.on) {
+      result.channels.push_back({"lateral_displacement_m", std::move(lateral)});
+      result.plot_panels.push_back({"lateral_displacement_m"});
+    }
     result.time_s = std::move(time);
     return result;
   }
@@ -750,10 +864,10 @@ class AxialTorsionalKind : public ModelKind {
  public:
   std::string name() const override { return "axial_torsional"; }
   std::string description() const override {
-    return "coupled axial-torsional waves in a pipe (and optionally a BHA section) with a lumped bit and the "
-           "Richard-Germay-Detournay "
-           "bit-rock law (state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); "
-           "PI top drive, hoist under constant hook force";
+    return "coupled axial-torsional waves in a pipe with a lumped bit and the Richard-Germay-Detournay bit-rock law "
+           "(state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); PI top drive, hoist "
+           "under constant hook force; optional BHA section, Kelvin-Voigt damping, Stribeck bit friction, DC motor, "
+           "BHA mass unbalance (Jeffcott rotor at the bit), axial coupling off";
   }
   nlohmann::json FieldSchema() const override {
     return {{"string/length_m", "> 0, top drive to bit"},
@@ -785,15 +899,30 @@ class AxialTorsionalKind : public ModelKind {
             {"bit/mass_kg", "M_b > 0"},
             {"bit/radius_m", "a > 0"},
             {"bit/blades", "n, integer in [1, 20]"},
+            {"bit/unbalance/lateral_mass_kg", "M > 0: BHA lateral (Jeffcott) mass; optional object, absent: no "
+                                              "lateral motion"},
+            {"bit/unbalance/lateral_stiffness_N_per_m", "k > 0"},
+            {"bit/unbalance/lateral_damping_Ns_per_m", "c >= 0"},
+            {"bit/unbalance/unbalance_mass_kg", "m >= 0, turning with the bit (adds m e^2 to J_b)"},
+            {"bit/unbalance/eccentricity_m", "e >= 0"},
             {"rock/intrinsic_specific_energy_Pa", "eps > 0"},
             {"rock/zeta", "> 0, cutting force orientation"},
             {"rock/sigma_l_N_per_m", "sigma l >= 0, wear-flat contact strength times length"},
             {"rock/mu", ">= 0, wear-flat friction coefficient"},
             {"rock/gamma", ">= 0, friction distribution factor"},
+            {"rock/stribeck/static_mu", ">= mu: optional object (absent: Coulomb); mu(w) = mu + (static_mu - mu) "
+                                        "exp(-|w| / velocity_rad_s), a stuck bit holds with static_mu"},
+            {"rock/stribeck/velocity_rad_s", "> 0, Stribeck speed"},
+            {"axial_coupling", "boolean, default true; false: no axial dynamics, weight on bit held at W0 and depth "
+                               "of cut at its steady value"},
             {"top_drive/inertia_kgm2", "J_td > 0"},
             {"top_drive/kp_Nms_per_rad", ">= 0"},
             {"top_drive/ki_Nm_per_rad", ">= 0"},
             {"top_drive/speed_rad_s", "set-point schedule [rad/s]"},
+            {"top_drive/motor/motor_constant_Nm_per_A", "K > 0: optional DC motor (absent: the PI output is the torque); "
+                                                        "V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I, torque K I"},
+            {"top_drive/motor/resistance_ohm", "R > 0"},
+            {"top_drive/motor/inductance_H", "La > 0"},
             {"hoist/mass_kg", "M_td > 0"},
             {"hoist/weight_on_bit_N", "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
                                       "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
@@ -809,6 +938,16 @@ class AxialTorsionalKind : public ModelKind {
     md.bit_mass = b.Number("mass_kg", Range::Positive());
     md.a = b.Number("radius_m", Range::Positive());
     md.blades = b.Integer("blades", 1, 20);
+    if (b.Has("unbalance")) {
+      const JsonReader u = b.Object("unbalance");
+      md.unbalance.on = true;
+      md.unbalance.mass = u.Number("lateral_mass_kg", Range::Positive());
+      md.unbalance.stiffness = u.Number("lateral_stiffness_N_per_m", Range::Positive());
+      md.unbalance.damping = u.Number("lateral_damping_Ns_per_m", Range::NonNegative());
+      md.unbalance.unbalance_mass = u.Number("unbalance_mass_kg", Range::NonNegative());
+      md.unbalance.eccentricity = u.Number("eccentricity_m", Range::NonNegative());
+      u.Finish();
+    }
     b.Finish();
     const JsonReader k = r.Object("rock");
     md.eps = k.Number("intrinsic_specific_energy_Pa", Range::Positive());
@@ -816,12 +955,27 @@ class AxialTorsionalKind : public ModelKind {
     md.sigma_l = k.Number("sigma_l_N_per_m", Range::NonNegative());
     md.mu = k.Number("mu", Range::NonNegative());
     md.gamma = k.Number("gamma", Range::NonNegative());
+    md.static_mu = md.mu;
+    if (k.Has("stribeck")) {
+      const JsonReader st = k.Object("stribeck");
+      md.static_mu = st.Number("static_mu", Range::AtLeast(md.mu));
+      md.stribeck_speed = st.Number("velocity_rad_s", Range::Positive());
+      st.Finish();
+    }
     k.Finish();
     const JsonReader td = r.Object("top_drive");
     md.top_inertia = td.Number("inertia_kgm2", Range::Positive());
     md.kp = td.Number("kp_Nms_per_rad", Range::NonNegative());
     md.ki = td.Number("ki_Nm_per_rad", Range::NonNegative());
     md.top_speed = model::Schedule::FromJson(td.Raw("speed_rad_s"), td.PathOf("speed_rad_s"));
+    if (td.Has("motor")) {
+      const JsonReader mo = td.Object("motor");
+      md.motor.on = true;
+      md.motor.k = mo.Number("motor_constant_Nm_per_A", Range::Positive());
+      md.motor.resistance = mo.Number("resistance_ohm", Range::Positive());
+      md.motor.inductance = mo.Number("inductance_H", Range::Positive());
+      mo.Finish();
+    }
     td.Finish();
     if (!(md.top_speed.Value(0.0) > 0))
       throw InputError(td.PathOf("speed_rad_s"), "the run starts in steady drilling: the set-point at t = 0 must be > 0");
@@ -830,6 +984,7 @@ class AxialTorsionalKind : public ModelKind {
     md.weight_on_bit = h.Number("weight_on_bit_N", Range::Positive());
     h.Finish();
     const double g = r.Number("gravity_m_s2", Range::Positive(), 9.81);
+    md.axial_coupling = r.Boolean("axial_coupling", true);
     r.Finish();
     if (!(md.weight_on_bit > md.ContactForce()))
       throw InputError(h.PathOf("weight_on_bit_N"), "expected more than the wear-flat contact force a sigma l = " +

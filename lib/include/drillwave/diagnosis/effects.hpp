@@ -1,0 +1,48 @@
+#pragma once
+// The effects diagnosis can name (issue 13's vocabulary) and how each is modelled: a component of the case switched
+// on, with the parameters a fit may move (bounds, log or linear scale, a first value from the evidence). The rules
+// here only propose: each reads a measured difference between the recording and the model (in the features' own
+// scales) as evidence for the effects that would produce it, in both directions — an effect may create stick-slip
+// or remove it. Whether an effect is kept is decided by fitting it (loop.hpp).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "drillwave/diagnosis/features.hpp"
+
+namespace drillwave::diagnosis {
+
+struct EffectParameter {
+  std::string name;   // e.g. "kp_Nms_per_rad"
+  std::string unit;
+  double lower = 0, upper = 1;
+  bool log_scale = false;  // moved on a log scale (spans decades)
+  double start = 0;        // first value, inside the bounds
+};
+
+struct Effect {
+  std::string name;       // from the vocabulary: bha, stribeck, unbalance, side_friction, kelvin_voigt,
+                          // soft_topdrive, axial_coupling_off, dc_motor, sensor_delay
+  std::string component;  // what is switched on, in the case's words
+  std::vector<EffectParameter> parameters;
+  // Switches the component on in a case document with these parameter values (one per parameter).
+  std::function<void(nlohmann::json& document, const std::vector<double>& values)> apply;
+  double strength = 0;    // how strongly the evidence points to it (in feature scales); 0: no evidence
+  std::string evidence;   // the measured numbers behind it
+};
+
+// Every effect of the vocabulary for an axial_torsional case document, each with its evidence from the features of
+// the recording and of that case's run over the same window. Effects the case's kind has no component for are
+// omitted. `downhole` names the model channels measured downhole (they get a sensor delay).
+std::vector<Effect> ProposeEffects(const nlohmann::json& document, const FeatureSet& model, const FeatureSet& recording);
+
+// The vocabulary, for listing and checking names.
+const std::vector<std::string>& EffectVocabulary();
+
+// value <-> [0, 1] on the parameter's scale.
+double ToUnit(const EffectParameter& p, double value);
+double FromUnit(const EffectParameter& p, double unit);
+
+}  // namespace drillwave::diagnosis

@@ -1,0 +1,55 @@
+#pragma once
+// What a model can be asked to reproduce of a recording (DESIGN.md §5, issue 13 item 3). Stick-slip is chaotic: two
+// runs that differ by a rounding error drift out of phase within a few periods, so a point-by-point error cannot be
+// fitted. Statistics over a window are reproducible: levels, spreads, the fast (> ~2 Hz) part of each channel, the
+// time the bit spends stuck, the oscillation period and the lag between the surface torque and the bit speed. Each
+// feature carries a scale — how much it varies between the window's parts, with a floor — and a model's difference
+// is counted in those scales, so that a model which is the recording's twin scores about 1 whatever the regime.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "drillwave/diagnosis/recording.hpp"
+
+namespace drillwave::diagnosis {
+
+struct Feature {
+  std::string name;   // "<channel> mean", "<channel> std", "<channel> fast_std", "stick_fraction", ...
+  double value = 0;   // NaN where the window does not define it (no oscillation: no period)
+  double scale = 1;   // > 0; the size of a difference that is within the feature's own variability
+};
+
+struct FeatureSet {
+  double begin_s = 0, end_s = 0;
+  std::vector<Feature> features;
+  const Feature* Find(const std::string& name) const;  // nullptr if absent
+  double Value(const std::string& name) const;         // NaN if absent
+};
+
+struct FeatureOptions {
+  std::string bit_speed = "bit_rpm";     // the channel read for sticking, period and lag (skipped if absent)
+  std::string top_torque = "top_torque_kNm";
+  int parts = 4;                         // the window's parts whose spread sets each feature's scale
+  double smoothing_s = 0.05;             // centred moving average before levels and spreads are read
+  double fast_window_s = 0.5;            // "fast" = what a moving average over this window removes
+  double stuck_fraction = 0.05;          // stuck while |bit speed| < max(stuck_floor, fraction * mean |speed|)
+  double stuck_floor = 2.0;              // in the bit speed's unit
+  double max_period_s = 20;              // longest oscillation period looked for
+};
+
+// Features of every channel of `recording` over [begin_s, end_s] (the samples inside). Throws InputError("--window")
+// for fewer than 8 samples per part.
+FeatureSet MeasureFeatures(const Recording& recording, double begin_s, double end_s, const FeatureOptions& options = {});
+
+// Mean over the recording's defined features of ((model - recording) / scale)^2; a feature the recording defines
+// and the model does not (no oscillation at all) counts as 9, three scales off.
+double FeatureDistance(const FeatureSet& model, const FeatureSet& recording);
+
+// The white measurement noise of a sampled channel, from its second differences (robust: 1.4826 MAD / sqrt 6), so
+// that slow physics (ramps, oscillations well below the sampling rate) does not count as noise.
+double NoiseStd(const std::vector<double>& samples);
+
+nlohmann::json FeatureSetToJson(const FeatureSet& model, const FeatureSet& recording);
+
+}  // namespace drillwave::diagnosis

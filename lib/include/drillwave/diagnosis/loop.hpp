@@ -1,0 +1,89 @@
+#pragma once
+// The diagnosis loop (DESIGN.md §5, issue 13 item 2): name the physics a model leaves out, model it, refit, and
+// prove on data the fit did not see that the model got better.
+//
+//   1. The recording's artefacts (spikes, dropouts) are masked, not modelled (Hampel filter, as the inspection).
+//      Its sensor noise is estimated per channel and carried into the model's measured channels (a
+//      sensors block), so that model and recording are compared as the recording was made.
+//   2. The usable recording is split into a fit window and a later held-out window. The baseline's error on each is
+//      the feature distance (features.hpp): differences counted in each feature's own variability.
+//   3. Rules read the baseline's differences as evidence and propose effects (effects.hpp); the strongest the case
+//      can model are fitted alone on the fit window (NLopt, bounded), then the best single that is kept is paired
+//      with each of the others (forward selection).
+//   4. A candidate is kept only when its held-out error falls below (1 - margin) of the baseline's and an
+//      information criterion on the fit window (AIC over the features) agrees; a pair only when it beats its single
+//      the same way. The fitted parameters get uncertainties from the objective's curvature.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "drillwave/cases/model_kind.hpp"
+#include "drillwave/diagnosis/comparison.hpp"
+#include "drillwave/diagnosis/effects.hpp"
+#include "drillwave/diagnosis/features.hpp"
+
+namespace drillwave::diagnosis {
+
+struct LoopOptions {
+  std::vector<ChannelMap> maps;   // recording channel <- model channel (scaled)
+  double model_time_offset_s = 0;  // subtracted from the model's time: the warm-up before the recording
+  double fit_begin_s = 0, fit_end_s = 0;            // recording time
+  double held_out_begin_s = 0, held_out_end_s = 0;  // recording time, after the fit window
+  double margin = 0.2;            // a kept effect lowers the held-out error by at least this fraction
+  int evaluations_per_parameter = 10;  // fit budget of a candidate: this times its parameters, plus 2
+  int max_singles = 4;            // the strongest proposals tried alone, and partners tried with the best one
+  int threads = 1;
+  bool carry_noise = true;        // estimated sensor noise added to the model's measured channels
+  unsigned seed = 1;
+  FeatureOptions features;
+};
+
+struct FittedParameter {
+  std::string effect, name, unit;
+  double value = 0, sigma = 0;  // sigma from the curvature of the fit objective (NaN: not identified)
+  double lower = 0, upper = 0;
+};
+
+struct Candidate {
+  std::vector<std::string> effects;
+  std::vector<FittedParameter> parameters;
+  double fit_error = 0, held_out_error = 0;
+  double aic = 0;  // K ln(fit_error) + 2 p over the K features of the fit window
+  int evaluations = 0;
+  int failed_runs = 0;        // evaluations whose run the case rejected or that failed numerically
+  std::string first_failure;  // the first of their messages
+  bool kept = false;
+  std::vector<double> unit_values;  // the fitted parameters in the fit's unit cube
+  std::string failure;  // why it could not be fitted (a run failed, the component is missing), empty otherwise
+};
+
+struct DiagnosisLoop {
+  nlohmann::json baseline_document, fitted_document;
+  std::vector<std::pair<std::string, double>> noise;  // recording channel, estimated noise std (its unit)
+  std::vector<std::pair<std::string, int>> masked_samples;  // recording channel, artefact samples masked
+  FeatureSet recording_fit, recording_held_out;
+  FeatureSet baseline_fit, baseline_held_out, fitted_fit, fitted_held_out;
+  double baseline_fit_error = 0, baseline_held_out_error = 0, fitted_fit_error = 0, fitted_held_out_error = 0;
+  double baseline_aic = 0;
+  std::vector<Effect> proposals;  // every effect with its evidence (strength 0: no evidence)
+  std::vector<Candidate> candidates;
+  int kept = -1;  // index into candidates, -1: the baseline stands
+  std::vector<std::string> unexplained;  // held-out features still more than 3 scales off after the fit
+  Recording baseline_model, fitted_model;  // the models' measured channels on the recording's times and names
+  int model_runs = 0;
+};
+
+// progress(message) reports each step (candidate started, fit evaluations, held-out errors) as it happens.
+using LoopProgress = std::function<void(const std::string&)>;
+
+// `document` is the case to diagnose (its duration must cover the held-out window after the offset). Throws
+// InputError for windows outside the recording or overlapping, an unmapped channel, or a model whose scale is far
+// from the recording's (a channel's typical level differing by more than a factor 10).
+DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& recording, const LoopOptions& options,
+                               const LoopProgress& progress = nullptr);
+
+nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop);
+
+}  // namespace drillwave::diagnosis

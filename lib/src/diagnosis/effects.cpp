@@ -1,0 +1,290 @@
+#include "drillwave/diagnosis/effects.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "drillwave/core/format.hpp"
+
+namespace drillwave::diagnosis {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const double kNaN = std::nan("");
+
+// The difference model - recording of a feature in its scales (NaN where either side lacks it).
+double Z(const FeatureSet& model, const FeatureSet& recording, const std::string& name) {
+  const Feature* r = recording.Find(name);
+  const double m = model.Value(name);
+  return r && std::isfinite(r->value) && std::isfinite(m) ? (m - r->value) / r->scale : kNaN;
+}
+
+double Number(const nlohmann::json& doc, const std::string& pointer, double fallback) {
+  const nlohmann::json::json_pointer p(pointer);
+  return doc.contains(p) && doc.at(p).is_number() ? doc.at(p).get<double>() : fallback;
+}
+
+std::string Describe(const FeatureSet& model, const FeatureSet& recording, const std::string& name) {
+  return name + " " + Significant(model.Value(name), 4) + " in the model against " +
+         Significant(recording.Value(name), 4) + " recorded (" + Fixed(Z(model, recording, name), 1) + " scales)";
+}
+
+// The downhole channels of a sensors block (bit speed, weight on bit): what telemetry delays.
+bool Downhole(const std::string& channel) { return channel.rfind("bit_", 0) == 0 || channel.rfind("wob", 0) == 0; }
+
+struct Pipe {
+  double length, impedance, wave_speed, density, polar;
+};
+
+Pipe PipeOf(const nlohmann::json& doc) {
+  const double od = Number(doc, "/model/string/outer_diameter_m", 0.127);
+  const double id = Number(doc, "/model/string/inner_diameter_m", 0.1086);
+  const double g = Number(doc, "/model/string/shear_modulus_Pa", 8.08e10);
+  const double rho = Number(doc, "/model/string/density_kg_m3", 7850);
+  const double polar = kPi / 32 * (std::pow(od, 4) - std::pow(id, 4));
+  return {Number(doc, "/model/string/length_m", 2000), polar * std::sqrt(g * rho), std::sqrt(g / rho), rho, polar};
+}
+
+}  // namespace
+
+const std::vector<std::string>& EffectVocabulary() {
+  static const std::vector<std::string> names = {"bha",          "stribeck",      "unbalance",
+                                                 "side_friction", "kelvin_voigt",  "soft_topdrive",
+                                                 "axial_coupling_off", "dc_motor", "sensor_delay"};
+  return names;
+}
+
+double ToUnit(const EffectParameter& p, double v) {
+  const double u = p.log_scale ? std::log(v / p.lower) / std::log(p.upper / p.lower) : (v - p.lower) / (p.upper - p.lower);
+  return std::clamp(u, 0.0, 1.0);
+}
+
+double FromUnit(const EffectParameter& p, double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  return p.log_scale ? p.lower * std::pow(p.upper / p.lower, u) : p.lower + u * (p.upper - p.lower);
+}
+
+namespace {
+
+// The effects of a laboratory rig modelled as a two-inertia pendulum (kind two_mass): its drive and its friction.
+std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, const FeatureSet& r) {
+  std::vector<Effect> effects;
+  const double k = Number(doc, "/model/stiffness_Nm_per_rad", 1);
+  const double j = Number(doc, "/model/bit_inertia_kgm2", 1);
+  // The shaft's characteristic impedance sqrt(k J) and frequency sqrt(k / J): a drive of that damping absorbs the
+  // oscillation instead of reflecting it (the lumped counterpart of a pipe-matched drive).
+  const double impedance = std::sqrt(k * j), frequency = std::sqrt(k / j);
+  if (doc.value("/model/top/type"_json_pointer, std::string()) == "pi_speed" &&
+      doc.at("/model/top/speed_rad_s"_json_pointer).is_number()) {
+    // A soft drive yields to the load: its speed falls by torque / kp below the no-load speed (droop), unless the
+    // integral restores it. The no-load speed is set so that the mean speed stays the set-point's at the recorded
+    // mean torque (torque channel tob_Nm; otherwise the friction's kinetic level).
+    const double speed = Number(doc, "/model/top/speed_rad_s", 1);
+    const double torque = std::isfinite(r.Value("tob_Nm mean"))
+                              ? r.Value("tob_Nm mean")
+                              : Number(doc, "/model/bit/friction/T_c_Nm", 0);
+    Effect e{"soft_topdrive", "a soft drive: speed controller with droop (PI gains, no-load speed)", {}, nullptr, 0, ""};
+    e.parameters = {{"kp_Nms_per_rad", "N m s/rad", 0.01 * impedance, 100 * impedance, true, impedance},
+                    {"ki_Nm_per_rad", "N m/rad", 1e-5 * impedance * frequency, 100 * impedance * frequency, true,
+                     1e-3 * impedance * frequency}};
+    e.apply = [speed, torque](nlohmann::json& d, const std::vector<double>& v) {
+      d["model"]["top"]["kp_Nms_per_rad"] = v[0];
+      d["model"]["top"]["ki_Nm_per_rad"] = v[1];
+      d["model"]["top"]["speed_rad_s"] = speed + torque / v[0];
+    };
+    const double z = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_std"));
+    if (z > 3) e.strength = z, e.evidence = "the drive's speed moves more than the model's controller lets it: " +
+                                            Describe(m, r, "top_rpm std");
+    effects.push_back(e);
+  }
+  const nlohmann::json::json_pointer friction("/model/bit/friction");
+  if (doc.contains(friction) && doc.at(friction).value("law", std::string()) == "coulomb") {
+    const nlohmann::json coulomb = doc.at(friction);
+    const double t_s = coulomb.value("T_s_Nm", coulomb.value("T_c_Nm", 1.0));
+    const double viscous = coulomb.value("c_Nms_per_rad", 0.0);
+    const double weight = Number(doc, "/model/bit/nominal_weight_on_bit_N", 1);
+    Effect e{"stribeck", "friction at the bottom disc that weakens with speed (Stribeck)", {}, nullptr, 0, ""};
+    e.parameters = {{"static_torque_Nm", "N m", 0.7 * t_s, 1.6 * t_s, false, t_s},
+                    {"kinetic_to_static", "-", 0.0, 1.0, false, 0.7},
+                    {"nu_f_rad_s", "rad/s", 0.3, 100, true, 5}};
+    e.apply = [viscous, weight](nlohmann::json& d, const std::vector<double>& v) {
+      const double mu_s = v[0] / weight;  // with R = 1 m: only mu R W is identified
+      d["model"]["bit"]["friction"] = {{"law", "stribeck"}, {"W_N", weight},       {"R_m", 1.0},
+                                       {"mu_s", mu_s},      {"mu_c", v[1] * mu_s}, {"gamma_b", 1.0},
+                                       {"nu_f_rad_s", v[2]}, {"c_b_Nms_per_rad", viscous}};
+    };
+    const double z = -std::min(Z(m, r, "stick_fraction") - 1, 0.0) - std::min(Z(m, r, "bit_rpm std"), 0.0) +
+                     std::max(Z(m, r, "tob_Nm mean"), 0.0);
+    if (z > 3) e.strength = z, e.evidence = "the disc sticks or swings more, at less torque, than with Coulomb "
+                                            "friction: " + Describe(m, r, "stick_fraction") + "; " +
+                                            Describe(m, r, "bit_rpm std") + "; " + Describe(m, r, "tob_Nm mean");
+    effects.push_back(e);
+  }
+  return effects;
+}
+
+}  // namespace
+
+std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& m, const FeatureSet& r) {
+  std::vector<Effect> effects;
+  const std::string kind = doc.value("/model/kind"_json_pointer, std::string());
+  if (kind == "two_mass") return RigEffects(doc, m, r);
+  if (kind != "axial_torsional") return effects;
+  const Pipe pipe = PipeOf(doc);
+  const double mu = Number(doc, "/model/rock/mu", 0.6);
+  const double bit_mass = Number(doc, "/model/bit/mass_kg", 20000);
+  const double bit_inertia = Number(doc, "/model/bit/inertia_kgm2", 90);
+  // The first torsional mode of a pipe clamped at the top with a heavy bit: about a quarter wave.
+  const double first_mode = kPi * pipe.wave_speed / (2 * pipe.length);
+
+  // soft_topdrive: the top speed moves more than the stiff drive lets it. A drive tuned to absorb torsional waves
+  // matches the pipe's impedance (kp ~ Z): the first value.
+  {
+    Effect e{"soft_topdrive", "a softer top-drive speed controller (PI gains)", {}, nullptr, 0, ""};
+    e.parameters = {{"kp_Nms_per_rad", "N m s/rad", 0.1 * pipe.impedance, 300 * pipe.impedance, true, pipe.impedance},
+                    {"ki_Nm_per_rad", "N m/rad", 0.01 * pipe.impedance * first_mode,
+                     1000 * pipe.impedance * first_mode, true, 3 * pipe.impedance * first_mode}};
+    e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
+      d["model"]["top_drive"]["kp_Nms_per_rad"] = v[0];
+      d["model"]["top_drive"]["ki_Nm_per_rad"] = v[1];
+    };
+    const double z = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_std"));
+    if (z > 3) e.strength = z, e.evidence = "the top speed moves more than the model's drive lets it: " +
+                                            Describe(m, r, "top_rpm std");
+    effects.push_back(e);
+  }
+  // side_friction: more torque at the top than the model needs to turn the same bit, torque lost along the string.
+  {
+    const double missing_kNm = r.Value("top_torque_kNm mean") - m.Value("top_torque_kNm mean");
+    const double estimate = std::isfinite(missing_kNm) && missing_kNm > 0 ? 1000 * missing_kNm / pipe.length : 0.5;
+    Effect e{"side_friction", "Coulomb friction torque along the string (per metre)", {}, nullptr, 0, ""};
+    e.parameters = {{"torque_per_m_Nm", "N m/m", 0.0, std::max(10.0, 3 * estimate), false, estimate}};
+    e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
+      d["model"]["string"]["side_friction"] = {{"torque_per_m_Nm", v[0]}, {"from_m", 0.0}};
+    };
+    const double z = -Z(m, r, "top_torque_kNm mean");
+    if (z > 3) e.strength = z, e.evidence = "more torque at the top than in the model: " +
+                                            Describe(m, r, "top_torque_kNm mean") + ", first estimate " +
+                                            Fixed(estimate, 2) + " N m/m over the string";
+    effects.push_back(e);
+  }
+  // stribeck: the bit sticks more, or its speed swings more, than with Coulomb friction: friction that weakens
+  // with speed.
+  {
+    Effect e{"stribeck", "bit friction that weakens with speed (Stribeck)", {}, nullptr, 0, ""};
+    e.parameters = {{"static_mu", "-", 1.02 * mu, 3 * mu, false, 1.6 * mu},
+                    {"velocity_rad_s", "rad/s", 0.5, 40, true, 5}};
+    e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
+      d["model"]["rock"]["stribeck"] = {{"static_mu", v[0]}, {"velocity_rad_s", v[1]}};
+    };
+    const double z = -std::min(Z(m, r, "stick_fraction") - 1, 0.0) - std::min(Z(m, r, "bit_rpm std"), 0.0);
+    if (z > 3) e.strength = z, e.evidence = "the bit sticks or swings more than in the model: " +
+                                            Describe(m, r, "stick_fraction") + "; " + Describe(m, r, "bit_rpm std");
+    effects.push_back(e);
+  }
+  // axial_coupling_off: the weight on bit hardly moves while the coupled model's swings.
+  {
+    Effect e{"axial_coupling_off", "no axial-torsional coupling: the weight on bit held, constant depth of cut", {},
+             nullptr, 0, ""};
+    e.apply = [](nlohmann::json& d, const std::vector<double>&) { d["model"]["axial_coupling"] = false; };
+    const double z = Z(m, r, "wob_kN std");
+    const double level = r.Value("wob_kN std") / std::max(m.Value("wob_kN std"), 1e-12);
+    if (z > 3 && level < 0.5)
+      e.strength = z, e.evidence = "the weight on bit is steady where the coupled model's swings: " +
+                                   Describe(m, r, "wob_kN std");
+    effects.push_back(e);
+  }
+  // bha: the recorded bit runs smoother (less sticking, smaller swings) than the lumped-BHA model's, while the
+  // weight on bit still moves: a distributed collar section, whose inertia replaces most of the lumped body.
+  {
+    const double collar_od = 0.1715, collar_id = 0.0714;  // 6.75 in x 2.8125 in, the common collar
+    const double collar_polar = kPi / 32 * (std::pow(collar_od, 4) - std::pow(collar_id, 4));
+    const double estimate = std::clamp(bit_inertia / (pipe.density * collar_polar), 30.0, 400.0);
+    Effect e{"bha", "a distributed drill-collar section above the bit (6.75 x 2.8125 in)", {}, nullptr, 0, ""};
+    e.parameters = {{"length_m", "m", 30, 400, false, estimate}};
+    e.apply = [collar_od, collar_id, bit_mass, bit_inertia, pipe](nlohmann::json& d, const std::vector<double>& v) {
+      d["model"]["string"]["bha"] = {{"length_m", v[0]}, {"outer_diameter_m", collar_od}, {"inner_diameter_m", collar_id}};
+      d["model"]["string"]["length_m"] = pipe.length - v[0];  // the measured depth stays
+      // The lumped body keeps the bit and near-bit sub, taken as 5 % of the lumped BHA.
+      d["model"]["bit"]["inertia_kgm2"] = 0.05 * bit_inertia;
+      d["model"]["bit"]["mass_kg"] = 0.05 * bit_mass;
+    };
+    const double z = std::max(Z(m, r, "stick_fraction") - 1, 0.0) + std::max(Z(m, r, "bit_rpm std"), 0.0);
+    const bool wob_moves = !(Z(m, r, "wob_kN std") > 3 && r.Value("wob_kN std") < 0.5 * m.Value("wob_kN std"));
+    if (z > 3 && wob_moves)
+      e.strength = z, e.evidence = "the recorded bit runs smoother than the model's: " +
+                                   Describe(m, r, "stick_fraction") + "; " + Describe(m, r, "bit_rpm std");
+    effects.push_back(e);
+  }
+  // kelvin_voigt: the fast part of the bit speed and weight on bit is weaker than in the model: damping that grows
+  // with frequency.
+  {
+    Effect e{"kelvin_voigt", "Kelvin-Voigt (strain-rate) damping of the pipe in torsion", {}, nullptr, 0, ""};
+    e.parameters = {{"eta_s", "s", 1e-3, 0.2, true, 0.02}};
+    e.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["string"]["kelvin_voigt_s"] = v[0]; };
+    const double z = std::max(Z(m, r, "bit_rpm fast_std"), 0.0) + std::max(Z(m, r, "top_torque_kNm fast_std"), 0.0);
+    if (z > 3) e.strength = z, e.evidence = "less fast motion than in the model: " +
+                                            Describe(m, r, "bit_rpm fast_std") + "; " +
+                                            Describe(m, r, "top_torque_kNm fast_std");
+    effects.push_back(e);
+  }
+  // dc_motor: the drive's torque follows its speed error with a lag (armature inductance) and an extra damping
+  // K^2/R: the surface torque's fast part and the top speed differ from a PI drive's.
+  {
+    Effect e{"dc_motor", "a DC motor behind the speed controller (armature lag, back-EMF damping)", {}, nullptr, 0, ""};
+    e.parameters = {{"electrical_time_constant_s", "s", 0.005, 1.0, true, 0.1},
+                    {"back_emf_damping_Nms_per_rad", "N m s/rad", 100, 1e6, true, 1e4}};
+    e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
+      constexpr double k = 30;  // N m/A: only K^2/R and La/R shape the torque, so K is fixed and R, La follow
+      const double resistance = k * k / v[1];
+      d["model"]["top_drive"]["motor"] = {{"motor_constant_Nm_per_A", k},
+                                          {"resistance_ohm", resistance},
+                                          {"inductance_H", v[0] * resistance}};
+    };
+    const double z = std::abs(Z(m, r, "top_torque_kNm fast_std")) + std::abs(Z(m, r, "top_torque_kNm std"));
+    if (z > 6) e.strength = 0.5 * z, e.evidence = "the surface torque's dynamics differ: " +
+                                                  Describe(m, r, "top_torque_kNm std") + "; " +
+                                                  Describe(m, r, "top_torque_kNm fast_std");
+    effects.push_back(e);
+  }
+  // unbalance: a line at the bit's rotation frequency in the weight on bit or the bit speed, above the model's.
+  {
+    const double lateral_mass = 3000;  // kg: the collars between stabilizers that whirl (assumed, not fitted)
+    Effect e{"unbalance", "a BHA mass unbalance whirling at the bit (Jeffcott rotor)", {}, nullptr, 0, ""};
+    e.parameters = {{"unbalance_kg_m", "kg m", 0.5, 200, true, 10}, {"lateral_frequency_Hz", "Hz", 0.5, 10, true, 2.5}};
+    e.apply = [lateral_mass](nlohmann::json& d, const std::vector<double>& v) {
+      constexpr double eccentricity = 0.05, damping_ratio = 0.05;
+      const double k = lateral_mass * std::pow(2 * kPi * v[1], 2);
+      d["model"]["bit"]["unbalance"] = {{"lateral_mass_kg", lateral_mass},
+                                        {"lateral_stiffness_N_per_m", k},
+                                        {"lateral_damping_Ns_per_m", 2 * damping_ratio * std::sqrt(k * lateral_mass)},
+                                        {"unbalance_mass_kg", v[0] / eccentricity},
+                                        {"eccentricity_m", eccentricity}};
+    };
+    const double z = -std::min({Z(m, r, "wob_kN rotation_amplitude"), Z(m, r, "bit_rpm rotation_amplitude"), 0.0});
+    if (z > 3) e.strength = z, e.evidence = "a line at the bit's rotation frequency: " +
+                                            Describe(m, r, "wob_kN rotation_amplitude") + "; " +
+                                            Describe(m, r, "bit_rpm rotation_amplitude");
+    effects.push_back(e);
+  }
+  // sensor_delay: the bit speed follows the surface torque later than in the model: the downhole channels arrive
+  // through telemetry.
+  {
+    const double period = r.Value("period_s");
+    double shift = r.Value("torque_to_bit_lag_s") - m.Value("torque_to_bit_lag_s");
+    if (std::isfinite(shift) && std::isfinite(period) && shift < 0) shift += period;  // lags are modulo a period
+    Effect e{"sensor_delay", "telemetry delay of the downhole channels (bit speed, weight on bit)", {}, nullptr, 0, ""};
+    e.parameters = {{"delay_s", "s", 0.0, 8.0, false, std::isfinite(shift) ? shift : 1.0}};
+    e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
+      if (!d.contains("sensors")) return;
+      for (auto& [channel, sensor] : d["sensors"]["channels"].items())
+        if (Downhole(channel)) sensor["delay_s"] = v[0];
+    };
+    const double z = std::abs(Z(m, r, "torque_to_bit_lag_s"));
+    if (z > 3) e.strength = z, e.evidence = "the bit speed follows the surface torque " + Fixed(shift, 2) +
+                                            " s later than in the model: " + Describe(m, r, "torque_to_bit_lag_s");
+    effects.push_back(e);
+  }
+  return effects;
+}
+
+}  // namespace drillwave::diagnosis

@@ -1,0 +1,239 @@
+#include "drillwave/diagnosis/features.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
+#include "drillwave/diagnosis/signals.hpp"
+
+namespace drillwave::diagnosis {
+namespace {
+
+const double kNaN = std::nan("");
+
+double Mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? kNaN : s / v.size();
+}
+
+double Std(const std::vector<double>& v) {
+  const double m = Mean(v);
+  double s = 0;
+  for (double x : v) s += (x - m) * (x - m);
+  return v.empty() ? kNaN : std::sqrt(s / v.size());
+}
+
+// Centred moving average over 2 half + 1 samples (shorter at the ends).
+std::vector<double> MovingAverage(const std::vector<double>& x, int half) {
+  if (half <= 0) return x;
+  std::vector<double> prefix(x.size() + 1, 0.0), out(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) prefix[i + 1] = prefix[i] + x[i];
+  const long n = static_cast<long>(x.size());
+  for (long i = 0; i < n; ++i) {
+    const long lo = std::max(0L, i - half), hi = std::min(n - 1, i + half);
+    out[i] = (prefix[hi + 1] - prefix[lo]) / (hi - lo + 1);
+  }
+  return out;
+}
+
+// Normalized correlation of a(t) with b(t + lag) for lag = k samples.
+double LaggedCorrelation(const std::vector<double>& a, const std::vector<double>& b, long k) {
+  const long n = static_cast<long>(a.size());
+  double sab = 0, saa = 0, sbb = 0;
+  for (long i = std::max(0L, -k); i < n && i + k < n; ++i) {
+    sab += a[i] * b[i + k];
+    saa += a[i] * a[i];
+    sbb += b[i + k] * b[i + k];
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+std::vector<double> Demeaned(std::vector<double> v) {
+  const double m = Mean(v);
+  for (double& x : v) x -= m;
+  return v;
+}
+
+// The oscillation period: the first maximum of the autocorrelation after its first zero crossing, if it stands
+// above 0.3 (a clear repetition), else NaN (no oscillation worth the name).
+double Period(const std::vector<double>& x, double dt, double max_period_s) {
+  const std::vector<double> y = Demeaned(x);
+  const long max_lag = std::min<long>(static_cast<long>(max_period_s / dt), static_cast<long>(y.size()) / 2);
+  const long stride = std::max(1L, static_cast<long>(0.01 / dt));  // lags every 10 ms at most
+  bool crossed = false;
+  double best = 0.3, best_lag = kNaN, previous = 1;
+  for (long k = stride; k <= max_lag; k += stride) {
+    const double c = LaggedCorrelation(y, y, k);
+    if (!crossed) {
+      crossed = c < 0;
+    } else if (c > best) {
+      best = c, best_lag = k * dt;
+    } else if (std::isfinite(best_lag) && c < previous && c < best - 0.05) {
+      break;  // past the first peak
+    }
+    previous = c;
+  }
+  return best_lag;
+}
+
+// The amplitude of the sinusoid of frequency hz in x (one DFT bin, mean removed).
+double Amplitude(const std::vector<double>& x, double dt, double hz) {
+  const double mean = Mean(x), w = 2 * 3.14159265358979323846 * hz * dt;
+  double re = 0, im = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) re += (x[i] - mean) * std::cos(w * i), im -= (x[i] - mean) * std::sin(w * i);
+  return 2 * std::hypot(re, im) / x.size();
+}
+
+// The lag in [0, period) at which the bit speed follows the surface torque most closely.
+double Lag(const std::vector<double>& torque, const std::vector<double>& bit, double dt, double period) {
+  if (!std::isfinite(period)) return kNaN;
+  const std::vector<double> a = Demeaned(torque), b = Demeaned(bit);
+  const long stride = std::max(1L, static_cast<long>(0.01 / dt));
+  double best = -2, best_lag = kNaN;
+  for (long k = 0; k * dt < period && k < static_cast<long>(a.size()) / 2; k += stride) {
+    const double c = LaggedCorrelation(a, b, k);
+    if (c > best) best = c, best_lag = k * dt;
+  }
+  return best_lag;
+}
+
+std::map<std::string, double> Measure(const Recording& r, std::size_t first, std::size_t last,
+                                      const FeatureOptions& o) {
+  std::map<std::string, double> f;
+  const double dt = r.sample_interval_s;
+  const int smooth_half = static_cast<int>(std::lround(0.5 * o.smoothing_s / dt));
+  const int fast_half = static_cast<int>(std::lround(0.5 * o.fast_window_s / dt));
+  std::vector<double> bit, torque;
+  std::vector<std::vector<double>> smoothed;
+  for (std::size_t j = 0; j < r.names.size(); ++j) {
+    const std::vector<double> raw(r.channels[j].begin() + first, r.channels[j].begin() + last);
+    const std::vector<double> x = MovingAverage(raw, smooth_half);
+    const std::vector<double> slow = MovingAverage(x, fast_half);
+    std::vector<double> fast(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) fast[i] = x[i] - slow[i];
+    f[r.names[j] + " mean"] = Mean(raw);
+    f[r.names[j] + " std"] = Std(x);
+    f[r.names[j] + " fast_std"] = Std(fast);
+    if (r.names[j] == o.bit_speed) bit = x;
+    if (r.names[j] == o.top_torque) torque = x;
+    smoothed.push_back(x);
+  }
+  if (!bit.empty()) {
+    double mean_abs = 0;
+    for (double v : bit) mean_abs += std::abs(v) / bit.size();
+    const double threshold = std::max(o.stuck_floor, o.stuck_fraction * mean_abs);
+    double stuck = 0;
+    for (double v : bit) stuck += std::abs(v) < threshold ? 1.0 / bit.size() : 0.0;
+    f["stick_fraction"] = stuck;
+    f["period_s"] = Period(bit, dt, o.max_period_s);
+    if (!torque.empty()) f["torque_to_bit_lag_s"] = Lag(torque, bit, dt, f["period_s"]);
+    // The line at the bit's mean rotation frequency in every channel: a whirling unbalance forces it.
+    const double rotation_hz = Mean(bit) / 60;  // the bit speed in rpm
+    for (std::size_t j = 0; j < r.names.size(); ++j)
+      f[r.names[j] + " rotation_amplitude"] = Amplitude(smoothed[j], dt, rotation_hz);
+  }
+  return f;
+}
+
+// The floor under each feature's scale: how close a model can be asked to come whatever the spread.
+double Floor(const std::string& name, double value, const std::map<std::string, double>& whole) {
+  auto ends_with = [&](const std::string& s) {
+    return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+  };
+  if (name == "stick_fraction") return 0.03;
+  if (name == "period_s") return std::max(0.05 * std::abs(value), 0.05);
+  if (name == "torque_to_bit_lag_s") {
+    const auto p = whole.find("period_s");
+    return std::max(0.1, p != whole.end() && std::isfinite(p->second) ? 0.05 * p->second : 0.0);
+  }
+  if (ends_with(" mean")) return std::max(0.02 * std::abs(value), 1e-9);
+  // spreads: 10 % of themselves, and at least half a percent of the channel's level (a 1 % noise floor's half)
+  const std::string channel = name.substr(0, name.rfind(' '));
+  const auto level = whole.find(channel + " mean");
+  return std::max({0.1 * std::abs(value), level != whole.end() ? 0.005 * std::abs(level->second) : 0.0, 1e-9});
+}
+
+}  // namespace
+
+const Feature* FeatureSet::Find(const std::string& name) const {
+  for (const Feature& f : features)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+double FeatureSet::Value(const std::string& name) const {
+  const Feature* f = Find(name);
+  return f ? f->value : kNaN;
+}
+
+FeatureSet MeasureFeatures(const Recording& r, double begin_s, double end_s, const FeatureOptions& o) {
+  std::size_t first = r.time_s.size(), last = 0;
+  for (std::size_t i = 0; i < r.time_s.size(); ++i)
+    if (r.time_s[i] >= begin_s && r.time_s[i] <= end_s) first = std::min(first, i), last = i + 1;
+  const int parts = std::max(1, o.parts);
+  if (first >= last || last - first < static_cast<std::size_t>(8 * parts))
+    throw InputError("--window", "fewer than " + std::to_string(8 * parts) + " samples of " + r.source + " in [" +
+                                     ReadableNumber(begin_s) + ", " + ReadableNumber(end_s) + "] s");
+  const std::map<std::string, double> whole = Measure(r, first, last, o);
+  std::vector<std::map<std::string, double>> part_features;
+  const std::size_t n = last - first;
+  for (int p = 0; p < parts; ++p)
+    part_features.push_back(Measure(r, first + n * p / parts, first + n * (p + 1) / parts, o));
+
+  FeatureSet set;
+  set.begin_s = r.time_s[first];
+  set.end_s = r.time_s[last - 1];
+  for (const auto& [name, value] : whole) {
+    std::vector<double> values;
+    for (const auto& pf : part_features)
+      if (std::isfinite(pf.at(name))) values.push_back(pf.at(name));
+    // The spread of a window's feature between two runs of the same physics: the parts' spread times sqrt(2/parts)
+    // (a difference of two means over `parts` parts).
+    const double spread = values.size() >= 2 ? Std(values) * std::sqrt(2.0 * values.size() / (values.size() - 1) / parts)
+                                             : 0.0;
+    set.features.push_back({name, value, std::max(spread, Floor(name, value, whole))});
+  }
+  return set;
+}
+
+double FeatureDistance(const FeatureSet& model, const FeatureSet& recording) {
+  double sum = 0;
+  int count = 0;
+  for (const Feature& r : recording.features) {
+    const double m = model.Value(r.name);
+    const bool rf = std::isfinite(r.value), mf = std::isfinite(m);
+    if (!rf && !mf) continue;
+    const double z = rf && mf ? (m - r.value) / r.scale : 3.0;
+    sum += z * z;
+    ++count;
+  }
+  return count ? sum / count : 0.0;
+}
+
+double NoiseStd(const std::vector<double>& x) {
+  if (x.size() < 8) return 0;
+  std::vector<double> d2(x.size() - 2);
+  for (std::size_t i = 0; i + 2 < x.size(); ++i) d2[i] = x[i + 2] - 2 * x[i + 1] + x[i];
+  const double median = Median(d2);
+  for (double& v : d2) v = std::abs(v - median);
+  return 1.4826 * Median(d2) / std::sqrt(6.0);
+}
+
+nlohmann::json FeatureSetToJson(const FeatureSet& model, const FeatureSet& recording) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json list = nlohmann::json::array();
+  for (const Feature& r : recording.features) {
+    const double m = model.Value(r.name);
+    list.push_back({{"feature", r.name},
+                    {"recording", number(r.value)},
+                    {"model", number(m)},
+                    {"scale", r.scale},
+                    {"difference_in_scales", number((m - r.value) / r.scale)}});
+  }
+  return {{"window_s", {recording.begin_s, recording.end_s}}, {"features", list}};
+}
+
+}  // namespace drillwave::diagnosis

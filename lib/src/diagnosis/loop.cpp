@@ -1,0 +1,406 @@
+#include "drillwave/diagnosis/loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/sensors.hpp"
+#include "drillwave/io/json_reader.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
+#include "drillwave/core/parallel.hpp"
+#include "drillwave/core/sampled.hpp"
+#include "drillwave/diagnosis/minimize.hpp"
+#include "drillwave/diagnosis/signals.hpp"
+
+namespace drillwave::diagnosis {
+namespace {
+
+constexpr double kFailedRun = 1e6;  // objective of a run that fails numerically or that the case rejects
+
+std::string Joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : " + ") + n;
+  return s.empty() ? "baseline" : s;
+}
+
+// The model's measured channels on the recording's times in [begin, end], named and scaled as the recording's.
+Recording ModelRecording(const cases::RunResult& run, const std::vector<ChannelMap>& maps, const Recording& rec,
+                         double offset_s, double begin_s, double end_s) {
+  Recording m;
+  m.source = "model";
+  m.sample_interval_s = rec.sample_interval_s;
+  for (double t : rec.time_s)
+    if (t >= begin_s && t <= end_s) m.time_s.push_back(t);
+  std::vector<double> model_time = run.time_s;
+  for (double& t : model_time) t -= offset_s;
+  for (const ChannelMap& map : maps) {
+    const std::string measured = map.model + "_measured";
+    const bool has_measured = std::any_of(run.channels.begin(), run.channels.end(),
+                                          [&](const cases::Channel& c) { return c.name == measured; });
+    const std::vector<double>& values = run.channel(has_measured ? measured : map.model).values;
+    std::vector<double> out(m.time_s.size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = map.scale * InterpolateSampled(model_time, values, m.time_s[i]);
+    m.names.push_back(map.recording);
+    m.channels.push_back(std::move(out));
+  }
+  return m;
+}
+
+// The recording with its sensor artefacts (spikes, dropouts) masked — replaced by their window's median, as the
+// inspection does — so that a glitch is not read as physics. Counts the masked samples per channel.
+Recording MaskArtefacts(const Recording& rec, std::vector<std::pair<std::string, int>>& masked) {
+  Recording clean = rec;
+  const int half_window = std::max(2, static_cast<int>(std::lround(0.1 / rec.sample_interval_s)));
+  for (std::size_t j = 0; j < rec.names.size(); ++j) {
+    std::vector<double> magnitude(rec.channels[j].size());
+    for (std::size_t i = 0; i < magnitude.size(); ++i) magnitude[i] = std::abs(rec.channels[j][i]);
+    const HampelResult h = HampelFilter(rec.channels[j], half_window, 5, 0.05 * Median(magnitude), 2);
+    clean.channels[j] = h.cleaned;
+    masked.push_back({rec.names[j], static_cast<int>(std::count(h.flagged.begin(), h.flagged.end(), 1))});
+  }
+  return clean;
+}
+
+double FiniteCount(const FeatureSet& s) {
+  double n = 0;
+  for (const Feature& f : s.features) n += std::isfinite(f.value) ? 1 : 0;
+  return n;
+}
+
+// The recording and model must be of one scale: a field string against a lab rig differs by orders of magnitude.
+void CheckScale(const Recording& rec, const Recording& model, const std::vector<ChannelMap>& maps) {
+  auto rms = [](const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x * x;
+    return v.empty() ? 0.0 : std::sqrt(s / v.size());
+  };
+  for (std::size_t j = 0; j < maps.size(); ++j) {
+    const double a = rms(rec.Channel(maps[j].recording)), b = rms(model.channels[j]);
+    if (a > 0 && b > 0 && (a / b > 10 || b / a > 10))
+      throw InputError("case", "the model's " + maps[j].model + " (typical level " + Significant(b, 3) +
+                                   " in the recording's unit) and the recording's " + maps[j].recording + " (" +
+                                   Significant(a, 3) + ") differ by a factor " + Fixed(std::max(a / b, b / a), 0) +
+                                   ": the case does not describe the system recorded (a field string against a lab "
+                                   "rig?); start from a case of the recorded system");
+  }
+}
+
+}  // namespace
+
+DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& raw, const LoopOptions& o,
+                               const LoopProgress& progress) {
+  auto say = [&](const std::string& s) {
+    if (progress) progress(s);
+  };
+  if (!(o.fit_begin_s < o.fit_end_s && o.fit_end_s <= o.held_out_begin_s && o.held_out_begin_s < o.held_out_end_s))
+    throw InputError("--fit-window", "expected fit window [" + ReadableNumber(o.fit_begin_s) + ", " +
+                                         ReadableNumber(o.fit_end_s) + "] s before the held-out window [" +
+                                         ReadableNumber(o.held_out_begin_s) + ", " + ReadableNumber(o.held_out_end_s) +
+                                         "] s, each with begin < end");
+  if (o.maps.empty()) throw InputError("--map", "no channels to compare");
+  DiagnosisLoop loop;
+  // Only the mapped channels take part: a channel the model does not have says nothing about it.
+  Recording mapped = raw;
+  mapped.names.clear(), mapped.channels.clear();
+  for (const ChannelMap& map : o.maps) {
+    mapped.names.push_back(map.recording);
+    mapped.channels.push_back(raw.Channel(map.recording));
+  }
+  const Recording rec = MaskArtefacts(mapped, loop.masked_samples);
+  loop.recording_fit = MeasureFeatures(rec, o.fit_begin_s, o.fit_end_s, o.features);
+  loop.recording_held_out = MeasureFeatures(rec, o.held_out_begin_s, o.held_out_end_s, o.features);
+
+  // 1. The recording's noise, carried into the model's measured channels.
+  nlohmann::json base = document;
+  for (const ChannelMap& map : o.maps) {
+    std::vector<double> window;
+    const auto& values = rec.Channel(map.recording);
+    for (std::size_t i = 0; i < rec.time_s.size(); ++i)
+      if (rec.time_s[i] >= o.fit_begin_s && rec.time_s[i] <= o.fit_end_s) window.push_back(values[i]);
+    const double noise = NoiseStd(window);
+    loop.noise.push_back({map.recording, noise});
+    if (o.carry_noise) base["sensors"]["channels"][map.model]["noise_std"] = noise / std::abs(map.scale);
+  }
+  if (o.carry_noise) base["sensors"]["seed"] = o.seed;
+  loop.baseline_document = base;
+
+  const double full_duration = o.model_time_offset_s + o.held_out_end_s;
+  const double fit_duration = o.model_time_offset_s + o.fit_end_s + 0.5;
+  // Runs that differ only in their sensors (a telemetry delay, the noise's draw) share one simulation.
+  std::mutex cache_mutex;
+  std::map<std::string, std::shared_ptr<const cases::RunResult>> simulations;
+  auto run = [&](nlohmann::json doc, double duration) {
+    doc["simulation"]["duration_s"] = duration;
+    const auto window = nlohmann::json::json_pointer("/statistics/window_s");
+    if (doc.contains(window) && doc.at(window).is_array() && doc.at(window).size() == 2)  // kept inside the run
+      doc.at(window) = {std::min(doc.at(window)[0].get<double>(), 0.5 * duration), duration};
+    const cases::SensorSet sensors = doc.contains("sensors")
+                                         ? cases::ReadSensors(io::JsonReader(doc["sensors"], "/sensors"))
+                                         : cases::SensorSet{};
+    doc.erase("sensors");
+    const std::string key = doc.dump();
+    std::shared_ptr<const cases::RunResult> simulated;
+    {
+      const std::lock_guard<std::mutex> lock(cache_mutex);
+      const auto it = simulations.find(key);
+      if (it != simulations.end()) simulated = it->second;
+    }
+    if (!simulated) {
+      simulated = std::make_shared<const cases::RunResult>(cases::RunCase(cases::ParseCase(doc)).result);
+      const std::lock_guard<std::mutex> lock(cache_mutex);
+      if (simulations.size() >= 64) simulations.clear();  // a bound on memory; fits revisit recent points
+      simulations.emplace(key, simulated);
+    }
+    cases::RunResult measured = *simulated;
+    cases::ApplySensors(sensors, measured);
+    return ModelRecording(measured, o.maps, rec, o.model_time_offset_s, o.fit_begin_s,
+                          std::min(o.held_out_end_s, duration - o.model_time_offset_s));
+  };
+
+  // 2. The baseline on both windows.
+  say("baseline: running " + Fixed(full_duration, 0) + " s simulated");
+  loop.baseline_model = run(base, full_duration);
+  ++loop.model_runs;
+  CheckScale(rec, loop.baseline_model, o.maps);
+  loop.baseline_fit = MeasureFeatures(loop.baseline_model, o.fit_begin_s, o.fit_end_s, o.features);
+  loop.baseline_held_out = MeasureFeatures(loop.baseline_model, o.held_out_begin_s, o.held_out_end_s, o.features);
+  loop.baseline_fit_error = FeatureDistance(loop.baseline_fit, loop.recording_fit);
+  loop.baseline_held_out_error = FeatureDistance(loop.baseline_held_out, loop.recording_held_out);
+  const double k_features = FiniteCount(loop.recording_fit);
+  loop.baseline_aic = k_features * std::log(loop.baseline_fit_error);
+  say("baseline: error " + Significant(loop.baseline_fit_error, 3) + " on the fit window, " +
+      Significant(loop.baseline_held_out_error, 3) + " held out");
+
+  // 3. Proposals, strongest first. Those the case can model are fitted alone; the best single that qualifies is
+  //    then paired with each of the others (forward selection: a second effect must earn its place too).
+  loop.proposals = ProposeEffects(base, loop.baseline_fit, loop.recording_fit);
+  std::stable_sort(loop.proposals.begin(), loop.proposals.end(),
+                   [](const Effect& a, const Effect& b) { return a.strength > b.strength; });
+  for (const Effect& e : loop.proposals)
+    if (e.strength > 0) say("proposed " + e.name + " (evidence " + Fixed(e.strength, 1) + "): " + e.evidence);
+
+  auto document_at = [&](const std::vector<int>& set, const std::vector<double>& u) {
+    nlohmann::json doc = base;
+    std::size_t k = 0;
+    for (int i : set) {
+      std::vector<double> values;
+      for (const EffectParameter& p : loop.proposals[i].parameters) values.push_back(FromUnit(p, u[k++]));
+      loop.proposals[i].apply(doc, values);
+    }
+    return doc;
+  };
+  auto start_of = [&](const std::vector<int>& set) {
+    std::vector<double> u;
+    for (int i : set)
+      for (const EffectParameter& p : loop.proposals[i].parameters) u.push_back(ToUnit(p, p.start));
+    return u;
+  };
+  std::vector<int> modelable;
+  for (std::size_t i = 0; i < loop.proposals.size(); ++i) {
+    if (!(loop.proposals[i].strength > 0)) continue;
+    try {
+      cases::ParseCase(document_at({static_cast<int>(i)}, start_of({static_cast<int>(i)})));
+      modelable.push_back(static_cast<int>(i));
+    } catch (const InputError& e) {  // the case's kind has no such component
+      Candidate c;
+      c.effects = {loop.proposals[i].name};
+      c.failure = std::string("cannot be modelled with this case: ") + e.what();
+      say(loop.proposals[i].name + ": " + c.failure);
+      loop.candidates.push_back(c);
+    }
+  }
+
+  std::mutex progress_mutex;
+  const FeatureSet& target = loop.recording_fit;
+  auto fit_candidate = [&](const std::vector<int>& set, std::vector<double> start) {
+    Candidate c;
+    for (int i : set) c.effects.push_back(loop.proposals[i].name);
+    auto objective = [&](const std::vector<double>& u) {
+      ++c.evaluations;
+      try {
+        const Recording m = run(document_at(set, u), fit_duration);
+        return FeatureDistance(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, o.features), target);
+      } catch (const InputError& e) {
+        if (c.failed_runs++ == 0) c.first_failure = e.what();
+      } catch (const NumericalError& e) {
+        if (c.failed_runs++ == 0) c.first_failure = e.what();
+      }
+      return kFailedRun;
+    };
+    MinimizeOptions mo;
+    mo.max_evaluations = o.evaluations_per_parameter * static_cast<int>(start.size()) + 1;
+    mo.starts = start.empty() ? 1 : 2;
+    mo.seed = o.seed + static_cast<unsigned>(set.front()) * 31 + static_cast<unsigned>(set.size());
+    const MinimizeResult best = MinimizeInUnitCube(objective, start, mo);
+    const std::vector<double> sigma_u = CurvatureSigma(objective, best.best, best.value, k_features);
+    std::size_t k = 0;
+    for (int i : set)
+      for (const EffectParameter& p : loop.proposals[i].parameters) {
+        const double v = FromUnit(p, best.best[k]);
+        const double slope = p.log_scale ? v * std::log(p.upper / p.lower) : p.upper - p.lower;  // d value / d unit
+        c.parameters.push_back({loop.proposals[i].name, p.name, p.unit, v, slope * sigma_u[k], p.lower, p.upper});
+        ++k;
+      }
+    c.unit_values = best.best;
+    try {
+      const Recording m = run(document_at(set, best.best), full_duration);
+      c.fit_error = FeatureDistance(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, o.features), target);
+      c.held_out_error =
+          FeatureDistance(MeasureFeatures(m, o.held_out_begin_s, o.held_out_end_s, o.features), loop.recording_held_out);
+    } catch (const NumericalError& e) {
+      c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
+    } catch (const InputError& e) {
+      c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
+    }
+    c.aic = k_features * std::log(c.fit_error) + 2.0 * start.size();
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    say(Joined(c.effects) + ": " + std::to_string(c.evaluations) + " runs" +
+        (c.failed_runs ? " (" + std::to_string(c.failed_runs) + " failed: " + c.first_failure + ")" : "") +
+        ", error " + Significant(c.fit_error, 3) + " fitted, " + Significant(c.held_out_error, 3) +
+        " held out (baseline " + Significant(loop.baseline_held_out_error, 3) + ")");
+    return c;
+  };
+  // 4. The decision: held-out error below (1 - margin) of the reference's and a lower AIC on the fit window.
+  auto qualifies = [&](const Candidate& c, double reference_error, double reference_aic) {
+    return c.failure.empty() && c.held_out_error < (1 - o.margin) * reference_error && c.aic < reference_aic;
+  };
+  auto best_of = [&](std::size_t from, double reference_error, double reference_aic) {
+    int best = -1;
+    for (std::size_t i = from; i < loop.candidates.size(); ++i)
+      if (qualifies(loop.candidates[i], reference_error, reference_aic) &&
+          (best < 0 || loop.candidates[i].held_out_error < loop.candidates[best].held_out_error))
+        best = static_cast<int>(i);
+    return best;
+  };
+
+  std::vector<int> singles(modelable.begin(), modelable.begin() + std::min<std::size_t>(modelable.size(), o.max_singles));
+  say(std::to_string(singles.size()) + " effect(s) to fit alone");
+  std::size_t first = loop.candidates.size();
+  for (Candidate& c : ParallelMap(singles.size(), std::max(1, o.threads),
+                                  [&](std::size_t i) { return fit_candidate({singles[i]}, start_of({singles[i]})); }))
+    loop.candidates.push_back(std::move(c));
+  loop.kept = best_of(first, loop.baseline_held_out_error, loop.baseline_aic);
+  // The single with the lowest held-out error, kept or not (another missing effect may hide what it explains),
+  // paired with each of the others; a pair must beat the baseline and that single.
+  int lead = -1;
+  for (std::size_t i = first; i < loop.candidates.size(); ++i)
+    if (loop.candidates[i].failure.empty() &&
+        (lead < 0 || loop.candidates[i].held_out_error < loop.candidates[lead].held_out_error))
+      lead = static_cast<int>(i);
+  if (lead >= 0 && modelable.size() > 1) {
+    const Candidate single = loop.candidates[lead];
+    int lead_effect = -1;
+    for (int i : modelable)
+      if (loop.proposals[i].name == single.effects[0]) lead_effect = i;
+    std::vector<int> partners;
+    for (int i : modelable)
+      if (i != lead_effect && static_cast<int>(partners.size()) < o.max_singles) partners.push_back(i);
+    say(single.effects[0] + " leads; " + std::to_string(partners.size()) + " pair(s) to fit");
+    first = loop.candidates.size();
+    for (Candidate& c : ParallelMap(partners.size(), std::max(1, o.threads), [&](std::size_t i) {
+           std::vector<double> start = single.unit_values;  // the single's fit, and the partner's first value
+           for (double u : start_of({partners[i]})) start.push_back(u);
+           return fit_candidate({lead_effect, partners[i]}, start);
+         }))
+      loop.candidates.push_back(std::move(c));
+    const double reference_error = std::min(single.held_out_error, loop.baseline_held_out_error);
+    const double reference_aic = std::min(single.aic, loop.baseline_aic);
+    const int pair = best_of(first, reference_error, reference_aic);
+    if (pair >= 0) loop.kept = pair;
+  }
+  if (loop.kept >= 0) loop.candidates[loop.kept].kept = true;
+  for (const Candidate& c : loop.candidates) loop.model_runs += c.evaluations + (c.failure.empty() ? 1 : 0);
+
+  // 5. The model that stands, on both windows.
+  loop.fitted_document = base;
+  if (loop.kept >= 0) {
+    const Candidate& c = loop.candidates[loop.kept];
+    std::size_t k = 0;
+    for (const std::string& name : c.effects)
+      for (const Effect& e : loop.proposals)
+        if (e.name == name) {
+          std::vector<double> values;
+          for (std::size_t j = 0; j < e.parameters.size(); ++j) values.push_back(c.parameters[k++].value);
+          e.apply(loop.fitted_document, values);
+        }
+    loop.fitted_model = run(loop.fitted_document, full_duration);
+    ++loop.model_runs;
+  } else {
+    loop.fitted_model = loop.baseline_model;
+  }
+  loop.fitted_fit = MeasureFeatures(loop.fitted_model, o.fit_begin_s, o.fit_end_s, o.features);
+  loop.fitted_held_out = MeasureFeatures(loop.fitted_model, o.held_out_begin_s, o.held_out_end_s, o.features);
+  loop.fitted_fit_error = FeatureDistance(loop.fitted_fit, loop.recording_fit);
+  loop.fitted_held_out_error = FeatureDistance(loop.fitted_held_out, loop.recording_held_out);
+  for (const Feature& f : loop.recording_held_out.features) {
+    const double m = loop.fitted_held_out.Value(f.name);
+    if (std::isfinite(f.value) && std::isfinite(m) && std::abs(m - f.value) > 3 * f.scale)
+      loop.unexplained.push_back(f.name + ": model " + Significant(m, 4) + " against " + Significant(f.value, 4) +
+                                 " recorded (" + Fixed((m - f.value) / f.scale, 1) + " scales)");
+    else if (std::isfinite(f.value) != std::isfinite(m))
+      loop.unexplained.push_back(f.name + ": " + (std::isfinite(m) ? "only the model has it" : "only the recording has it"));
+  }
+  say("kept: " + (loop.kept >= 0 ? Joined(loop.candidates[loop.kept].effects) : std::string("nothing")) +
+      "; held-out error " + Significant(loop.baseline_held_out_error, 3) + " -> " +
+      Significant(loop.fitted_held_out_error, 3));
+  return loop;
+}
+
+nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json hypotheses = nlohmann::json::array(), candidates = nlohmann::json::array(),
+                 fitted = nlohmann::json::array(), proposals = nlohmann::json::array(), noise = nlohmann::json::object();
+  for (const Effect& e : loop.proposals)
+    proposals.push_back({{"effect", e.name}, {"component", e.component}, {"evidence_strength", e.strength},
+                         {"evidence", e.evidence}});
+  for (const Candidate& c : loop.candidates) {
+    nlohmann::json parameters = nlohmann::json::array();
+    for (const FittedParameter& p : c.parameters)
+      parameters.push_back({{"effect", p.effect}, {"name", p.name}, {"unit", p.unit}, {"value", number(p.value)},
+                            {"sigma", number(p.sigma)}, {"bounds", {p.lower, p.upper}}});
+    candidates.push_back({{"effects", c.effects}, {"parameters", parameters}, {"fit_error", number(c.fit_error)},
+                          {"held_out_error", number(c.held_out_error)}, {"aic", number(c.aic)},
+                          {"evaluations", c.evaluations}, {"failed_runs", c.failed_runs},
+                          {"first_failed_run", c.first_failure}, {"kept", c.kept}, {"failure", c.failure}});
+  }
+  if (loop.kept >= 0) {
+    const Candidate& c = loop.candidates[loop.kept];
+    fitted = candidates[loop.kept]["parameters"];
+    for (const std::string& name : c.effects) {
+      double estimate = std::nan("");
+      std::string unit;
+      for (const FittedParameter& p : c.parameters)
+        if (p.effect == name && !std::isfinite(estimate)) estimate = p.value, unit = p.unit;
+      std::string evidence;
+      for (const Effect& e : loop.proposals)
+        if (e.name == name) evidence = e.evidence;
+      hypotheses.push_back({{"effect", name}, {"estimate", number(estimate)}, {"unit", unit}, {"evidence", evidence}});
+    }
+  }
+  for (const auto& [channel, sigma] : loop.noise) noise[channel] = sigma;
+  nlohmann::json masked = nlohmann::json::object();
+  for (const auto& [channel, count] : loop.masked_samples) masked[channel] = count;
+  return {{"hypotheses", hypotheses},
+          {"held_out", {{"window_s", {loop.recording_held_out.begin_s, loop.recording_held_out.end_s}},
+                        {"error_before", loop.baseline_held_out_error},
+                        {"error_after", loop.fitted_held_out_error}}},
+          {"fit", {{"window_s", {loop.recording_fit.begin_s, loop.recording_fit.end_s}},
+                   {"error_before", loop.baseline_fit_error},
+                   {"error_after", loop.fitted_fit_error},
+                   {"baseline_aic", loop.baseline_aic}}},
+          {"fitted_parameters", fitted},
+          {"candidates", candidates},
+          {"proposals", proposals},
+          {"unexplained", loop.unexplained},
+          {"noise_std", noise},
+          {"artefact_samples_masked", masked},
+          {"model_runs", loop.model_runs},
+          {"features_held_out", FeatureSetToJson(loop.fitted_held_out, loop.recording_held_out)},
+          {"features_fit_baseline", FeatureSetToJson(loop.baseline_fit, loop.recording_fit)}};
+}
+
+}  // namespace drillwave::diagnosis

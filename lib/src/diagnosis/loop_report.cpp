@@ -1,0 +1,119 @@
+#include "drillwave/diagnosis/loop_report.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "drillwave/core/format.hpp"
+#include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/svg_plot.hpp"
+
+namespace drillwave::diagnosis {
+namespace {
+
+std::string Html(const std::string& text) { return io::EscapeXml(text); }
+
+std::string Cell(double v, int digits = 4) { return std::isfinite(v) ? Significant(v, digits) : "-"; }
+
+// Recording, baseline and fitted model, channel by channel, over the fit and held-out windows.
+io::Figure ChannelsFigure(const DiagnosisLoop& loop, const Recording& rec) {
+  io::Figure figure;
+  figure.title = "recording, baseline and fitted model (fit window, then held out)";
+  figure.x_label = "recording time [s]";
+  const Recording& base = loop.baseline_model;
+  for (std::size_t j = 0; j < base.names.size(); ++j) {
+    io::Panel panel{base.names[j], {}};
+    std::vector<double> t, y;
+    const auto& recorded = rec.Channel(base.names[j]);
+    for (std::size_t i = 0; i < rec.time_s.size(); ++i)
+      if (rec.time_s[i] >= base.time_s.front() && rec.time_s[i] <= base.time_s.back())
+        t.push_back(rec.time_s[i]), y.push_back(recorded[i]);
+    panel.series.push_back({"recording", t, y});
+    panel.series.push_back({"baseline", base.time_s, base.channels[j]});
+    if (loop.kept >= 0) panel.series.push_back({"fitted", loop.fitted_model.time_s, loop.fitted_model.channels[j]});
+    figure.panels.push_back(panel);
+  }
+  return figure;
+}
+
+void FeatureTable(std::ostream& out, const FeatureSet& recording, const FeatureSet& before, const FeatureSet& after) {
+  out << "<table><tr><th>feature</th><th>recording</th><th>scale</th><th>baseline</th><th>(scales)</th>"
+         "<th>fitted</th><th>(scales)</th></tr>\n";
+  for (const Feature& f : recording.features) {
+    const double b = before.Value(f.name), a = after.Value(f.name);
+    out << "<tr><td>" << Html(f.name) << "</td><td>" << Cell(f.value) << "</td><td>" << Cell(f.scale, 2) << "</td><td>"
+        << Cell(b) << "</td><td>" << Cell((b - f.value) / f.scale, 2) << "</td><td>" << Cell(a) << "</td><td>"
+        << Cell((a - f.value) / f.scale, 2) << "</td></tr>\n";
+  }
+  out << "</table>\n";
+}
+
+}  // namespace
+
+void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream& out) {
+  out << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>drillwave diagnosis of "
+      << Html(rec.source) << "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:1em auto;}"
+         "table{border-collapse:collapse;font-size:0.9em}td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}"
+         "td:first-child,th:first-child{text-align:left}.kept{background:#e6f4e6}</style></head><body>\n";
+  out << "<h1>Diagnosis of " << Html(rec.source) << "</h1>\n";
+  out << "<p>Fit window [" << Fixed(loop.recording_fit.begin_s, 2) << ", " << Fixed(loop.recording_fit.end_s, 2)
+      << "] s, held out [" << Fixed(loop.recording_held_out.begin_s, 2) << ", "
+      << Fixed(loop.recording_held_out.end_s, 2) << "] s; " << loop.model_runs << " model runs.</p>\n";
+  out << "<h2>Result</h2>\n<p>";
+  if (loop.kept < 0) {
+    out << "No effect kept: the baseline stands.";
+  } else {
+    out << "Kept: <b>";
+    for (const std::string& e : loop.candidates[loop.kept].effects) out << Html(e) << " ";
+    out << "</b>.";
+  }
+  out << " Held-out error (mean squared feature difference in feature scales) " << Cell(loop.baseline_held_out_error)
+      << " &rarr; " << Cell(loop.fitted_held_out_error) << "; on the fit window " << Cell(loop.baseline_fit_error)
+      << " &rarr; " << Cell(loop.fitted_fit_error) << ".</p>\n";
+  std::ostringstream svg;
+  io::WriteSvg(ChannelsFigure(loop, rec), svg);
+  std::string picture = svg.str();
+  if (picture.rfind("<?xml", 0) == 0) picture = picture.substr(picture.find("?>") + 2);  // inline: no prolog
+  out << "<figure id=\"channels\">" << picture << "</figure>\n";
+
+  out << "<h2>Candidates</h2>\n<table><tr><th>effects</th><th>runs</th><th>fit error</th><th>held-out error</th>"
+         "<th>AIC</th><th>parameters (&plusmn; 1 sigma)</th><th>note</th></tr>\n";
+  out << "<tr><td>baseline</td><td>1</td><td>" << Cell(loop.baseline_fit_error) << "</td><td>"
+      << Cell(loop.baseline_held_out_error) << "</td><td>" << Cell(loop.baseline_aic) << "</td><td></td><td></td></tr>\n";
+  for (const Candidate& c : loop.candidates) {
+    out << "<tr" << (c.kept ? " class=\"kept\"" : "") << "><td>";
+    for (const std::string& e : c.effects) out << Html(e) << " ";
+    out << "</td><td>" << c.evaluations << "</td><td>" << Cell(c.fit_error) << "</td><td>" << Cell(c.held_out_error)
+        << "</td><td>" << Cell(c.aic) << "</td><td>";
+    for (const FittedParameter& p : c.parameters)
+      out << Html(p.name) << " = " << Cell(p.value) << " &plusmn; " << Cell(p.sigma, 2) << " " << Html(p.unit) << "<br>";
+    out << "</td><td>" << Html(c.failure.empty() ? (c.kept ? "kept" : "") : c.failure) << "</td></tr>\n";
+  }
+  out << "</table>\n<h2>Evidence</h2>\n<ul>\n";
+  for (const Effect& e : loop.proposals)
+    if (e.strength > 0) out << "<li><b>" << Html(e.name) << "</b> (" << Fixed(e.strength, 1) << "): " << Html(e.evidence) << "</li>\n";
+  out << "</ul>\n<h2>Features, held out</h2>\n";
+  FeatureTable(out, loop.recording_held_out, loop.baseline_held_out, loop.fitted_held_out);
+  out << "<h2>Features, fit window</h2>\n";
+  FeatureTable(out, loop.recording_fit, loop.baseline_fit, loop.fitted_fit);
+  out << "<h2>Unexplained (held out, more than 3 scales off)</h2>\n<ul>\n";
+  for (const std::string& u : loop.unexplained) out << "<li>" << Html(u) << "</li>\n";
+  if (loop.unexplained.empty()) out << "<li>none</li>\n";
+  out << "</ul>\n<h2>Sensor noise estimated from the recording</h2>\n<ul>\n";
+  for (const auto& [channel, sigma] : loop.noise) out << "<li>" << Html(channel) << ": " << Cell(sigma, 3) << "</li>\n";
+  out << "</ul>\n<h2>Artefacts masked (not modelled)</h2>\n<ul>\n";
+  for (const auto& [channel, count] : loop.masked_samples)
+    out << "<li>" << Html(channel) << ": " << count << " samples</li>\n";
+  out << "</ul>\n</body></html>\n";
+}
+
+void WriteDiagnosisLoop(const DiagnosisLoop& loop, const Recording& rec, const std::string& out_dir) {
+  io::OutputDirectory out(out_dir);
+  out.Open("diagnosis.json") << DiagnosisLoopToJson(loop).dump(2) << "\n";
+  out.Open("fitted-case.json") << loop.fitted_document.dump(2) << "\n";
+  out.Open("case.json") << loop.baseline_document.dump(2) << "\n";
+  io::WriteSvg(ChannelsFigure(loop, rec), out.Open("plot.svg"));
+  WriteLoopHtml(loop, rec, out.Open("report.html"));
+  out.Commit();
+}
+
+}  // namespace drillwave::diagnosis

@@ -1,0 +1,79 @@
+#include "drillwave/diagnosis/minimize.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <nlopt.hpp>
+
+namespace drillwave::diagnosis {
+
+MinimizeResult MinimizeInUnitCube(const UnitObjective& f, const std::vector<double>& start,
+                                  const MinimizeOptions& o) {
+  MinimizeResult result;
+  result.best = start;
+  for (double& x : result.best) x = std::clamp(x, 0.0, 1.0);
+  result.value = f(result.best);
+  result.evaluations = 1;
+  const unsigned n = static_cast<unsigned>(start.size());
+  if (n == 0) return result;
+
+  struct Context {
+    const UnitObjective* f;
+    MinimizeResult* result;
+    int budget;
+  } context{&f, &result, o.max_evaluations};
+  auto objective = [](const std::vector<double>& u, std::vector<double>&, void* data) {
+    auto* c = static_cast<Context*>(data);
+    if (c->result->evaluations >= c->budget) throw nlopt::forced_stop();
+    const double value = (*c->f)(u);
+    ++c->result->evaluations;
+    if (value < c->result->value) c->result->value = value, c->result->best = u;
+    return std::isfinite(value) ? value : std::numeric_limits<double>::max();
+  };
+  std::mt19937 random(o.seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int s = 0; s < std::max(1, o.starts) && result.evaluations < o.max_evaluations; ++s) {
+    std::vector<double> x = result.best;  // the first start refines the given point
+    if (s > 0)
+      for (double& xi : x) xi = unit(random);
+    nlopt::opt opt(nlopt::LN_SBPLX, n);
+    opt.set_lower_bounds(std::vector<double>(n, 0.0));
+    opt.set_upper_bounds(std::vector<double>(n, 1.0));
+    opt.set_min_objective(objective, &context);
+    opt.set_xtol_abs(o.x_tolerance);
+    opt.set_initial_step(o.initial_step);
+    // Each start gets an equal share of what is left, so that later starts are not starved.
+    const int left = o.max_evaluations - result.evaluations;
+    opt.set_maxeval(std::max(1, left / (std::max(1, o.starts) - s)));
+    double value = 0;
+    try {
+      opt.optimize(x, value);
+    } catch (const nlopt::forced_stop&) {
+    } catch (const nlopt::roundoff_limited&) {  // the noise of the objective reached: what was found stands
+    }
+  }
+  return result;
+}
+
+std::vector<double> CurvatureSigma(const UnitObjective& f, const std::vector<double>& u, double f_at_u, double weight,
+                                   double h) {
+  std::vector<double> sigma(u.size(), std::nan(""));
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    std::vector<double> up = u, down = u;
+    // A one-sided box edge: step inwards twice instead (second difference of three points on one side).
+    double a = -h, b = h;
+    if (u[i] + h > 1) a = -2 * h, b = -h;
+    if (u[i] - h < 0) a = h, b = 2 * h;
+    up[i] = u[i] + b, down[i] = u[i] + a;
+    const double fa = f(down), fb = f(up);
+    // Second derivative through the three points (a, fa), (0, f_at_u), (b, fb).
+    const double d2 = 2 * (fa / (a * (a - b)) + f_at_u / (a * b) + fb / (b * (b - a)));
+    const double curvature = weight * d2;
+    if (curvature > 0 && std::isfinite(curvature)) sigma[i] = std::sqrt(2 / curvature);
+  }
+  return sigma;
+}
+
+}  // namespace drillwave::diagnosis

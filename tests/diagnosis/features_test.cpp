@@ -1,0 +1,100 @@
+// Features a chaotic model can be asked to reproduce: each is checked on signals whose answer is known (a sine's
+// period and amplitude, a delayed copy's lag, white noise's level), and the distance on twins and on a changed
+// signal.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/core/error.hpp"
+#include "drillwave/diagnosis/features.hpp"
+
+namespace drillwave::diagnosis {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// 100 Hz, `seconds` long: a bit speed oscillating with `period` about 60 rpm, a surface torque leading it by
+// `lag`, white noise of `noise` std on both.
+Recording Oscillation(double seconds, double period, double lag, double noise, unsigned seed, double amplitude = 30) {
+  Recording r;
+  r.source = "synthetic";
+  r.sample_interval_s = 0.01;
+  r.names = {"bit_rpm", "top_torque_kNm"};
+  r.channels.resize(2);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, noise);
+  for (int i = 0; i < static_cast<int>(seconds * 100); ++i) {
+    const double t = 0.01 * i;
+    r.time_s.push_back(t);
+    r.channels[0].push_back(60 + amplitude * std::sin(2 * kPi * (t - lag) / period) + n(rng));
+    r.channels[1].push_back(5 + 1 * std::sin(2 * kPi * t / period) + 0.01 * n(rng));
+  }
+  return r;
+}
+
+TEST(Features, PeriodLagAndLevelsOfAKnownOscillation) {
+  const Recording r = Oscillation(120, 3.2, 0.7, 0.5, 1);
+  const FeatureSet f = MeasureFeatures(r, 10, 110);
+  EXPECT_NEAR(f.Value("period_s"), 3.2, 0.02);
+  EXPECT_NEAR(f.Value("torque_to_bit_lag_s"), 0.7, 0.02);
+  EXPECT_NEAR(f.Value("bit_rpm mean"), 60, 0.1);
+  EXPECT_NEAR(f.Value("bit_rpm std"), 30 / std::sqrt(2.0), 0.2);  // a sine's std, the noise mostly smoothed away
+  EXPECT_EQ(f.Value("stick_fraction"), 0.0);                      // never below 5 % of 60 rpm
+  // The line at the rotation frequency (1 Hz at 60 rpm) is absent from a 3.2-s oscillation.
+  EXPECT_LT(f.Value("bit_rpm rotation_amplitude"), 1.0);
+}
+
+TEST(Features, RotationLineOfAWhirlIsMeasured) {
+  Recording r = Oscillation(60, 3.2, 0, 0.2, 2, 0);
+  for (std::size_t i = 0; i < r.time_s.size(); ++i) r.channels[0][i] += 4 * std::cos(2 * kPi * 1.0 * r.time_s[i]);
+  EXPECT_NEAR(MeasureFeatures(r, 0, 60).Value("bit_rpm rotation_amplitude"), 4, 0.1);
+}
+
+TEST(Features, StickFractionCountsTheTimeAtRest) {
+  Recording r = Oscillation(100, 4, 0, 0.1, 3);
+  // Clip the bottom of the oscillation to zero: the bit rests where 60 + 70 sin < 0, a known share of each period.
+  for (double& v : r.channels[0]) v = std::max(0.0, 60 + (v - 60) * 70.0 / 30.0);
+  // Stuck below 5 % of the mean speed: 60 + 70 sin < threshold over 1/2 - asin((60 - threshold) / 70) / pi of the time.
+  double mean = 0;
+  for (double v : r.channels[0]) mean += v / r.channels[0].size();
+  const double threshold = 0.05 * mean;
+  const double rest = 0.5 - std::asin((60 - threshold) / 70) / kPi;
+  EXPECT_NEAR(MeasureFeatures(r, 0, 100).Value("stick_fraction"), rest, 0.005);
+}
+
+TEST(Features, NoOscillationHasNoPeriod) {
+  const Recording r = Oscillation(60, 3, 0, 1.0, 4, 0);
+  EXPECT_TRUE(std::isnan(MeasureFeatures(r, 0, 60).Value("period_s")));
+}
+
+TEST(Features, NoiseStdOfWhiteNoiseOnASlowOscillation) {
+  for (double sigma : {0.1, 1.0, 3.0}) {
+    const Recording r = Oscillation(100, 3, 0, sigma, 5);
+    EXPECT_NEAR(NoiseStd(r.channels[0]), sigma, 0.05 * sigma + 0.02) << sigma;
+  }
+}
+
+TEST(Features, TwinsAreAboutOneScaleApartAndAChangeIsFar) {
+  const Recording a = Oscillation(120, 3.2, 0.7, 0.5, 11), b = Oscillation(120, 3.2, 0.7, 0.5, 12);
+  const FeatureSet fa = MeasureFeatures(a, 10, 110), fb = MeasureFeatures(b, 10, 110);
+  const double twins = FeatureDistance(fb, fa);
+  EXPECT_LT(twins, 1.0);
+  auto scales_off = [&](const FeatureSet& f, const std::string& name) {
+    return (f.Value(name) - fa.Value(name)) / fa.Find(name)->scale;
+  };
+  const FeatureSet slower = MeasureFeatures(Oscillation(120, 3.6, 0.7, 0.5, 12), 10, 110);  // 12 % longer period
+  EXPECT_GT(scales_off(slower, "period_s"), 2.0);
+  EXPECT_GT(FeatureDistance(slower, fa), twins + 4.0 / fa.features.size());
+  const FeatureSet damped = MeasureFeatures(Oscillation(120, 3.2, 0.7, 0.5, 12, 20), 10, 110);  // a third less swing
+  EXPECT_LT(scales_off(damped, "bit_rpm std"), -3.0);
+  EXPECT_GT(FeatureDistance(damped, fa), twins + 9.0 / fa.features.size());
+}
+
+TEST(Features, AWindowWithoutEnoughSamplesIsRefused) {
+  const Recording r = Oscillation(10, 3, 0, 0.1, 6);
+  EXPECT_THROW(MeasureFeatures(r, 20, 30), InputError);
+}
+
+}  // namespace
+}  // namespace drillwave::diagnosis

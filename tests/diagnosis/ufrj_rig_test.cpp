@@ -1,0 +1,66 @@
+// The UFRJ laboratory rig (json-cases/ufrj-rig-wob-input.json) against its recording (../shared; skipped where absent): the
+// case was fitted on 2-20 s, and is judged here on the held-out 20-30 s by the features of the brief (stick fraction,
+// stick-slip period, bit speed mean and max, torque on bit mean and std), against the start values kept in its notes.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/diagnosis/comparison.hpp"
+#include "drillwave/io/json_reader.hpp"
+
+namespace drillwave::diagnosis {
+namespace {
+
+const char* const kFeatures[] = {"stick_fraction", "stick_slip_period_s", "bit_speed_mean",
+                                 "bit_speed_max",  "tob_Nm mean",         "tob_Nm std"};
+
+// The start values of the fitted parameters, as the case's notes list them (estimated from 0-20 s of the recording).
+const std::pair<const char*, double> kStartValues[] = {{"/model/bit_inertia_kgm2", 0.0026},
+                                                       {"/model/bit/friction/mu_s", 0.509},
+                                                       {"/model/bit/friction/nu_f_rad_s", 23.2},
+                                                       {"/model/top/kp_Nms_per_rad", 0.22}};
+
+// Root mean square of the relative differences of kFeatures over [begin, end] s (a missing or undefined feature, such
+// as a stick-slip period without sticking, counts as 100 %).
+double FeatureError(const nlohmann::json& doc, const Recording& rec, double begin, double end, const char* label) {
+  const auto model = cases::RunCase(cases::ParseCase(doc)).result;
+  const Comparison c = Compare(rec, model, {{"bit_rpm", "bit_rpm", 1}, {"top_rpm", "top_rpm", 1},
+                                            {"tob_Nm", "bit_torque_Nm", 1}},
+                               begin, end);
+  double sum = 0;
+  for (const char* name : kFeatures) {
+    double rel = 1;
+    for (const FeatureDifference& d : c.features)
+      if (d.feature == name && std::isfinite(d.relative)) rel = d.relative;
+    std::printf("[ measured ] %s [%g, %g] s %s: %+.1f %%\n", label, begin, end, name, 100 * rel);
+    sum += rel * rel;
+  }
+  const double error = std::sqrt(sum / std::size(kFeatures));
+  std::printf("[ measured ] %s [%g, %g] s: feature error (rms of the relative differences) %.1f %%\n", label, begin,
+              end, 100 * error);
+  return error;
+}
+
+TEST(UfrjRig, FittedCasePredictsTheHeldOutFeaturesBetterThanItsStart) {
+  const std::string file = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/ufrj-rig/rig-0-30s.csv";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "the laboratory recording is not at " << file;
+  const Recording rec = LoadRecording(file);
+  const nlohmann::json fitted = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/ufrj-rig-wob-input.json");
+  nlohmann::json start = fitted;
+  for (const auto& [pointer, value] : kStartValues) start[nlohmann::json::json_pointer(pointer)] = value;
+  ASSERT_NE(start, fitted);
+  const double before = FeatureError(start, rec, 20, 30, "start");
+  const double after = FeatureError(fitted, rec, 20, 30, "fitted");
+  // Measured: start 32.2 %, fitted 24.9 % (gcc, Release; the weight on bit after 20 s held at its fit-window mean);
+  // the bound leaves room for another compiler's rounding.
+  EXPECT_LT(after, before);
+  EXPECT_LT(after, 0.27);
+}
+
+}  // namespace
+}  // namespace drillwave::diagnosis
