@@ -5,6 +5,7 @@
 //   drillwave_bench [case.json] [engine tolerance for the equal-accuracy comparison, default 1e-3]
 //                   [time budget for one reference run in s, default 30]
 //   drillwave_bench delay      (only the generic delay solver against RADAR5's figures)
+//   drillwave_bench diagnose [recNN ...]   (the diagnosis loop on synthetic recordings; default rec01 rec07)
 //
 // Errors are relative to a tight engine run (tol 1e-11). Wall times are the best of several repeats of
 // cases::RunCase (integration and statistics, no output files) or of the reference's integration.
@@ -154,7 +155,14 @@ void BenchDelaySolver() {
 
 }  // namespace
 
+int BenchDiagnose(const std::vector<std::string>& names);  // diagnose_bench.cpp
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "diagnose") {
+    std::vector<std::string> names(argv + 2, argv + argc);
+    if (names.empty()) names = {"rec01", "rec07"};
+    return BenchDiagnose(names);
+  }
   if (argc > 1 && std::string(argv[1]) == "delay") {
     BenchDelaySolver();
     return 0;

@@ -64,7 +64,7 @@ TEST(DiagnosisLoop, ANoisyTwinKeepsTheBaselineAndItsNoiseIsMeasured) {
   const Recording twin = NoisyTwin(doc, 0.5);
   const DiagnosisLoop loop = RunDiagnosisLoop(doc, twin, Options());
   EXPECT_EQ(loop.kept, -1);
-  EXPECT_TRUE(loop.candidates.empty());  // no kind-specific component for two_mass: nothing to propose
+  EXPECT_TRUE(loop.candidates.empty());  // no difference is evidence for anything: nothing proposed
   ASSERT_EQ(loop.noise.size(), 2u);
   for (const auto& [channel, sigma] : loop.noise) EXPECT_NEAR(sigma, 0.5, 0.05) << channel;
   // The model carries the same noise (other draws) and is the recording's twin: about one scale apart at most.

@@ -96,6 +96,28 @@ std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, c
                                             Describe(m, r, "top_rpm std");
     effects.push_back(e);
   }
+  // Not an effect but a calibration: the recorded oscillation period against the model's (or, where the model does
+  // not oscillate, the shaft-and-disc natural period 2 pi sqrt(J / k)) says how far the disc's inertia is off (a
+  // period scales with its square root).
+  {
+    const double period = r.Value("period_s"), model_period = m.Value("period_s");
+    const bool oscillates = std::isfinite(model_period);
+    const double reference = oscillates ? model_period : 2 * kPi / frequency;
+    const double estimate = std::isfinite(period) ? j * std::pow(period / reference, 2) : j;
+    Effect e{"bit_inertia", "calibration: the bottom disc's inertia (with the shaft stiffness, the period)", {},
+             nullptr, 0, ""};
+    e.parameters = {{"bit_inertia_kgm2", "kg m^2", 0.2 * j, 20 * j, true, std::clamp(estimate, 0.2 * j, 20 * j)}};
+    e.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["bit_inertia_kgm2"] = v[0]; };
+    const double z = !std::isfinite(period) ? 0.0
+                     : oscillates           ? std::abs(Z(m, r, "period_s"))
+                                            : std::abs(std::log(period / reference)) / 0.05;
+    if (z > 3)
+      e.strength = z, e.evidence = "the recording oscillates with period " + Significant(period, 3) + " s, the " +
+                                   (oscillates ? "model" : "shaft and disc's natural period") + " with " +
+                                   Significant(reference, 3) + " s: the inertia " + Significant(estimate, 3) +
+                                   " kg m^2 would give it";
+    effects.push_back(e);
+  }
   const nlohmann::json::json_pointer friction("/model/bit/friction");
   if (doc.contains(friction) && doc.at(friction).value("law", std::string()) == "coulomb") {
     const nlohmann::json coulomb = doc.at(friction);

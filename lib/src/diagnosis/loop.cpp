@@ -284,33 +284,48 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
                                   [&](std::size_t i) { return fit_candidate({singles[i]}, start_of({singles[i]})); }))
     loop.candidates.push_back(std::move(c));
   loop.kept = best_of(first, loop.baseline_held_out_error, loop.baseline_aic);
-  // The single with the lowest held-out error, kept or not (another missing effect may hide what it explains),
-  // paired with each of the others; a pair must beat the baseline and that single.
+  // Forward selection: the single with the lowest held-out error, kept or not (another missing effect may hide
+  // what it explains), is extended by each other effect; the best extension that beats the baseline and its lead
+  // becomes the next lead, until none does or max_effects is reached.
   int lead = -1;
   for (std::size_t i = first; i < loop.candidates.size(); ++i)
     if (loop.candidates[i].failure.empty() &&
         (lead < 0 || loop.candidates[i].held_out_error < loop.candidates[lead].held_out_error))
       lead = static_cast<int>(i);
-  if (lead >= 0 && modelable.size() > 1) {
-    const Candidate single = loop.candidates[lead];
-    int lead_effect = -1;
-    for (int i : modelable)
-      if (loop.proposals[i].name == single.effects[0]) lead_effect = i;
+  auto own_fit = [&](int effect) {  // an effect's fit alone where it has one (else its first value)
+    std::vector<double> u = start_of({effect});
+    for (const Candidate& c : loop.candidates)
+      if (c.effects.size() == 1 && c.effects[0] == loop.proposals[effect].name && c.failure.empty() &&
+          c.unit_values.size() == u.size())
+        u = c.unit_values;
+    return u;
+  };
+  while (lead >= 0 && static_cast<int>(loop.candidates[lead].effects.size()) < o.max_effects) {
+    const Candidate base_candidate = loop.candidates[lead];
+    std::vector<int> lead_set;
+    for (const std::string& name : base_candidate.effects)
+      for (int i : modelable)
+        if (loop.proposals[i].name == name) lead_set.push_back(i);
     std::vector<int> partners;
     for (int i : modelable)
-      if (i != lead_effect && static_cast<int>(partners.size()) < o.max_singles) partners.push_back(i);
-    say(single.effects[0] + " leads; " + std::to_string(partners.size()) + " pair(s) to fit");
+      if (std::find(lead_set.begin(), lead_set.end(), i) == lead_set.end() &&
+          static_cast<int>(partners.size()) < o.max_singles)
+        partners.push_back(i);
+    if (partners.empty()) break;
+    say(Joined(base_candidate.effects) + " leads; " + std::to_string(partners.size()) + " extension(s) to fit");
     first = loop.candidates.size();
     for (Candidate& c : ParallelMap(partners.size(), std::max(1, o.threads), [&](std::size_t i) {
-           std::vector<double> start = single.unit_values;  // the single's fit, and the partner's first value
-           for (double u : start_of({partners[i]})) start.push_back(u);
-           return fit_candidate({lead_effect, partners[i]}, start);
+           std::vector<int> set = lead_set;
+           set.push_back(partners[i]);
+           std::vector<double> start = base_candidate.unit_values, partner = own_fit(partners[i]);
+           start.insert(start.end(), partner.begin(), partner.end());
+           return fit_candidate(set, start);
          }))
       loop.candidates.push_back(std::move(c));
-    const double reference_error = std::min(single.held_out_error, loop.baseline_held_out_error);
-    const double reference_aic = std::min(single.aic, loop.baseline_aic);
-    const int pair = best_of(first, reference_error, reference_aic);
-    if (pair >= 0) loop.kept = pair;
+    const double reference_error = std::min(base_candidate.held_out_error, loop.baseline_held_out_error);
+    const double reference_aic = std::min(base_candidate.aic, loop.baseline_aic);
+    lead = best_of(first, reference_error, reference_aic);
+    if (lead >= 0) loop.kept = lead;
   }
   if (loop.kept >= 0) loop.candidates[loop.kept].kept = true;
   for (const Candidate& c : loop.candidates) loop.model_runs += c.evaluations + (c.failure.empty() ? 1 : 0);

@@ -8,11 +8,11 @@
 //   2. The usable recording is split into a fit window and a later held-out window. The baseline's error on each is
 //      the feature distance (features.hpp): differences counted in each feature's own variability.
 //   3. Rules read the baseline's differences as evidence and propose effects (effects.hpp); the strongest the case
-//      can model are fitted alone on the fit window (NLopt, bounded), then the best single that is kept is paired
-//      with each of the others (forward selection).
+//      can model are fitted alone on the fit window (NLopt, bounded); then forward selection: the best so far is
+//      extended by each other effect in turn while an extension qualifies.
 //   4. A candidate is kept only when its held-out error falls below (1 - margin) of the baseline's and an
-//      information criterion on the fit window (AIC over the features) agrees; a pair only when it beats its single
-//      the same way. The fitted parameters get uncertainties from the objective's curvature.
+//      information criterion on the fit window (AIC over the features) agrees; an extension only when it beats what
+//      it extends the same way. The fitted parameters get uncertainties from the objective's curvature.
 #include <functional>
 #include <string>
 #include <vector>
@@ -34,6 +34,7 @@ struct LoopOptions {
   double margin = 0.2;            // a kept effect lowers the held-out error by at least this fraction
   int evaluations_per_parameter = 10;  // fit budget of a candidate: this times its parameters, plus 2
   int max_singles = 4;            // the strongest proposals tried alone, and partners tried with the best one
+  int max_effects = 3;            // forward selection stops at this many effects
   int threads = 1;
   bool carry_noise = true;        // estimated sensor noise added to the model's measured channels
   unsigned seed = 1;

@@ -1,0 +1,65 @@
+// drillwave_bench diagnose [recNN ...]: the diagnosis loop's cost on synthetic recordings of ../shared (issue 13's
+// goal: one recording with all candidates under 60 s on 2 cores). Per recording: wall time of the loop with 2
+// threads, model runs, and the wall time of one baseline run measured in the same process, as the reference unit.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/diagnosis/loop.hpp"
+#include "drillwave/diagnosis/recording.hpp"
+#include "drillwave/diagnosis/sidecar.hpp"
+#include "drillwave/io/json_reader.hpp"
+
+namespace {
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+}  // namespace
+
+int BenchDiagnose(const std::vector<std::string>& names) {
+  namespace dg = drillwave::diagnosis;
+  const std::filesystem::path dir = std::filesystem::path(DRILLWAVE_SOURCE_DIR) / ".." / "shared" / "recordings" /
+                                    "synthetic";
+  if (!std::filesystem::exists(dir / "rec01.csv")) {
+    std::printf("no synthetic recordings at %s\n", dir.string().c_str());
+    return 1;
+  }
+  const nlohmann::json baseline =
+      drillwave::io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  std::printf("# diagnosis loop (2 threads)\n\n| recording | loop wall [s] | model runs | one baseline run [s] | "
+              "loop / baseline run | kept |\n|---|---|---|---|---|---|\n");
+  for (const std::string& name : names) {
+    const nlohmann::json doc = dg::CaseFromSidecar(drillwave::io::LoadJsonFile((dir / (name + ".json")).string()),
+                                                   baseline, 30, name + ".json");
+    const dg::Recording rec = dg::LoadRecording((dir / (name + ".csv")).string());
+    dg::LoopOptions o;
+    o.maps = {{"top_rpm", "top_rpm", 1},
+              {"top_torque_kNm", "top_torque_Nm", 1e-3},
+              {"hookload_kN", "hookload_N", 1e-3},
+              {"bit_rpm", "bit_rpm", 1},
+              {"wob_kN", "wob_N", 1e-3}};
+    o.model_time_offset_s = 30;
+    o.fit_begin_s = 5;
+    o.held_out_end_s = rec.time_s.back();
+    o.fit_end_s = o.held_out_begin_s = 0.5 * (o.fit_begin_s + o.held_out_end_s);
+    o.threads = 2;
+    auto start = std::chrono::steady_clock::now();
+    drillwave::cases::RunCase(drillwave::cases::ParseCase(doc));
+    const double one_run = Seconds(start);
+    start = std::chrono::steady_clock::now();
+    const dg::DiagnosisLoop loop = dg::RunDiagnosisLoop(doc, rec, o);
+    const double wall = Seconds(start);
+    std::string kept;
+    if (loop.kept >= 0)
+      for (const std::string& e : loop.candidates[loop.kept].effects) kept += e + " ";
+    std::printf("| %s | %.1f | %d | %.2f | %.1f | %s|\n", name.c_str(), wall, loop.model_runs, one_run, wall / one_run,
+                kept.c_str());
+    std::fflush(stdout);
+  }
+  return 0;
+}
