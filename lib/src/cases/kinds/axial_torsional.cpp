@@ -1,11 +1,13 @@
-// Model kind "axial_torsional": coupled axial and torsional waves in a uniform pipe, a lumped bit/BHA, and the
-// Richard-Germay-Detournay bit-rock law with the state-dependent cut delay t_n (DESIGN.md §1-3, chapter seed
+// Model kind "axial_torsional": coupled axial and torsional waves in a pipe and an optional BHA section, a lumped bit,
+// and the Richard-Germay-Detournay bit-rock law with the state-dependent cut delay t_n (DESIGN.md §1-3, chapter seed
 // 2.28-2.33; the baseline model of shared/recordings/synthetic/BASELINE.md).
 //
-// Each channel (torsion: angular speed and torque; axial: speed, down positive, and force) is a chain of m equal
-// sub-sections joined by massless nodes; the distributed viscous damping and the buoyant weight of each piece of
-// pipe are lumped at its nodes (half at each end), so the d'Alembert reduction stays exact. A section carries the
-// force S = Z (D - U) onto its lower node; a node feels sum Z (2 w_in - v) from its sections (DESIGN.md §1).
+// Each channel (torsion: angular speed and torque; axial: speed, down positive, and force) is a chain of m
+// sub-sections (pieces: the pipe's, then the BHA's, each with its own impedance and travel time) joined by massless
+// nodes; the distributed viscous damping and the buoyant weight of each piece are lumped at its nodes (half at each
+// end), so the d'Alembert reduction stays exact. A piece carries the force S = Z (D - U) onto its lower node; a node
+// feels sum Z (2 w_in - v) from its pieces (DESIGN.md §1). Kelvin-Voigt damping (chapter eqs. 2.20, 2.24) is a
+// dashpot eta K / length across each piece, which ties the massless nodes into a tridiagonal system.
 // Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by a constant hook
 // force H. Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
 //   t_n: Phi(t) - Phi(t - t_n) = 2 pi / n,  d = n (U(t) - U(t - t_n))   (from the stored bit angle and position;
@@ -48,11 +50,22 @@ using Range = io::Range;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-struct Channel {  // one wave channel: m sections of impedance z and travel time tau
-  double z = 0, tau = 0;
+// One wave channel: pieces (sub-sections) k = 0..m-1, piece k between nodes k and k+1 (node 0 the top, node m the
+// bit). Pieces differ in impedance and travel time where the BHA follows the pipe.
+struct Channel {
+  std::vector<double> z, tau;   // per piece
+  std::vector<double> kv;       // per piece: Kelvin-Voigt dashpot eta K / length across it (empty: none)
   std::vector<double> damping;  // per node (ground dashpot)
   std::vector<double> load;     // per node (constant force: buoyant weight, axial only)
   std::vector<double> coulomb;  // per node (Coulomb friction level against the borehole, torsion only)
+  // Kelvin-Voigt: the massless nodes 1..m-1 solve a constant tridiagonal system (Thomas algorithm, factored once).
+  std::vector<double> kv_ratio, kv_inv_pivot;  // per node: c'_j and 1 / (b_j - a_j c'_{j-1})
+  bool kelvin_voigt() const { return !kv.empty(); }
+  double travel_time() const {
+    double total = 0;
+    for (double t : tau) total += t;
+    return total;
+  }
 };
 
 // DC motor of the top drive (the torsional_wave kind's dc_motor top): torque constant K = back-emf constant.
@@ -139,7 +152,7 @@ class Process {
   using State = std::vector<double>;
   explicit Process(const Model& md)
       : md_(md), m_(md.m), steady_(SteadyDrilling(md, md.top_speed.Value(0.0))),
-        waves_{integration::HermiteHistory(2 * md.m), integration::HermiteHistory(2 * md.m)}, bit_history_(2, [this](double t, double* v, double* d) {
+        bit_history_(2, [this](double t, double* v, double* d) {
           v[0] = steady_.omega * t, v[1] = steady_.rop * t;
           d[0] = steady_.omega, d[1] = steady_.rop;
         }) {
@@ -148,7 +161,11 @@ class Process {
 
   // --- Simulator interface --------------------------------------------------------------------------------
   int Dimension() const { return md_.unbalance.on ? kFullDim : md_.motor.on ? kDim + 1 : kDim; }
-  double MaxStep() const { return std::min(md_.axial.tau, md_.torsion.tau); }
+  double MaxStep() const {
+    double shortest = kInf;
+    for (const Run& r : runs_) shortest = std::min(shortest, r.tau);
+    return shortest;
+  }
   void BeginStep(double t0) { step_start_ = t0; }
 
   State InitialState() const {
@@ -165,18 +182,17 @@ class Process {
   void Derivatives(const State& x, State& dx, double t) const {
     const Side side = t <= step_start_ ? Side::kRight : Side::kLeft;
     const double omega_ref = md_.top_speed.Evaluate(t, t > step_start_).first;
-    const BitForces f = Forces(x, t, side);
+    const Ends ends = StringEnds(x, t, side);
+    const BitForces f = Forces(x, t, side, ends);
     dx[kPhi] = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
     dx[kU] = axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
     // Top drive and hoist.
-    const double a_top_t = Arrival(0, 0, t, side, false), a_top_a = Arrival(1, 0, t, side, false);
     const double u = TopTorque(x, omega_ref);
     if (md_.motor.on)
-      dx[kCurrent] = md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), x[kWtop], x[kCurrent]);
-    dx[kWtop] = (md_.torsion.z * (2 * a_top_t - x[kWtop]) - md_.torsion.damping[0] * x[kWtop] + md_.torsion.load[0] + u) /
-                md_.top_inertia;
-    dx[kVtop] = (md_.axial.z * (2 * a_top_a - x[kVtop]) - md_.axial.damping[0] * x[kVtop] + md_.axial.load[0] -
-                 md_.hook_force) / md_.hoist_mass;
+      dx[kCurrent] =
+          md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), x[kWtop], x[kCurrent]);
+    dx[kWtop] = (ends.top[0] + u) / md_.top_inertia;
+    dx[kVtop] = (ends.top[1] - md_.hook_force) / md_.hoist_mass;
     dx[kZ] = omega_ref - x[kWtop];
     // Bit.
     dx[kWbit] = turn_ == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
@@ -206,9 +222,9 @@ class Process {
   }
 
   void Commit(const integration::Piece& p) {
-    for (int c = 0; c < 2; ++c) {
-      const int base = 2 * m_ * c;
-      waves_[c].Append(p.t0, out0_.data() + base, d0_.data() + base, p.t1, out1_.data() + base, d1_.data() + base,
+    for (std::size_t r = 0; r < runs_.size(); ++r) {
+      const int base = 2 * m_ * runs_[r].channel + 2 * runs_[r].first;
+      waves_[r].Append(p.t0, out0_.data() + base, d0_.data() + base, p.t1, out1_.data() + base, d1_.data() + base,
                        outm_.data() + base);
     }
     const double b0[2] = {p.x0[kPhi], p.x0[kU]}, b1[2] = {p.x1[kPhi], p.x1[kU]}, bm[2] = {p.x_mid[kPhi], p.x_mid[kU]};
@@ -217,7 +233,7 @@ class Process {
     phi_max_before_ = std::max(phi_max_before_, p.x0[kPhi]);
     phi_max_ = std::max({phi_max_, p.x0[kPhi], p.x1[kPhi]});
     last_end_ = p.t1;
-    const double keep = 2 * std::max(md_.torsion.tau, md_.axial.tau) * m_ + 1.0;
+    const double keep = 2 * std::max(md_.torsion.travel_time(), md_.axial.travel_time()) + 1.0;
     for (auto& w : waves_) w.DiscardBefore(p.t1 - keep);
     DepthOfCut(p.x1, p.t1, Side::kLeft, &tn_committed_);
     bit_history_.DiscardBefore(p.t1 - std::max(keep, 20.0 * tn_committed_ + 5.0));
@@ -343,11 +359,59 @@ class Process {
     double static_forward = 0, static_backward = 0;  // torque the contact can hold at rest
   };
 
+  // Consecutive pieces of a channel with equal travel time share one history, read in one look-up at that delay
+  // (each history is read at its own delay, so its look-up hint stays valid).
+  struct Run {
+    int channel, first, count;
+    double tau;
+  };
+  // Force of the string on the top node and on the bit node of each channel (0 torsion, 1 axial) at the state's end
+  // speeds, with the end nodes' own share of damping and weight.
+  struct Ends {
+    double top[2], bit[2];
+  };
+
   // Arrival at node j of channel c (0 torsion, 1 axial) from above (from_above) or below, at time t.
   double Arrival(int c, int j, double t, Side side, bool from_above) const {
-    const Channel& ch = c == 0 ? md_.torsion : md_.axial;
+    const int piece = from_above ? j - 1 : j;
     const int comp = from_above ? 2 * (j - 1) : 2 * j + 1;  // D_{j-1} leaves node j-1; U_j leaves node j+1
-    return waves_[c].Value(t - ch.tau, comp, side);
+    const Run& r = runs_[run_of_[c][piece]];
+    return waves_[run_of_[c][piece]].Value(t - r.tau, comp - 2 * r.first, side);
+  }
+  // All waves arriving in channel c at time t (component 2k down-going at the bottom of piece k, 2k + 1 up-going at
+  // its top), and their rates when rate != nullptr.
+  void Arrivals(int c, double t, Side side, double* in, double* rate) const {
+    for (std::size_t r = 0; r < runs_.size(); ++r) {
+      if (runs_[r].channel != c) continue;
+      waves_[r].Values(t - runs_[r].tau, in + 2 * runs_[r].first, side);
+      if (rate) waves_[r].Derivatives(t - runs_[r].tau, rate + 2 * runs_[r].first, side);
+    }
+  }
+  double EndSpeed(int c, bool bit, const State& x) const {
+    if (!bit) return c == 0 ? x[kWtop] : x[kVtop];
+    if (c == 0) return turn_ == Turn::kStuck ? 0.0 : x[kWbit];
+    return axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
+  }
+
+  Ends StringEnds(const State& x, double t, Side side) const {
+    Ends e;
+    for (int c = 0; c < 2; ++c) {
+      const Channel& ch = c == 0 ? md_.torsion : md_.axial;
+      const double top = EndSpeed(c, false, x), bit = EndSpeed(c, true, x);
+      double in_top, in_bit, pull_top = 0, pull_bit = 0;  // pull: the Kelvin-Voigt dashpots of the end pieces
+      if (ch.kelvin_voigt()) {  // the dashpots tie the end nodes to the massless nodes next to them: solve them all
+        arriving_.resize(2 * m_), speeds_.resize(m_ + 1);
+        Arrivals(c, t, side, arriving_.data(), nullptr);
+        NodeSpeeds(ch, arriving_.data(), top, bit, speeds_.data());
+        in_top = arriving_[1], in_bit = arriving_[2 * (m_ - 1)];
+        pull_top = ch.kv[0] * (speeds_[1] - top), pull_bit = ch.kv[m_ - 1] * (speeds_[m_ - 1] - bit);
+      } else {
+        in_top = Arrival(c, 0, t, side, false), in_bit = Arrival(c, m_, t, side, true);
+      }
+      e.top[c] = ch.z[0] * (2 * in_top - top) - ch.damping[0] * top + ch.load[0] + pull_top;
+      e.bit[c] = ch.z[m_ - 1] * (2 * in_bit - bit) - ch.damping[m_] * bit + ch.load[m_] + pull_bit;
+    }
+    return e;
   }
 
   // When the bit angle last stood `back` radians behind its present value, from the stored angle. The root lies near
@@ -389,14 +453,12 @@ class Process {
     return md_.blades * (x[kU] - surface);
   }
 
-  BitForces Forces(const State& x, double t, Side side) const {
+  BitForces Forces(const State& x, double t, Side side) const { return Forces(x, t, side, StringEnds(x, t, side)); }
+  BitForces Forces(const State& x, double t, Side side, const Ends& ends) const {
     BitForces f;
     const double w = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
-    const double v = axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
-    f.drive_torque = md_.torsion.z * (2 * Arrival(0, m_, t, side, true) - w) - md_.torsion.damping[m_] * w +
-                     md_.torsion.load[m_];
-    f.drive_force = md_.axial.z * (2 * Arrival(1, m_, t, side, true) - v) - md_.axial.damping[m_] * v +
-                    md_.axial.load[m_];
+    f.drive_torque = ends.bit[0];
+    f.drive_force = ends.bit[1];
     if (md_.unbalance.on) f.drive_torque += LateralReaction(x);
     f.depth = DepthOfCut(x, t, side, &f.tn);
     if (!md_.axial_coupling) f.depth = steady_.depth;
@@ -453,45 +515,76 @@ class Process {
     dx[kYd] = (fy - me * std::cos(x[kPhi]) * phi_dd) / mass;
   }
 
-  // Speed of node j of channel c: from the state for the ends, algebraic for the massless nodes between, which
-  // feel the waves `in` arriving from both sides.
-  double NodeSpeed(int c, int j, const State& x, double in) const {
-    const Channel& ch = c == 0 ? md_.torsion : md_.axial;
-    if (j == 0) return c == 0 ? x[kWtop] : x[kVtop];
-    if (j == m_) {
-      if (c == 0) return turn_ == Turn::kStuck ? 0.0 : x[kWbit];
-      return axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
-    }
-    // A massless node with Coulomb friction T_f: 0 in (2Z + c) v - q + T_f sign(v), q = 2 Z (a + b) + load, solved in
-    // closed form: the node stands still while |q| <= T_f and slides with the excess otherwise.
-    const double q = 2 * ch.z * in + ch.load[j];
-    const double excess = std::max(std::abs(q) - ch.coulomb[j], 0.0);
-    return std::copysign(excess, q) / (2 * ch.z + ch.damping[j]);
+  // Sum of Z (2 w_in) over the two pieces at an internal node (as 2 Z (a + b) for equal impedances: a uniform
+  // string keeps the rounding it had before pieces could differ).
+  static double Incoming(double z_above, double above, double z_below, double below) {
+    return z_above == z_below ? 2 * z_above * (above + below) : 2 * (z_above * above + z_below * below);
   }
 
-  // Waves leaving every node at time t (and their rates when rate != nullptr). Each channel's arriving waves are read
-  // in one look-up: component 2k left the top of section k one travel time ago, 2k + 1 its bottom.
+  // Speeds v[0..m] of the nodes of a channel: the ends given, the massless nodes between algebraic in the waves `in`
+  // arriving at them (as Arrivals lays them out).
+  void NodeSpeeds(const Channel& ch, const double* in, double top, double bit, double* v) const {
+    v[0] = top, v[m_] = bit;
+    if (ch.kelvin_voigt()) {
+      SolveKelvinVoigtNodes(ch, in, top, bit, true, v);
+      return;
+    }
+    for (int j = 1; j < m_; ++j) {
+      // A massless node with Coulomb friction T_f: 0 in (Z_a + Z_b + c) v - q + T_f sign(v), q = 2 Z_a a + 2 Z_b b +
+      // load, solved in closed form: the node stands still while |q| <= T_f and slides with the excess otherwise.
+      const double q = Incoming(ch.z[j - 1], in[2 * (j - 1)], ch.z[j], in[2 * j + 1]) + ch.load[j];
+      const double excess = std::max(std::abs(q) - ch.coulomb[j], 0.0);
+      v[j] = std::copysign(excess, q) / (ch.z[j - 1] + ch.z[j] + ch.damping[j]);
+    }
+  }
+  // Their rates from the arriving waves' rates and the end accelerations (a node held by Coulomb friction stays).
+  void NodeRates(const Channel& ch, const double* in_rate, const double* v, double top, double bit, double* dv) const {
+    dv[0] = top, dv[m_] = bit;
+    if (ch.kelvin_voigt()) {
+      SolveKelvinVoigtNodes(ch, in_rate, top, bit, false, dv);
+      return;
+    }
+    for (int j = 1; j < m_; ++j)
+      dv[j] = v[j] != 0 || ch.coulomb[j] == 0
+                  ? Incoming(ch.z[j - 1], in_rate[2 * (j - 1)], ch.z[j], in_rate[2 * j + 1]) /
+                        (ch.z[j - 1] + ch.z[j] + ch.damping[j])
+                  : 0.0;
+  }
+  // With Kelvin-Voigt dashpots kv_k across the pieces, node j (1..m-1) balances
+  //   (Z_{j-1} + Z_j + c_j + kv_{j-1} + kv_j) v_j - kv_{j-1} v_{j-1} - kv_j v_{j+1} = 2 Z_{j-1} a + 2 Z_j b + load_j,
+  // a tridiagonal system in the internal speeds (its rates: the same matrix, without the loads). The Thomas algorithm
+  // with the pivots factored once in Prepare (no Coulomb friction here: Prepare refuses the combination).
+  void SolveKelvinVoigtNodes(const Channel& ch, const double* in, double top, double bit, bool with_loads,
+                             double* v) const {
+    double previous = 0;
+    for (int j = 1; j < m_; ++j) {
+      double rhs = Incoming(ch.z[j - 1], in[2 * (j - 1)], ch.z[j], in[2 * j + 1]) + (with_loads ? ch.load[j] : 0.0);
+      if (j == 1) rhs += ch.kv[0] * top;
+      if (j == m_ - 1) rhs += ch.kv[m_ - 1] * bit;
+      v[j] = previous = (rhs + ch.kv[j - 1] * (j > 1 ? previous : 0.0)) * ch.kv_inv_pivot[j];
+    }
+    for (int j = m_ - 2; j >= 1; --j) v[j] += ch.kv_ratio[j] * v[j + 1];
+  }
+
+  // Waves leaving every node at time t (and their rates when rate != nullptr).
   void Outgoing(double t, const State& x, const State& dx, Side side, double* out, double* rate) const {
-    arriving_.resize(2 * m_), arriving_rate_.resize(2 * m_);
+    arriving_.resize(2 * m_), arriving_rate_.resize(2 * m_), speeds_.resize(m_ + 1), speed_rates_.resize(m_ + 1);
     for (int c = 0; c < 2; ++c) {
       const Channel& ch = c == 0 ? md_.torsion : md_.axial;
-      waves_[c].Values(t - ch.tau, arriving_.data(), side);
-      if (rate) waves_[c].Derivatives(t - ch.tau, arriving_rate_.data(), side);
+      Arrivals(c, t, side, arriving_.data(), rate ? arriving_rate_.data() : nullptr);
+      NodeSpeeds(ch, arriving_.data(), EndSpeed(c, false, x), EndSpeed(c, true, x), speeds_.data());
       const int base = 2 * m_ * c;
       for (int j = 0; j <= m_; ++j) {
         const double above = j > 0 ? arriving_[2 * (j - 1)] : 0.0, below = j < m_ ? arriving_[2 * j + 1] : 0.0;
-        const double v = NodeSpeed(c, j, x, above + below);
-        if (j < m_) out[base + 2 * j] = v - below;            // down-going into section j
-        if (j > 0) out[base + 2 * (j - 1) + 1] = v - above;   // up-going into section j-1
-        if (!rate) continue;
-        const double above_rate = j > 0 ? arriving_rate_[2 * (j - 1)] : 0.0;
-        const double below_rate = j < m_ ? arriving_rate_[2 * j + 1] : 0.0;
-        double dv = 0;
-        if (j == 0) dv = c == 0 ? dx[kWtop] : dx[kVtop];
-        else if (j == m_) dv = c == 0 ? dx[kWbit] : dx[kVbit];
-        else if (v != 0 || ch.coulomb[j] == 0) dv = 2 * ch.z * (above_rate + below_rate) / (2 * ch.z + ch.damping[j]);
-        if (j < m_) rate[base + 2 * j] = dv - below_rate;
-        if (j > 0) rate[base + 2 * (j - 1) + 1] = dv - above_rate;
+        if (j < m_) out[base + 2 * j] = speeds_[j] - below;            // down-going into piece j
+        if (j > 0) out[base + 2 * (j - 1) + 1] = speeds_[j] - above;   // up-going into piece j-1
+      }
+      if (!rate) continue;
+      NodeRates(ch, arriving_rate_.data(), speeds_.data(), c == 0 ? dx[kWtop] : dx[kVtop],
+                c == 0 ? dx[kWbit] : dx[kVbit], speed_rates_.data());
+      for (int j = 0; j <= m_; ++j) {
+        if (j < m_) rate[base + 2 * j] = speed_rates_[j] - arriving_rate_[2 * j + 1];
+        if (j > 0) rate[base + 2 * (j - 1) + 1] = speed_rates_[j] - arriving_rate_[2 * (j - 1)];
       }
     }
   }
@@ -506,17 +599,27 @@ class Process {
       // Steady forward rotation: the Coulomb friction of the nodes acts as a constant torque against it.
       double s = (c == 0 ? steady_.tob : steady_.wob) + ch.damping[m_] * v - ch.load[m_] + ch.coulomb[m_];
       for (int j = m_ - 1; j >= 0; --j) {
-        initial[2 * m_ * c + 2 * j] = 0.5 * (v + s / ch.z);      // D - U = S / Z, D + U = v
-        initial[2 * m_ * c + 2 * j + 1] = 0.5 * (v - s / ch.z);
+        initial[2 * m_ * c + 2 * j] = 0.5 * (v + s / ch.z[j]);      // D - U = S / Z, D + U = v
+        initial[2 * m_ * c + 2 * j + 1] = 0.5 * (v - s / ch.z[j]);
         if (j > 0) s += ch.damping[j] * v - ch.load[j] + ch.coulomb[j];
       }
       if (c == 0) top_torque0_ = s + ch.damping[0] * v - ch.load[0];  // the top drive balances the top section
     }
     for (int c = 0; c < 2; ++c) {
-      const std::vector<double> channel(initial.begin() + 2 * m_ * c, initial.begin() + 2 * m_ * (c + 1));
-      waves_[c] = integration::HermiteHistory(2 * m_, [channel](double, double* value, double* rate) {
-        std::copy(channel.begin(), channel.end(), value);
-        std::fill(rate, rate + channel.size(), 0.0);
+      const Channel& ch = c == 0 ? md_.torsion : md_.axial;
+      run_of_[c].resize(m_);
+      for (int k = 0; k < m_; ++k) {
+        if (k == 0 || ch.tau[k] != ch.tau[k - 1]) runs_.push_back({c, k, 0, ch.tau[k]});
+        ++runs_.back().count;
+        run_of_[c][k] = static_cast<int>(runs_.size()) - 1;
+      }
+    }
+    for (const Run& r : runs_) {
+      const auto begin = initial.begin() + 2 * m_ * r.channel + 2 * r.first;
+      const std::vector<double> run(begin, begin + 2 * r.count);
+      waves_.emplace_back(2 * r.count, [run](double, double* value, double* rate) {
+        std::copy(run.begin(), run.end(), value);
+        std::fill(rate, rate + run.size(), 0.0);
       });
     }
   }
@@ -524,8 +627,9 @@ class Process {
   const Model& md_;
   int m_;
   Steady steady_;
-  // One history per channel: each is read at its own travel time, so its look-up hint stays valid.
-  std::array<integration::HermiteHistory, 2> waves_;
+  std::vector<Run> runs_;
+  std::array<std::vector<int>, 2> run_of_;  // per channel and piece: its run
+  std::vector<integration::HermiteHistory> waves_;  // one per run
   integration::HermiteHistory bit_history_;
   double top_torque0_ = 0;
   Turn turn_ = Turn::kForward;
@@ -538,7 +642,7 @@ class Process {
   int stick_onsets_ = 0;
   std::vector<StuckInterval> stuck_;
   std::vector<double> out0_, out1_, outm_, d0_, d1_;
-  mutable std::vector<double> arriving_, arriving_rate_;  // Outgoing's scratch
+  mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // Outgoing's and StringEnds' scratch
 };
 
 class AxialTorsionalModel : public PreparedModel {
@@ -631,14 +735,139 @@ class AxialTorsionalModel : public PreparedModel {
   Model md_;
 };
 
+// A section of the string (the pipe, then the BHA): geometry, viscous damping per metre, sub-sections.
+struct Section {
+  double length, outer, inner, c_t, c_a;
+  int pieces;
+  double Area() const { return kPi / 4 * (outer * outer - inner * inner); }
+  double Polar() const { return kPi / 32 * (std::pow(outer, 4) - std::pow(inner, 4)); }
+};
+struct StringSpec {
+  double length = 0;              // top drive to bit
+  std::vector<Section> sections;  // top to bottom
+  double e_mod = 0, g_mod = 0, rho = 0, rho_mud = 0;
+  double eta_t = 0, eta_a = 0;    // Kelvin-Voigt retardation times [s]
+  double side_torque_per_m = 0, side_from = 0, side_to = 0;
+};
+
+Section ReadBha(const JsonReader& c, const Section& pipe, double string_length) {
+  Section bha;
+  bha.length = c.Number("length_m", Range::Positive());
+  if (bha.length >= string_length)
+    throw InputError(c.PathOf("length_m"), "expected less than the string's length_m = " +
+                                               ReadableNumber(string_length) + " m (the BHA is its lowest part)");
+  bha.outer = c.Number("outer_diameter_m", Range::Positive());
+  bha.inner = c.Number("inner_diameter_m", Range::NonNegative());
+  if (bha.inner >= bha.outer) throw InputError(c.PathOf("inner_diameter_m"), "expected a value below outer_diameter_m");
+  bha.c_t = c.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative(), pipe.c_t);
+  bha.c_a = c.Number("axial_damping_Ns_per_m2", Range::NonNegative(), pipe.c_a);
+  // By default pieces about as long as the pipe's, so that the travel times are near each other (the step is capped
+  // at the shortest).
+  const double pipe_piece = (string_length - bha.length) / pipe.pieces;
+  const int pieces = std::clamp(static_cast<int>(std::lround(bha.length / pipe_piece)), 1, 400);
+  bha.pieces = c.Integer("subsections", 1, 400, pieces);
+  c.Finish();
+  return bha;
+}
+
+StringSpec ReadString(const JsonReader& s) {
+  StringSpec sp;
+  Section pipe;
+  sp.length = s.Number("length_m", Range::Positive());
+  pipe.outer = s.Number("outer_diameter_m", Range::Positive());
+  pipe.inner = s.Number("inner_diameter_m", Range::NonNegative());
+  if (pipe.inner >= pipe.outer)
+    throw InputError(s.PathOf("inner_diameter_m"), "expected a value below outer_diameter_m");
+  sp.e_mod = s.Number("youngs_modulus_Pa", Range::Positive());
+  sp.g_mod = s.Number("shear_modulus_Pa", Range::Positive());
+  sp.rho = s.Number("density_kg_m3", Range::Positive());
+  sp.rho_mud = s.Number("mud_density_kg_m3", Range::NonNegative(), 0.0);
+  if (sp.rho_mud >= sp.rho) throw InputError(s.PathOf("mud_density_kg_m3"), "expected a value below density_kg_m3");
+  pipe.c_t = s.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative());
+  pipe.c_a = s.Number("axial_damping_Ns_per_m2", Range::NonNegative());
+  sp.eta_t = s.Number("kelvin_voigt_s", Range::NonNegative(), 0.0);
+  sp.eta_a = s.Number("axial_kelvin_voigt_s", Range::NonNegative(), 0.0);
+  if (s.Has("side_friction")) {
+    const JsonReader f = s.Object("side_friction");
+    sp.side_torque_per_m = f.Number("torque_per_m_Nm", Range::NonNegative());
+    sp.side_from = f.Number("from_m", Range::NonNegative(), 0.0);
+    sp.side_to = f.Number("to_m", Range::NonNegative(), 1e300);
+    if (sp.side_to <= sp.side_from) throw InputError(f.PathOf("to_m"), "expected a depth below from_m");
+    f.Finish();
+  }
+  if (sp.eta_t > 0 && sp.side_torque_per_m > 0)  // a held node tied to its neighbours by dashpots: a complementarity
+    throw InputError(s.PathOf("kelvin_voigt_s"),   // problem, not the closed form the nodes use
+                     "expected 0 with side_friction (Kelvin-Voigt damping and side friction are not combined yet)");
+  pipe.pieces = s.Integer("subsections", 2, 400, 20);
+  pipe.length = sp.length;
+  sp.sections = {pipe};
+  if (s.Has("bha")) {
+    sp.sections.push_back(ReadBha(s.Object("bha"), pipe, sp.length));
+    sp.sections[0].length = sp.length - sp.sections[1].length;
+  }
+  s.Finish();
+  return sp;
+}
+
+// The Thomas algorithm's pivots for the internal nodes' tridiagonal system (NodeSpeeds): diagonally dominant, so
+// stable without pivoting.
+void FactorKelvinVoigt(Channel& ch) {
+  if (!ch.kelvin_voigt()) return;
+  const int m = static_cast<int>(ch.z.size());
+  ch.kv_ratio.assign(m + 1, 0.0), ch.kv_inv_pivot.assign(m + 1, 0.0);
+  for (int j = 1; j < m; ++j) {
+    const double diagonal = ch.z[j - 1] + ch.z[j] + ch.damping[j] + ch.kv[j - 1] + ch.kv[j];
+    ch.kv_inv_pivot[j] = 1 / (diagonal - (j > 1 ? ch.kv[j - 1] * ch.kv_ratio[j - 1] : 0.0));
+    ch.kv_ratio[j] = ch.kv[j] * ch.kv_inv_pivot[j];
+  }
+}
+
+// Channels of sub-sections, pipe then BHA: damping and buoyant weight of each piece lumped at its two nodes (half at
+// each), which keeps the d'Alembert reduction exact inside every piece.
+void BuildChannels(const StringSpec& sp, double g, Model& md) {
+  md.m = 0;
+  for (const Section& section : sp.sections) md.m += section.pieces;
+  for (Channel* ch : {&md.torsion, &md.axial}) {
+    ch->z.assign(md.m, 0.0), ch->tau.assign(md.m, 0.0);
+    ch->damping.assign(md.m + 1, 0.0), ch->load.assign(md.m + 1, 0.0), ch->coulomb.assign(md.m + 1, 0.0);
+  }
+  if (sp.eta_t > 0) md.torsion.kv.assign(md.m, 0.0);
+  if (sp.eta_a > 0) md.axial.kv.assign(md.m, 0.0);
+  int k = 0;
+  double depth = 0;  // of the top of piece k
+  for (const Section& section : sp.sections) {
+    const double piece = section.length / section.pieces, weight_per_m = (sp.rho - sp.rho_mud) * section.Area() * g;
+    for (int i = 0; i < section.pieces; ++i, ++k, depth += piece) {
+      md.torsion.z[k] = section.Polar() * std::sqrt(sp.g_mod * sp.rho);
+      md.torsion.tau[k] = piece / std::sqrt(sp.g_mod / sp.rho);
+      md.axial.z[k] = section.Area() * std::sqrt(sp.e_mod * sp.rho);
+      md.axial.tau[k] = piece / std::sqrt(sp.e_mod / sp.rho);
+      if (md.torsion.kelvin_voigt()) md.torsion.kv[k] = sp.eta_t * sp.g_mod * section.Polar() / piece;
+      if (md.axial.kelvin_voigt()) md.axial.kv[k] = sp.eta_a * sp.e_mod * section.Area() / piece;
+      for (int end = 0; end < 2; ++end) {
+        const int j = k + end;
+        md.torsion.damping[j] += 0.5 * section.c_t * piece;
+        md.axial.damping[j] += 0.5 * section.c_a * piece;
+        md.axial.load[j] += 0.5 * weight_per_m * piece;
+        // Side friction between from_m and to_m on the internal (massless) nodes, over the half piece each stands for.
+        if (j == 0 || j == md.m) continue;
+        const double lo = std::max(depth + 0.5 * end * piece, sp.side_from);
+        const double hi = std::min(depth + 0.5 * (end + 1) * piece, sp.side_to);
+        md.torsion.coulomb[j] += sp.side_torque_per_m * std::max(0.0, hi - lo);
+      }
+    }
+  }
+  for (Channel* ch : {&md.torsion, &md.axial}) FactorKelvinVoigt(*ch);
+}
+
 class AxialTorsionalKind : public ModelKind {
  public:
   std::string name() const override { return "axial_torsional"; }
   std::string description() const override {
-    return "coupled axial-torsional waves in a uniform pipe with a lumped bit/BHA and the Richard-Germay-Detournay "
-           "bit-rock law (state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); "
-           "PI top drive, hoist under constant hook force; optional Stribeck bit friction, DC motor, BHA mass "
-           "unbalance (Jeffcott rotor at the bit), axial coupling off";
+    return "coupled axial-torsional waves in a pipe with a lumped bit and the Richard-Germay-Detournay bit-rock law "
+           "(state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); PI top drive, hoist "
+           "under constant hook force; optional BHA section, Kelvin-Voigt damping, Stribeck bit friction, DC motor, "
+           "BHA mass unbalance (Jeffcott rotor at the bit), axial coupling off";
   }
   nlohmann::json FieldSchema() const override {
     return {{"string/length_m", "> 0, top drive to bit"},
@@ -650,12 +879,23 @@ class AxialTorsionalKind : public ModelKind {
             {"string/mud_density_kg_m3", ">= 0, < steel, default 0 (buoyancy only)"},
             {"string/torsional_damping_Nms_per_rad_m", "c_t >= 0, viscous, per metre"},
             {"string/axial_damping_Ns_per_m2", "c_a >= 0, viscous, per metre"},
-            {"string/subsections", "integer in [2, 400], default 20: damping and weight lumped at this many nodes"},
+            {"string/subsections", "integer in [2, 400], default 20: the pipe's pieces (damping and weight lumped at "
+                                   "their nodes)"},
+            {"string/kelvin_voigt_s", "eta >= 0, default 0: Kelvin-Voigt torsion T += -eta G J dw/ds (a dashpot "
+                                      "eta G J / piece length across every piece); not with side_friction"},
+            {"string/axial_kelvin_voigt_s", "eta_a >= 0, default 0: axial N += eta_a E A dv/ds"},
+            {"string/bha/length_m", "> 0, < string/length_m: drill collars of the same steel between the pipe and "
+                                    "the bit (string/length_m stays top drive to bit)"},
+            {"string/bha/outer_diameter_m", "> 0"},
+            {"string/bha/inner_diameter_m", ">= 0, < outer"},
+            {"string/bha/subsections", "integer in [1, 400], default: pieces about as long as the pipe's"},
+            {"string/bha/torsional_damping_Nms_per_rad_m", ">= 0, default the pipe's"},
+            {"string/bha/axial_damping_Ns_per_m2", ">= 0, default the pipe's"},
             {"string/side_friction/torque_per_m_Nm", ">= 0: Coulomb friction of the pipe against the borehole "
                                                      "(set-valued: a stopped piece of pipe is held)"},
             {"string/side_friction/from_m", ">= 0, default 0 (measured depth where it starts)"},
             {"string/side_friction/to_m", "> from_m, default: the bit"},
-            {"bit/inertia_kgm2", "J_b > 0 (bit and lumped BHA)"},
+            {"bit/inertia_kgm2", "J_b > 0 (bit, and the BHA unless string/bha distributes it)"},
             {"bit/mass_kg", "M_b > 0"},
             {"bit/radius_m", "a > 0"},
             {"bit/blades", "n, integer in [1, 20]"},
@@ -685,35 +925,14 @@ class AxialTorsionalKind : public ModelKind {
             {"top_drive/motor/inductance_H", "La > 0"},
             {"hoist/mass_kg", "M_td > 0"},
             {"hoist/weight_on_bit_N", "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
-                                      "on bit (H = buoyant weight - W0 - c_a L V0)"},
+                                      "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
             {"gravity_m_s2", "> 0, default 9.81"}};
   }
 
   std::unique_ptr<PreparedModel> Prepare(const JsonReader& r) const override {
     Model md;
-    const JsonReader s = r.Object("string");
-    md.length = s.Number("length_m", Range::Positive());
-    const double d_o = s.Number("outer_diameter_m", Range::Positive());
-    const double d_i = s.Number("inner_diameter_m", Range::NonNegative());
-    if (d_i >= d_o) throw InputError(s.PathOf("inner_diameter_m"), "expected a value below outer_diameter_m");
-    const double e_mod = s.Number("youngs_modulus_Pa", Range::Positive());
-    const double g_mod = s.Number("shear_modulus_Pa", Range::Positive());
-    const double rho = s.Number("density_kg_m3", Range::Positive());
-    const double rho_mud = s.Number("mud_density_kg_m3", Range::NonNegative(), 0.0);
-    if (rho_mud >= rho) throw InputError(s.PathOf("mud_density_kg_m3"), "expected a value below density_kg_m3");
-    const double c_t = s.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative());
-    const double c_a = s.Number("axial_damping_Ns_per_m2", Range::NonNegative());
-    double side_torque_per_m = 0, side_from = 0, side_to = 0;
-    if (s.Has("side_friction")) {
-      const JsonReader f = s.Object("side_friction");
-      side_torque_per_m = f.Number("torque_per_m_Nm", Range::NonNegative());
-      side_from = f.Number("from_m", Range::NonNegative(), 0.0);
-      side_to = f.Number("to_m", Range::NonNegative(), 1e300);
-      if (side_to <= side_from) throw InputError(f.PathOf("to_m"), "expected a depth below from_m");
-      f.Finish();
-    }
-    md.m = s.Integer("subsections", 2, 400, 20);
-    s.Finish();
+    const StringSpec string = ReadString(r.Object("string"));
+    md.length = string.length;
     const JsonReader b = r.Object("bit");
     md.bit_inertia = b.Number("inertia_kgm2", Range::Positive());
     md.bit_mass = b.Number("mass_kg", Range::Positive());
@@ -772,36 +991,14 @@ class AxialTorsionalKind : public ModelKind {
                                                         ReadableNumber(md.ContactForce()) + " N (no cutting otherwise; "
                                                         "a = /model/bit/radius_m, sigma l = /model/rock/sigma_l_N_per_m)");
 
-    // Channels: m sub-sections; damping and buoyant weight lumped at the nodes (half at the ends).
-    const double area = kPi / 4 * (d_o * d_o - d_i * d_i), polar = kPi / 32 * (std::pow(d_o, 4) - std::pow(d_i, 4));
-    const double piece = md.length / md.m, weight_per_m = (rho - rho_mud) * area * g;
-    md.torsion.z = polar * std::sqrt(g_mod * rho);
-    md.torsion.tau = piece / std::sqrt(g_mod / rho);
-    md.axial.z = area * std::sqrt(e_mod * rho);
-    md.axial.tau = piece / std::sqrt(e_mod / rho);
-    for (Channel* ch : {&md.torsion, &md.axial}) {
-      ch->damping.assign(md.m + 1, 0.0);
-      ch->load.assign(md.m + 1, 0.0);
-      ch->coulomb.assign(md.m + 1, 0.0);
-    }
-    for (int j = 0; j <= md.m; ++j) {
-      const double share = (j == 0 || j == md.m) ? 0.5 : 1.0;
-      md.torsion.damping[j] = share * c_t * piece;
-      md.axial.damping[j] = share * c_a * piece;
-      md.axial.load[j] = share * weight_per_m * piece;
-      // Side friction of the pipe between from_m and to_m, on the internal (massless) nodes that stand for it.
-      const double depth = j * piece;
-      if (j > 0 && j < md.m) {
-        const double lo = std::max(depth - 0.5 * piece, side_from), hi = std::min(depth + 0.5 * piece, side_to);
-        md.torsion.coulomb[j] = side_torque_per_m * std::max(0.0, hi - lo);
-      }
-    }
-    md.axial.load[md.m] += md.bit_mass * g * (1 - rho_mud / rho);
-    // Hook force for steady drilling with W0 at the initial set-point: H = buoyant weight - W0 - c_a L V0.
+    BuildChannels(string, g, md);
+    md.axial.load[md.m] += md.bit_mass * g * (1 - string.rho_mud / string.rho);
+    // Hook force for steady drilling with W0 at the initial set-point: H = buoyant weight - W0 - sum c_a L V0.
     const Steady steady = SteadyDrilling(md, md.top_speed.Value(0.0));
-    double weight = 0;
+    double weight = 0, drag = 0;
     for (double l : md.axial.load) weight += l;
-    md.hook_force = weight - md.weight_on_bit - c_a * md.length * steady.rop;
+    for (const Section& section : string.sections) drag += section.c_a * section.length * steady.rop;
+    md.hook_force = weight - md.weight_on_bit - drag;
     return std::make_unique<AxialTorsionalModel>(std::move(md));
   }
 };
