@@ -223,9 +223,8 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
     const double estimate = std::clamp(bit_inertia / (pipe.density * collar_polar), 30.0, 400.0);
     Effect e{"bha", "a distributed drill-collar section above the bit (6.75 x 2.8125 in)", {}, nullptr, 0, ""};
     e.parameters = {{"length_m", "m", 30, 400, false, estimate}};
-    e.apply = [collar_od, collar_id, bit_mass, bit_inertia, pipe](nlohmann::json& d, const std::vector<double>& v) {
+    e.apply = [collar_od, collar_id, bit_mass, bit_inertia](nlohmann::json& d, const std::vector<double>& v) {
       d["model"]["string"]["bha"] = {{"length_m", v[0]}, {"outer_diameter_m", collar_od}, {"inner_diameter_m", collar_id}};
-      d["model"]["string"]["length_m"] = pipe.length - v[0];  // the measured depth stays
       // The lumped body keeps the bit and near-bit sub, taken as 5 % of the lumped BHA.
       d["model"]["bit"]["inertia_kgm2"] = 0.05 * bit_inertia;
       d["model"]["bit"]["mass_kg"] = 0.05 * bit_mass;
