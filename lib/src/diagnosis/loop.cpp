@@ -20,6 +20,7 @@ namespace drillwave::diagnosis {
 namespace {
 
 constexpr double kFailedRun = 1e6;  // objective of a run that fails numerically or that the case rejects
+constexpr double kWorkFactor = 6;  // a candidate's run may cost this many times the baseline's evaluations
 
 std::string Joined(const std::vector<std::string>& names) {
   std::string s;
@@ -144,6 +145,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   // Runs that differ only in their sensors (a telemetry delay, the noise's draw) share one simulation.
   std::mutex cache_mutex;
   std::map<std::string, std::shared_ptr<const cases::RunResult>> simulations;
+  double evaluations_per_second = 0;  // the baseline's, once it has run
   auto run = [&](nlohmann::json doc, double duration) {
     doc["simulation"]["duration_s"] = duration;
     const auto window = nlohmann::json::json_pointer("/statistics/window_s");
@@ -161,7 +163,12 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
       if (it != simulations.end()) simulated = it->second;
     }
     if (!simulated) {
-      simulated = std::make_shared<const cases::RunResult>(cases::RunCase(cases::ParseCase(doc)).result);
+      cases::Case c = cases::ParseCase(doc);
+      // A candidate's run may cost at most kWorkFactor times the baseline's work per simulated second: a corner of
+      // the parameter box that makes the model stiff fails as a run instead of taking the machine's time and memory.
+      if (evaluations_per_second > 0)
+        c.settings.integrator.max_evaluations = static_cast<long>(kWorkFactor * evaluations_per_second * duration);
+      simulated = std::make_shared<const cases::RunResult>(cases::RunCase(c).result);
       const std::lock_guard<std::mutex> lock(cache_mutex);
       if (simulations.size() >= 64) simulations.clear();  // a bound on memory; fits revisit recent points
       simulations.emplace(key, simulated);
@@ -176,6 +183,11 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   say("baseline: running " + Fixed(full_duration, 0) + " s simulated");
   loop.baseline_model = run(base, full_duration);
   ++loop.model_runs;
+  {
+    const auto& first = *simulations.begin()->second;  // the only simulation so far
+    const auto it = first.summary.find("derivative_evaluations");
+    if (it != first.summary.end() && it->is_number()) evaluations_per_second = it->get<double>() / full_duration;
+  }
   CheckScale(rec, loop.baseline_model, o.maps);
   loop.baseline_fit = MeasureFeatures(loop.baseline_model, o.fit_begin_s, o.fit_end_s, o.features);
   loop.baseline_held_out = MeasureFeatures(loop.baseline_model, o.held_out_begin_s, o.held_out_end_s, o.features);
@@ -337,6 +349,60 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     const double reference_aic = std::min(base_candidate.aic, loop.baseline_aic);
     lead = best_of(first, reference_error, reference_aic);
     if (lead >= 0) loop.kept = lead;
+  }
+  // Backward elimination: forward selection may have started from an effect that only stood in for others. Each
+  // effect of the kept set must earn its place against the set without it (fitted from the kept values); while one
+  // does not, the smaller set stands.
+  auto indices_of = [&](const Candidate& c) {
+    std::vector<int> set;
+    for (const std::string& name : c.effects)
+      for (int i : modelable)
+        if (loop.proposals[i].name == name) set.push_back(i);
+    return set;
+  };
+  bool shrunk = true;
+  while (shrunk && loop.kept >= 0 && loop.candidates[loop.kept].effects.size() >= 2) {
+    shrunk = false;
+    const Candidate full = loop.candidates[loop.kept];
+    const std::vector<int> set = indices_of(full);
+    std::vector<std::vector<int>> subsets;
+    for (std::size_t drop = 0; drop < set.size(); ++drop) {
+      std::vector<int> subset;
+      for (std::size_t k = 0; k < set.size(); ++k)
+        if (k != drop) subset.push_back(set[k]);
+      subsets.push_back(subset);
+    }
+    auto fitted_already = [&](const std::vector<int>& subset) {
+      for (std::size_t i = 0; i < loop.candidates.size(); ++i)
+        if (indices_of(loop.candidates[i]) == subset && loop.candidates[i].failure.empty()) return static_cast<int>(i);
+      return -1;
+    };
+    std::vector<std::vector<int>> to_fit;
+    for (const auto& subset : subsets)
+      if (fitted_already(subset) < 0) to_fit.push_back(subset);
+    if (!to_fit.empty()) say("checking each effect of " + Joined(full.effects) + " against the set without it");
+    for (Candidate& c : ParallelMap(to_fit.size(), std::max(1, o.threads), [&](std::size_t i) {
+           std::vector<double> start;  // the kept fit's values of the effects that remain
+           std::size_t k = 0;
+           for (int effect : set) {
+             const std::size_t n = loop.proposals[effect].parameters.size();
+             if (std::find(to_fit[i].begin(), to_fit[i].end(), effect) != to_fit[i].end())
+               start.insert(start.end(), full.unit_values.begin() + k, full.unit_values.begin() + k + n);
+             k += n;
+           }
+           return fit_candidate(to_fit[i], start);
+         }))
+      loop.candidates.push_back(std::move(c));
+    for (const auto& subset : subsets) {
+      const int smaller = fitted_already(subset);
+      if (smaller >= 0 && !qualifies(full, loop.candidates[smaller].held_out_error, loop.candidates[smaller].aic) &&
+          qualifies(loop.candidates[smaller], loop.baseline_held_out_error, loop.baseline_aic)) {
+        say(Joined(full.effects) + " does not beat " + Joined(loop.candidates[smaller].effects) + " by the margin");
+        loop.kept = smaller;
+        shrunk = true;
+        break;
+      }
+    }
   }
   if (loop.kept >= 0) loop.candidates[loop.kept].kept = true;
   for (const Candidate& c : loop.candidates) loop.model_runs += c.evaluations + (c.failure.empty() ? 1 : 0);

@@ -9,7 +9,8 @@
 //      the feature distance (features.hpp): differences counted in each feature's own variability.
 //   3. Rules read the baseline's differences as evidence and propose effects (effects.hpp); the strongest the case
 //      can model are fitted alone on the fit window (NLopt, bounded); then forward selection: the best so far is
-//      extended by each other effect in turn while an extension qualifies.
+//      extended by each other effect in turn while an extension qualifies; then backward elimination: an effect
+//      the kept set does not need (the set without it, refitted, is not beaten by the margin) is dropped.
 //   4. A candidate is kept only when its held-out error falls below (1 - margin) of the baseline's and an
 //      information criterion on the fit window (AIC over the features) agrees; an extension only when it beats what
 //      it extends the same way. The fitted parameters get uncertainties from the objective's curvature.
