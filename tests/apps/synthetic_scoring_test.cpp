@@ -2,8 +2,8 @@
 // simulator's, with concealed effects) from the baseline case and the operator's sidecar, then scored against the
 // recordings' KEY — which only this test reads, never the tool. A recording passes when every concealed effect is
 // named, nothing is named on a base recording, and the held-out error is lower after than before wherever there is
-// an effect. Recordings whose effects drillwave cannot yet model are labelled `scoring` in tests/CMakeLists.txt and
-// kept out of the default test run; scripts/score-synthetic.sh runs them all.
+// an effect. The test is labelled `scoring` in tests/CMakeLists.txt (1-8 minutes a recording, and not every recording
+// passes yet) and kept out of the default test run; scripts/score-synthetic.sh runs it.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
