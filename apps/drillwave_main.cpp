@@ -166,19 +166,30 @@ std::pair<double, double> ModelSpan(const Case& c, double offset_s) {
   return {-offset_s, c.settings.duration_s - offset_s};
 }
 
-int Compare(const std::string& file, const std::string& recording_file, const std::vector<std::string>& overrides,
-            const std::vector<std::string>& map_texts, const std::string& window, const std::string& out_dir) {
+nlohmann::json LoadSidecar(const std::string& sidecar_file, const nlohmann::json& doc, double warmup_s) {
+  return drillwave::diagnosis::CaseFromSidecar(drillwave::io::LoadJsonFile(sidecar_file), doc, warmup_s, sidecar_file);
+}
+
+int Compare(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
+            const std::vector<std::string>& overrides, const std::vector<std::string>& map_texts,
+            const std::string& window, const std::string& out_dir) {
   namespace dg = drillwave::diagnosis;
-  const drillwave::cases::Case c = drillwave::cases::ParseCase(LoadCaseDocument(file, overrides));
+  nlohmann::json doc = LoadCaseDocument(file, overrides);
+  // With a sidecar, the model runs the warm-up first and is compared in recording time, from 5 s on by default.
+  const double offset = sidecar_file.empty() ? 0 : dg::kSidecarWarmupS;
+  if (!sidecar_file.empty()) doc = LoadSidecar(sidecar_file, doc, offset);
+  const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
   const dg::Recording recording = dg::LoadRecording(recording_file);
-  const auto [begin, end] = Window(window);
-  const auto [model_begin, model_end] = ModelSpan(c, 0);
+  auto [begin, end] = Window(window);
+  if (window.empty() && !sidecar_file.empty()) begin = 5;
+  const auto [model_begin, model_end] = ModelSpan(c, offset);
   dg::CheckWindow(recording, model_begin, model_end, begin, end);
   const auto maps = dg::ResolveChannelMaps(map_texts, recording, dg::ProbeChannels(c));
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: running case '" << c.name << "' (kind " << c.kind << ", " << c.settings.duration_s
             << " s simulated) against " << recording_file << std::endl;
-  const auto run = drillwave::cases::RunCase(c);
+  auto run = drillwave::cases::RunCase(c);
+  for (double& t : run.result.time_s) t -= offset;  // recording time
   const dg::Comparison comparison = dg::Compare(recording, run.result, maps, begin, end);
   dg::WriteComparison(recording, run.result, maps, comparison, out_dir);
   for (const auto& f : comparison.findings) std::cout << "  - " << f << "\n";
@@ -187,9 +198,6 @@ int Compare(const std::string& file, const std::string& recording_file, const st
   return 0;
 }
 
-nlohmann::json LoadSidecar(const std::string& sidecar_file, const nlohmann::json& doc, double warmup_s) {
-  return drillwave::diagnosis::CaseFromSidecar(drillwave::io::LoadJsonFile(sidecar_file), doc, warmup_s, sidecar_file);
-}
 
 int Fit(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
         const std::vector<std::string>& overrides,
@@ -373,6 +381,8 @@ int main(int argc, char** argv) {
   compare->add_option("--map", maps, "recording_channel=model_channel[*scale], e.g. tob_Nm=bit_torque_Nm; channels "
                                      "not mapped are compared with the model channel of the same name");
   compare->add_option("--window", window, "begin,end [s] of the comparison (default: all both cover)");
+  compare->add_option("--sidecar", sidecar_file, "a synthetic recording's operator sidecar (as for diagnose): the model "
+                                                 "runs its 30 s warm-up first and is compared in recording time");
   compare->add_option("--out,-o", compare_out, "output folder (written all or nothing)");
   compare->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 
@@ -450,7 +460,7 @@ int main(int argc, char** argv) {
     if (fit->parsed())
       return Fit(case_file, recording_file, sidecar_file, overrides, maps, window, fit_params, fit_features,
                  max_evaluations, fit_out);
-    if (compare->parsed()) return Compare(case_file, recording_file, overrides, maps, window, compare_out);
+    if (compare->parsed()) return Compare(case_file, recording_file, sidecar_file, overrides, maps, window, compare_out);
     if (inspect->parsed()) return Inspect(recording_file, inspect_out, bit_channel, top_channel);
     if (stability->parsed()) {
       if (sweep_pointer.empty() != sweep_values.empty())

@@ -276,6 +276,20 @@ TEST_F(Cli, DiagnoseRejectsABadSidecarAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST_F(Cli, CompareWithASidecarRunsTheWarmUpAndComparesInRecordingTime) {
+  const fs::path synthetic = fs::path(DRILLWAVE_SHARED_DIR) / "recordings" / "synthetic";
+  if (!fs::exists(synthetic / "rec07.csv")) GTEST_SKIP() << "the synthetic recordings are not at " << synthetic;
+  const std::string out = (dir_ / "cmp").string();
+  const Outcome o = RunTool("compare " + std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/baseline-60rpm.json " +
+                            (synthetic / "rec07.csv").string() + " --sidecar " + (synthetic / "rec07.json").string() +
+                            " -o " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const nlohmann::json c = nlohmann::json::parse(std::ifstream(fs::path(out) / "comparison.json"));
+  // Recording time, the first 5 s left to settle, to the recording's end (100 s): not the model's own time.
+  EXPECT_DOUBLE_EQ(c["window_s"][0].get<double>(), 5.0);
+  EXPECT_NEAR(c["window_s"][1].get<double>(), 100.0, 0.02);
+}
+
 TEST_F(Cli, KindsListsFieldsWithUnits) {
   const Outcome o = RunTool("kinds");
   EXPECT_EQ(o.exit_code, 0);
