@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(g++ cmake make libeigen3-dev libboost-dev nlohmann-json3-dev libcli11-dev libgtest-dev libnlopt-cxx-dev
           pybind11-dev python3-dev python3-numpy python3-pytest chromium)
 # `install-deps.sh fuzz` adds clang for the libFuzzer targets (scripts/fuzz.sh).
-[[ "${1:-}" == fuzz ]] && packages+=(clang)
+[[ "${1:-}" == fuzz ]] && packages+=(clang libclang-rt-dev)  # libFuzzer's runtime is only recommended by clang
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
