@@ -25,18 +25,6 @@ std::vector<double> Resample(const std::vector<double>& t, const std::vector<dou
   return out;
 }
 
-double Mean(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? std::nan("") : s / v.size();
-}
-double Std(const std::vector<double>& v) {
-  const double m = Mean(v);
-  double s = 0;
-  for (double x : v) s += (x - m) * (x - m);
-  return v.empty() ? std::nan("") : std::sqrt(s / v.size());
-}
-
 // The features read from the two inspections, in the order Compare lists them before sorting.
 const std::pair<const char*, double Inspection::*> kInspectionFeatures[] = {
     {"bit_oscillation_period_s", &Inspection::bit_oscillation_period_s},

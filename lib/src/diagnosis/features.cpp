@@ -13,19 +13,6 @@ namespace {
 
 const double kNaN = std::nan("");
 
-double Mean(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? kNaN : s / v.size();
-}
-
-double Std(const std::vector<double>& v) {
-  const double m = Mean(v);
-  double s = 0;
-  for (double x : v) s += (x - m) * (x - m);
-  return v.empty() ? kNaN : std::sqrt(s / v.size());
-}
-
 // Centred moving average over 2 half + 1 samples (shorter at the ends).
 std::vector<double> MovingAverage(const std::vector<double>& x, int half) {
   if (half <= 0) return x;

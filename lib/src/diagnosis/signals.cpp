@@ -6,6 +6,19 @@
 
 namespace drillwave::diagnosis {
 
+double Mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? std::nan("") : s / v.size();
+}
+
+double Std(const std::vector<double>& v) {
+  const double m = Mean(v);
+  double s = 0;
+  for (double x : v) s += (x - m) * (x - m);
+  return v.empty() ? std::nan("") : std::sqrt(s / v.size());
+}
+
 double Median(std::vector<double> v) {
   if (v.empty()) return std::nan("");
   const std::size_t mid = v.size() / 2;

@@ -32,4 +32,8 @@ double Correlation(const std::vector<double>& a, const std::vector<double>& b);
 
 double Median(std::vector<double> v);
 
+// Mean and population standard deviation (NaN for an empty series).
+double Mean(const std::vector<double>& v);
+double Std(const std::vector<double>& v);
+
 }  // namespace drillwave::diagnosis
