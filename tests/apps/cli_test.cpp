@@ -193,11 +193,11 @@ TEST_F(Cli, StabilityReportsTheSteadyStateOrSaysWhyNot) {
 TEST_F(Cli, StabilityMapWhoseAnalysisFailsInAWorkerExitsTwo) {
   // The first value passes the check before the threads start; the damped ones fail inside the workers.
   auto doc = base_;
-  doc["model"]["string"]["viscous_damping_Nms_per_rad_m"] = 0.0;
+  doc["model"]["string"]["torsional_damping_Nms_per_rad_m"] = 0.0;
   const std::string file = Write(doc.dump());
   for (const char* jobs : {"1", "2"}) {
     const std::string out = (dir_ / (std::string("map") + jobs)).string();
-    const Outcome o = RunTool("stability " + file + " -p /model/string/viscous_damping_Nms_per_rad_m -v 0:0.3:4 -j " +
+    const Outcome o = RunTool("stability " + file + " -p /model/string/torsional_damping_Nms_per_rad_m -v 0:0.3:4 -j " +
                               jobs + " -o " + out);
     EXPECT_EQ(o.exit_code, 2) << jobs << " jobs: " << o.output;
     EXPECT_NE(o.output.find("/model: no linearization for this string"), std::string::npos) << o.output;

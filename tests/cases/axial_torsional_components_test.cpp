@@ -21,7 +21,7 @@ namespace {
 // last `window` s.
 nlohmann::json Nominal(double rpm, double duration, double window) {
   nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
-  doc["model"]["top_drive"]["speed_rad_s"] = rpm * M_PI / 30;
+  doc["model"]["top"]["speed_rad_s"] = rpm * M_PI / 30;
   doc["simulation"]["duration_s"] = duration;
   doc["statistics"]["window_s"] = {duration - window, duration};
   doc.erase("expect");
@@ -31,7 +31,7 @@ nlohmann::json Nominal(double rpm, double duration, double window) {
 nlohmann::json Bumped(double rpm, double duration, double window) {
   nlohmann::json doc = Nominal(rpm, duration, window);
   const double w = rpm * M_PI / 30;
-  doc["model"]["top_drive"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}}}};
+  doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}}}};
   return doc;
 }
 
@@ -84,7 +84,7 @@ TEST(AxialTorsionalStribeck, StaticMuEqualToMuIsTheCoulombRun) {
 TEST(AxialTorsionalStribeck, SteadyBitTorqueIsTheClosedForm) {
   nlohmann::json doc = Nominal(60, 60, 10);
   const double w1 = 2 * M_PI, w2 = 100 * M_PI / 30;
-  doc["model"]["top_drive"]["speed_rad_s"] = {{"knots", {{0, w1}, {1, w1}, {3, w2}}}};
+  doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w1}, {1, w1}, {3, w2}}}};
   doc["model"]["rock"]["stribeck"] = {{"static_mu", 1.1}, {"velocity_rad_s", 6.8}};
   doc["model"]["axial_coupling"] = false;
   doc["model"]["string"]["torsional_damping_Nms_per_rad_m"] = 0.5;
@@ -181,7 +181,7 @@ nlohmann::json Motor(double inductance) {
 
 TEST(AxialTorsionalMotor, HoldsTheSteadyCurrent) {
   nlohmann::json doc = Nominal(60, 2, 2);
-  doc["model"]["top_drive"]["motor"] = Motor(0.005);
+  doc["model"]["top"]["motor"] = Motor(0.005);
   const CaseRun run = RunDoc(doc);
   const SteadyClosedForm cf(doc);
   const double expected = (cf.BitTorque(0.6) + cf.drag_per_speed * 2 * M_PI) / 50;
@@ -198,12 +198,12 @@ TEST(AxialTorsionalMotor, SmallInductanceTendsToThePiWithAddedDamping) {
   nlohmann::json doc = Bumped(60, 8, 8);
   doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-7;
   nlohmann::json pi = doc;
-  pi["model"]["top_drive"]["kp_Nms_per_rad"] = doc["model"]["top_drive"]["kp_Nms_per_rad"].get<double>() + 50 * 50 / 0.05;
+  pi["model"]["top"]["kp_Nms_per_rad"] = doc["model"]["top"]["kp_Nms_per_rad"].get<double>() + 50 * 50 / 0.05;
   const CaseRun pi_run = RunDoc(pi);
   const auto& reference = Channel(pi_run, "bit_rpm");
   std::vector<double> errors;
   for (double la : {1e-3, 1e-4, 1e-5}) {
-    doc["model"]["top_drive"]["motor"] = Motor(la);
+    doc["model"]["top"]["motor"] = Motor(la);
     const CaseRun run = RunDoc(doc);
     const auto& bit = Channel(run, "bit_rpm");
     double worst = 0;
@@ -221,10 +221,10 @@ TEST(AxialTorsionalMotor, SmallInductanceTendsToThePiWithAddedDamping) {
 // current decays as exp(-t R / La), while the top drive (made heavy) keeps its speed.
 TEST(AxialTorsionalMotor, CurrentDecaysWithTimeConstantLaOverR) {
   nlohmann::json doc = Nominal(60, 0.5, 0.5);
-  doc["model"]["top_drive"]["motor"] = Motor(0.005);
-  doc["model"]["top_drive"]["kp_Nms_per_rad"] = 0;
-  doc["model"]["top_drive"]["ki_Nm_per_rad"] = 0;
-  doc["model"]["top_drive"]["inertia_kgm2"] = 1e12;
+  doc["model"]["top"]["motor"] = Motor(0.005);
+  doc["model"]["top"]["kp_Nms_per_rad"] = 0;
+  doc["model"]["top"]["ki_Nm_per_rad"] = 0;
+  doc["model"]["top"]["inertia_kgm2"] = 1e12;
   doc["simulation"]["output_interval_s"] = 0.001;
   const CaseRun run = RunDoc(doc);
   const auto& current = Channel(run, "top_current_A");

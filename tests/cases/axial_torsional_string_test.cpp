@@ -35,11 +35,11 @@ nlohmann::json WithBha(double rpm) {
   doc["model"]["string"]["bha"] = {{"length_m", 189.4}, {"outer_diameter_m", kCollarOd}, {"inner_diameter_m", kCollarId}};
   doc["model"]["bit"]["inertia_kgm2"] = 3;
   doc["model"]["bit"]["mass_kg"] = 800;
-  doc["model"]["top_drive"]["speed_rad_s"] = rpm * M_PI / 30;
+  doc["model"]["top"]["speed_rad_s"] = rpm * M_PI / 30;
   return doc;
 }
 void Bump(nlohmann::json& doc, double w, double t0, double factor) {  // set-point w, factor x w over [t0, t0 + 1] s
-  doc["model"]["top_drive"]["speed_rad_s"] = {{"knots", {{0, w}, {t0, w}, {t0 + 0.5, factor * w}, {t0 + 1, w}}}};
+  doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {t0, w}, {t0 + 0.5, factor * w}, {t0 + 1, w}}}};
 }
 const std::vector<double>& Values(const CaseRun& run, const std::string& name) { return run.result.channel(name).values; }
 
@@ -164,7 +164,7 @@ TEST(AxialTorsionalString, BhaJunctionTransmitsTheDalembertFraction) {
   // Weight on bit just above a sigma l: a shallow cut, whose torque hardly answers the speed change (at 90 kN the
   // shorter cut delay of the faster bit thins the cut and adds 4 % to the step).
   doc["model"]["hoist"]["weight_on_bit_N"] = 50000;
-  doc["model"]["top_drive"]["speed_rad_s"] = {{"knots", {{0, w}, {t0, w}, {t0 + 0.01, 1.1 * w}}}};
+  doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {t0, w}, {t0 + 0.01, 1.1 * w}}}};
   const double tau_p = TorsionalTravelTime(2600 - 189.4), tau_c = TorsionalTravelTime(189.4);
   doc["simulation"]["duration_s"] = t0 + tau_p + tau_c + 0.4;
   doc["simulation"]["output_interval_s"] = 0.0005;

@@ -18,7 +18,7 @@ namespace {
 nlohmann::json Baseline(double rpm) {
   nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
   const double w = rpm * M_PI / 30;
-  doc["model"]["top_drive"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}}}};
+  doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}}}};
   return doc;
 }
 
@@ -26,7 +26,7 @@ nlohmann::json Baseline(double rpm) {
 // BASELINE.md lists 0.01279 m/rev, 46 m/h at 60 rpm and 5300 N m for W0 = 90 kN.
 TEST(AxialTorsional, SteadyDrillingIsHeldExactlyWithoutADisturbance) {
   nlohmann::json doc = Baseline(60);
-  doc["model"]["top_drive"]["speed_rad_s"] = 2 * M_PI;  // no disturbance at all
+  doc["model"]["top"]["speed_rad_s"] = 2 * M_PI;  // no disturbance at all
   doc["simulation"]["duration_s"] = 2;
   doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-9;
   doc["statistics"]["window_s"] = {0, 2};
@@ -107,7 +107,7 @@ TEST(AxialTorsional, ReproducesTheFeaturesOfTheBaseRecording) {
   // rec03: the baseline with no concealed effect (its sidecar: 2000 m, 90 kN, 60 rpm, then 150 rpm from 55-65 s).
   nlohmann::json doc = Baseline(60);
   const double w = 2 * M_PI;
-  doc["model"]["top_drive"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}, {55, w}, {65, 2.5 * w}, {120, 2.5 * w}}}};
+  doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}, {55, w}, {65, 2.5 * w}, {120, 2.5 * w}}}};
   doc["simulation"]["duration_s"] = 120;
   const auto model = RunCase(ParseCase(doc)).result;
   const auto recording = diagnosis::LoadRecording(dir + "/rec03.csv");

@@ -104,10 +104,10 @@ TEST(CaseStability, AMapStopsAtAValueWithoutALinearizationWhateverTheThreads) {
   // Viscous damping splits the string into dashpot subsections, which the linearization does not cover: the map's
   // first value (no damping) passes the check before the threads start and the later ones fail in the workers.
   nlohmann::json doc = LoadCase("saldivar-stickslip");
-  doc["model"]["string"]["viscous_damping_Nms_per_rad_m"] = 0.0;
+  doc["model"]["string"]["torsional_damping_Nms_per_rad_m"] = 0.0;
   for (int jobs : {1, 2}) {
     try {
-      StabilityMap(doc, {"/model/string/viscous_damping_Nms_per_rad_m", {0.0, 0.1, 0.2}, jobs});
+      StabilityMap(doc, {"/model/string/torsional_damping_Nms_per_rad_m", {0.0, 0.1, 0.2}, jobs});
       FAIL() << "a damped string has no linearization (" << jobs << " jobs)";
     } catch (const InputError& e) {
       EXPECT_EQ(e.json_path(), "/model");

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 
 namespace drillwave::cases {
@@ -29,9 +30,9 @@ struct EnergyBudget {
 // independent of the integrated energy states the kind carries.
 EnergyBudget BudgetFromChannels(const nlohmann::json& doc, const RunResult& r) {
   const auto& m = doc.at("model");
-  const double jt = m.at("top_inertia_kgm2"), jb = m.at("bit_inertia_kgm2"), k = m.at("stiffness_Nm_per_rad"),
-               c = m.at("shaft_damping_Nms_per_rad"), dt_ = m.at("top_damping_Nms_per_rad"),
-               db = m.at("bit_damping_Nms_per_rad");
+  const double jt = m.at("top").at("inertia_kgm2"), jb = m.at("bit").at("inertia_kgm2"),
+               k = m.at("string").at("stiffness_Nm_per_rad"), c = m.at("string").at("damping_Nms_per_rad"),
+               dt_ = m.at("top").at("damping_Nms_per_rad"), db = m.at("bit").at("damping_Nms_per_rad");
   constexpr double kRpm = 60.0 / (2.0 * M_PI);
   const auto& t = r.time_s;
   const auto& top = r.channel("top_rpm").values;
@@ -66,10 +67,18 @@ struct Variant {
 
 class TwoMassEnergy : public ::testing::TestWithParam<Variant> {};
 
+// Replaces the top's drive (type and its fields) and keeps the top's inertia and damper.
+void ReplaceDrive(nlohmann::json& doc, nlohmann::json drive) {
+  const nlohmann::json& top = doc["model"]["top"];
+  for (const char* kept : {"inertia_kgm2", "damping_Nms_per_rad"})
+    if (top.contains(kept)) drive[kept] = top[kept];
+  doc["model"]["top"] = std::move(drive);
+}
+
 TEST_P(TwoMassEnergy, WorkInEqualsDissipationPlusStoredEnergy) {
   const Variant& v = GetParam();
   nlohmann::json doc = LoadCase(v.base_case);
-  if (*v.top) doc["model"]["top"] = nlohmann::json::parse(v.top);
+  if (*v.top) ReplaceDrive(doc, nlohmann::json::parse(v.top));
   if (*v.friction) doc["model"]["bit"]["friction"] = nlohmann::json::parse(v.friction);
   doc["simulation"]["duration_s"] = 120;
   doc["simulation"]["output_interval_s"] = 1e-3;
@@ -108,7 +117,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(TwoMass, SteadyStateUnderConstantTorqueWithViscousBit) {
   // Constant top torque T, viscous bit c_v: both inertias end at w = T / (d_top + d_bit + c_v), twist (T - d_top w) / k.
   nlohmann::json doc = LoadCase("two-mass-stickslip");
-  doc["model"]["top"] = {{"type", "torque"}, {"torque_Nm", 5000.0}};
+  ReplaceDrive(doc, {{"type", "torque"}, {"torque_Nm", 5000.0}});
   doc["model"]["bit"]["friction"] = {{"law", "viscous"}, {"c_Nms_per_rad", 25.0}};
   doc["simulation"]["duration_s"] = 300;
   doc["statistics"]["window_s"] = {250, 300};
@@ -144,6 +153,22 @@ TEST(TwoMass, SmoothRotationCoexistsWithStickSlipBelowTheThreshold) {
   EXPECT_NEAR(from_above.summary.at("bit_speed_min_rad_s").get<double>(), 6, 1e-3);
   doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, 0}, {2, 6}}}};
   EXPECT_GT(RunDoc(doc).summary.at("stick_onsets").get<int>(), 10);
+}
+
+TEST(TwoMass, AFrictionSmoothingTooSmallToIntegrateIsRefused) {
+  // tanh(w / 1e-300) asked for 1e8 evaluations within 0.01 s; 0 is the exact set-valued law.
+  nlohmann::json doc = LoadCase("two-mass-stickslip");
+  for (double eps : {1e-300, 1e-7}) {
+    doc["model"]["friction_smoothing_rad_s"] = eps;
+    try {
+      ParseCase(doc);
+      ADD_FAILURE() << "accepted " << eps;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.json_path(), "/model/friction_smoothing_rad_s");
+    }
+  }
+  doc["model"]["friction_smoothing_rad_s"] = 1e-6;
+  EXPECT_NO_THROW(ParseCase(doc));
 }
 
 }  // namespace

@@ -22,7 +22,7 @@ const char* const kFeatures[] = {"stick_fraction", "stick_slip_period_s", "bit_s
                                  "bit_speed_max",  "tob_Nm mean",         "tob_Nm std"};
 
 // The start values of the fitted parameters, as the case's notes list them (estimated from 0-20 s of the recording).
-const std::pair<const char*, double> kStartValues[] = {{"/model/bit_inertia_kgm2", 0.0026},
+const std::pair<const char*, double> kStartValues[] = {{"/model/bit/inertia_kgm2", 0.0026},
                                                        {"/model/bit/friction/mu_s", 0.509},
                                                        {"/model/bit/friction/nu_f_rad_s", 23.2},
                                                        {"/model/top/kp_Nms_per_rad", 0.22}};

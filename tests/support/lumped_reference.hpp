@@ -266,7 +266,7 @@ inline LumpedStringParams LumpedStringParams::FromCase(const nlohmann::json& doc
   if (m.at("kind") != "torsional_wave") fail("model.kind = torsional_wave");
   const auto& sections = m.at("string").at("sections");
   if (sections.size() != 1) fail("exactly one section");
-  if (m.at("string").value("viscous_damping_Nms_per_rad_m", 0.0) != 0) fail("no distributed damping");
+  if (m.at("string").value("torsional_damping_Nms_per_rad_m", 0.0) != 0) fail("no distributed damping");
   const auto& s = sections.at(0);
   if (!s.contains("polar_moment_m4")) fail("the section's polar_moment_m4");
   const auto& top = m.at("top");

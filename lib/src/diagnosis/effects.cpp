@@ -68,12 +68,12 @@ namespace {
 // The effects of a laboratory rig modelled as a two-inertia pendulum (kind two_mass): its drive and its friction.
 std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, const FeatureSet& r) {
   std::vector<Effect> effects;
-  const double k = Number(doc, "/model/stiffness_Nm_per_rad", 1);
-  const double j = Number(doc, "/model/bit_inertia_kgm2", 1);
+  const double k = Number(doc, "/model/string/stiffness_Nm_per_rad", 1);
+  const double j = Number(doc, "/model/bit/inertia_kgm2", 1);
   // The shaft's characteristic impedance sqrt(k J) and frequency sqrt(k / J): a drive of that damping absorbs the
   // oscillation instead of reflecting it (the lumped counterpart of a pipe-matched drive).
   const double impedance = std::sqrt(k * j), frequency = std::sqrt(k / j);
-  if (doc.value("/model/top/type"_json_pointer, std::string()) == "pi_speed" &&
+  if (doc.value("/model/top/type"_json_pointer, std::string()) == "top_drive" &&
       doc.at("/model/top/speed_rad_s"_json_pointer).is_number()) {
     // A soft drive yields to the load: its speed falls by torque / kp below the no-load speed (droop), unless the
     // integral restores it. The no-load speed is set so that the mean speed stays the set-point's at the recorded
@@ -106,8 +106,8 @@ std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, c
     const double estimate = std::isfinite(period) ? j * std::pow(period / reference, 2) : j;
     Effect e{"bit_inertia", "calibration: the bottom disc's inertia (with the shaft stiffness, the period)", {},
              nullptr, 0, ""};
-    e.parameters = {{"bit_inertia_kgm2", "kg m^2", 0.2 * j, 20 * j, true, std::clamp(estimate, 0.2 * j, 20 * j)}};
-    e.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["bit_inertia_kgm2"] = v[0]; };
+    e.parameters = {{"inertia_kgm2", "kg m^2", 0.2 * j, 20 * j, true, std::clamp(estimate, 0.2 * j, 20 * j)}};
+    e.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["bit"]["inertia_kgm2"] = v[0]; };
     const double z = !std::isfinite(period) ? 0.0
                      : oscillates           ? std::abs(Z(m, r, "period_s"))
                                             : std::abs(std::log(period / reference)) / 0.05;
@@ -166,8 +166,8 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
                     {"ki_Nm_per_rad", "N m/rad", 0.01 * pipe.impedance * first_mode,
                      1000 * pipe.impedance * first_mode, true, 3 * pipe.impedance * first_mode}};
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
-      d["model"]["top_drive"]["kp_Nms_per_rad"] = v[0];
-      d["model"]["top_drive"]["ki_Nm_per_rad"] = v[1];
+      d["model"]["top"]["kp_Nms_per_rad"] = v[0];
+      d["model"]["top"]["ki_Nm_per_rad"] = v[1];
     };
     const double z = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_std"));
     if (z > 3) e.strength = z, e.evidence = "the top speed moves more than the model's drive lets it: " +
@@ -257,7 +257,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
       constexpr double k = 30;  // N m/A: only K^2/R and La/R shape the torque, so K is fixed and R, La follow
       const double resistance = k * k / v[1];
-      d["model"]["top_drive"]["motor"] = {{"motor_constant_Nm_per_A", k},
+      d["model"]["top"]["motor"] = {{"motor_constant_Nm_per_A", k},
                                           {"resistance_ohm", resistance},
                                           {"inductance_H", v[0] * resistance}};
     };

@@ -58,7 +58,7 @@ nlohmann::json CaseFromSidecar(const nlohmann::json& sidecar, nlohmann::json doc
     }
     knots.push_back({t + warmup_s, rpm * M_PI / 30});
   }
-  doc["model"]["top_drive"]["speed_rad_s"] = {{"knots", knots}};
+  doc["model"]["top"]["speed_rad_s"] = {{"knots", knots}};
   doc["simulation"]["duration_s"] = duration + warmup_s;
   doc["statistics"]["window_s"] = {warmup_s, duration + warmup_s};
   const auto name = sidecar.find("recording");

@@ -256,6 +256,12 @@ bool JsonReader::Has(const std::string& key) const {
 
 void JsonReader::Allow(const std::string& key) const { known_.insert(key); }
 
+void JsonReader::RefuseRenamed(const std::string& old_key, const std::string& new_pointer) const {
+  if (object_->contains(old_key))
+    throw InputError(PathOf(old_key), "this field was renamed to " + new_pointer + " (one name for one quantity in "
+                                                                                   "every kind)");
+}
+
 const nlohmann::json& JsonReader::Required(const std::string& key, const std::string& expected) const {
   known_.insert(key);
   const auto it = object_->find(key);

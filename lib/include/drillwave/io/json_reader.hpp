@@ -72,6 +72,9 @@ class JsonReader {
   const nlohmann::json& Raw(const std::string& key) const;
   // Marks a key as known without reading it (free-text fields such as "description").
   void Allow(const std::string& key) const;
+  // Throws InputError(path/old_key, "renamed: ...") if the object still has a field under a former name, so that
+  // an old case file is told where its field went rather than that it is unknown.
+  void RefuseRenamed(const std::string& old_key, const std::string& new_pointer) const;
 
   std::string PathOf(const std::string& key) const { return path_ + "/" + key; }
   const std::string& path() const { return path_; }

@@ -19,7 +19,7 @@
 // Optional components, each switched on by its JSON object (absent: the baseline above):
 //   rock/stribeck: mu(w) = mu + (mu_s - mu) exp(-|w| / w_s) while turning; a stuck bit holds with mu_s.
 //   axial_coupling false: no axial dynamics; the weight on bit is held at W0 and the depth of cut at its steady value.
-//   top_drive/motor: a DC motor between the PI and the top: V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I,
+//   top/motor: a DC motor between the PI and the top: V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I,
 //        torque K I on the top drive.
 //   bit/unbalance: the BHA's lateral motion (x, y) as the Jeffcott rotor of the failure seed (eqs. 21-23), with the
 //        unbalance m at radius e turning with the bit angle Phi and reacting on the bit's torsion.
@@ -915,14 +915,15 @@ class AxialTorsionalKind : public ModelKind {
             {"rock/stribeck/velocity_rad_s", "> 0, Stribeck speed"},
             {"axial_coupling", "boolean, default true; false: no axial dynamics, weight on bit held at W0 and depth "
                                "of cut at its steady value"},
-            {"top_drive/inertia_kgm2", "J_td > 0"},
-            {"top_drive/kp_Nms_per_rad", ">= 0"},
-            {"top_drive/ki_Nm_per_rad", ">= 0"},
-            {"top_drive/speed_rad_s", "set-point schedule [rad/s]"},
-            {"top_drive/motor/motor_constant_Nm_per_A", "K > 0: optional DC motor (absent: the PI output is the torque); "
+            {"top/type", "top_drive (a PI speed controller, the only top of this kind; optional)"},
+            {"top/inertia_kgm2", "J_td > 0"},
+            {"top/kp_Nms_per_rad", ">= 0"},
+            {"top/ki_Nm_per_rad", ">= 0"},
+            {"top/speed_rad_s", "set-point schedule [rad/s]"},
+            {"top/motor/motor_constant_Nm_per_A", "K > 0: optional DC motor (absent: the PI output is the torque); "
                                                         "V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I, torque K I"},
-            {"top_drive/motor/resistance_ohm", "R > 0"},
-            {"top_drive/motor/inductance_H", "La > 0"},
+            {"top/motor/resistance_ohm", "R > 0"},
+            {"top/motor/inductance_H", "La > 0"},
             {"hoist/mass_kg", "M_td > 0"},
             {"hoist/weight_on_bit_N", "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
                                       "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
@@ -963,7 +964,9 @@ class AxialTorsionalKind : public ModelKind {
       st.Finish();
     }
     k.Finish();
-    const JsonReader td = r.Object("top_drive");
+    r.RefuseRenamed("top_drive", "/model/top");
+    const JsonReader td = r.Object("top");
+    td.String("type", {"top_drive"}, "top_drive");
     md.top_inertia = td.Number("inertia_kgm2", Range::Positive());
     md.kp = td.Number("kp_Nms_per_rad", Range::NonNegative());
     md.ki = td.Number("ki_Nm_per_rad", Range::NonNegative());

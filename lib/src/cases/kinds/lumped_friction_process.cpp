@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "drillwave/core/error.hpp"
+
 namespace drillwave::cases::lumped {
 namespace {
 
@@ -401,6 +403,17 @@ std::vector<LinearizedOperatingPoint> LinearizeChain(const Chain& c) {
     points.push_back({steady, names, analysis::LinearDelaySystem{a, {}}});
   }
   return points;
+}
+
+double ReadFrictionSmoothing(const io::JsonReader& model) {
+  const double eps = model.Number("friction_smoothing_rad_s", io::Range::NonNegative(), 0.0);
+  // tanh(w / eps) has the slope T / eps at w = 0: below a micro-radian per second the smoothed law is a stiffness
+  // no explicit step resolves (1e-300 asked for 1e8 evaluations in 0.01 s), and 0 already is the exact limit.
+  if (eps > 0 && eps < kMinFrictionSmoothing_rad_s)
+    throw InputError(model.PathOf("friction_smoothing_rad_s"),
+                     "expected 0 (set-valued friction, exact stick phases) or a smoothing speed >= 1e-6 rad/s, got " +
+                         ReadableNumber(eps));
+  return eps;
 }
 
 }  // namespace drillwave::cases::lumped

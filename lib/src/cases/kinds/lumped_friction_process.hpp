@@ -16,6 +16,7 @@
 #include "drillwave/cases/model_kind.hpp"
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/integration/simulator.hpp"
+#include "drillwave/io/json_reader.hpp"
 #include "drillwave/model/schedule.hpp"
 
 namespace drillwave::cases::lumped {
@@ -75,5 +76,10 @@ RunResult ChainResult(const ChainRun& run, const RunSettings& settings);
 // speed end fixes w; a torque drive gives every root of drive = sum of friction and damper torques at w), each
 // with the linear system of small perturbations: state (twists, speeds of the free inertias, PI integral).
 std::vector<LinearizedOperatingPoint> LinearizeChain(const Chain& chain);
+
+// The optional field "friction_smoothing_rad_s" of a chain kind: 0 (set-valued laws with stick phases) or a
+// smoothing speed of at least kMinFrictionSmoothing_rad_s.
+constexpr double kMinFrictionSmoothing_rad_s = 1e-6;
+double ReadFrictionSmoothing(const io::JsonReader& model);
 
 }  // namespace drillwave::cases::lumped

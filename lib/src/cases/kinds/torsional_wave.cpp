@@ -80,9 +80,13 @@ waves::Node ReadTop(const JsonReader& r) {
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
   } else if (type == "dc_motor") {
     top.inertia = r.Number("inertia_kgm2", Range::Positive());
-    top.motor.motor_constant = r.Number("motor_constant_Nm_per_A", Range::Positive());
-    top.motor.armature_resistance = r.Number("resistance_ohm", Range::Positive());
-    top.motor.armature_inductance = r.Number("inductance_H", Range::Positive());
+    for (const char* moved : {"motor_constant_Nm_per_A", "resistance_ohm", "inductance_H"})
+      r.RefuseRenamed(moved, r.PathOf("motor/") + moved);
+    const JsonReader motor = r.Object("motor");
+    top.motor.motor_constant = motor.Number("motor_constant_Nm_per_A", Range::Positive());
+    top.motor.armature_resistance = motor.Number("resistance_ohm", Range::Positive());
+    top.motor.armature_inductance = motor.Number("inductance_H", Range::Positive());
+    motor.Finish();
     top.motor.voltage_limit = r.Number("voltage_limit_V", Range::NonNegative(), 0.0);
     if (r.Has("voltage_V")) {
       if (r.Has("speed_rad_s"))
@@ -204,12 +208,12 @@ class TorsionalWaveKind : public ModelKind {
         {"string/sections/*/density_kg_m3", "rho [kg/m^3], > 0"},
         {"string/sections/*/polar_moment_m4", "J [m^4], > 0 (or outer_radius_m and inner_radius_m)"},
         {"string/sections/*/name", "optional label"},
-        {"string/viscous_damping_Nms_per_rad_m", "distributed viscous damping gamma [N·m·s/rad per m], >= 0, default 0"},
+        {"string/torsional_damping_Nms_per_rad_m", "distributed viscous damping gamma [N·m·s/rad per m], >= 0, default 0"},
         {"string/damping_subsections", "dashpot nodes per section for the damping, 1..1000, default 20"},
         {"top/type", "prescribed_speed | dissipative | top_drive | torque | dc_motor"},
-        {"top/motor_constant_Nm_per_A", "dc_motor (chapter eq. 2.15): k_T = k_e [N·m/A], > 0"},
-        {"top/resistance_ohm", "dc_motor: armature resistance R [ohm], > 0"},
-        {"top/inductance_H", "dc_motor: armature inductance L [H], > 0"},
+        {"top/motor/motor_constant_Nm_per_A", "dc_motor (chapter eq. 2.15): k_T = k_e [N·m/A], > 0"},
+        {"top/motor/resistance_ohm", "dc_motor: armature resistance R [ohm], > 0"},
+        {"top/motor/inductance_H", "dc_motor: armature inductance L [H], > 0"},
         {"top/voltage_limit_V", "dc_motor: armature voltage limit [V], >= 0, default 0 = unlimited"},
         {"top/voltage_V", "dc_motor, open loop: armature voltage schedule [V] (instead of speed_rad_s)"},
         {"top/kp_V_s_per_rad", "dc_motor with speed_rad_s: proportional gain of the speed controller, >= 0"},
@@ -235,7 +239,8 @@ class TorsionalWaveKind : public ModelKind {
     std::vector<waves::Section> sections;
     for (const JsonReader& s : string.ObjectArray("sections")) sections.push_back(ReadSection(s));
     if (sections.empty()) throw InputError(string.PathOf("sections"), "expected at least one section");
-    const double gamma = string.Number("viscous_damping_Nms_per_rad_m", Range::NonNegative(), 0.0);
+    string.RefuseRenamed("viscous_damping_Nms_per_rad_m", string.PathOf("torsional_damping_Nms_per_rad_m"));
+    const double gamma = string.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative(), 0.0);
     const int subsections = string.Integer("damping_subsections", 1, 1000, 20);
     string.Finish();
 

@@ -87,7 +87,7 @@ class TwoDiscKind : public ModelKind {
         {"lower_disc/friction", "friction law T_fl (seed: humped), optional"},
         {"lower_disc/damping_Nms_per_rad", "extra damper to ground, >= 0, default 0"},
         {"friction_smoothing_rad_s",
-         ">= 0, default 0; > 0 replaces sign(w) by tanh(w / eps) in both laws (smooth reference, no stick phases)"},
+         "0 (default) or >= 1e-6 rad/s; > 0 replaces sign(w) by tanh(w / eps) in both laws (smooth reference, no stick phases)"},
         {"friction laws", bitrock::FrictionLaw::Schema()},
     };
   }
@@ -117,7 +117,7 @@ class TwoDiscKind : public ModelKind {
     m.inertias[1].damping_Nms_per_rad = lower.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
     lower.Finish();
 
-    m.friction_smoothing_rad_s = r.Number("friction_smoothing_rad_s", Range::NonNegative(), 0.0);
+    m.friction_smoothing_rad_s = lumped::ReadFrictionSmoothing(r);
     r.Finish();
     return std::make_unique<TwoDiscModel>(std::move(m));
   }

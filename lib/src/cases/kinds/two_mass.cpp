@@ -42,22 +42,22 @@ class TwoMassKind : public ModelKind {
     return "two-inertia torsional pendulum (chapter eqs. 2.1–2.4): top and bit inertias, shaft k and c, local dampers";
   }
   nlohmann::json FieldSchema() const override {
-    return {{"top_inertia_kgm2", "> 0"},
-            {"bit_inertia_kgm2", "> 0"},
-            {"stiffness_Nm_per_rad", "shaft k > 0"},
-            {"shaft_damping_Nms_per_rad", "shaft c >= 0"},
-            {"top_damping_Nms_per_rad", ">= 0"},
-            {"bit_damping_Nms_per_rad", ">= 0"},
-            {"top/type", "prescribed_speed | pi_speed | torque"},
-            {"top/speed_rad_s", "set-point schedule (prescribed_speed, pi_speed)"},
+    return {{"top/inertia_kgm2", "> 0"},
+            {"top/damping_Nms_per_rad", "local damper at the top, >= 0, default 0"},
+            {"top/type", "prescribed_speed | top_drive (PI speed controller) | torque"},
+            {"top/speed_rad_s", "set-point schedule (prescribed_speed, top_drive)"},
             {"top/torque_Nm", "schedule (torque)"},
-            {"top/kp_Nms_per_rad", "pi_speed: >= 0"},
-            {"top/ki_Nm_per_rad", "pi_speed: >= 0"},
+            {"top/kp_Nms_per_rad", "top_drive: >= 0"},
+            {"top/ki_Nm_per_rad", "top_drive: >= 0"},
+            {"string/stiffness_Nm_per_rad", "shaft k > 0"},
+            {"string/damping_Nms_per_rad", "shaft c >= 0, default 0"},
+            {"bit/inertia_kgm2", "> 0"},
+            {"bit/damping_Nms_per_rad", "local damper at the bit, >= 0, default 0"},
             {"bit/friction", "friction law (see torsional_wave)"},
             {"bit/weight_on_bit_N", "schedule scaling the bit friction relative to nominal_weight_on_bit_N (default: nominal)"},
             {"bit/nominal_weight_on_bit_N", "> 0, the weight the friction law's levels refer to"},
             {"friction_smoothing_rad_s",
-             ">= 0, default 0; > 0 replaces sign(w) by tanh(w / eps) in the bit law (smooth reference, no stick phases)"}};
+             "0 (default) or >= 1e-6 rad/s; > 0 replaces sign(w) by tanh(w / eps) in the bit law (smooth reference, no stick phases)"}};
   }
 
   std::unique_ptr<PreparedModel> Prepare(const JsonReader& r) const override {
@@ -66,28 +66,39 @@ class TwoMassKind : public ModelKind {
     m.couplings.resize(1);
     lumped::Inertia& top_inertia = m.inertias[0];
     lumped::Inertia& bit_inertia = m.inertias[1];
-    top_inertia.inertia_kgm2 = r.Number("top_inertia_kgm2", Range::Positive());
-    bit_inertia.inertia_kgm2 = r.Number("bit_inertia_kgm2", Range::Positive());
-    m.couplings[0].stiffness_Nm_per_rad = r.Number("stiffness_Nm_per_rad", Range::Positive());
-    m.couplings[0].damping_Nms_per_rad = r.Number("shaft_damping_Nms_per_rad", Range::NonNegative());
-    top_inertia.damping_Nms_per_rad = r.Number("top_damping_Nms_per_rad", Range::NonNegative());
-    bit_inertia.damping_Nms_per_rad = r.Number("bit_damping_Nms_per_rad", Range::NonNegative());
-    m.friction_smoothing_rad_s = r.Number("friction_smoothing_rad_s", Range::NonNegative(), 0.0);
+    // Fields of the first two_mass cases, named like every other kind's since.
+    r.RefuseRenamed("top_inertia_kgm2", "/model/top/inertia_kgm2");
+    r.RefuseRenamed("top_damping_Nms_per_rad", "/model/top/damping_Nms_per_rad");
+    r.RefuseRenamed("bit_inertia_kgm2", "/model/bit/inertia_kgm2");
+    r.RefuseRenamed("bit_damping_Nms_per_rad", "/model/bit/damping_Nms_per_rad");
+    r.RefuseRenamed("stiffness_Nm_per_rad", "/model/string/stiffness_Nm_per_rad");
+    r.RefuseRenamed("shaft_damping_Nms_per_rad", "/model/string/damping_Nms_per_rad");
+    m.friction_smoothing_rad_s = lumped::ReadFrictionSmoothing(r);
+    const JsonReader shaft = r.Object("string");
+    m.couplings[0].stiffness_Nm_per_rad = shaft.Number("stiffness_Nm_per_rad", Range::Positive());
+    m.couplings[0].damping_Nms_per_rad = shaft.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
+    shaft.Finish();
     const JsonReader top = r.Object("top");
-    const std::string type = top.String("type", {"prescribed_speed", "pi_speed", "torque"});
+    top_inertia.inertia_kgm2 = top.Number("inertia_kgm2", Range::Positive());
+    top_inertia.damping_Nms_per_rad = top.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
+    if (top.Has("type") && top.Raw("type") == "pi_speed")
+      throw InputError(top.PathOf("type"), "the PI speed controller is called \"top_drive\" (as in every kind)");
+    const std::string type = top.String("type", {"prescribed_speed", "top_drive", "torque"});
     if (type == "torque") {
       m.drive = lumped::Drive::kTorque;
       m.setpoint = model::Schedule::FromJson(top.Raw("torque_Nm"), top.PathOf("torque_Nm"));
     } else {
-      m.drive = type == "pi_speed" ? lumped::Drive::kPiSpeed : lumped::Drive::kPrescribedSpeed;
+      m.drive = type == "top_drive" ? lumped::Drive::kPiSpeed : lumped::Drive::kPrescribedSpeed;
       m.setpoint = model::Schedule::FromJson(top.Raw("speed_rad_s"), top.PathOf("speed_rad_s"));
-      if (type == "pi_speed") {
+      if (type == "top_drive") {
         m.kp = top.Number("kp_Nms_per_rad", Range::NonNegative());
         m.ki = top.Number("ki_Nm_per_rad", Range::NonNegative());
       }
     }
     top.Finish();
     const JsonReader bit = r.Object("bit");
+    bit_inertia.inertia_kgm2 = bit.Number("inertia_kgm2", Range::Positive());
+    bit_inertia.damping_Nms_per_rad = bit.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
     if (bit.Has("friction"))
       bit_inertia.friction = bitrock::FrictionLaw::FromJson(bit.Raw("friction"), bit.PathOf("friction"));
     const double nominal = bit.Number("nominal_weight_on_bit_N", Range::Positive(), 1.0);
