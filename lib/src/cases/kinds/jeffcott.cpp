@@ -102,6 +102,25 @@ class RotorProcess {
   double step_start_ = 0, passed_ = 0;
 };
 
+// theta'(t) from drive_speed_rad_s, or from drive_speed_ratio times w_b (the seed's frequency ratio eta, so that a
+// sweep over the unbalance mass keeps the rotor at the same fraction of its own critical speed).
+model::Schedule DriveSpeed(const JsonReader& r, double bending_frequency) {
+  if (r.Has("drive_speed_ratio") == r.Has("drive_speed_rad_s"))
+    throw InputError(r.PathOf("drive_speed_rad_s"), "expected exactly one of drive_speed_rad_s and drive_speed_ratio");
+  if (r.Has("drive_speed_rad_s"))
+    return model::Schedule::FromJson(r.Raw("drive_speed_rad_s"), r.PathOf("drive_speed_rad_s"));
+  auto knots = model::Schedule::FromJson(r.Raw("drive_speed_ratio"), r.PathOf("drive_speed_ratio")).knots();
+  for (auto& knot : knots) knot.second *= bending_frequency;
+  return model::Schedule(std::move(knots));
+}
+
+// The time after which the deflection stays within 2 % of its mean over the window (0 if it always does).
+double SettlingTime(const std::vector<double>& time, const std::vector<double>& deflection, double window_mean) {
+  for (std::size_t i = time.size(); i-- > 0;)
+    if (std::abs(deflection[i] - window_mean) > 0.02 * window_mean) return i + 1 < time.size() ? time[i + 1] : time[i];
+  return 0;
+}
+
 // The window's samples of the motion that stress the shaft.
 struct Motion {
   std::vector<double> x, y, rotor_angle, twist;
@@ -184,6 +203,7 @@ class JeffcottModel : public PreparedModel {
     result.summary = {{"deflection_max_m", n ? r_max : 0.0},
                       {"deflection_min_m", n ? r_min : 0.0},
                       {"deflection_mean_m", n ? r_sum / n : 0.0},
+                      {"deflection_settling_time_s", n ? SettlingTime(time, radius, r_sum / n) : 0.0},
                       {"twist_max_rad", n ? g_max : 0.0},
                       {"twist_min_rad", n ? g_min : 0.0},
                       {"twist_mean_rad", n ? g_sum / n : 0.0},
@@ -237,6 +257,8 @@ class JeffcottKind : public ModelKind {
             {"bending_damping_ratio", "zeta_b >= 0: c_b = 2 zeta_b w_b (M + m_b), eq. 19"},
             {"torsional_damping_ratio", "zeta_tor >= 0: c_tor = 2 zeta_tor w_tor (I_0 + m_b e^2), eq. 19"},
             {"drive_speed_rad_s", "theta'(t): a number or {\"knots\": [[t, v], ...]} [rad/s]"},
+            {"drive_speed_ratio", "instead of drive_speed_rad_s: theta'(t) / w_b, the seed's frequency ratio eta, "
+                                  "a number or knots"},
             {"torque_Nm", "external torque on the rotor, schedule, default 0 (negative: reverse / brake torque)"},
             {"fatigue/sn_coefficient_Pa",
              "a > 0 of the S-N curve S_a = a N^b, default 648e6 (mild steel, S_ut = 400 MPa: S = 0.9 S_ut at 1e3 "
@@ -284,7 +306,7 @@ class JeffcottKind : public ModelKind {
     }
     rotor.bending_damping_ratio = r.Number("bending_damping_ratio", Range::NonNegative());
     rotor.torsional_damping_ratio = r.Number("torsional_damping_ratio", Range::NonNegative());
-    rotor.drive_speed = model::Schedule::FromJson(r.Raw("drive_speed_rad_s"), r.PathOf("drive_speed_rad_s"));
+    rotor.drive_speed = DriveSpeed(r, rotor.bending_frequency());
     rotor.torque = r.Has("torque_Nm") ? model::Schedule::FromJson(r.Raw("torque_Nm"), r.PathOf("torque_Nm"))
                                       : model::Schedule(0.0);
     r.Finish();
