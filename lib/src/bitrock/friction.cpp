@@ -160,21 +160,26 @@ double Slope(const SqrtRegularized& l, double w) {
   return l.amplitude * l.alpha * e2 * r * r * r;
 }
 
+// Eq. 2.30's parameters, shared by its two readings.
+template <class L>
+struct TanhHumpFields {
+  using F = Field<L>;
+  static constexpr F kFields[] = {
+      F{"amplitude_Nm", &L::amplitude, "torque amplitude p [N·m]"}.NonNegative().TorqueLevel(),
+      F{"beta", &L::beta, "level beta [-]"}.NonNegative(),
+      F{"gamma1", &L::gamma1, "hump height gamma1 [s/rad; a pure number in tanh_hump_printed]"}.NonNegative(),
+      F{"gamma2", &L::gamma2, "hump decay gamma2 [s^2/rad^2]"}.NonNegative(),
+  };
+};
+
 template <>
-struct Traits<TanhHump> {
+struct Traits<TanhHump> : TanhHumpFields<TanhHump> {
   static constexpr const char* kKind = "tanh_hump";
   static constexpr const char* kTorque = "T = p beta (tanh w + gamma1 w / (1 + gamma2 w^2)), w in rad/s as a number";
   static constexpr const char* kStatic = nullptr;
   static constexpr const char* kSource =
       "chapter eq. 2.30 times an amplitude p; the seed's layout is garbled, read with gamma1 w in the numerator "
       "so that the law is odd and smooth";
-  using F = Field<TanhHump>;
-  static constexpr F kFields[] = {
-      F{"amplitude_Nm", &TanhHump::amplitude, "torque amplitude p [N·m]"}.NonNegative().TorqueLevel(),
-      F{"beta", &TanhHump::beta, "level beta [-]"}.NonNegative(),
-      F{"gamma1", &TanhHump::gamma1, "hump height gamma1 [s/rad]"}.NonNegative(),
-      F{"gamma2", &TanhHump::gamma2, "hump decay gamma2 [s^2/rad^2]"}.NonNegative(),
-  };
 };
 double Slip(const TanhHump& l, double w) {
   return l.amplitude * l.beta * (std::tanh(w) + l.gamma1 * w / (1 + l.gamma2 * w * w));
@@ -269,6 +274,51 @@ double Slip(const AsymmetricCoulombViscous& l, double w) {
 double Slope(const AsymmetricCoulombViscous& l, double w) { return l.b + l.delta_b * Sign(w); }
 double StaticUp(const AsymmetricCoulombViscous& l) { return l.t_s + l.delta_t_s; }
 double StaticDown(const AsymmetricCoulombViscous& l) { return l.t_s - l.delta_t_s; }
+
+template <>
+struct Traits<TanhHumpPrinted> : TanhHumpFields<TanhHumpPrinted> {
+  static constexpr const char* kKind = "tanh_hump_printed";
+  static constexpr const char* kTorque = "T = p beta (tanh |w| + gamma1 / (1 + gamma2 w^2)) sign w, w in rad/s as a number";
+  static constexpr const char* kStatic = "T in [-p beta gamma1, p beta gamma1]";
+  static constexpr const char* kSource = "chapter eq. 2.30 as printed, times an amplitude p (compare tanh_hump)";
+};
+double Slip(const TanhHumpPrinted& l, double w) {
+  return l.amplitude * l.beta * (std::tanh(std::abs(w)) + l.gamma1 / (1 + l.gamma2 * w * w)) * Sign(w);
+}
+double Slope(const TanhHumpPrinted& l, double w) {  // d/dw of F(|w|) sign w is F'(|w|)
+  const double th = std::tanh(std::abs(w));
+  const double q = 1 + l.gamma2 * w * w;
+  return l.amplitude * l.beta * ((1 - th * th) - 2 * l.gamma1 * l.gamma2 * std::abs(w) / (q * q));
+}
+double StaticUp(const TanhHumpPrinted& l) { return l.amplitude * l.beta * l.gamma1; }
+double StaticDown(const TanhHumpPrinted& l) { return StaticUp(l); }
+
+template <>
+struct Traits<SquaredSqrtCutting> {
+  static constexpr const char* kKind = "squared_sqrt_cutting";
+  static constexpr const char* kTorque = "T = a4 d F(|w|)^2 sign w, F(r) = alpha r / sqrt(r^2 + epsilon^2)";
+  static constexpr const char* kStatic = nullptr;
+  static constexpr const char* kSource =
+      "chapter eq. 2.33 (its ref. [31]) with F of eq. 2.29 and a constant depth of cut d; the chapter's minus sign is "
+      "its convention for a torque against the rotation";
+  using F = Field<SquaredSqrtCutting>;
+  static constexpr F kFields[] = {
+      F{"a4_N", &SquaredSqrtCutting::a4, "cutting coefficient a4 [N] (torque per depth of cut)"}
+          .NonNegative().TorqueLevel(),
+      F{"depth_of_cut_m", &SquaredSqrtCutting::depth, "depth of cut d [m]"}.NonNegative(),
+      F{"alpha", &SquaredSqrtCutting::alpha, "level alpha of F [-]"}.NonNegative(),
+      F{"epsilon_rad_s", &SquaredSqrtCutting::epsilon, "regularization speed epsilon of F [rad/s]"}.Positive(),
+  };
+};
+// F(|w|)^2 sign w = F(w) |F(w)| with F of eq. 2.29 (odd), whose slope is 2 |F| F'.
+SqrtRegularized CuttingFunction(const SquaredSqrtCutting& l) { return {1.0, l.alpha, l.epsilon}; }
+double Slip(const SquaredSqrtCutting& l, double w) {
+  const double f = Slip(CuttingFunction(l), w);
+  return l.a4 * l.depth * f * std::abs(f);
+}
+double Slope(const SquaredSqrtCutting& l, double w) {
+  return l.a4 * l.depth * 2 * std::abs(Slip(CuttingFunction(l), w)) * Slope(CuttingFunction(l), w);
+}
 
 template <class L>
 constexpr bool IsSetValuedLaw() {

@@ -83,10 +83,26 @@ struct AsymmetricCoulombViscous {
   double delta_b;    // delta_b_Nms_per_rad in [-b, b]
 };
 
+// Chapter eq. 2.30 as printed, F(r) = beta (tanh r + gamma1 / (1 + gamma2 r^2)) of r = |w| (a norm), the torque
+// opposing motion: slip T = p F(|w|) sign w; F(0) = beta gamma1 > 0, so the law jumps at rest, where it holds
+// |T| <= p beta gamma1 (the limit of the slip torque). With gamma1 > 1 the torque falls from p beta gamma1 towards
+// p beta: velocity weakening. The parameters (and JSON keys) of tanh_hump; gamma1 is a pure number here.
+struct TanhHumpPrinted : TanhHump {};
+
+// Chapter eq. 2.33, the cutting torque of its ref. [31], T_c = -a4 F(|w|)^2 d with F of eq. 2.29 and a depth of cut
+// d held constant; the chapter's minus sign is its convention for a torque against the rotation, here the torque
+// opposes motion: T = a4 d F(|w|)^2 sign w = a4 d alpha^2 w |w| / (w^2 + epsilon^2). Smooth (C1) and odd.
+struct SquaredSqrtCutting {
+  double a4;           // a4_N >= 0 (read as a coefficient: a^4 of the bit radius would leave units unbalanced)
+  double depth;        // depth_of_cut_m >= 0 (d)
+  double alpha;        // alpha >= 0
+  double epsilon;      // epsilon_rad_s > 0
+};
+
 class FrictionLaw {
  public:
   using Law = std::variant<Viscous, Coulomb, Stribeck, SqrtRegularized, TanhHump, Rational, Humped,
-                           AsymmetricCoulombViscous>;
+                           AsymmetricCoulombViscous, TanhHumpPrinted, SquaredSqrtCutting>;
 
   // Checks the parameters against the ranges listed by Schema(); throws std::invalid_argument naming the field.
   explicit FrictionLaw(const Law& law);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 
+#include "drillwave/analysis/fatigue.hpp"
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/integration/simulator.hpp"
@@ -30,6 +31,10 @@ struct Rotor {
   double bending_damping_ratio = 0, torsional_damping_ratio = 0;
   model::Schedule drive_speed;  // theta'(t) [rad/s]
   model::Schedule torque;       // T(t) on the rotor [N·m]; negative: a reverse (braking) torque
+  // Stress at the shaft's outer surface per unit deflection and per unit twist; known when the shaft is given by
+  // its geometry (0 otherwise: no stress summary).
+  double bending_stress_per_m = 0, shear_stress_per_rad = 0;
+  analysis::SnCurve sn_curve = analysis::SnCurve::MildSteel();
 
   double mass() const { return rotor_mass + unbalance_mass; }
   double inertia() const { return rotor_inertia + unbalance_mass * eccentricity * eccentricity; }
@@ -97,6 +102,66 @@ class RotorProcess {
   double step_start_ = 0, passed_ = 0;
 };
 
+// theta'(t) from drive_speed_rad_s, or from drive_speed_ratio times w_b (the seed's frequency ratio eta, so that a
+// sweep over the unbalance mass keeps the rotor at the same fraction of its own critical speed).
+model::Schedule DriveSpeed(const JsonReader& r, double bending_frequency) {
+  if (r.Has("drive_speed_ratio") == r.Has("drive_speed_rad_s"))
+    throw InputError(r.PathOf("drive_speed_rad_s"), "expected exactly one of drive_speed_rad_s and drive_speed_ratio");
+  if (r.Has("drive_speed_rad_s"))
+    return model::Schedule::FromJson(r.Raw("drive_speed_rad_s"), r.PathOf("drive_speed_rad_s"));
+  auto knots = model::Schedule::FromJson(r.Raw("drive_speed_ratio"), r.PathOf("drive_speed_ratio")).knots();
+  for (auto& knot : knots) knot.second *= bending_frequency;
+  return model::Schedule(std::move(knots));
+}
+
+// The time after which the deflection stays within 2 % of its mean over the window (0 if it always does).
+double SettlingTime(const std::vector<double>& time, const std::vector<double>& deflection, double window_mean) {
+  for (std::size_t i = time.size(); i-- > 0;)
+    if (std::abs(deflection[i] - window_mean) > 0.02 * window_mean) return i + 1 < time.size() ? time[i + 1] : time[i];
+  return 0;
+}
+
+// The window's samples of the motion that stress the shaft.
+struct Motion {
+  std::vector<double> x, y, rotor_angle, twist;
+};
+
+// Stresses and fatigue over the window. Bending: sigma_b = M c / I at the fixed ends and midspan, where the central
+// load P = k_b * deflection bends a fixed-fixed shaft by M = P L / 8; a fibre at angle psi on the rotor sees the
+// deflection's component along its own direction (beta + psi), so synchronous whirl bends each fibre steadily and
+// only changes of the whirl load it in cycles. Torsion: tau = T c / J with T = k_tor gamma. Von Mises combines the
+// two at the worst fibre. Damage: Miner over the rainflow cycles of the worst of kFibres fibres' bending stress,
+// plus that of sqrt(3) tau (the von Mises equivalent of pure shear) on the same S-N curve.
+nlohmann::json StressSummary(const Rotor& r, const Motion& m) {
+  constexpr int kFibres = 24;
+  double deflection_max = 0, twist_max = 0, von_mises_max = 0;
+  std::vector<double> equivalent_shear;
+  for (std::size_t i = 0; i < m.x.size(); ++i) {
+    const double sigma = r.bending_stress_per_m * std::hypot(m.x[i], m.y[i]);
+    const double tau = r.shear_stress_per_rad * m.twist[i];
+    deflection_max = std::max(deflection_max, std::hypot(m.x[i], m.y[i]));
+    twist_max = std::max(twist_max, std::abs(m.twist[i]));
+    von_mises_max = std::max(von_mises_max, std::sqrt(sigma * sigma + 3 * tau * tau));
+    equivalent_shear.push_back(std::sqrt(3.0) * tau);
+  }
+  double bending_damage = 0;
+  std::vector<double> fibre(m.x.size());
+  for (int k = 0; k < kFibres; ++k) {
+    const double psi = 2 * kPi * k / kFibres;
+    for (std::size_t i = 0; i < m.x.size(); ++i)
+      fibre[i] = r.bending_stress_per_m *
+                 (m.x[i] * std::cos(m.rotor_angle[i] + psi) + m.y[i] * std::sin(m.rotor_angle[i] + psi));
+    bending_damage = std::max(bending_damage, analysis::MinerDamage(analysis::RainflowCount(fibre), r.sn_curve));
+  }
+  const double torsion_damage = analysis::MinerDamage(analysis::RainflowCount(equivalent_shear), r.sn_curve);
+  return {{"max_bending_stress_Pa", r.bending_stress_per_m * deflection_max},
+          {"max_shear_stress_Pa", r.shear_stress_per_rad * twist_max},
+          {"max_von_mises_stress_Pa", von_mises_max},
+          {"fatigue_damage_bending_miner", bending_damage},
+          {"fatigue_damage_torsion_miner", torsion_damage},
+          {"fatigue_damage_miner", bending_damage + torsion_damage}};
+}
+
 class JeffcottModel : public PreparedModel {
  public:
   explicit JeffcottModel(Rotor r) : r_(std::move(r)) {}
@@ -104,11 +169,11 @@ class JeffcottModel : public PreparedModel {
   RunResult Run(const RunSettings& settings) const override {
     RotorProcess process(r_);
     std::vector<double> x(7, 0.0);
-    std::vector<double> time, xs, ys, radius, twist, drive, rotor, shaft_torque, torque, normalized;
+    std::vector<double> time, xs, ys, radius, twist, drive, rotor, shaft_torque, torque, normalized, rotor_angle;
     auto sample = [&](double t, const std::vector<double>& s) {
       const double omega = process.Drive(t).first, beta_dot = omega + s[5];
       time.push_back(t), xs.push_back(s[0]), ys.push_back(s[1]), radius.push_back(std::hypot(s[0], s[1]));
-      twist.push_back(s[2]), drive.push_back(omega), rotor.push_back(beta_dot);
+      twist.push_back(s[2]), drive.push_back(omega), rotor.push_back(beta_dot), rotor_angle.push_back(s[6] + s[2]);
       shaft_torque.push_back(r_.torsional_stiffness * s[2] + process.TorsionalDamping() * s[5]);
       torque.push_back(r_.torque.Value(t));
       normalized.push_back(omega != 0 ? beta_dot / omega : beta_dot == 0 ? 1.0 : std::nan(""));  // at rest: 1
@@ -123,8 +188,11 @@ class JeffcottModel : public PreparedModel {
     double r_max = 0, r_min = std::numeric_limits<double>::infinity(), r_sum = 0, g_max = -1e300, g_min = 1e300;
     double w_min = 1e300, w_max = -1e300, w_sum = 0, drive_sum = 0, g_sum = 0;
     int n = 0;
+    Motion window;
     for (std::size_t i = 0; i < time.size(); ++i) {
       if (time[i] < settings.window_begin_s || time[i] > settings.window_end_s) continue;
+      window.x.push_back(xs[i]), window.y.push_back(ys[i]), window.twist.push_back(twist[i]);
+      window.rotor_angle.push_back(rotor_angle[i]);
       r_max = std::max(r_max, radius[i]), r_min = std::min(r_min, radius[i]), r_sum += radius[i];
       g_max = std::max(g_max, twist[i]), g_min = std::min(g_min, twist[i]), g_sum += twist[i];
       w_max = std::max(w_max, rotor[i]), w_min = std::min(w_min, rotor[i]), w_sum += rotor[i];
@@ -135,6 +203,7 @@ class JeffcottModel : public PreparedModel {
     result.summary = {{"deflection_max_m", n ? r_max : 0.0},
                       {"deflection_min_m", n ? r_min : 0.0},
                       {"deflection_mean_m", n ? r_sum / n : 0.0},
+                      {"deflection_settling_time_s", n ? SettlingTime(time, radius, r_sum / n) : 0.0},
                       {"twist_max_rad", n ? g_max : 0.0},
                       {"twist_min_rad", n ? g_min : 0.0},
                       {"twist_mean_rad", n ? g_sum / n : 0.0},
@@ -150,6 +219,7 @@ class JeffcottModel : public PreparedModel {
                       {"steps", sim.stats().steps},
                       {"events", sim.stats().events},
                       {"derivative_evaluations", sim.stats().derivative_evaluations}};
+    if (r_.bending_stress_per_m > 0) result.summary.update(StressSummary(r_, window));
     result.channels = {{"top_rpm", ToRpm(drive)},        {"bit_rpm", ToRpm(rotor)},
                        {"top_torque_Nm", shaft_torque},  {"bit_torque_Nm", torque},
                        {"x_m", std::move(xs)},           {"y_m", std::move(ys)},
@@ -187,7 +257,18 @@ class JeffcottKind : public ModelKind {
             {"bending_damping_ratio", "zeta_b >= 0: c_b = 2 zeta_b w_b (M + m_b), eq. 19"},
             {"torsional_damping_ratio", "zeta_tor >= 0: c_tor = 2 zeta_tor w_tor (I_0 + m_b e^2), eq. 19"},
             {"drive_speed_rad_s", "theta'(t): a number or {\"knots\": [[t, v], ...]} [rad/s]"},
-            {"torque_Nm", "external torque on the rotor, schedule, default 0 (negative: reverse / brake torque)"}};
+            {"drive_speed_ratio", "instead of drive_speed_rad_s: theta'(t) / w_b, the seed's frequency ratio eta, "
+                                  "a number or knots"},
+            {"torque_Nm", "external torque on the rotor, schedule, default 0 (negative: reverse / brake torque)"},
+            {"fatigue/sn_coefficient_Pa",
+             "a > 0 of the S-N curve S_a = a N^b, default 648e6 (mild steel, S_ut = 400 MPa: S = 0.9 S_ut at 1e3 "
+             "cycles, S_e = 0.5 S_ut at 1e6, Shigley sect. 6-7); with a shaft given by its geometry the summary adds "
+             "max_bending_stress_Pa (M c / I, M = k_b r L / 8), max_shear_stress_Pa (T c / J, T = k_tor gamma), "
+             "max_von_mises_stress_Pa and Miner damage of rainflow cycles over the window: "
+             "fatigue_damage_bending_miner (worst fibre), fatigue_damage_torsion_miner (sqrt(3) tau), "
+             "fatigue_damage_miner (their sum)"},
+            {"fatigue/sn_exponent", "b in [-1, -0.001], default -0.0851"},
+            {"fatigue/endurance_limit_Pa", "S_e >= 0: smaller amplitudes do no damage, default 200e6"}};
   }
 
   std::unique_ptr<PreparedModel> Prepare(const JsonReader& r) const override {
@@ -210,11 +291,22 @@ class JeffcottKind : public ModelKind {
       const double area_moment = kPi / 64 * (std::pow(d_o, 4) - std::pow(d_i, 4));
       rotor.bending_stiffness = 192 * e_mod * area_moment / std::pow(length, 3);
       rotor.torsional_stiffness = g_mod * 2 * area_moment / length;  // polar J = 2 I for a round tube
+      rotor.bending_stress_per_m = rotor.bending_stiffness * length / 8 * (d_o / 2) / area_moment;
+      rotor.shear_stress_per_rad = rotor.torsional_stiffness * (d_o / 2) / (2 * area_moment);
     }
     shaft.Finish();
+    if (r.Has("fatigue")) {
+      const JsonReader sn = r.Object("fatigue");
+      const analysis::SnCurve steel = analysis::SnCurve::MildSteel();
+      rotor.sn_curve.coefficient_Pa = sn.Number("sn_coefficient_Pa", Range::Positive(), steel.coefficient_Pa);
+      rotor.sn_curve.exponent = sn.Number("sn_exponent", Range::Between(-1, -1e-3), steel.exponent);
+      rotor.sn_curve.endurance_limit_Pa = sn.Number("endurance_limit_Pa", Range::NonNegative(),
+                                                    steel.endurance_limit_Pa);
+      sn.Finish();
+    }
     rotor.bending_damping_ratio = r.Number("bending_damping_ratio", Range::NonNegative());
     rotor.torsional_damping_ratio = r.Number("torsional_damping_ratio", Range::NonNegative());
-    rotor.drive_speed = model::Schedule::FromJson(r.Raw("drive_speed_rad_s"), r.PathOf("drive_speed_rad_s"));
+    rotor.drive_speed = DriveSpeed(r, rotor.bending_frequency());
     rotor.torque = r.Has("torque_Nm") ? model::Schedule::FromJson(r.Raw("torque_Nm"), r.PathOf("torque_Nm"))
                                       : model::Schedule(0.0);
     r.Finish();
