@@ -45,46 +45,6 @@ TEST(Features, PeriodLagAndLevelsOfAKnownOscillation) {
   EXPECT_LT(f.Value("bit_rpm rotation_amplitude"), 1.0);
 }
 
-// An axial pair: broadband bit-rock forcing (white noise smoothed over 30 ms) reaching the hookload `travel` s after
-// the weight on bit, the weight on bit recorded `delay` s late, both on a strong slow cycle (3.4 s) that alone would
-// give one correlation peak per period.
-Recording AxialPair(double travel, double delay, unsigned seed) {
-  Recording r;
-  r.source = "synthetic";
-  r.sample_interval_s = 0.01;
-  r.names = {"hookload_kN", "wob_kN"};
-  r.channels.resize(2);
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> n(0.0, 1.0);
-  const int samples = 12000, shift_up = static_cast<int>(std::lround(travel / 0.01)),
-            shift_late = static_cast<int>(std::lround(delay / 0.01));
-  std::vector<double> forcing(samples + 1000, 0.0);
-  double smooth = 0;
-  for (double& f : forcing) f = smooth = 0.7 * smooth + 0.3 * n(rng);
-  for (int i = 0; i < samples; ++i) {
-    const double t = 0.01 * i;
-    const double cycle = 30 * std::sin(2 * kPi * t / 3.4);
-    r.time_s.push_back(t);
-    r.channels[0].push_back(680 + 0.5 * cycle + 8 * forcing[500 + i - shift_up] + 0.5 * n(rng));
-    r.channels[1].push_back(150 + cycle + 10 * forcing[500 + i - shift_late] + 0.5 * n(rng));
-  }
-  return r;
-}
-
-TEST(Features, TheAxialPairsLagIsTheTravelTimeOrTheSensorDelayBeyondIt) {
-  // Without a delay the weight on bit leads by the travel time; a late downhole sensor adds its delay, beyond the
-  // slow cycle's period too.
-  EXPECT_NEAR(MeasureFeatures(AxialPair(0.52, 0, 1), 0, 120).Value("hookload_to_wob_lag_s"), -0.52, 0.011);
-  EXPECT_NEAR(MeasureFeatures(AxialPair(0.52, 2.1, 2), 0, 120).Value("hookload_to_wob_lag_s"), 1.58, 0.011);
-  EXPECT_NEAR(MeasureFeatures(AxialPair(0.40, 4.0, 3), 0, 120).Value("hookload_to_wob_lag_s"), 3.60, 0.011);
-  // No common broadband part: no lag.
-  Recording unrelated = AxialPair(0.52, 0, 4);
-  std::mt19937 rng(5);
-  std::normal_distribution<double> n(0.0, 10.0);
-  for (double& v : unrelated.channels[1]) v = 150 + n(rng);
-  EXPECT_TRUE(std::isnan(MeasureFeatures(unrelated, 0, 120).Value("hookload_to_wob_lag_s")));
-}
-
 TEST(Features, RotationLineOfAWhirlIsMeasured) {
   Recording r = Oscillation(60, 3.2, 0, 0.2, 2, 0);
   for (std::size_t i = 0; i < r.time_s.size(); ++i) r.channels[0][i] += 4 * std::cos(2 * kPi * 1.0 * r.time_s[i]);

@@ -287,30 +287,22 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
                                             Describe(m, r, "bit_rpm rotation_amplitude");
     effects.push_back(e);
   }
-  // sensor_delay: the downhole channels arrive later than the physics lets them. Best seen on the axial pair: the
-  // weight on bit leads the hookload by the axial travel time, so a downhole channel that arrives late shows as a
-  // lag beyond the model's (broadband, one clear peak); else the bit speed following the surface torque later than in
-  // the model (modulo the stick-slip period).
+  // sensor_delay: the bit speed follows the surface torque later than in the model: the downhole channels arrive
+  // through telemetry.
   {
-    const double axial_shift = r.Value("hookload_to_wob_lag_s") - m.Value("hookload_to_wob_lag_s");
     const double period = r.Value("period_s");
-    double torsional_shift = r.Value("torque_to_bit_lag_s") - m.Value("torque_to_bit_lag_s");
-    if (std::isfinite(torsional_shift) && std::isfinite(period) && torsional_shift < 0) torsional_shift += period;
-    const bool axial = std::isfinite(axial_shift);
-    const double shift = axial ? axial_shift : torsional_shift;
+    double shift = r.Value("torque_to_bit_lag_s") - m.Value("torque_to_bit_lag_s");
+    if (std::isfinite(shift) && std::isfinite(period) && shift < 0) shift += period;  // lags are modulo a period
     Effect e{"sensor_delay", "telemetry delay of the downhole channels (bit speed, weight on bit)", {}, nullptr, 0, ""};
-    e.parameters = {{"delay_s", "s", 0.0, 8.0, false, std::isfinite(shift) ? std::clamp(shift, 0.0, 8.0) : 1.0}};
+    e.parameters = {{"delay_s", "s", 0.0, 8.0, false, std::isfinite(shift) ? shift : 1.0}};
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
       if (!d.contains("sensors")) return;
       for (auto& [channel, sensor] : d["sensors"]["channels"].items())
         if (Downhole(channel)) sensor["delay_s"] = v[0];
     };
-    const std::string feature = axial ? "hookload_to_wob_lag_s" : "torque_to_bit_lag_s";
-    const double z = axial ? -Z(m, r, feature) : std::abs(Z(m, r, feature));
-    if (z > 3)
-      e.strength = z, e.evidence = std::string(axial ? "the weight on bit follows the hookload "
-                                                     : "the bit speed follows the surface torque ") +
-                                   Fixed(shift, 2) + " s later than in the model: " + Describe(m, r, feature);
+    const double z = std::abs(Z(m, r, "torque_to_bit_lag_s"));
+    if (z > 3) e.strength = z, e.evidence = "the bit speed follows the surface torque " + Fixed(shift, 2) +
+                                            " s later than in the model: " + Describe(m, r, "torque_to_bit_lag_s");
     effects.push_back(e);
   }
   return effects;

@@ -87,36 +87,13 @@ double Lag(const std::vector<double>& torque, const std::vector<double>& bit, do
   return best_lag;
 }
 
-// The lag in [-max_lag_s, max_lag_s] at which b follows a most closely, both band-passed to 1.7-10 Hz (moving
-// averages over 0.05 s and 0.2 s): axial waves from the bit are broadband there, so the correlation has one clear
-// peak (the travel time up the string, or more where the downhole channel arrives late), where the slow stick-slip
-// cycle would give one peak per period. NaN where no peak stands above 0.15.
-double BroadbandLag(const std::vector<double>& a, const std::vector<double>& b, double dt, double max_lag_s) {
-  const int lo = std::max(1, static_cast<int>(std::lround(0.025 / dt)));
-  const int hi = std::max(lo + 1, static_cast<int>(std::lround(0.1 / dt)));
-  auto band = [&](const std::vector<double>& x) {
-    const std::vector<double> fine = MovingAverage(x, lo), coarse = MovingAverage(x, hi);
-    std::vector<double> y(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) y[i] = fine[i] - coarse[i];
-    return Demeaned(y);
-  };
-  const std::vector<double> x = band(a), y = band(b);
-  const long max_k = std::min<long>(static_cast<long>(max_lag_s / dt), static_cast<long>(x.size()) / 4);
-  double best = 0.15, best_lag = kNaN;
-  for (long k = -max_k; k <= max_k; ++k) {
-    const double c = LaggedCorrelation(x, y, k);
-    if (c > best) best = c, best_lag = k * dt;
-  }
-  return best_lag;
-}
-
 std::map<std::string, double> Measure(const Recording& r, std::size_t first, std::size_t last,
                                       const FeatureOptions& o) {
   std::map<std::string, double> f;
   const double dt = r.sample_interval_s;
   const int smooth_half = static_cast<int>(std::lround(0.5 * o.smoothing_s / dt));
   const int fast_half = static_cast<int>(std::lround(0.5 * o.fast_window_s / dt));
-  std::vector<double> bit, torque, surface_axial, downhole_axial;
+  std::vector<double> bit, torque;
   std::vector<std::vector<double>> smoothed;
   for (std::size_t j = 0; j < r.names.size(); ++j) {
     const std::vector<double> raw(r.channels[j].begin() + first, r.channels[j].begin() + last);
@@ -129,12 +106,8 @@ std::map<std::string, double> Measure(const Recording& r, std::size_t first, std
     f[r.names[j] + " fast_std"] = Std(fast);
     if (r.names[j] == o.bit_speed) bit = x;
     if (r.names[j] == o.top_torque) torque = x;
-    if (r.names[j] == o.surface_axial) surface_axial = raw;
-    if (r.names[j] == o.downhole_axial) downhole_axial = raw;
     smoothed.push_back(x);
   }
-  if (!surface_axial.empty() && !downhole_axial.empty())
-    f["hookload_to_wob_lag_s"] = BroadbandLag(surface_axial, downhole_axial, dt, o.max_axial_lag_s);
   if (!bit.empty()) {
     double mean_abs = 0;
     for (double v : bit) mean_abs += std::abs(v) / bit.size();
@@ -159,7 +132,6 @@ double Floor(const std::string& name, double value, const std::map<std::string, 
   };
   if (name == "stick_fraction") return 0.03;
   if (name == "period_s") return std::max(0.05 * std::abs(value), 0.05);
-  if (name == "hookload_to_wob_lag_s") return 0.1;
   if (name == "torque_to_bit_lag_s") {
     const auto p = whole.find("period_s");
     return std::max(0.1, p != whole.end() && std::isfinite(p->second) ? 0.05 * p->second : 0.0);
@@ -214,13 +186,6 @@ FeatureSet MeasureFeatures(const Recording& r, double begin_s, double end_s, con
   return set;
 }
 
-namespace {
-bool IsLag(const std::string& name) {
-  const std::string suffix = "_lag_s";
-  return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-}  // namespace
-
 double FeatureDistance(const FeatureSet& model, const FeatureSet& recording) {
   double sum = 0;
   int count = 0;
@@ -228,9 +193,6 @@ double FeatureDistance(const FeatureSet& model, const FeatureSet& recording) {
     const double m = model.Value(r.name);
     const bool rf = std::isfinite(r.value), mf = std::isfinite(m);
     if (!rf && !mf) continue;
-    // A lag is compared only where both have one: whether they oscillate at all is the period's to say, and a
-    // broadband peak that noise hides in one of them is no evidence either way.
-    if ((!rf || !mf) && IsLag(r.name)) continue;
     const double z = rf && mf ? (m - r.value) / r.scale : 3.0;
     sum += z * z;
     ++count;

@@ -30,9 +30,6 @@ struct FeatureSet {
 struct FeatureOptions {
   std::string bit_speed = "bit_rpm";     // the channel read for sticking, period and lag (skipped if absent)
   std::string top_torque = "top_torque_kNm";
-  std::string surface_axial = "hookload_kN";  // the axial pair whose lag shows a downhole channel's delay
-  std::string downhole_axial = "wob_kN";
-  double max_axial_lag_s = 8;                 // lags looked for in [-max, max]
   int parts = 4;                         // the window's parts whose spread sets each feature's scale
   double smoothing_s = 0.05;             // centred moving average before levels and spreads are read
   double fast_window_s = 0.5;            // "fast" = what a moving average over this window removes
@@ -45,9 +42,8 @@ struct FeatureOptions {
 // for fewer than 8 samples per part.
 FeatureSet MeasureFeatures(const Recording& recording, double begin_s, double end_s, const FeatureOptions& options = {});
 
-// Mean over the recording's defined features of ((model - recording) / scale)^2; a feature only one of them defines
-// (no oscillation at all) counts as 9, three scales off, except the lags (names ending in "_lag_s"), compared only
-// where both define them.
+// Mean over the recording's defined features of ((model - recording) / scale)^2; a feature the recording defines
+// and the model does not (no oscillation at all) counts as 9, three scales off.
 double FeatureDistance(const FeatureSet& model, const FeatureSet& recording);
 
 // The white measurement noise of a sampled channel, from its second differences (robust: 1.4826 MAD / sqrt 6), so
