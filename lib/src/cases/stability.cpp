@@ -50,6 +50,7 @@ nlohmann::json StabilityToJson(const std::vector<OperatingPointStability>& resul
     points.push_back({{"steady_state", r.point.steady_state},
                       {"state", r.point.state_names},
                       {"stable", r.spectrum.stable},
+                      {"verdict", analysis::VerdictName(r.spectrum.verdict)},
                       {"spectral_abscissa", Number(r.spectrum.spectral_abscissa)},
                       {"essential_abscissa", Number(r.spectrum.essential_abscissa)},
                       {"roots_re_im_residual", roots}});
@@ -79,7 +80,7 @@ void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStabil
                                 "or below the break-away level): nothing to linearize.\n";
   for (std::size_t k = 0; k < result.size(); ++k) {
     const auto& r = result[k];
-    report << "## Operating point " << k << ": " << (r.spectrum.stable ? "stable" : "UNSTABLE") << "\n\n"
+    report << "## Operating point " << k << ": " << analysis::VerdictName(r.spectrum.verdict) << "\n\n"
            << "Steady state: `" << r.point.steady_state.dump() << "`\n\n"
            << "Rightmost root real part " << Significant(r.spectrum.spectral_abscissa, 8)
            << " 1/s; essential spectrum of the difference operator at Re s = " << Significant(r.spectrum.essential_abscissa, 8)
@@ -91,7 +92,10 @@ void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStabil
     report << "\n";
   }
   report << "A steady state is stable when every characteristic root and the essential spectrum lie in the left "
-            "half plane. Linear stability says nothing of large perturbations: stick-slip can coexist with a stable "
+            "half plane. It is marginal when no root found (up to |Im s| = im_max) lies to the right but the essential "
+            "spectrum lies on the imaginary axis: an inertial or speed-imposed top and an inertial bit reflect waves "
+            "without loss at high frequency, so root chains approach Re s = 0 and no uniform decay rate exists (a real "
+            "string's distributed damping moves them left). Linear stability says nothing of large perturbations: stick-slip can coexist with a stable "
             "steady state (simulate the case from rest to see which motion it reaches).\n";
   out.Commit();
 }
@@ -207,18 +211,22 @@ void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
   }
   if (points.empty()) return;
   const bool sticks = summary.at("stick_onsets").get<int>() > 0;
+  // A marginal steady state (essential spectrum on the axis, no root to the right) counts as not unstable here.
+  auto not_unstable = [](const OperatingPointStability& p) {
+    return p.spectrum.verdict != analysis::Spectrum::Verdict::kUnstable;
+  };
   for (const auto& p : points) {
-    if (!sticks || !p.spectrum.stable) continue;
+    if (!sticks || !not_unstable(p)) continue;
     const auto& state = p.point.steady_state;  // wave kinds name the bit's speed, lumped kinds the common one
     const double speed = state.contains("bit_speed_rad_s") ? state.value("bit_speed_rad_s", 0.0)
                                                            : state.value("speed_rad_s", 0.0);
     summary["linear_verdict"] =
-        "a stable steady state (bit at " + Fixed(speed, 4) +
+        std::string("a ") + analysis::VerdictName(p.spectrum.verdict) + " steady state (bit at " + Fixed(speed, 4) +
         " rad/s, rightmost root Re s = " + Fixed(p.spectrum.spectral_abscissa, 4) +
         " 1/s) coexists with the stick-slip this run found: which motion appears depends on the start";
     return;
   }
-  if (!sticks && std::none_of(points.begin(), points.end(), [](const auto& p) { return p.spectrum.stable; }))
+  if (!sticks && std::none_of(points.begin(), points.end(), not_unstable))
     summary["linear_verdict"] = "every steady state is linearly unstable (rightmost root Re s = " +
                                 Fixed(points.front().spectrum.spectral_abscissa, 4) +
                                 " 1/s), yet the bit did not stick: the run ends on an oscillation without sticking";
