@@ -169,8 +169,9 @@ std::vector<Complex> DifferenceOperatorMultipliers(const std::vector<NeutralTerm
 }
 
 // sup over theta of rho(sum_k B_k e^{-sigma tau_k + i theta_k}); theta_0 = 0 (a common phase leaves rho as it is).
-// A grid over the other phases, then golden-section refinement of the best point one phase at a time.
-double TorusSpectralRadius(const std::vector<NeutralTerm>& terms, double sigma) {
+// A grid over the other phases, then golden-section refinement of the best point one phase at a time. Returns as
+// soon as a value reaches `enough` (the bisection only asks whether it reaches 1).
+double TorusSpectralRadius(const std::vector<NeutralTerm>& terms, double sigma, double enough) {
   const int k_count = static_cast<int>(terms.size());
   auto rho = [&](const std::vector<double>& theta) {
     Eigen::MatrixXcd m = std::exp(-sigma * terms[0].tau) * terms[0].b.cast<Complex>();
@@ -189,6 +190,7 @@ double TorusSpectralRadius(const std::vector<NeutralTerm>& terms, double sigma) 
     for (int k = 1; k < k_count; ++k) theta[k] = 2 * kPi * index[k] / per_phase;
     const double r = rho(theta);
     if (r > best) best = r, best_theta = theta;
+    if (best >= enough) return best;
     more = false;
     for (int k = 1; k < k_count && !more; ++k) {
       if (++index[k] < per_phase) more = true;
@@ -208,6 +210,7 @@ double TorusSpectralRadius(const std::vector<NeutralTerm>& terms, double sigma) 
       }
       const double x = fc > fd ? c : d, f = std::max(fc, fd);
       if (f > best) best = f, best_theta[k] = x;
+      if (best >= enough) return best;
     }
   return best;
 }
@@ -223,7 +226,7 @@ double RobustEssentialAbscissa(const std::vector<NeutralTerm>& terms, double flo
   double hi = 0;
   for (int i = 0; i < 200 && bound(hi) >= 1; ++i) hi = 2 * hi + 1;
   double step = 1, lo = hi - step;
-  while (TorusSpectralRadius(terms, lo) < 1) {
+  while (TorusSpectralRadius(terms, lo, 1.0) < 1) {
     if (lo <= floor) return -std::numeric_limits<double>::infinity();
     hi = lo;
     step *= 2;
@@ -231,7 +234,7 @@ double RobustEssentialAbscissa(const std::vector<NeutralTerm>& terms, double flo
   }
   for (int it = 0; it < 100 && hi - lo > 1e-11 * (1 + std::abs(hi)); ++it) {
     const double mid = 0.5 * (lo + hi);
-    (TorusSpectralRadius(terms, mid) < 1 ? hi : lo) = mid;
+    (TorusSpectralRadius(terms, mid, 1.0) < 1 ? hi : lo) = mid;
   }
   return 0.5 * (lo + hi);
 }

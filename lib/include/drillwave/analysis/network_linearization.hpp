@@ -29,7 +29,7 @@ struct NetworkOperatingPoint {
 
 // Every steady rotation w0 > 0 at the final set-point, ascending. Imposed-speed, PI and DC speed-controlled tops
 // (with an integral gain) hold w0 at the set-point (and drop it when the torque or voltage limit cannot hold the load);
-// the other tops balance their torque against the load, found on a fine grid and refined by bisection. Empty when
+// the other tops balance their torque against the load, found on a grid of 4000 speeds and refined by bisection. Empty when
 // nothing turns steadily forward (a set-point <= 0, a bit held by static friction).
 std::vector<NetworkOperatingPoint> NetworkSteadyStates(const waves::Network& net);
 
