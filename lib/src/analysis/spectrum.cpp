@@ -349,7 +349,13 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
     const Eigen::EigenSolver<Eigen::MatrixXd> solver(sys.a0, false);
     for (int i = 0; i < solver.eigenvalues().size(); ++i) starts.push_back(solver.eigenvalues()(i));
   } else {
-    starts = GeneratorEigenvalues(sys, o.collocation_nodes);
+    // N + 1 Chebyshev points over [-tau_max, 0] resolve the roots up to |Im s| of about N / tau_max: a short longest
+    // delay (a string split into damping sub-sections) needs far fewer nodes than the maximum, and the eigenproblem's
+    // cost grows as the cube of nodes x dimension.
+    double tau_max = 0;
+    for (const DelayTerm& d : sys.delays) tau_max = std::max(tau_max, d.tau);
+    const double wanted = 0.5 * o.im_max * tau_max + 16;
+    starts = GeneratorEigenvalues(sys, wanted < o.collocation_nodes ? static_cast<int>(std::ceil(wanted)) : o.collocation_nodes);
   }
   if (sys.IsNeutral()) {
     const std::vector<NeutralTerm> terms = DifferenceOperator(sys);

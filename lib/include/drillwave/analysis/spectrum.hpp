@@ -48,7 +48,9 @@ struct LinearDelaySystem {
 };
 
 struct SpectrumOptions {
-  int collocation_nodes = 48;   // Chebyshev nodes N of the generator's discretization (N + 1 points)
+  // Chebyshev nodes N of the generator's discretization (N + 1 points): at most this many; im_max tau_max / 2 + 16
+  // when fewer (short delays).
+  int collocation_nodes = 48;
   double re_min = -50;          // keep roots with Re s >= re_min ...
   double im_max = 200;          // ... and |Im s| <= im_max
   int newton_iterations = 60;
