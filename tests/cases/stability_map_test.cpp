@@ -96,6 +96,30 @@ TEST(StabilityMap2D, SimulatedRegimeAndOutputs) {
   std::filesystem::remove_all(dir);
 }
 
+// A kind without linearization maps the simulated regimes alone (with simulate), and refuses a linear map.
+TEST(StabilityMap2D, AxialTorsionalMapsTheSimulatedRegimeOnly) {
+  nlohmann::json doc = LoadCase("baseline-60rpm");
+  doc["simulation"]["duration_s"] = 10;
+  doc["statistics"]["window_s"] = {5, 10};
+  StabilityMapSpec spec{ParseMapAxis("/model/top/speed_rad_s/knots/2/1=3,12", doc),
+                        ParseMapAxis("/model/hoist/weight_on_bit_N=90000", doc), 2, true};
+  const StabilityMapResult r = StabilityMap2D(doc, spec);
+  ASSERT_EQ(r.cells.size(), 2u);
+  for (const StabilityMapCell& c : r.cells) {
+    std::printf("[ measured ] baseline at %g rad/s, WOB %g N: %s (stick fraction %.3f)\n", c.x, c.y, RegimeName(c.regime),
+                c.stick_fraction);
+    EXPECT_FALSE(c.analysed);
+    EXPECT_TRUE(c.regime == Regime::kSmooth || c.regime == Regime::kStickSlip || c.regime == Regime::kBitBouncing);
+  }
+  spec.simulate = false;
+  try {
+    StabilityMap2D(doc, spec);
+    ADD_FAILURE() << "axial_torsional has no linearization";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/model/kind");
+  }
+}
+
 TEST(StabilityMap2D, BadAxesNameTheOption) {
   const nlohmann::json doc = LoadCase("saldivar-stickslip");
   for (const char* text : {"/model/bit/inertia_kgm2", "/model/bit/inertia_kgm2=1:2", "model/bit=1:2:3",

@@ -232,7 +232,8 @@ double RobustEssentialAbscissa(const std::vector<NeutralTerm>& terms, double flo
     step *= 2;
     lo = std::max(floor, hi - step);
   }
-  for (int it = 0; it < 100 && hi - lo > 1e-11 * (1 + std::abs(hi)); ++it) {
+  // Six digits, and 1e-10 absolute near zero where the verdict (kEssentialOnAxis) is decided.
+  for (int it = 0; it < 100 && hi - lo > std::max(1e-10, 1e-7 * std::abs(hi)); ++it) {
     const double mid = 0.5 * (lo + hi);
     (TorusSpectralRadius(terms, mid, 1.0) < 1 ? hi : lo) = mid;
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/stability.hpp"
@@ -63,6 +64,7 @@ constexpr int kStableLight[3] = {0xc6, 0xdb, 0xef}, kStableDark[3] = {0x08, 0x45
 constexpr int kUnstableLight[3] = {0xfc, 0xbb, 0xa1}, kUnstableDark[3] = {0xa5, 0x0f, 0x15};
 constexpr const char* kMarginalColour = "#fdd835";
 constexpr const char* kNoSteadyStateColour = "#d9d9d9";
+constexpr const char* kNotAnalysedColour = "#ffffff";
 
 io::Marker MarkerOf(Regime r) {
   switch (r) {
@@ -137,7 +139,14 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
       }
       cases.back().document = nullptr;
     }
-  cases.front().model->Linearize();  // a kind without linearization fails here, before the threads start
+  // A kind without linearization fails here, before the threads start; with simulate, its map holds the regimes only.
+  bool linearizable = true;
+  try {
+    cases.front().model->Linearize();
+  } catch (const InputError& e) {
+    if (!spec.simulate || e.json_path() != "/model/kind") throw;
+    linearizable = false;
+  }
 
   StabilityMapResult result;
   auto start = std::chrono::steady_clock::now();
@@ -146,7 +155,9 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
     cell.x = spec.x.values[k % nx];
     cell.y = spec.y.values[k / nx];
     cell.stick_fraction = std::nan("");
-    TakeBestSteadyState(AnalyzeStability(cases[k], options), cell);
+    cell.analysed = linearizable;
+    if (linearizable) TakeBestSteadyState(AnalyzeStability(cases[k], options), cell);
+    else cell.spectral_abscissa = cell.frequency_rad_s = cell.essential_abscissa = std::nan("");
     return cell;
   });
   result.linear_wall_time_s = Seconds(start);
@@ -181,7 +192,8 @@ void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec&
   for (const StabilityMapCell& c : result.cells)
     csv << Number(c.x) << "," << Number(c.y) << "," << c.steady_states << "," << Number(c.spectral_abscissa) << ","
         << Number(c.frequency_rad_s) << "," << Number(c.essential_abscissa) << ","
-        << (c.steady_states > 0 ? analysis::VerdictName(c.verdict) : "none") << "," << RegimeName(c.regime) << ","
+        << (!c.analysed ? "n/a" : c.steady_states > 0 ? analysis::VerdictName(c.verdict) : "none") << ","
+        << RegimeName(c.regime) << ","
         << Number(c.stick_fraction) << "\n";
   out.Open("case.json") << document.dump(2) << "\n";
 
@@ -202,7 +214,8 @@ void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec&
   map.y = spec.y.values;
   bool any_simulated = false;
   for (const StabilityMapCell& c : result.cells) {
-    if (c.steady_states == 0) map.colours.push_back(kNoSteadyStateColour);
+    if (!c.analysed) map.colours.push_back(kNotAnalysedColour);
+    else if (c.steady_states == 0) map.colours.push_back(kNoSteadyStateColour);
     else if (c.verdict == Verdict::kMarginal) map.colours.push_back(kMarginalColour);
     else if (c.verdict == Verdict::kStable)
       map.colours.push_back(Shade(kStableLight, kStableDark, most_stable > 0 ? -c.spectral_abscissa / most_stable : 1));
@@ -216,6 +229,8 @@ void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec&
                 {"marginal (essential spectrum on Re s = 0)", kMarginalColour},
                 {"unstable (darker: faster growth)", Shade(kUnstableLight, kUnstableDark, 0.6)},
                 {"no steady rotation", kNoSteadyStateColour}};
+  if (!result.cells.empty() && !result.cells.front().analysed)
+    map.legend = {{"no linearization for this kind", kNotAnalysedColour}};
   if (any_simulated)
     for (Regime r : {Regime::kSmooth, Regime::kStickSlip, Regime::kBitBouncing, Regime::kFailed})
       map.legend.push_back({std::string("simulated: ") + RegimeName(r), "", MarkerOf(r)});
@@ -224,6 +239,7 @@ void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec&
   std::ostream& report = out.Open("report.md");
   int counts[4] = {0, 0, 0, 0}, disagree = 0;  // stable, marginal, unstable, none
   for (const StabilityMapCell& c : result.cells) {
+    if (!c.analysed) continue;
     ++counts[c.steady_states == 0 ? 3 : Rank(c.verdict)];
     const bool linear_stable = c.steady_states > 0 && c.verdict != Verdict::kUnstable;
     if ((c.regime == Regime::kStickSlip && linear_stable) || (c.regime == Regime::kSmooth && !linear_stable)) ++disagree;

@@ -40,6 +40,7 @@ Regime ClassifyRun(const nlohmann::json& summary);
 
 struct StabilityMapCell {
   double x = 0, y = 0;
+  bool analysed = true;   // false: the kind has no linearization (a simulate-only map, e.g. axial_torsional)
   int steady_states = 0;  // 0: nothing turns steadily (the verdict columns are NaN)
   // Of the steady state with the best verdict (stable before marginal before unstable; then the smallest rightmost
   // real part): a stable one means a stable steady motion exists at this point.
@@ -55,12 +56,13 @@ struct StabilityMapResult {
 };
 
 // Every grid point's document is built and parsed before any work (InputError naming the pointers and values), and
-// the kind's linearization is checked on the first; then the analyses (and runs) go in parallel (core/parallel.hpp).
+// the kind's linearization is checked on the first (a kind without one: InputError, unless simulate, which then maps
+// the regimes alone); then the analyses (and runs) go in parallel (core/parallel.hpp).
 StabilityMapResult StabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
                                   const analysis::SpectrumOptions& options = {});
 
 // stability_map.csv (x, y, steady_states, spectral_abscissa_per_s, frequency_rad_s, essential_abscissa_per_s, verdict
-// (1 stable, 0 marginal, -1 unstable, NaN no steady state), regime, stick_fraction), stability_map.svg (heat map of the
+// stable, marginal, unstable, none (no steady state) or n/a (no linearization), regime, stick_fraction), stability_map.svg (heat map of the
 // verdict, shaded by the rightmost real part, with the simulated regime as markers), report.md, case.json.
 void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
                          const StabilityMapResult& result, const std::string& out_dir);
