@@ -122,7 +122,7 @@ std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const 
       const auto& sp = analysis[b].spectrum;
       rows.push_back({spec.values[i], static_cast<int>(b), SteadySpeed(analysis[b].point.steady_state),
                       sp.spectral_abscissa, sp.roots.empty() ? 0.0 : sp.roots.front().s.imag(), sp.essential_abscissa,
-                      sp.stable});
+                      sp.stable, sp.verdict});
     }
     return rows;
   });
@@ -134,7 +134,7 @@ std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const 
 void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
                        const std::vector<StabilityMapRow>& rows, const std::string& out_dir) {
   io::OutputDirectory out(out_dir);
-  std::vector<double> value, branch, speed, abscissa, frequency, essential, stable;
+  std::vector<double> value, branch, speed, abscissa, frequency, essential, stable, verdict;
   for (const auto& r : rows) {
     value.push_back(r.value);
     branch.push_back(r.branch);
@@ -143,12 +143,15 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
     frequency.push_back(r.frequency_rad_s);
     essential.push_back(r.essential_abscissa);
     stable.push_back(r.stable ? 1 : 0);
+    verdict.push_back(r.verdict == analysis::Spectrum::Verdict::kStable     ? 1
+                      : r.verdict == analysis::Spectrum::Verdict::kMarginal ? 0
+                                                                            : -1);
   }
   const std::string param = spec.pointer.find_first_of(",\"\n") == std::string::npos ? spec.pointer : "parameter";
   io::WriteCsv(out.Open("stability_map.csv"),
                {param, "branch", "steady_speed_rad_s", "spectral_abscissa_per_s", "frequency_rad_s",
-                "essential_abscissa_per_s", "stable"},
-               {value, branch, speed, abscissa, frequency, essential, stable});
+                "essential_abscissa_per_s", "stable", "verdict"},
+               {value, branch, speed, abscissa, frequency, essential, stable, verdict});
   out.Open("case.json") << document.dump(2) << "\n";
 
   // One series per branch and stability, with breaks (NaN) where the branch is absent or of the other kind.
@@ -183,7 +186,7 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
   for (const auto& r : rows)
     report << "| " << Significant(r.value, 8) << " | " << r.branch << " | " << Significant(r.speed_rad_s, 8) << " | "
            << Significant(r.spectral_abscissa, 8) << " | " << Significant(r.frequency_rad_s, 8) << " | "
-           << Significant(r.essential_abscissa, 8) << " | " << (r.stable ? "stable" : "unstable") << " |\n";
+           << Significant(r.essential_abscissa, 8) << " | " << analysis::VerdictName(r.verdict) << " |\n";
   // Crossings of the rightmost real part through zero along branch 0, located by linear interpolation.
   report << "\nStability changes along branch 0 (linear interpolation between neighbouring values):\n";
   const StabilityMapRow* prev = nullptr;
