@@ -17,6 +17,7 @@
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/stability.hpp"
+#include "drillwave/cases/stability_map.hpp"
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
@@ -96,6 +97,27 @@ int Sweep(const std::string& file, const std::string& out_dir, const std::vector
   return 0;
 }
 
+int StabilityMap2D(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
+                   const std::vector<std::string>& axes, bool simulate, int jobs) {
+  const nlohmann::json doc = LoadCaseDocument(file, overrides);
+  if (axes.size() != 2)
+    throw drillwave::InputError("--map", "expected two axes, POINTER1=first:last:n POINTER2=first:last:n");
+  const drillwave::cases::StabilityMapSpec spec{drillwave::cases::ParseMapAxis(axes[0], doc),
+                                                drillwave::cases::ParseMapAxis(axes[1], doc), jobs, simulate};
+  if (jobs < 1) throw drillwave::InputError("-j", "expected a whole number >= 1, got " + std::to_string(jobs));
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
+  std::cout << "drillwave: stability map " << spec.x.pointer << " (" << spec.x.values.size() << ") x "
+            << spec.y.pointer << " (" << spec.y.values.size() << ") on " << jobs << " thread(s)"
+            << (simulate ? ", with a simulation per point" : "") << std::endl;
+  const auto result = drillwave::cases::StabilityMap2D(doc, spec);
+  drillwave::cases::WriteStabilityMap2D(doc, spec, result, out_dir);
+  std::cout << "linear analysis " << result.linear_wall_time_s << " s";
+  if (simulate) std::cout << ", simulations " << result.simulation_wall_time_s << " s";
+  std::cout << "\nwrote " << std::filesystem::absolute(out_dir).string()
+            << "/stability_map.csv, stability_map.svg, report.md, case.json" << std::endl;
+  return 0;
+}
+
 int Stability(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
               const std::string& pointer, const std::string& values_text, int jobs) {
   const nlohmann::json doc = LoadCaseDocument(file, overrides);
@@ -120,10 +142,14 @@ int Stability(const std::string& file, const std::string& out_dir, const std::ve
   for (std::size_t k = 0; k < result.size(); ++k) {
     const auto& sp = result[k].spectrum;
     std::cout << "  [" << k << "] " << result[k].point.steady_state.dump() << "\n      "
-              << (sp.stable ? "stable" : "UNSTABLE") << ": rightmost root " << sp.spectral_abscissa
+              << drillwave::analysis::VerdictName(sp.verdict) << ": rightmost root " << sp.spectral_abscissa
               << (sp.roots.empty() ? "" : " " + std::string(sp.roots[0].s.imag() >= 0 ? "+ " : "- ") +
                                               std::to_string(std::abs(sp.roots[0].s.imag())) + "i")
               << ", essential spectrum at Re s = " << sp.essential_abscissa << std::endl;
+    if (sp.verdict == drillwave::analysis::Spectrum::Verdict::kMarginal)
+      std::cout << "      marginal: the essential spectrum lies on the imaginary axis (lossless reflections at both "
+                   "ends at high frequency); no root found right of it up to |Im s| = 200, but no uniform decay rate"
+                << std::endl;
   }
   std::cout << "wrote " << dir << "/stability.json, roots.csv, report.md, case.json" << std::endl;
   return 0;
@@ -358,6 +384,13 @@ int main(int argc, char** argv) {
   stability->add_option("case", case_file, "case JSON file (default: the embedded default case)");
   stability->add_option("--param,-p", sweep_pointer, "map over this parameter (JSON pointer)");
   stability->add_option("--values,-v", sweep_values, "first:last:count or v1,v2,... (with --param)");
+  std::vector<std::string> stability_map_axes;
+  bool stability_simulate = false;
+  stability->add_option("--map", stability_map_axes,
+                        "two-parameter map: POINTER1=first:last:n POINTER2=first:last:n (stability_map.csv/.svg)")
+      ->expected(2);
+  stability->add_flag("--simulate", stability_simulate, "with --map: also run the case at every grid point and mark "
+                                                         "the regime it reaches (stick-slip, smooth, bit bouncing)");
   stability->add_option("--jobs,-j", jobs, "analyses at once (default: the number of cores)");
   stability->add_option("--out,-o", stability_out, "output folder (written all or nothing)");
   stability->add_option("--set", overrides, "override a parameter by JSON pointer");
@@ -463,6 +496,11 @@ int main(int argc, char** argv) {
     if (compare->parsed()) return Compare(case_file, recording_file, sidecar_file, overrides, maps, window, compare_out);
     if (inspect->parsed()) return Inspect(recording_file, inspect_out, bit_channel, top_channel);
     if (stability->parsed()) {
+      if (!stability_map_axes.empty()) {
+        if (!sweep_pointer.empty()) throw drillwave::InputError("--map", "give either --map or --param, not both");
+        return StabilityMap2D(case_file, stability_out, overrides, stability_map_axes, stability_simulate, jobs);
+      }
+      if (stability_simulate) throw drillwave::InputError("--simulate", "only with --map");
       if (sweep_pointer.empty() != sweep_values.empty())
         throw drillwave::InputError("--param/--values", "a stability map needs both --param and --values");
       return Stability(case_file, stability_out, overrides, sweep_pointer, sweep_values, jobs);

@@ -156,6 +156,7 @@ void BenchDelaySolver() {
 }  // namespace
 
 int BenchDiagnose(const std::vector<std::string>& names);  // diagnose_bench.cpp
+int BenchStabilityMap();                                    // stability_bench.cpp
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "diagnose") {
@@ -163,6 +164,7 @@ int main(int argc, char** argv) {
     if (names.empty()) names = {"rec01", "rec07"};
     return BenchDiagnose(names);
   }
+  if (argc > 1 && std::string(argv[1]) == "stability") return BenchStabilityMap();
   if (argc > 1 && std::string(argv[1]) == "delay") {
     BenchDelaySolver();
     return 0;

@@ -92,28 +92,38 @@ TEST(CaseStability, TwoMassSmoothRotationIsStableFromAbout4RadPerS) {
 
 TEST(CaseStability, KindsWithoutALinearizationSaySo) {
   try {
-    Analyze(LoadCase("bar-step"));
-    FAIL() << "the force-controlled bar has no steady sliding state to linearize";
+    Analyze(LoadCase("jeffcott-unbalance"));
+    FAIL() << "the Jeffcott rotor has no linearization";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.json_path(), "/model");
-    EXPECT_NE(std::string(e.what()).find("dissipative"), std::string::npos) << e.what();
+    EXPECT_EQ(e.json_path(), "/model/kind");
   }
+  // Every top of the torsional string linearizes now: the force-controlled bar (torque top) has its steady states.
+  EXPECT_NO_THROW(Analyze(LoadCase("bar-step")));
 }
 
 TEST(CaseStability, AMapStopsAtAValueWithoutALinearizationWhateverTheThreads) {
-  // Viscous damping splits the string into dashpot subsections, which the linearization does not cover: the map's
-  // first value (no damping) passes the check before the threads start and the later ones fail in the workers.
+  // A string of 1e20 m puts more roots on the neutral chain than the analysis takes: the map's first value passes the
+  // check before the threads start and the later ones fail in the workers.
   nlohmann::json doc = LoadCase("saldivar-stickslip");
-  doc["model"]["string"]["torsional_damping_Nms_per_rad_m"] = 0.0;
   for (int jobs : {1, 2}) {
     try {
-      StabilityMap(doc, {"/model/string/torsional_damping_Nms_per_rad_m", {0.0, 0.1, 0.2}, jobs});
-      FAIL() << "a damped string has no linearization (" << jobs << " jobs)";
+      StabilityMap(doc, {"/model/string/sections/0/length_m", {1172.0, 1e20, 1e21}, jobs});
+      FAIL() << "a string of 1e20 m is out of range (" << jobs << " jobs)";
     } catch (const InputError& e) {
       EXPECT_EQ(e.json_path(), "/model");
-      EXPECT_NE(std::string(e.what()).find("one uniform section; this string has 20"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
     }
   }
+}
+
+// The network linearization of the collars case (two sections, no scalar form) against the one-section string: the
+// collars shift the Hopf point of steady sliding; the map finds the same crossing as bisection on the spectrum.
+TEST(CaseStability, CollarsCaseLinearizesAsANetwork) {
+  const auto r = Analyze(LoadCase("saldivar-collars"));
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].point.state_names.size(), 5u);  // bit speed and four wave integrals
+  EXPECT_LT(r[0].spectrum.essential_abscissa, 0);
+  EXPECT_EQ(r[0].spectrum.verdict, analysis::Spectrum::Verdict::kStable);
 }
 
 TEST(CaseStability, OutputsAreWritten) {

@@ -87,22 +87,60 @@ std::vector<Complex> GeneratorEigenvalues(const LinearDelaySystem& sys, int node
   return std::vector<Complex>(ev.data(), ev.data() + ev.size());
 }
 
+// The difference operator restricted to the states it acts on, one matrix per distinct neutral delay. A state whose
+// column is zero in every B_k gives I - sum_k B_k e^{-s tau_k} a unit column, so the determinant is its minor: such
+// states are dropped (repeatedly, as dropping a row can empty another column).
+struct NeutralTerm {
+  double tau;
+  Eigen::MatrixXd b;
+};
+
+std::vector<NeutralTerm> DifferenceOperator(const LinearDelaySystem& sys) {
+  std::vector<NeutralTerm> terms;
+  for (const DelayTerm& d : sys.delays) {
+    if (d.neutral.size() == 0 || d.neutral.norm() == 0) continue;
+    const auto same = std::find_if(terms.begin(), terms.end(), [&](const NeutralTerm& t) { return t.tau == d.tau; });
+    if (same != terms.end()) same->b += d.neutral;
+    else terms.push_back({d.tau, d.neutral});
+  }
+  std::vector<int> core(sys.dimension());
+  for (int i = 0; i < sys.dimension(); ++i) core[i] = i;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t j = 0; j < core.size(); ++j) {
+      const bool acts = std::any_of(terms.begin(), terms.end(), [&](const NeutralTerm& t) {
+        return std::any_of(core.begin(), core.end(), [&](int i) { return t.b(i, core[j]) != 0; });
+      });
+      if (!acts) {
+        core.erase(core.begin() + static_cast<std::ptrdiff_t>(j));
+        changed = true;
+        break;
+      }
+    }
+  }
+  for (NeutralTerm& t : terms) {
+    Eigen::MatrixXd reduced(core.size(), core.size());
+    for (std::size_t i = 0; i < core.size(); ++i)
+      for (std::size_t j = 0; j < core.size(); ++j) reduced(i, j) = t.b(core[i], core[j]);
+    t.b = reduced;
+  }
+  return terms;
+}
+
 // The neutral delays as integer multiples m_k of a base delay tau0 (false if they are not commensurate with
-// multiples up to 64).
-bool CommensurateNeutral(const LinearDelaySystem& sys, double& tau0, std::vector<int>& multiples) {
-  std::vector<double> taus;
-  for (const DelayTerm& d : sys.delays)
-    if (d.neutral.size() > 0 && d.neutral.norm() > 0) taus.push_back(d.tau);
-  if (taus.empty()) return false;
-  const double smallest = *std::min_element(taus.begin(), taus.end());
-  for (int q = 1; q <= 64; ++q) {  // tau0 = smallest / q
+// multiples up to max_multiple).
+bool CommensurateNeutral(const std::vector<NeutralTerm>& terms, int max_multiple, double& tau0,
+                         std::vector<int>& multiples) {
+  double smallest = terms.front().tau;
+  for (const NeutralTerm& t : terms) smallest = std::min(smallest, t.tau);
+  for (int q = 1; q <= max_multiple; ++q) {  // tau0 = smallest / q
     tau0 = smallest / q;
     multiples.clear();
     bool ok = true;
-    for (double t : taus) {
-      const double r = t / tau0;
+    for (const NeutralTerm& t : terms) {
+      const double r = t.tau / tau0;
       const double k = std::round(r);
-      if (std::abs(r - k) > 1e-9 * r || k > 64 * q) {
+      if (std::abs(r - k) > 1e-9 * r || k > max_multiple) {
         ok = false;
         break;
       }
@@ -115,21 +153,91 @@ bool CommensurateNeutral(const LinearDelaySystem& sys, double& tau0, std::vector
 
 // Roots mu = e^{s tau0} of det(mu^M I - sum_k B_k mu^{M - m_k}) (the difference operator), by a block companion
 // matrix.
-std::vector<Complex> DifferenceOperatorMultipliers(const LinearDelaySystem& sys,
+std::vector<Complex> DifferenceOperatorMultipliers(const std::vector<NeutralTerm>& terms,
                                                    const std::vector<int>& multiples) {
-  const int n = sys.dimension();
+  const int n = static_cast<int>(terms.front().b.rows());
   const int big_m = *std::max_element(multiples.begin(), multiples.end());
   // Monic polynomial mu^M + sum_{j<M} C_j mu^j with C_{M - m_k} = -B_k.
   std::vector<Eigen::MatrixXd> coefficient(big_m, Eigen::MatrixXd::Zero(n, n));
-  std::size_t k = 0;
-  for (const DelayTerm& d : sys.delays)
-    if (d.neutral.size() > 0 && d.neutral.norm() > 0) coefficient[big_m - multiples[k++]] -= d.neutral;
+  for (std::size_t k = 0; k < terms.size(); ++k) coefficient[big_m - multiples[k]] -= terms[k].b;
   Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n * big_m, n * big_m);
   for (int j = 0; j + 1 < big_m; ++j) companion.block(j * n, (j + 1) * n, n, n).setIdentity();
   for (int j = 0; j < big_m; ++j) companion.block((big_m - 1) * n, j * n, n, n) = -coefficient[j];
   const Eigen::EigenSolver<Eigen::MatrixXd> solver(companion, false);
   const auto ev = solver.eigenvalues();
   return std::vector<Complex>(ev.data(), ev.data() + ev.size());
+}
+
+// sup over theta of rho(sum_k B_k e^{-sigma tau_k + i theta_k}); theta_0 = 0 (a common phase leaves rho as it is).
+// A grid over the other phases, then golden-section refinement of the best point one phase at a time. Returns as
+// soon as a value reaches `enough` (the bisection only asks whether it reaches 1).
+double TorusSpectralRadius(const std::vector<NeutralTerm>& terms, double sigma, double enough) {
+  const int k_count = static_cast<int>(terms.size());
+  auto rho = [&](const std::vector<double>& theta) {
+    Eigen::MatrixXcd m = std::exp(-sigma * terms[0].tau) * terms[0].b.cast<Complex>();
+    for (int k = 1; k < k_count; ++k)
+      m += std::polar(std::exp(-sigma * terms[k].tau), theta[k]) * terms[k].b.cast<Complex>();
+    const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(m, false);
+    return solver.eigenvalues().cwiseAbs().maxCoeff();
+  };
+  // About 4096 grid points in all (at least 8 per phase): a fine grid for two delays, a coarse one for six, where
+  // the maximum found (and so the abscissa) may fall slightly short.
+  const int per_phase = k_count == 2 ? 128 : std::max(8, static_cast<int>(std::pow(4096.0, 1.0 / (k_count - 1))));
+  std::vector<double> theta(k_count, 0.0), best_theta = theta;
+  double best = -1;
+  std::vector<int> index(k_count, 0);
+  for (bool more = true; more;) {
+    for (int k = 1; k < k_count; ++k) theta[k] = 2 * kPi * index[k] / per_phase;
+    const double r = rho(theta);
+    if (r > best) best = r, best_theta = theta;
+    if (best >= enough) return best;
+    more = false;
+    for (int k = 1; k < k_count && !more; ++k) {
+      if (++index[k] < per_phase) more = true;
+      else index[k] = 0;
+    }
+  }
+  const double golden = 0.5 * (std::sqrt(5.0) - 1);
+  for (int pass = 0; pass < 3; ++pass)
+    for (int k = 1; k < k_count; ++k) {
+      double a = best_theta[k] - 2 * kPi / per_phase, b = best_theta[k] + 2 * kPi / per_phase;
+      std::vector<double> t = best_theta;
+      auto at = [&](double x) { t[k] = x; return rho(t); };
+      double c = b - golden * (b - a), d = a + golden * (b - a), fc = at(c), fd = at(d);
+      for (int it = 0; it < 40; ++it) {
+        if (fc > fd) b = d, d = c, fd = fc, c = b - golden * (b - a), fc = at(c);
+        else a = c, c = d, fc = fd, d = a + golden * (b - a), fd = at(d);
+      }
+      const double x = fc > fd ? c : d, f = std::max(fc, fd);
+      if (f > best) best = f, best_theta[k] = x;
+      if (best >= enough) return best;
+    }
+  return best;
+}
+
+// The robust essential abscissa: sup_theta rho(...) < 1 exactly for sigma above it (Hale & Verduyn Lunel, ch. 9), so
+// bisection finds it. -inf when it lies below `floor`.
+double RobustEssentialAbscissa(const std::vector<NeutralTerm>& terms, double floor) {
+  auto bound = [&](double sigma) {  // rho <= sum_k ||B_k|| e^{-sigma tau_k}
+    double sum = 0;
+    for (const NeutralTerm& t : terms) sum += t.b.operatorNorm() * std::exp(-sigma * t.tau);
+    return sum;
+  };
+  double hi = 0;
+  for (int i = 0; i < 200 && bound(hi) >= 1; ++i) hi = 2 * hi + 1;
+  double step = 1, lo = hi - step;
+  while (TorusSpectralRadius(terms, lo, 1.0) < 1) {
+    if (lo <= floor) return -std::numeric_limits<double>::infinity();
+    hi = lo;
+    step *= 2;
+    lo = std::max(floor, hi - step);
+  }
+  // Six digits, and 1e-10 absolute near zero where the verdict (kEssentialOnAxis) is decided.
+  for (int it = 0; it < 100 && hi - lo > std::max(1e-10, 1e-7 * std::abs(hi)); ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (TorusSpectralRadius(terms, mid, 1.0) < 1 ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 double Residual(const LinearDelaySystem& sys, Complex s) {
@@ -182,28 +290,52 @@ void LinearDelaySystem::Validate() const {
       if (!AllFinite(*m)) throw std::invalid_argument(which + ": non-finite entry");
     }
   }
+  const int m = derivative_only_states;
+  if (m < 0 || m > n) throw std::invalid_argument("derivative_only_states must be in 0..n");
+  auto zero_tail = [&](const Eigen::MatrixXd& a) { return a.size() == 0 || a.rightCols(m).isZero(0); };
+  if (!zero_tail(a0) || !std::all_of(delays.begin(), delays.end(), [&](const DelayTerm& d) { return zero_tail(d.retarded); }))
+    throw std::invalid_argument("a derivative-only state has a non-zero column in A_0 or A_k");
 }
 
 Eigen::MatrixXcd LinearDelaySystem::Characteristic(Complex s) const {
-  const int n = dimension();
-  Eigen::MatrixXcd delta = s * Eigen::MatrixXcd::Identity(n, n) - a0.cast<Complex>();
+  const int n = dimension(), m = derivative_only_states;
+  // I - sum_k B_k e^{-s tau_k} in the derivative-only columns (their A columns are zero, so Delta's is s times that).
+  Eigen::MatrixXcd delta = Eigen::MatrixXcd::Identity(n, n);
+  delta.leftCols(n - m) *= s;
+  delta.leftCols(n - m) -= a0.leftCols(n - m).cast<Complex>();
   for (const DelayTerm& d : delays) {
     const Complex e = std::exp(-s * d.tau);
-    if (d.neutral.size() > 0) delta -= (s * e) * d.neutral.cast<Complex>();
-    if (d.retarded.size() > 0) delta -= e * d.retarded.cast<Complex>();
+    if (d.neutral.size() > 0) {
+      delta.leftCols(n - m) -= (s * e) * d.neutral.leftCols(n - m).cast<Complex>();
+      delta.rightCols(m) -= e * d.neutral.rightCols(m).cast<Complex>();
+    }
+    if (d.retarded.size() > 0) delta.leftCols(n - m) -= e * d.retarded.leftCols(n - m).cast<Complex>();
   }
   return delta;
 }
 
 Eigen::MatrixXcd LinearDelaySystem::CharacteristicDerivative(Complex s) const {
-  const int n = dimension();
-  Eigen::MatrixXcd derivative = Eigen::MatrixXcd::Identity(n, n);
+  const int n = dimension(), m = derivative_only_states;
+  Eigen::MatrixXcd derivative = Eigen::MatrixXcd::Zero(n, n);
+  derivative.leftCols(n - m).setIdentity();
   for (const DelayTerm& d : delays) {
     const Complex e = std::exp(-s * d.tau);
-    if (d.neutral.size() > 0) derivative -= (e * (1.0 - s * d.tau)) * d.neutral.cast<Complex>();
-    if (d.retarded.size() > 0) derivative += (d.tau * e) * d.retarded.cast<Complex>();
+    if (d.neutral.size() > 0) {
+      derivative.leftCols(n - m) -= (e * (1.0 - s * d.tau)) * d.neutral.leftCols(n - m).cast<Complex>();
+      derivative.rightCols(m) += (d.tau * e) * d.neutral.rightCols(m).cast<Complex>();
+    }
+    if (d.retarded.size() > 0) derivative.leftCols(n - m) += (d.tau * e) * d.retarded.leftCols(n - m).cast<Complex>();
   }
   return derivative;
+}
+
+const char* VerdictName(Spectrum::Verdict v) {
+  switch (v) {
+    case Spectrum::Verdict::kStable: return "stable";
+    case Spectrum::Verdict::kMarginal: return "marginal";
+    case Spectrum::Verdict::kUnstable: return "unstable";
+  }
+  return "unstable";
 }
 
 Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o) {
@@ -218,14 +350,26 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
     const Eigen::EigenSolver<Eigen::MatrixXd> solver(sys.a0, false);
     for (int i = 0; i < solver.eigenvalues().size(); ++i) starts.push_back(solver.eigenvalues()(i));
   } else {
-    starts = GeneratorEigenvalues(sys, o.collocation_nodes);
+    // N + 1 Chebyshev points over [-tau_max, 0] resolve the roots up to |Im s| of about N / tau_max: a short longest
+    // delay (a string split into damping sub-sections) needs far fewer nodes than the maximum, and the eigenproblem's
+    // cost grows as the cube of nodes x dimension.
+    double tau_max = 0;
+    for (const DelayTerm& d : sys.delays) tau_max = std::max(tau_max, d.tau);
+    const double wanted = 0.5 * o.im_max * tau_max + 16;
+    starts = GeneratorEigenvalues(sys, wanted < o.collocation_nodes ? static_cast<int>(std::ceil(wanted)) : o.collocation_nodes);
   }
   if (sys.IsNeutral()) {
+    const std::vector<NeutralTerm> terms = DifferenceOperator(sys);
     double tau0 = 0;
     std::vector<int> multiples;
-    if (CommensurateNeutral(sys, tau0, multiples)) {
+    // The companion matrix has (largest multiple) x (core states) rows: beyond a few hundred, or for incommensurate
+    // delays, the robust abscissa on the torus (exact for one delay) replaces it.
+    const int core = static_cast<int>(terms.front().b.rows());
+    if (core == 0) {
+      // Only states whose derivative the difference operator does not feed back: its determinant is 1.
+    } else if (CommensurateNeutral(terms, std::max(1, 400 / core), tau0, multiples)) {
       double rho = 0;
-      for (const Complex mu : DifferenceOperatorMultipliers(sys, multiples)) {
+      for (const Complex mu : DifferenceOperatorMultipliers(terms, multiples)) {
         const double r = std::abs(mu);
         rho = std::max(rho, r);
         if (r == 0) continue;
@@ -242,6 +386,8 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
         }
       }
       out.essential_abscissa = rho > 0 ? std::log(rho) / tau0 : -std::numeric_limits<double>::infinity();
+    } else if (terms.size() <= 6) {
+      out.essential_abscissa = RobustEssentialAbscissa(terms, o.re_min);
     } else {
       out.essential_abscissa = std::numeric_limits<double>::quiet_NaN();
     }
@@ -268,7 +414,11 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
   });
   for (Complex s : found) out.roots.push_back({s, Residual(sys, s)});
   out.spectral_abscissa = found.empty() ? -std::numeric_limits<double>::infinity() : found.front().real();
-  out.stable = out.spectral_abscissa < 0 && out.essential_abscissa < 0;  // NaN (not computed): not stable
+  out.stable = out.spectral_abscissa < 0 && out.essential_abscissa < -kEssentialOnAxis;  // NaN: not stable
+  const bool on_axis = std::abs(out.essential_abscissa) <= kEssentialOnAxis;
+  out.verdict = out.stable ? Spectrum::Verdict::kStable
+                : on_axis && out.spectral_abscissa <= kEssentialOnAxis ? Spectrum::Verdict::kMarginal
+                                                                       : Spectrum::Verdict::kUnstable;
   return out;
 }
 

@@ -50,6 +50,7 @@ nlohmann::json StabilityToJson(const std::vector<OperatingPointStability>& resul
     points.push_back({{"steady_state", r.point.steady_state},
                       {"state", r.point.state_names},
                       {"stable", r.spectrum.stable},
+                      {"verdict", analysis::VerdictName(r.spectrum.verdict)},
                       {"spectral_abscissa", Number(r.spectrum.spectral_abscissa)},
                       {"essential_abscissa", Number(r.spectrum.essential_abscissa)},
                       {"roots_re_im_residual", roots}});
@@ -79,7 +80,7 @@ void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStabil
                                 "or below the break-away level): nothing to linearize.\n";
   for (std::size_t k = 0; k < result.size(); ++k) {
     const auto& r = result[k];
-    report << "## Operating point " << k << ": " << (r.spectrum.stable ? "stable" : "UNSTABLE") << "\n\n"
+    report << "## Operating point " << k << ": " << analysis::VerdictName(r.spectrum.verdict) << "\n\n"
            << "Steady state: `" << r.point.steady_state.dump() << "`\n\n"
            << "Rightmost root real part " << Significant(r.spectrum.spectral_abscissa, 8)
            << " 1/s; essential spectrum of the difference operator at Re s = " << Significant(r.spectrum.essential_abscissa, 8)
@@ -91,7 +92,10 @@ void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStabil
     report << "\n";
   }
   report << "A steady state is stable when every characteristic root and the essential spectrum lie in the left "
-            "half plane. Linear stability says nothing of large perturbations: stick-slip can coexist with a stable "
+            "half plane. It is marginal when no root found (up to |Im s| = im_max) lies to the right but the essential "
+            "spectrum lies on the imaginary axis: an inertial or speed-imposed top and an inertial bit reflect waves "
+            "without loss at high frequency, so root chains approach Re s = 0 and no uniform decay rate exists (a real "
+            "string's distributed damping moves them left). Linear stability says nothing of large perturbations: stick-slip can coexist with a stable "
             "steady state (simulate the case from rest to see which motion it reaches).\n";
   out.Commit();
 }
@@ -118,7 +122,7 @@ std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const 
       const auto& sp = analysis[b].spectrum;
       rows.push_back({spec.values[i], static_cast<int>(b), SteadySpeed(analysis[b].point.steady_state),
                       sp.spectral_abscissa, sp.roots.empty() ? 0.0 : sp.roots.front().s.imag(), sp.essential_abscissa,
-                      sp.stable});
+                      sp.stable, sp.verdict});
     }
     return rows;
   });
@@ -130,7 +134,7 @@ std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const 
 void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
                        const std::vector<StabilityMapRow>& rows, const std::string& out_dir) {
   io::OutputDirectory out(out_dir);
-  std::vector<double> value, branch, speed, abscissa, frequency, essential, stable;
+  std::vector<double> value, branch, speed, abscissa, frequency, essential, stable, verdict;
   for (const auto& r : rows) {
     value.push_back(r.value);
     branch.push_back(r.branch);
@@ -139,12 +143,15 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
     frequency.push_back(r.frequency_rad_s);
     essential.push_back(r.essential_abscissa);
     stable.push_back(r.stable ? 1 : 0);
+    verdict.push_back(r.verdict == analysis::Spectrum::Verdict::kStable     ? 1
+                      : r.verdict == analysis::Spectrum::Verdict::kMarginal ? 0
+                                                                            : -1);
   }
   const std::string param = spec.pointer.find_first_of(",\"\n") == std::string::npos ? spec.pointer : "parameter";
   io::WriteCsv(out.Open("stability_map.csv"),
                {param, "branch", "steady_speed_rad_s", "spectral_abscissa_per_s", "frequency_rad_s",
-                "essential_abscissa_per_s", "stable"},
-               {value, branch, speed, abscissa, frequency, essential, stable});
+                "essential_abscissa_per_s", "stable", "verdict"},
+               {value, branch, speed, abscissa, frequency, essential, stable, verdict});
   out.Open("case.json") << document.dump(2) << "\n";
 
   // One series per branch and stability, with breaks (NaN) where the branch is absent or of the other kind.
@@ -179,7 +186,7 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
   for (const auto& r : rows)
     report << "| " << Significant(r.value, 8) << " | " << r.branch << " | " << Significant(r.speed_rad_s, 8) << " | "
            << Significant(r.spectral_abscissa, 8) << " | " << Significant(r.frequency_rad_s, 8) << " | "
-           << Significant(r.essential_abscissa, 8) << " | " << (r.stable ? "stable" : "unstable") << " |\n";
+           << Significant(r.essential_abscissa, 8) << " | " << analysis::VerdictName(r.verdict) << " |\n";
   // Crossings of the rightmost real part through zero along branch 0, located by linear interpolation.
   report << "\nStability changes along branch 0 (linear interpolation between neighbouring values):\n";
   const StabilityMapRow* prev = nullptr;
@@ -207,18 +214,22 @@ void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
   }
   if (points.empty()) return;
   const bool sticks = summary.at("stick_onsets").get<int>() > 0;
+  // A marginal steady state (essential spectrum on the axis, no root to the right) counts as not unstable here.
+  auto not_unstable = [](const OperatingPointStability& p) {
+    return p.spectrum.verdict != analysis::Spectrum::Verdict::kUnstable;
+  };
   for (const auto& p : points) {
-    if (!sticks || !p.spectrum.stable) continue;
+    if (!sticks || !not_unstable(p)) continue;
     const auto& state = p.point.steady_state;  // wave kinds name the bit's speed, lumped kinds the common one
     const double speed = state.contains("bit_speed_rad_s") ? state.value("bit_speed_rad_s", 0.0)
                                                            : state.value("speed_rad_s", 0.0);
     summary["linear_verdict"] =
-        "a stable steady state (bit at " + Fixed(speed, 4) +
+        std::string("a ") + analysis::VerdictName(p.spectrum.verdict) + " steady state (bit at " + Fixed(speed, 4) +
         " rad/s, rightmost root Re s = " + Fixed(p.spectrum.spectral_abscissa, 4) +
         " 1/s) coexists with the stick-slip this run found: which motion appears depends on the start";
     return;
   }
-  if (!sticks && std::none_of(points.begin(), points.end(), [](const auto& p) { return p.spectrum.stable; }))
+  if (!sticks && std::none_of(points.begin(), points.end(), not_unstable))
     summary["linear_verdict"] = "every steady state is linearly unstable (rightmost root Re s = " +
                                 Fixed(points.front().spectrum.spectral_abscissa, 4) +
                                 " 1/s), yet the bit did not stick: the run ends on an oscillation without sticking";

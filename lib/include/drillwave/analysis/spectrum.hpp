@@ -10,6 +10,11 @@
 // refined roots that satisfy the characteristic equation are kept. The essential spectrum of a neutral system
 // (the roots of det(I - sum_k B_k e^{-s tau_k}) = 0, which the root chains approach as |Im s| grows) is reported
 // separately: a neutral system is stable only if the rightmost root and that abscissa are both negative.
+// With one neutral delay, or delays that are small multiples of one, the abscissa is exact (companion matrix of the
+// difference operator). With incommensurate delays it is the abscissa robust to small changes of the delays (Hale &
+// Verduyn Lunel 1993, ch. 9: the largest sigma with sup_theta rho(sum_k B_k e^{-sigma tau_k + i theta_k}) >= 1), which
+// is exact for rationally independent delays and an upper bound otherwise; physical travel times are never exact.
+// Up to six distinct neutral delays (beyond: NaN); the sup over the phases is searched on a grid and refined locally.
 // Depends on Eigen only; no simulation.
 #include <complex>
 #include <string>
@@ -28,18 +33,24 @@ struct DelayTerm {
 struct LinearDelaySystem {
   Eigen::MatrixXd a0;  // n x n
   std::vector<DelayTerm> delays;
+  // The last m states are integrals of signals that enter only through their derivatives (the waves of a network):
+  // the system is one in those signals, so its characteristic function is det Delta(s) / s^m, and the m roots at
+  // s = 0 that the integration adds are no motions. Their columns of A_0 and of every A_k must be zero.
+  int derivative_only_states = 0;
 
   int dimension() const { return static_cast<int>(a0.rows()); }
   bool IsNeutral() const;
   // Throws std::invalid_argument naming what is wrong (sizes, tau <= 0, non-finite entries).
   void Validate() const;
-  // Delta(s) and its derivative d Delta / ds.
+  // Delta(s) (with the derivative-only columns divided by s) and its derivative d Delta / ds.
   Eigen::MatrixXcd Characteristic(std::complex<double> s) const;
   Eigen::MatrixXcd CharacteristicDerivative(std::complex<double> s) const;
 };
 
 struct SpectrumOptions {
-  int collocation_nodes = 48;   // Chebyshev nodes N of the generator's discretization (N + 1 points)
+  // Chebyshev nodes N of the generator's discretization (N + 1 points): at most this many; im_max tau_max / 2 + 16
+  // when fewer (short delays).
+  int collocation_nodes = 48;
   double re_min = -50;          // keep roots with Re s >= re_min ...
   double im_max = 200;          // ... and |Im s| <= im_max
   int newton_iterations = 60;
@@ -59,8 +70,16 @@ struct Spectrum {
   // when the neutral delays are not commensurate (not computed).
   double essential_abscissa;
   bool stable;  // spectral_abscissa < 0 and essential_abscissa < 0 (false when the latter is NaN)
+  // kMarginal: every root found has Re s <= 0 but the essential spectrum lies on the imaginary axis
+  // (|essential_abscissa| <= kEssentialOnAxis: lossless reflections, e.g. an inertial or speed-imposed end on both
+  // sides of a lossless string). Root chains then approach Re s = 0: no uniform exponential decay rate exists and the
+  // verdict holds for the roots up to |Im s| = im_max only (at higher frequencies the chains' side of the axis decides).
+  enum class Verdict { kStable, kMarginal, kUnstable } verdict = Verdict::kUnstable;
   int candidates = 0, refined = 0;  // how many starting points, how many converged to a root in the region
 };
+
+constexpr double kEssentialOnAxis = 1e-8;  // 1/s
+const char* VerdictName(Spectrum::Verdict v);  // "stable", "marginal", "unstable"
 
 Spectrum ComputeSpectrum(const LinearDelaySystem& system, const SpectrumOptions& options = {});
 

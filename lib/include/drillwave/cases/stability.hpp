@@ -37,12 +37,14 @@ struct StabilityMapRow {
   double frequency_rad_s = 0;         // Im s of that root
   double essential_abscissa = 0;      // -inf for retarded systems
   bool stable = false;
+  analysis::Spectrum::Verdict verdict = analysis::Spectrum::Verdict::kUnstable;  // marginal: see spectrum.hpp
 };
 // Values are checked first (InputError naming the pointer and value); spec.jobs threads (core/parallel.hpp): an
 // analysis that throws stops the map and its exception (the lowest failing value's) reaches the caller.
 std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const SweepSpec& spec,
                                           const analysis::SpectrumOptions& options = {});
-// stability_map.csv, stability_map.svg (steady speed and rightmost Re s against the parameter), report.md.
+// stability_map.csv (with verdict: 1 stable, 0 marginal, -1 unstable), stability_map.svg (steady speed and rightmost
+// Re s against the parameter), report.md.
 void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
                        const std::vector<StabilityMapRow>& rows, const std::string& out_dir);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "drillwave/analysis/network_linearization.hpp"
 #include "drillwave/analysis/torsional_linearization.hpp"
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/cases/statistics.hpp"
@@ -161,14 +162,21 @@ class TorsionalWaveModel : public PreparedModel {
     return result;
   }
 
-  // Steady sliding of a one-section string with a dissipative top at the final top set-point (DESIGN.md §1).
+  // Steady rotation at the final top set-point. A one-section string with a dissipative top and a bit inertia takes
+  // the chapter's scalar neutral DDE (DESIGN.md §1); every other string the wave network's linearization
+  // (analysis/network_linearization.hpp), whose roots are the same where both apply.
   std::vector<LinearizedOperatingPoint> Linearize() const override {
+    bool scalar_form = true;
     try {
       analysis::CheckLinearizable(net_);
-    } catch (const std::invalid_argument& e) {
-      throw InputError("/model", std::string("no linearization for this string: ") + e.what() +
-                                     (net_.sections.size() > 1 ? " (sections and damping_subsections both count)" : ""));
+    } catch (const std::invalid_argument&) {
+      scalar_form = false;
     }
+    return scalar_form ? LinearizeScalar() : LinearizeNetwork();
+  }
+
+ private:
+  std::vector<LinearizedOperatingPoint> LinearizeScalar() const {
     const double omega = net_.top().setpoint.knots().back().second;
     // The chapter's neutral form (DESIGN.md §1): z'' - Y z''(t - 2 tau) = -Psi z' - Y Psi z'(t - 2 tau)
     // + Pi Omega(t - tau) - [T(z') - Y T(z'(t - 2 tau))] / I_B, with the top's own ground damping in beta.
@@ -191,7 +199,27 @@ class TorsionalWaveModel : public PreparedModel {
     return points;
   }
 
- private:
+  std::vector<LinearizedOperatingPoint> LinearizeNetwork() const {
+    std::vector<LinearizedOperatingPoint> points;
+    for (const analysis::NetworkOperatingPoint& p : analysis::NetworkSteadyStates(net_)) {
+      analysis::NetworkLinearization lin;
+      try {
+        lin = analysis::LinearizeNetwork(net_, p);
+      } catch (const std::invalid_argument& e) {
+        throw InputError("/model", std::string("no linearization for this string: ") + e.what());
+      }
+      points.push_back({{{"top_setpoint", p.top_setpoint},
+                         {"bit_speed_rad_s", p.speed_rad_s},
+                         {"top_torque_Nm", p.top_torque_Nm},
+                         {"bit_torque_Nm", p.bit_torque_Nm},
+                         {"bit_torque_slope_Nms_per_rad", p.bit_torque_slope_Nms_per_rad},
+                         {"sections", net_.sections.size()}},
+                        std::move(lin.state_names),
+                        std::move(lin.system)});
+    }
+    return points;
+  }
+
   waves::Network net_;
 };
 

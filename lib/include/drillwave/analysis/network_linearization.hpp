@@ -1,0 +1,45 @@
+#pragma once
+// Steady rotation of a torsional wave network (any chain of sections, any top of waves::Drive) and the linear
+// neutral system of small perturbations about it (DESIGN.md §1 and §4).
+//
+// In steady rotation every node turns at the bit speed w0 and the top supplies the load: the ground damping of
+// every node and the friction of the bit. About it, each section k carries two waves; their integrals p_k (down-going,
+// leaving the upper node) and q_k (up-going, leaving the lower node) are the derivative-only states of the system
+// (LinearDelaySystem::derivative_only_states): a wave arriving at a node is p_k' or q_k' one travel time ago, so every
+// scattering is a neutral term. Nodes with inertia add their speed, PI controllers their integral, DC motors their
+// current. A massless node's speed is algebraic in the arriving waves and is substituted.
+//
+// At high frequency an inertial node reflects like a fixed end (-1), as does an imposed speed: between two such ends
+// a lossless string has its essential spectrum on the imaginary axis (Spectrum::Verdict::kMarginal).
+#include <string>
+#include <vector>
+
+#include "drillwave/analysis/spectrum.hpp"
+#include "drillwave/waves/network.hpp"
+
+namespace drillwave::analysis {
+
+struct NetworkOperatingPoint {
+  double top_setpoint = 0;     // the top's final set-point (speed, torque or voltage, by drive)
+  double speed_rad_s = 0;      // w0: every node turns at it
+  double top_torque_Nm = 0;    // what the top supplies: the whole load
+  double bit_torque_Nm = 0;    // friction plus ground damping of the bit
+  double bit_torque_slope_Nms_per_rad = 0;  // d/dw of that (negative: velocity weakening)
+};
+
+// Every steady rotation w0 > 0 at the final set-point, ascending. Imposed-speed, PI and DC speed-controlled tops
+// (with an integral gain) hold w0 at the set-point (and drop it when the torque or voltage limit cannot hold the load);
+// the other tops balance their torque against the load, found on a grid of 4000 speeds and refined by bisection. Empty when
+// nothing turns steadily forward (a set-point <= 0, a bit held by static friction).
+std::vector<NetworkOperatingPoint> NetworkSteadyStates(const waves::Network& net);
+
+struct NetworkLinearization {
+  LinearDelaySystem system;
+  std::vector<std::string> state_names;  // node states first, then the wave integrals
+};
+
+// Throws std::invalid_argument when the linearization is singular (a massless node whose damping cancels the
+// impedances it joins).
+NetworkLinearization LinearizeNetwork(const waves::Network& net, const NetworkOperatingPoint& point);
+
+}  // namespace drillwave::analysis

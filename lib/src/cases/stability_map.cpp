@@ -1,0 +1,270 @@
+#include "drillwave/cases/stability_map.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/stability.hpp"
+#include "drillwave/cases/sweep.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
+#include "drillwave/core/parallel.hpp"
+#include "drillwave/io/json_reader.hpp"
+#include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/svg_heatmap.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+using Verdict = analysis::Spectrum::Verdict;
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+int Rank(Verdict v) { return v == Verdict::kStable ? 0 : v == Verdict::kMarginal ? 1 : 2; }
+
+// The cell's linear columns from the steady state with the best verdict.
+void TakeBestSteadyState(const std::vector<OperatingPointStability>& points, StabilityMapCell& cell) {
+  cell.steady_states = static_cast<int>(points.size());
+  const OperatingPointStability* best = nullptr;
+  for (const auto& p : points)
+    if (!best || Rank(p.spectrum.verdict) < Rank(best->spectrum.verdict) ||
+        (Rank(p.spectrum.verdict) == Rank(best->spectrum.verdict) &&
+         p.spectrum.spectral_abscissa < best->spectrum.spectral_abscissa))
+      best = &p;
+  if (!best) {
+    cell.spectral_abscissa = cell.frequency_rad_s = cell.essential_abscissa = std::nan("");
+    return;
+  }
+  cell.spectral_abscissa = best->spectrum.spectral_abscissa;
+  cell.frequency_rad_s = best->spectrum.roots.empty() ? 0.0 : best->spectrum.roots.front().s.imag();
+  cell.essential_abscissa = best->spectrum.essential_abscissa;
+  cell.verdict = best->spectrum.verdict;
+}
+
+std::string CsvName(const std::string& pointer, const char* fallback) {
+  return pointer.find_first_of(",\"\n\r") == std::string::npos ? pointer : fallback;
+}
+
+std::string Number(double v) { return std::isnan(v) ? "nan" : Significant(v, 10); }
+
+// Light to dark, by t in [0, 1].
+std::string Shade(const int light[3], const int dark[3], double t) {
+  t = std::clamp(std::isfinite(t) ? t : 1.0, 0.0, 1.0);
+  char b[8];
+  std::snprintf(b, sizeof b, "#%02x%02x%02x", static_cast<int>(light[0] + t * (dark[0] - light[0])),
+                static_cast<int>(light[1] + t * (dark[1] - light[1])), static_cast<int>(light[2] + t * (dark[2] - light[2])));
+  return b;
+}
+
+constexpr int kStableLight[3] = {0xc6, 0xdb, 0xef}, kStableDark[3] = {0x08, 0x45, 0x94};
+constexpr int kUnstableLight[3] = {0xfc, 0xbb, 0xa1}, kUnstableDark[3] = {0xa5, 0x0f, 0x15};
+constexpr const char* kMarginalColour = "#fdd835";
+constexpr const char* kNoSteadyStateColour = "#d9d9d9";
+constexpr const char* kNotAnalysedColour = "#ffffff";
+
+io::Marker MarkerOf(Regime r) {
+  switch (r) {
+    case Regime::kNotSimulated: return io::Marker::kNone;
+    case Regime::kSmooth: return io::Marker::kOpenCircle;
+    case Regime::kStickSlip: return io::Marker::kFilledCircle;
+    case Regime::kBitBouncing: return io::Marker::kTriangle;
+    case Regime::kFailed: return io::Marker::kCross;
+  }
+  return io::Marker::kNone;
+}
+
+}  // namespace
+
+MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document) {
+  const auto eq = text.rfind('=');
+  if (eq == std::string::npos || eq == 0 || text[0] != '/')
+    throw InputError("--map", "'" + text + "': expected /json/pointer=first:last:count");
+  MapAxis axis{text.substr(0, eq), ParseSweepValues(text.substr(eq + 1), "--map " + text.substr(0, eq))};
+  for (double v : axis.values)
+    if (!std::isfinite(v)) throw InputError("--map", "'" + text + "': a value is not finite");
+  // The pointer must lead to a field the case reads: set the first value and parse (a misspelt optional field is
+  // refused by the case's reader as unknown).
+  nlohmann::json probe = document;
+  try {
+    io::SetByPointer(probe, axis.pointer, axis.values.front());
+    ParseCase(probe);
+  } catch (const InputError& e) {
+    throw InputError("--map", "'" + text + "': " + e.json_path() + ": " + e.what());
+  }
+  return axis;
+}
+
+const char* RegimeName(Regime r) {
+  switch (r) {
+    case Regime::kNotSimulated: return "";
+    case Regime::kSmooth: return "smooth";
+    case Regime::kStickSlip: return "stick-slip";
+    case Regime::kBitBouncing: return "bit bouncing";
+    case Regime::kFailed: return "failed";
+  }
+  return "";
+}
+
+Regime ClassifyRun(const nlohmann::json& summary) {
+  auto positive = [&](const char* key) {
+    return summary.contains(key) && summary.at(key).is_number() && summary.at(key).get<double>() > 0;
+  };
+  if (positive("off_bottom_fraction")) return Regime::kBitBouncing;
+  if (positive("stick_onsets") || positive("stick_fraction")) return Regime::kStickSlip;
+  return Regime::kSmooth;
+}
+
+StabilityMapResult StabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
+                                  const analysis::SpectrumOptions& options) {
+  if (spec.jobs < 1) throw InputError("--jobs", std::to_string(spec.jobs) + " is not >= 1");
+  if (spec.x.values.empty() || spec.y.values.empty()) throw InputError("--map", "no values to map");
+  const std::size_t nx = spec.x.values.size(), ny = spec.y.values.size();
+  // Every grid point parsed first; the document copies are dropped (a 100 x 100 map would hold 10^4 of them).
+  std::vector<Case> cases;
+  cases.reserve(nx * ny);
+  for (double y : spec.y.values)
+    for (double x : spec.x.values) {
+      nlohmann::json doc = document;
+      io::SetByPointer(doc, spec.x.pointer, x);
+      io::SetByPointer(doc, spec.y.pointer, y);
+      try {
+        cases.push_back(ParseCase(doc));
+      } catch (const InputError& e) {
+        throw InputError(e.json_path(), std::string(e.what()) + " (map point " + spec.x.pointer + " = " +
+                                            Significant(x, 8) + ", " + spec.y.pointer + " = " + Significant(y, 8) + ")");
+      }
+      cases.back().document = nullptr;
+    }
+  // A kind without linearization fails here, before the threads start; with simulate, its map holds the regimes only.
+  bool linearizable = true;
+  try {
+    cases.front().model->Linearize();
+  } catch (const InputError& e) {
+    if (!spec.simulate || e.json_path() != "/model/kind") throw;
+    linearizable = false;
+  }
+
+  StabilityMapResult result;
+  auto start = std::chrono::steady_clock::now();
+  result.cells = ParallelMap(cases.size(), spec.jobs, [&](std::size_t k) {
+    StabilityMapCell cell;
+    cell.x = spec.x.values[k % nx];
+    cell.y = spec.y.values[k / nx];
+    cell.stick_fraction = std::nan("");
+    cell.analysed = linearizable;
+    if (linearizable) TakeBestSteadyState(AnalyzeStability(cases[k], options), cell);
+    else cell.spectral_abscissa = cell.frequency_rad_s = cell.essential_abscissa = std::nan("");
+    return cell;
+  });
+  result.linear_wall_time_s = Seconds(start);
+  if (!spec.simulate) return result;
+  start = std::chrono::steady_clock::now();
+  const auto runs = ParallelMap(cases.size(), spec.jobs, [&](std::size_t k) {
+    std::pair<Regime, double> regime{Regime::kFailed, std::nan("")};
+    try {
+      const nlohmann::json summary = RunCase(cases[k]).summary;
+      regime.first = ClassifyRun(summary);
+      if (summary.contains("stick_fraction") && summary.at("stick_fraction").is_number())
+        regime.second = summary.at("stick_fraction").get<double>();
+    } catch (const NumericalError&) {
+    }
+    return regime;
+  });
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    result.cells[k].regime = runs[k].first;
+    result.cells[k].stick_fraction = runs[k].second;
+  }
+  result.simulation_wall_time_s = Seconds(start);
+  return result;
+}
+
+void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
+                         const StabilityMapResult& result, const std::string& out_dir) {
+  io::OutputDirectory out(out_dir);
+  std::ostream& csv = out.Open("stability_map.csv");
+  csv << CsvName(spec.x.pointer, "x") << "," << CsvName(spec.y.pointer, "y")
+      << ",steady_states,spectral_abscissa_per_s,frequency_rad_s,essential_abscissa_per_s,verdict,regime,"
+         "stick_fraction\n";
+  for (const StabilityMapCell& c : result.cells)
+    csv << Number(c.x) << "," << Number(c.y) << "," << c.steady_states << "," << Number(c.spectral_abscissa) << ","
+        << Number(c.frequency_rad_s) << "," << Number(c.essential_abscissa) << ","
+        << (!c.analysed ? "n/a" : c.steady_states > 0 ? analysis::VerdictName(c.verdict) : "none") << ","
+        << RegimeName(c.regime) << ","
+        << Number(c.stick_fraction) << "\n";
+  out.Open("case.json") << document.dump(2) << "\n";
+
+  // Colours: stable blue and unstable red, darker the farther the rightmost root is from the axis (relative to the
+  // map's extreme), marginal yellow, no steady state grey.
+  double most_stable = 0, most_unstable = 0;
+  for (const StabilityMapCell& c : result.cells)
+    if (c.steady_states > 0 && std::isfinite(c.spectral_abscissa)) {
+      if (c.verdict == Verdict::kStable) most_stable = std::max(most_stable, -c.spectral_abscissa);
+      if (c.verdict == Verdict::kUnstable) most_unstable = std::max(most_unstable, c.spectral_abscissa);
+    }
+  io::HeatMap map;
+  map.title = document.value("name", std::string("case")) + ": linear stability" +
+              (spec.simulate ? " and the regime simulated from the case's start" : "");
+  map.x_label = spec.x.pointer;
+  map.y_label = spec.y.pointer;
+  map.x = spec.x.values;
+  map.y = spec.y.values;
+  bool any_simulated = false;
+  for (const StabilityMapCell& c : result.cells) {
+    if (!c.analysed) map.colours.push_back(kNotAnalysedColour);
+    else if (c.steady_states == 0) map.colours.push_back(kNoSteadyStateColour);
+    else if (c.verdict == Verdict::kMarginal) map.colours.push_back(kMarginalColour);
+    else if (c.verdict == Verdict::kStable)
+      map.colours.push_back(Shade(kStableLight, kStableDark, most_stable > 0 ? -c.spectral_abscissa / most_stable : 1));
+    else
+      map.colours.push_back(
+          Shade(kUnstableLight, kUnstableDark, most_unstable > 0 ? c.spectral_abscissa / most_unstable : 1));
+    map.markers.push_back(MarkerOf(c.regime));
+    any_simulated |= c.regime != Regime::kNotSimulated;
+  }
+  map.legend = {{"stable (darker: faster decay)", Shade(kStableLight, kStableDark, 0.6)},
+                {"marginal (essential spectrum on Re s = 0)", kMarginalColour},
+                {"unstable (darker: faster growth)", Shade(kUnstableLight, kUnstableDark, 0.6)},
+                {"no steady rotation", kNoSteadyStateColour}};
+  if (!result.cells.empty() && !result.cells.front().analysed)
+    map.legend = {{"no linearization for this kind", kNotAnalysedColour}};
+  if (any_simulated)
+    for (Regime r : {Regime::kSmooth, Regime::kStickSlip, Regime::kBitBouncing, Regime::kFailed})
+      map.legend.push_back({std::string("simulated: ") + RegimeName(r), "", MarkerOf(r)});
+  io::WriteHeatMapSvg(map, out.Open("stability_map.svg"));
+
+  std::ostream& report = out.Open("report.md");
+  int counts[4] = {0, 0, 0, 0}, disagree = 0;  // stable, marginal, unstable, none
+  for (const StabilityMapCell& c : result.cells) {
+    if (!c.analysed) continue;
+    ++counts[c.steady_states == 0 ? 3 : Rank(c.verdict)];
+    const bool linear_stable = c.steady_states > 0 && c.verdict != Verdict::kUnstable;
+    if ((c.regime == Regime::kStickSlip && linear_stable) || (c.regime == Regime::kSmooth && !linear_stable)) ++disagree;
+  }
+  report << "# Stability map of " << document.value("name", std::string("case")) << "\n\n"
+         << spec.x.pointer << " (" << spec.x.values.size() << " values, " << Significant(spec.x.values.front(), 8)
+         << " to " << Significant(spec.x.values.back(), 8) << ") x " << spec.y.pointer << " (" << spec.y.values.size()
+         << " values, " << Significant(spec.y.values.front(), 8) << " to " << Significant(spec.y.values.back(), 8)
+         << ").\n\n| verdict | points |\n|---|---|\n| stable | " << counts[0] << " |\n| marginal | " << counts[1]
+         << " |\n| unstable | " << counts[2] << " |\n| no steady rotation | " << counts[3] << " |\n\n"
+         << "Linear analysis: " << Significant(result.linear_wall_time_s, 3) << " s wall time on " << spec.jobs
+         << " thread(s).";
+  if (spec.simulate)
+    report << " Simulations: " << Significant(result.simulation_wall_time_s, 3) << " s. At " << disagree
+           << " points the run from the case's start disagrees with the linear verdict (stick-slip beside a stable or "
+              "marginal steady state: two attractors, the start decides; or smooth motion although every steady state "
+              "is unstable: an oscillation without sticking).";
+  report << "\n\nEach point's verdict is that of its best steady state (stable before marginal before unstable). "
+            "**Marginal** means that no characteristic root up to |Im s| = im_max lies to the right of the axis but "
+            "the essential spectrum of the neutral difference operator lies on the imaginary axis (an inertial or "
+            "speed-imposed top and an inertial bit reflect waves without loss at high frequency): root chains "
+            "approach Re s = 0, perturbations do not decay at a uniform exponential rate, and whether the chains "
+            "approach from the left or the right beyond im_max is not decided. A real string's distributed damping "
+            "moves these chains to the left.\n";
+  out.Commit();
+}
+
+}  // namespace drillwave::cases

@@ -1,0 +1,283 @@
+// The wave network's linearization against characteristic equations written by hand and against simulation.
+//
+// Closed form: the string seen from the top is an impedance (torque over speed in the Laplace domain). A bit of
+// inertia I and damping c is Z_L = I s + c; a section (impedance Z, travel time tau) above a load Z_L presents
+// Z (Z_L cosh s tau + Z sinh s tau) / (Z cosh s tau + Z_L sinh s tau). The top closes the loop: Z_top + Z_in = 0, with
+// Z_top = J s + kp + ki / s for a PI top drive, beta for a dissipative top, and Z_in's denominator = 0 for an imposed
+// speed. Written as numerator and denominator this is an entire function whose zeros must be the spectrum's roots.
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <functional>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/analysis/network_linearization.hpp"
+#include "drillwave/analysis/torsional_linearization.hpp"
+#include "drillwave/waves/network_simulation.hpp"
+
+namespace drillwave::analysis {
+namespace {
+
+using Complex = std::complex<double>;
+
+const waves::Section kPipe = waves::Section::Torsional(1172, 79.3e9, 8000, 1.19e-5);
+const waves::Section kCollars = waves::Section::Torsional(200, 79.3e9, 8000, 5.1908e-5);
+
+waves::Node DissipativeTop(double speed) {
+  waves::Node top;
+  top.name = "top";
+  top.drive = waves::Drive::kSpeedDashpot;
+  top.drive_damping = 2000;
+  top.setpoint = model::Schedule(speed);
+  return top;
+}
+
+waves::Node PiTop(double speed, double inertia, double kp, double ki) {
+  waves::Node top;
+  top.name = "top";
+  top.drive = waves::Drive::kPiSpeedController;
+  top.inertia = inertia;
+  top.kp = kp;
+  top.ki = ki;
+  top.setpoint = model::Schedule(speed);
+  return top;
+}
+
+waves::Node ImposedTop(double speed) {
+  waves::Node top;
+  top.name = "top";
+  top.drive = waves::Drive::kPrescribedSpeed;
+  top.setpoint = model::Schedule(speed);
+  return top;
+}
+
+waves::Node StribeckBit() {
+  waves::Node bit;
+  bit.name = "bit";
+  bit.inertia = 89;
+  bit.friction = bitrock::FrictionLaw(bitrock::Stribeck{97347, 0.155575, 0.5, 0.8, 0.9, 1.0, 0.03});
+  return bit;
+}
+
+waves::Node DampedBit(double damping) {
+  waves::Node bit;
+  bit.name = "bit";
+  bit.inertia = 89;
+  bit.ground_damping = damping;
+  return bit;
+}
+
+waves::Network Chain(waves::Node top, std::vector<waves::Section> sections, waves::Node bit) {
+  waves::Network net;
+  net.sections = std::move(sections);
+  net.nodes.push_back(std::move(top));
+  for (std::size_t k = 1; k < net.sections.size(); ++k) {
+    waves::Node junction;
+    junction.name = "junction";
+    net.nodes.push_back(junction);
+  }
+  net.nodes.push_back(std::move(bit));
+  return net;
+}
+
+// Numerator and denominator of an impedance.
+struct Fraction {
+  Complex num, den;
+};
+
+// The closed-form characteristic function of a chain with a bit of inertia I and damping c (see the file comment).
+std::function<Complex(Complex)> ClosedForm(const waves::Network& net, double bit_damping) {
+  return [&net, bit_damping](Complex s) {
+    Fraction z{net.bit().inertia * s + bit_damping, 1.0};
+    for (auto k = net.sections.size(); k-- > 0;) {
+      const double zk = net.sections[k].impedance;
+      const Complex ch = std::cosh(s * net.sections[k].travel_time_s), sh = std::sinh(s * net.sections[k].travel_time_s);
+      z = {zk * (z.num * ch + zk * z.den * sh), zk * z.den * ch + z.num * sh};
+    }
+    const waves::Node& top = net.top();
+    switch (top.drive) {
+      case waves::Drive::kPrescribedSpeed: return z.den;
+      case waves::Drive::kSpeedDashpot: return top.drive_damping * z.den + z.num;
+      case waves::Drive::kPiSpeedController: return (top.inertia * s * s + top.kp * s + top.ki) * z.den + s * z.num;
+      default: ADD_FAILURE() << "no closed form for this top"; return Complex(0);
+    }
+  };
+}
+
+// Newton's method on f with a central-difference derivative; NaN unless it converges.
+Complex NewtonRoot(const std::function<Complex(Complex)>& f, Complex s) {
+  for (int it = 0; it < 100; ++it) {
+    const double h = 1e-6 * (1 + std::abs(s));
+    const Complex step = f(s) / ((f(s + h) - f(s - h)) / (2 * h));
+    s -= step;
+    if (std::abs(step) < 1e-13 * (1 + std::abs(s))) return s;
+  }
+  return {NAN, NAN};
+}
+
+// Every root the spectrum finds is a zero of the closed form (Newton on it moves the root by < 1e-8), and every zero
+// of the closed form in the box, found by Newton from a grid of starts, is among the spectrum's roots.
+void ExpectRootsOfClosedForm(const waves::Network& net, double bit_damping, const char* what) {
+  const auto points = NetworkSteadyStates(net);
+  ASSERT_EQ(points.size(), 1u) << what;
+  SpectrumOptions o;
+  o.im_max = 60;
+  o.re_min = -5;
+  const Spectrum sp = ComputeSpectrum(LinearizeNetwork(net, points[0]).system, o);
+  const auto f = ClosedForm(net, bit_damping);
+  ASSERT_GE(sp.roots.size(), 5u) << what;
+  double worst = 0;
+  for (const auto& r : sp.roots) {
+    const Complex closed = NewtonRoot(f, r.s);
+    worst = std::max(worst, std::abs(closed - r.s) / (1 + std::abs(r.s)));
+  }
+  int missing = 0, zeros = 0;
+  for (double re = -3; re <= 0.5; re += 0.5)
+    for (double im = 0; im <= 50; im += 1.0) {
+      const Complex z = NewtonRoot(f, {re, im});
+      if (!(z.imag() >= -1e-9 && z.imag() < 50 && z.real() > -3 && z.real() < 1)) continue;
+      ++zeros;
+      const bool found = std::any_of(sp.roots.begin(), sp.roots.end(),
+                                     [&](const CharacteristicRoot& r) { return std::abs(r.s - z) < 1e-6 * (1 + std::abs(z)); });
+      if (!found) ++missing, ADD_FAILURE() << what << ": closed-form zero " << z << " not found";
+    }
+  std::printf("[ measured ] %s: %zu roots, largest distance to the closed form's zero %.2e (relative); %d starts of "
+              "the closed form converged in the box, %d missed; rightmost %.6f%+.6fi, essential %.3e, %s\n",
+              what, sp.roots.size(), worst, zeros, missing, sp.roots[0].s.real(), sp.roots[0].s.imag(),
+              sp.essential_abscissa, VerdictName(sp.verdict));
+  EXPECT_LT(worst, 1e-8) << what;
+}
+
+TEST(NetworkStability, RootsAreTheZerosOfTheTransferMatrixClosedForm) {
+  // Two lossless sections between an imposed top speed and a damped inertial bit.
+  ExpectRootsOfClosedForm(Chain(ImposedTop(10), {kPipe, kCollars}, DampedBit(50)), 50, "imposed top, pipe + collars");
+  // Dissipative top, pipe + collars.
+  ExpectRootsOfClosedForm(Chain(DissipativeTop(10), {kPipe, kCollars}, DampedBit(50)), 50, "dissipative top, pipe + collars");
+  // One section with a PI top drive.
+  ExpectRootsOfClosedForm(Chain(PiTop(10, 500, 1000, 300), {kPipe}, DampedBit(50)), 50, "PI top, one section");
+}
+
+// Where both apply (one section, dissipative top), the network form and the chapter's scalar neutral DDE have the
+// same roots.
+TEST(NetworkStability, AgreesWithTheScalarNeutralFormOfOneSection) {
+  const waves::Network net = Chain(DissipativeTop(9), {kPipe}, StribeckBit());
+  const auto scalar_points = SteadySlidingStates(net, 9);
+  const auto network_points = NetworkSteadyStates(net);
+  ASSERT_EQ(scalar_points.size(), 1u);
+  ASSERT_EQ(network_points.size(), 1u);
+  EXPECT_EQ(scalar_points[0].bit_speed_rad_s, network_points[0].speed_rad_s);
+  SpectrumOptions o;
+  o.im_max = 60;
+  const Spectrum scalar = ComputeSpectrum(LinearizeTorsionalString(net, scalar_points[0]), o);
+  const Spectrum network = ComputeSpectrum(LinearizeNetwork(net, network_points[0]).system, o);
+  EXPECT_NEAR(network.essential_abscissa, scalar.essential_abscissa, 1e-10);
+  ASSERT_GE(scalar.roots.size(), 5u);
+  for (std::size_t k = 0; k < 5; ++k) {
+    const bool found = std::any_of(network.roots.begin(), network.roots.end(), [&](const CharacteristicRoot& r) {
+      return std::abs(r.s - scalar.roots[k].s) < 1e-8 * (1 + std::abs(r.s));
+    });
+    EXPECT_TRUE(found) << scalar.roots[k].s;
+  }
+}
+
+// An inertial top reflects like a fixed end at high frequency: with the inertial bit the difference operator is
+// lossless (|mu| = 1), its essential spectrum lies on the imaginary axis, and the verdict is marginal when every root
+// found decays. Without any damping every root lies on the axis.
+TEST(NetworkStability, InertialTopPutsTheEssentialSpectrumOnTheImaginaryAxis) {
+  SpectrumOptions o;
+  o.im_max = 60;
+  const waves::Network damped = Chain(PiTop(10, 500, 1000, 300), {kPipe, kCollars}, DampedBit(50));
+  const Spectrum sp = ComputeSpectrum(LinearizeNetwork(damped, NetworkSteadyStates(damped)[0]).system, o);
+  EXPECT_NEAR(sp.essential_abscissa, 0.0, kEssentialOnAxis);
+  EXPECT_LT(sp.spectral_abscissa, 0);
+  EXPECT_FALSE(sp.stable);
+  EXPECT_EQ(sp.verdict, Spectrum::Verdict::kMarginal);
+  // A dissipative top on the same string: strictly stable difference operator.
+  const waves::Network dissipative = Chain(DissipativeTop(10), {kPipe, kCollars}, DampedBit(50));
+  const Spectrum sd = ComputeSpectrum(LinearizeNetwork(dissipative, NetworkSteadyStates(dissipative)[0]).system, o);
+  EXPECT_LT(sd.essential_abscissa, -0.01);
+  EXPECT_EQ(sd.verdict, Spectrum::Verdict::kStable);
+  // Lossless: imposed top, undamped bit; every root on the axis.
+  const waves::Network lossless = Chain(ImposedTop(10), {kPipe, kCollars}, DampedBit(0));
+  const Spectrum sl = ComputeSpectrum(LinearizeNetwork(lossless, NetworkSteadyStates(lossless)[0]).system, o);
+  for (const auto& r : sl.roots) EXPECT_NEAR(r.s.real(), 0.0, 1e-9) << r.s;
+  EXPECT_EQ(sl.verdict, Spectrum::Verdict::kMarginal);
+}
+
+// The bit speed after a rigid-rotation kick off the steady state.
+waves::NetworkTrajectory KickedRun(waves::Network net, double w0, double kick, double t1) {
+  net.initial.speed_rad_s = w0 + kick;
+  waves::NetworkRunOptions options;
+  options.t_end_s = t1;
+  options.output_interval_s = 1e-3;
+  options.integrator.abs_tol = options.integrator.rel_tol = 1e-11;
+  return waves::SimulateNetwork(net, options).trajectory;
+}
+
+// Growth rate of the simulated bit speed's component at angular frequency omega: its Hann-windowed Fourier amplitude
+// over windows of four periods (at least 10 s) centred every 0.5 s in [t0, t1], least-squares slope of the logs. A mode
+// e^{(sigma + i omega) t} gives exactly sigma; modes at other frequencies leak little through the window.
+double ModeGrowthRate(const waves::NetworkTrajectory& tr, double w0, double omega, double t0, double t1) {
+  const double window = std::min(std::max(8 * M_PI / omega, 10.0), 0.5 * (t1 - t0));
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (double centre = t0 + 0.5 * window; centre <= t1 - 0.5 * window; centre += 0.5) {
+    Complex sum = 0;
+    for (std::size_t i = 0; i < tr.time_s.size(); ++i) {
+      const double x = (tr.time_s[i] - centre) / window;
+      if (std::abs(x) > 0.5) continue;
+      sum += (tr.bit_speed_rad_s[i] - w0) * std::pow(std::cos(M_PI * x), 2) * std::polar(1.0, -omega * tr.time_s[i]);
+    }
+    const double y = std::log(std::abs(sum));
+    sx += centre, sy += y, sxx += centre * centre, sxy += centre * y;
+    ++n;
+  }
+  EXPECT_GE(n, 10);
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// The oscillating roots below 30 rad/s are modes of the simulation: the growth rate of the simulated bit speed at such
+// a root's frequency is its real part. Checked for the rightmost three that decay at most 0.3 1/s faster than the
+// rightmost: faster ones sink into the leakage of the slower modes through the window. (Above, the string's harmonics; with an inertial top their chain approaches
+// the imaginary axis, and a rigid kick hardly excites them at the bit.)
+void ExpectGrowthRatesOfSimulation(const waves::Network& net, double kick, double t0, double t1, const char* what) {
+  const auto points = NetworkSteadyStates(net);
+  ASSERT_EQ(points.size(), 1u) << what;
+  const Spectrum sp = ComputeSpectrum(LinearizeNetwork(net, points[0]).system);
+  const waves::NetworkTrajectory tr = KickedRun(net, points[0].speed_rad_s, kick, t1);
+  std::printf("[ measured ] %s: w0 = %.6f rad/s, dT/dw = %.3f N m s; rightmost root %.5f%+.5fi, essential %.3e (%s)\n",
+              what, points[0].speed_rad_s, points[0].bit_torque_slope_Nms_per_rad, sp.roots[0].s.real(),
+              sp.roots[0].s.imag(), sp.essential_abscissa, VerdictName(sp.verdict));
+  int modes = 0;
+  double first = 0;
+  for (const CharacteristicRoot& r : sp.roots) {  // by real part, descending
+    if (!(r.s.imag() > 1 && r.s.imag() < 30) || modes == 3) continue;
+    if (modes > 0 && r.s.real() < first - 0.3) break;
+    if (modes == 0) first = r.s.real();
+    const double measured = ModeGrowthRate(tr, points[0].speed_rad_s, r.s.imag(), t0, t1);
+    std::printf("             root %.5f%+.5fi: simulated growth rate at its frequency %.5f 1/s\n", r.s.real(),
+                r.s.imag(), measured);
+    EXPECT_NEAR(measured, r.s.real(), 0.03 * std::abs(r.s.real()) + 3e-3) << what << " root " << r.s;
+    ++modes;
+  }
+  EXPECT_GE(modes, 1) << what;
+}
+
+TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedMultiSectionString) {
+  ExpectGrowthRatesOfSimulation(Chain(DissipativeTop(7), {kPipe, kCollars}, StribeckBit()), 1e-6, 5, 30,
+                                "pipe + collars at 7 rad/s");
+  ExpectGrowthRatesOfSimulation(Chain(DissipativeTop(10), {kPipe, kCollars}, StribeckBit()), 1e-3, 5, 40,
+                                "pipe + collars at 10 rad/s");
+}
+
+TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedPiTopDrive) {
+  ExpectGrowthRatesOfSimulation(Chain(PiTop(4, 500, 1000, 300), {kPipe}, StribeckBit()), 1e-6, 5, 30,
+                                "PI top at 4 rad/s");
+  ExpectGrowthRatesOfSimulation(Chain(PiTop(12, 500, 1000, 300), {kPipe}, StribeckBit()), 1e-3, 5, 40,
+                                "PI top at 12 rad/s");
+}
+
+}  // namespace
+}  // namespace drillwave::analysis

@@ -1,0 +1,146 @@
+// Two-parameter stability maps: the boundary cells lie where an independent bisection on the analysis puts the Hopf
+// point of the saldivar string (8.344 rad/s at I_B = 89 kg m^2, and its shift with the bit inertia), the simulated
+// regime is classified from the run's statistics, and bad axes are refused naming the option.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/analysis/torsional_linearization.hpp"
+#include "drillwave/cases/stability_map.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/io/json_reader.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+nlohmann::json LoadCase(const std::string& name) {
+  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/" + name + ".json");
+}
+
+// The saldivar string built by hand (not from the case): the Hopf point of steady sliding by bisection on the
+// spectral abscissa of the scalar neutral form.
+double HopfTopSpeed(double bit_inertia) {
+  auto abscissa = [&](double omega) {
+    waves::Network net;
+    net.sections.push_back(waves::Section::Torsional(1172, 79.3e9, 8000, 1.19e-5));
+    waves::Node top, bit;
+    top.drive = waves::Drive::kSpeedDashpot;
+    top.drive_damping = 2000;
+    top.setpoint = model::Schedule(omega);
+    bit.inertia = bit_inertia;
+    bit.friction = bitrock::FrictionLaw(bitrock::Stribeck{97347, 0.155575, 0.5, 0.8, 0.9, 1.0, 0.03});
+    net.nodes = {top, bit};
+    return analysis::ComputeSpectrum(analysis::LinearizeTorsionalString(net, analysis::SteadySlidingStates(net, omega).back()))
+        .spectral_abscissa;
+  };
+  double lo = 7, hi = 12;
+  for (int i = 0; i < 50; ++i) (abscissa(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  return hi;
+}
+
+TEST(StabilityMap2D, BoundaryCellsLieOnTheHopfPointsOfTheSaldivarString) {
+  const nlohmann::json doc = LoadCase("saldivar-stickslip");
+  const StabilityMapSpec spec{ParseMapAxis("/model/top/speed_rad_s/knots/1/1=7:11:41", doc),
+                              ParseMapAxis("/model/bit/inertia_kgm2=59:119:3", doc), 2, false};
+  const StabilityMapResult r = StabilityMap2D(doc, spec);
+  const std::size_t nx = spec.x.values.size();
+  ASSERT_EQ(r.cells.size(), nx * spec.y.values.size());
+  for (std::size_t j = 0; j < spec.y.values.size(); ++j) {
+    const double hopf = HopfTopSpeed(spec.y.values[j]);
+    int crossings = 0;
+    for (std::size_t i = 1; i < nx; ++i) {
+      const StabilityMapCell &a = r.cells[j * nx + i - 1], &b = r.cells[j * nx + i];
+      EXPECT_EQ(b.x, spec.x.values[i]);
+      EXPECT_EQ(b.y, spec.y.values[j]);
+      if (a.verdict == b.verdict) continue;
+      ++crossings;
+      std::printf("[ measured ] I_B = %g kg m^2: the map turns stable between %g and %g rad/s; bisection: %.6f rad/s\n",
+                  b.y, a.x, b.x, hopf);
+      EXPECT_EQ(a.verdict, analysis::Spectrum::Verdict::kUnstable);
+      EXPECT_EQ(b.verdict, analysis::Spectrum::Verdict::kStable);
+      EXPECT_LT(a.x, hopf);
+      EXPECT_GE(b.x, hopf);
+    }
+    EXPECT_EQ(crossings, 1) << "I_B = " << spec.y.values[j];
+    if (spec.y.values[j] == 89) EXPECT_NEAR(hopf, 8.344, 1e-3);
+  }
+}
+
+TEST(StabilityMap2D, SimulatedRegimeAndOutputs) {
+  nlohmann::json doc = LoadCase("saldivar-stickslip");
+  doc["simulation"]["duration_s"] = 30;
+  doc["statistics"]["window_s"] = {15, 30};
+  const StabilityMapSpec spec{ParseMapAxis("/model/top/speed_rad_s/knots/1/1=6,20", doc),
+                              ParseMapAxis("/model/top/beta_Nms_per_rad=2000,20000", doc), 2, true};
+  const StabilityMapResult r = StabilityMap2D(doc, spec);
+  for (const StabilityMapCell& c : r.cells) {
+    std::printf("[ measured ] Omega = %g, beta = %g: %s, simulated %s (stick fraction %.3f)\n", c.x, c.y,
+                c.steady_states ? analysis::VerdictName(c.verdict) : "no steady state", RegimeName(c.regime),
+                c.stick_fraction);
+    ASSERT_NE(c.regime, Regime::kNotSimulated);
+    EXPECT_EQ(c.regime == Regime::kStickSlip, c.stick_fraction > 0);
+  }
+  EXPECT_EQ(r.cells[0].regime, Regime::kStickSlip);  // 6 rad/s under the dissipative top of the case: stick-slip
+  const auto dir = std::filesystem::temp_directory_path() / ("drillwave-map2d-" + std::to_string(::getpid()));
+  WriteStabilityMap2D(doc, spec, r, dir.string());
+  std::ifstream csv(dir / "stability_map.csv");
+  std::string line;
+  int rows = -1;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 4);
+  EXPECT_TRUE(std::filesystem::exists(dir / "stability_map.svg"));
+  std::filesystem::remove_all(dir);
+}
+
+// A kind without linearization maps the simulated regimes alone (with simulate), and refuses a linear map.
+TEST(StabilityMap2D, AxialTorsionalMapsTheSimulatedRegimeOnly) {
+  nlohmann::json doc = LoadCase("baseline-60rpm");
+  doc["simulation"]["duration_s"] = 10;
+  doc["statistics"]["window_s"] = {5, 10};
+  StabilityMapSpec spec{ParseMapAxis("/model/top/speed_rad_s/knots/2/1=3,12", doc),
+                        ParseMapAxis("/model/hoist/weight_on_bit_N=90000", doc), 2, true};
+  const StabilityMapResult r = StabilityMap2D(doc, spec);
+  ASSERT_EQ(r.cells.size(), 2u);
+  for (const StabilityMapCell& c : r.cells) {
+    std::printf("[ measured ] baseline at %g rad/s, WOB %g N: %s (stick fraction %.3f)\n", c.x, c.y, RegimeName(c.regime),
+                c.stick_fraction);
+    EXPECT_FALSE(c.analysed);
+    EXPECT_TRUE(c.regime == Regime::kSmooth || c.regime == Regime::kStickSlip || c.regime == Regime::kBitBouncing);
+  }
+  spec.simulate = false;
+  try {
+    StabilityMap2D(doc, spec);
+    ADD_FAILURE() << "axial_torsional has no linearization";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/model/kind");
+  }
+}
+
+TEST(StabilityMap2D, BadAxesNameTheOption) {
+  const nlohmann::json doc = LoadCase("saldivar-stickslip");
+  for (const char* text : {"/model/bit/inertia_kgm2", "/model/bit/inertia_kgm2=1:2", "model/bit=1:2:3",
+                           "/model/no/such/0=1:2:3", "/model/bit/inertia_kgm2=1:nan:3", "/model/bit/inertia_kgm2=-5:1:3"}) {
+    try {
+      ParseMapAxis(text, doc);
+      ADD_FAILURE() << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.json_path()).find("--map"), std::string::npos) << text << ": " << e.json_path();
+    }
+  }
+  // A value the field refuses: the message names both pointers and values of the point.
+  const StabilityMapSpec spec{ParseMapAxis("/model/bit/inertia_kgm2=1,-1", doc),
+                              ParseMapAxis("/model/top/beta_Nms_per_rad=1,2", doc), 1, false};
+  try {
+    StabilityMap2D(doc, spec);
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("inertia_kgm2 = -1"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace drillwave::cases
