@@ -66,7 +66,9 @@ TEST(StabilityMap2D, BoundaryCellsLieOnTheHopfPointsOfTheSaldivarString) {
       EXPECT_GE(b.x, hopf);
     }
     EXPECT_EQ(crossings, 1) << "I_B = " << spec.y.values[j];
-    if (spec.y.values[j] == 89) EXPECT_NEAR(hopf, 8.344, 1e-3);
+    if (spec.y.values[j] == 89) {
+      EXPECT_NEAR(hopf, 8.344, 1e-3);
+    }
   }
 }
 
