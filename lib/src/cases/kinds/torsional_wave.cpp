@@ -9,6 +9,7 @@
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/waves/network_simulation.hpp"
+#include "top_components.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -63,7 +64,8 @@ void AddSectionsWithDamping(const std::vector<waves::Section>& sections, double 
 waves::Node ReadTop(const JsonReader& r) {
   waves::Node top;
   top.name = "top";
-  const std::string type = r.String("type", {"prescribed_speed", "dissipative", "top_drive", "torque", "dc_motor"});
+  const std::string type = r.String("type", {"prescribed_speed", "dissipative", "top_drive", "torque", "dc_motor",
+                                                   "induction_motor"});
   if (type == "prescribed_speed") {
     top.drive = waves::Drive::kPrescribedSpeed;
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
@@ -100,12 +102,21 @@ waves::Node ReadTop(const JsonReader& r) {
       top.ki = r.Number("ki_V_per_rad", Range::NonNegative());
       top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
     }
+  } else if (type == "induction_motor") {
+    top.drive = waves::Drive::kInductionMotor;
+    top.inertia = r.Number("inertia_kgm2", Range::Positive());
+    top.induction = ReadInductionMotor(r.Object("induction_motor"));
+    top.setpoint = model::Schedule::FromJson(r.Raw("supply_frequency_Hz"), r.PathOf("supply_frequency_Hz"));
   } else {
     top.drive = waves::Drive::kTorque;
     top.inertia = r.Number("inertia_kgm2", Range::NonNegative(), 0.0);  // 0: a force-controlled end (eq. 2.9)
     top.setpoint = model::Schedule::FromJson(r.Raw("torque_Nm"), r.PathOf("torque_Nm"));
   }
   top.ground_damping = r.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
+  if (r.Has("gear") && (top.massless() || top.drive == waves::Drive::kTorque))
+    throw InputError(r.PathOf("gear"), "a gear sits behind a motor: expected top/type top_drive, dc_motor or "
+                                       "induction_motor, got " + type);
+  top.gear = ReadGear(r);
   r.Finish();
   return top;
 }
@@ -145,7 +156,7 @@ class TorsionalWaveModel : public PreparedModel {
     result.summary["integration_wall_time_s"] = run.stats.wall_time_s;
 
     // The sampled signals are moved into the channels, not copied (long runs sample millions of points).
-    result.channels.reserve(6);
+    result.channels.reserve(9);
     result.channels.push_back({"top_rpm", ToRpm(tr.top_speed_rad_s)});
     result.channels.push_back({"bit_rpm", ToRpm(tr.bit_speed_rad_s)});
     result.channels.push_back({"top_torque_Nm", std::move(tr.top_torque_nm)});
@@ -156,6 +167,11 @@ class TorsionalWaveModel : public PreparedModel {
     if (!tr.top_current_a.empty()) {
       result.channels.push_back({"top_current_A", std::move(tr.top_current_a)});
       result.plot_panels.push_back({"top_current_A"});
+    }
+    if (!tr.motor_speed_rad_s.empty()) {  // a motor behind a compliant gear
+      result.channels.push_back({"motor_rpm", ToRpm(tr.motor_speed_rad_s)});
+      result.channels.push_back({"gear_torque_Nm", std::move(tr.gear_torque_nm)});
+      result.plot_panels.push_back({"gear_torque_Nm", "top_torque_Nm"});
     }
     result.time_s = std::move(tr.time_s);
     return result;
@@ -202,7 +218,7 @@ class TorsionalWaveKind : public ModelKind {
     return "torsional d'Alembert wave network: sections, top boundary, bit with friction (DESIGN.md §1–3)";
   }
   nlohmann::json FieldSchema() const override {
-    return {
+    nlohmann::json fields = {
         {"string/sections/*/length_m", "section length [m], > 0"},
         {"string/sections/*/shear_modulus_Pa", "G [Pa], > 0"},
         {"string/sections/*/density_kg_m3", "rho [kg/m^3], > 0"},
@@ -210,7 +226,7 @@ class TorsionalWaveKind : public ModelKind {
         {"string/sections/*/name", "optional label"},
         {"string/torsional_damping_Nms_per_rad_m", "distributed viscous damping gamma [N·m·s/rad per m], >= 0, default 0"},
         {"string/damping_subsections", "dashpot nodes per section for the damping, 1..1000, default 20"},
-        {"top/type", "prescribed_speed | dissipative | top_drive | torque | dc_motor"},
+        {"top/type", "prescribed_speed | dissipative | top_drive | torque | dc_motor | induction_motor"},
         {"top/motor/motor_constant_Nm_per_A", "dc_motor (chapter eq. 2.15): k_T = k_e [N·m/A], > 0"},
         {"top/motor/resistance_ohm", "dc_motor: armature resistance R [ohm], > 0"},
         {"top/motor/inductance_H", "dc_motor: armature inductance L [H], > 0"},
@@ -220,7 +236,8 @@ class TorsionalWaveKind : public ModelKind {
         {"top/ki_V_per_rad", "dc_motor with speed_rad_s: integral gain of the speed controller, >= 0"},
         {"top/speed_rad_s", "set-point [rad/s]: a number or {\"knots\": [[t, v], ...]}"},
         {"top/beta_Nms_per_rad", "dissipative top: beta > 0"},
-        {"top/inertia_kgm2", "top_drive, dc_motor: inertia > 0; torque: >= 0, default 0 (force-controlled end)"},
+        {"top/inertia_kgm2", "top_drive, dc_motor, induction_motor: inertia > 0; torque: >= 0, default 0 "
+                             "(force-controlled end)"},
         {"top/kp_Nms_per_rad", "top_drive: proportional gain >= 0"},
         {"top/ki_Nm_per_rad", "top_drive: integral gain >= 0"},
         {"top/torque_limit_Nm", "top_drive: >= 0, 0 = unlimited"},
@@ -232,6 +249,8 @@ class TorsionalWaveKind : public ModelKind {
         {"initial/bit_speed_rad_s", "rigid rotation at start, default 0 (at rest; a set-valued bit starts stuck)"},
         {"friction laws", bitrock::FrictionLaw::Schema()},
     };
+    fields.update(TopComponentFields("top"));
+    return fields;
   }
 
   std::unique_ptr<PreparedModel> Prepare(const JsonReader& model) const override {

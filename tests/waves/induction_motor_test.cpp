@@ -1,0 +1,129 @@
+// An induction motor at the top of the string (chapter eqs. 2.18-2.19, written in the supply frame): its steady
+// states against the per-phase equivalent circuit, which the simulator never uses.
+#include <cmath>
+#include <complex>
+#include <iostream>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/waves/network_simulation.hpp"
+
+namespace drillwave::waves {
+namespace {
+
+using Complex = std::complex<double>;
+constexpr double kC = 300;     // bit damper [N·m·s/rad], about the pipe's impedance: it absorbs the waves
+constexpr double kRatio = 8;   // gear: motor turns per string turn
+constexpr double kTwoPi = 6.283185307179586;
+
+// A 690 V, 60 Hz four-pole machine of about 800 kW (illustrative values of the size that drives top drives).
+model::InductionMotor Machine() {
+  model::InductionMotor m;
+  m.pole_pairs = 2;
+  m.stator_resistance = 0.01, m.rotor_resistance = 0.01;
+  m.stator_leakage_inductance = m.rotor_leakage_inductance = 0.2e-3;
+  m.magnetizing_inductance = 8e-3;
+  m.volts_per_hertz = 690.0 / 60;
+  return m;
+}
+
+// The per-phase T equivalent circuit at supply f and shaft speed w: stator current (rms) and torque
+// 3 p |I_r|^2 R_r / (s w_e).
+struct CircuitPoint {
+  double torque, stator_current;
+};
+CircuitPoint EquivalentCircuit(const model::InductionMotor& m, double f, double w) {
+  const double w_e = kTwoPi * f, s = (w_e - m.pole_pairs * w) / w_e;
+  const Complex j(0, 1);
+  const Complex z_m = j * w_e * m.magnetizing_inductance;
+  const Complex z_r = m.rotor_resistance / s + j * w_e * m.rotor_leakage_inductance;
+  const Complex z_s = m.stator_resistance + j * w_e * m.stator_leakage_inductance;
+  const double v_phase = std::min(m.volts_per_hertz * f, m.voltage_limit > 0 ? m.voltage_limit : 1e300) / std::sqrt(3.0);
+  const Complex i_s = v_phase / (z_s + z_m * z_r / (z_m + z_r)), i_r = i_s * z_m / (z_m + z_r);
+  return {3 * m.pole_pairs * std::norm(i_r) * m.rotor_resistance / (s * w_e), std::abs(i_s)};
+}
+
+// The string speed where the motor's torque-speed curve, through the gear, meets the damper's load line c w:
+// bisection between the pull-out region and synchronous speed, where the curve falls steeply through the line.
+double OperatingSpeed(const model::InductionMotor& m, double f) {
+  const double w_sync = kTwoPi * f / m.pole_pairs / kRatio;
+  auto excess = [&](double w) { return kRatio * EquivalentCircuit(m, f, kRatio * w).torque - kC * w; };
+  double lo = 0.9 * w_sync, hi = w_sync * (1 - 1e-12);
+  EXPECT_GT(excess(lo), 0);
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * w_sync; ++k) (excess(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+Network MotorString(const model::InductionMotor& machine, const model::Schedule& supply_hz) {
+  Network net;
+  net.sections.push_back(Section::Torsional(1172, 79.3e9, 8000, 1.19e-5));
+  Node top;
+  top.name = "top";
+  top.inertia = 500;
+  top.drive = Drive::kInductionMotor;
+  top.induction = machine;
+  top.gear.ratio = kRatio;
+  top.gear.motor_inertia = 10;  // rigid gear: 640 kg m^2 more at the top
+  top.setpoint = supply_hz;
+  Node bit;
+  bit.name = "bit";
+  bit.ground_damping = kC;
+  net.nodes = {top, bit};
+  return net;
+}
+
+NetworkRun Settle(const Network& net, double t_end) {
+  NetworkRunOptions o;
+  o.t_end_s = t_end;
+  o.output_interval_s = 0.5;
+  o.integrator.abs_tol = o.integrator.rel_tol = 1e-10;
+  return SimulateNetwork(net, o);
+}
+
+// The model's own steady state (fluxes that hold still) has the circuit's torque at every slip, motoring and
+// generating: the supply-frame two-axis equations and the phasor circuit are two forms of one machine.
+TEST(InductionMotor, SteadyFluxesGiveTheEquivalentCircuitTorque) {
+  const model::InductionMotor m = Machine();
+  for (double f : {5.0, 30.0, 60.0})
+    for (double slip : {-0.2, -0.01, 0.003, 0.05, 0.3, 1.0}) {
+      const double w = (1 - slip) * kTwoPi * f / m.pole_pairs;
+      const auto psi = m.SteadyFluxes(f, w);
+      for (double rate : m.FluxRates(psi, f, w)) EXPECT_NEAR(rate, 0, 1e-12 * 690);
+      const CircuitPoint c = EquivalentCircuit(m, f, w);
+      EXPECT_NEAR(m.Torque(psi), c.torque, 1e-9 * std::abs(c.torque)) << f << " Hz, slip " << slip;
+      EXPECT_NEAR(m.StatorCurrentRms(psi), c.stator_current, 1e-9 * c.stator_current);
+    }
+}
+
+// Started at rest at 30 Hz, the string settles where the torque-speed curve meets the load line.
+TEST(InductionMotor, SettlesWhereTheTorqueSpeedCurveMeetsTheLoadLine) {
+  const model::InductionMotor m = Machine();
+  const double f = 30;
+  const NetworkRun run = Settle(MotorString(m, model::Schedule(f)), 60);
+  const double w = OperatingSpeed(m, f);
+  const CircuitPoint c = EquivalentCircuit(m, f, kRatio * w);
+  const auto& tr = run.trajectory;
+  std::cout << "[ measured ] " << f << " Hz: top " << tr.top_speed_rad_s.back() << " rad/s, bit " << tr.bit_speed_rad_s.back()
+            << " rad/s, stator " << tr.top_current_a.back() << " A rms (equivalent circuit: " << w << " rad/s, slip "
+            << 1 - kRatio * w * m.pole_pairs / (kTwoPi * f) << ", " << c.stator_current << " A)\n";
+  EXPECT_NEAR(tr.top_speed_rad_s.back(), w, 1e-6 * w);
+  EXPECT_NEAR(tr.bit_speed_rad_s.back(), w, 1e-6 * w);
+  EXPECT_NEAR(tr.top_torque_nm.back(), kC * w, 1e-6 * kC * w);
+  EXPECT_NEAR(tr.top_current_a.back(), c.stator_current, 1e-6 * c.stator_current);
+}
+
+// A supply ramp into the voltage limit: above 50 Hz the line voltage stays at 575 V (field weakening), and the speed
+// follows the circuit with the limited voltage.
+TEST(InductionMotor, VoltageLimitWeakensTheFieldAboveTheBaseFrequency) {
+  model::InductionMotor m = Machine();
+  m.voltage_limit = 575;
+  const double f = 70;
+  const NetworkRun run = Settle(MotorString(m, model::Schedule({{0.0, 0.0}, {10.0, f}})), 60);
+  const double w = OperatingSpeed(m, f);
+  EXPECT_NEAR(run.trajectory.top_speed_rad_s.back(), w, 1e-6 * w);
+  model::InductionMotor unlimited = Machine();
+  EXPECT_GT(std::abs(OperatingSpeed(unlimited, f) - w), 1e-4 * w);  // the limit matters at this point
+}
+
+}  // namespace
+}  // namespace drillwave::waves
