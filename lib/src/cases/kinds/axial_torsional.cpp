@@ -8,8 +8,8 @@
 // end), so the d'Alembert reduction stays exact. A piece carries the force S = Z (D - U) onto its lower node; a node
 // feels sum Z (2 w_in - v) from its pieces (DESIGN.md §1). Kelvin-Voigt damping (chapter eqs. 2.20, 2.24) is a
 // dashpot eta K / length across each piece, which ties the massless nodes into a tridiagonal system.
-// Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by a constant hook
-// force H. Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
+// Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by the hook force H: constant,
+// set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)). Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
 //   t_n: Phi(t) - Phi(t - t_n) = 2 pi / n,  d = n (U(t) - U(t - t_n))   (from the stored bit angle and position;
 //        after a bounce, against the deepest of the last four blade passes at that angle)
 //   cutting (d > 0, not turning backwards): W_c = a zeta eps d, T_c = a^2 eps d / 2
@@ -99,8 +99,8 @@ struct Model {
   double top_inertia = 0, hoist_mass = 0, bit_inertia = 0, bit_mass = 0;
   double kp = 0, ki = 0;
   model::Schedule top_speed;  // rad/s
-  double hook_force = 0;      // H [N], up
-  double weight_on_bit = 0;   // W0 the hook force was set for [N]
+  model::Schedule hook_force;  // H(t) [N], up
+  double weight_on_bit = 0;    // W0 of steady drilling at t = 0 [N] (the target the hook force is set for, or H(0)'s)
   double a = 0, zeta = 0, eps = 0, sigma_l = 0, mu = 0, gamma = 0;
   int blades = 4;
   double static_mu = 0, stribeck_speed = 0;  // Stribeck friction (stribeck_speed 0: Coulomb, static_mu = mu)
@@ -192,7 +192,7 @@ class Process {
       dx[kCurrent] =
           md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), x[kWtop], x[kCurrent]);
     dx[kWtop] = (ends.top[0] + u) / md_.top_inertia;
-    dx[kVtop] = (ends.top[1] - md_.hook_force) / md_.hoist_mass;
+    dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first) / md_.hoist_mass;
     dx[kZ] = omega_ref - x[kWtop];
     // Bit.
     dx[kWbit] = turn_ == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
@@ -316,9 +316,14 @@ class Process {
   }
 
   double NextBreakpoint() const {
-    for (const auto& knot : md_.top_speed.knots())
-      if (knot.first > passed_) return knot.first;
-    return kInf;
+    double next = kInf;
+    for (const model::Schedule* input : {&md_.top_speed, &md_.hook_force})
+      for (const auto& knot : input->knots())
+        if (knot.first > passed_) {
+          next = std::min(next, knot.first);
+          break;
+        }
+    return next;
   }
   void OnBreakpoint(double t) { passed_ = t; }
 
@@ -337,7 +342,7 @@ class Process {
     s.top_torque = TopTorque(x, omega_ref);
     s.bit_torque = turn_ == Turn::kStuck ? f.drive_torque : f.torque;
     s.wob = f.weight;
-    s.hookload = md_.hook_force + md_.hoist_mass * dx[kVtop];
+    s.hookload = md_.hook_force.Value(t) + md_.hoist_mass * dx[kVtop];
     s.depth = contact_ ? f.depth : std::min(f.depth, 0.0);
     s.bit_axial_speed = !md_.axial_coupling ? dx[kU] : axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
     s.tn = f.tn;
@@ -695,7 +700,7 @@ class AxialTorsionalModel : public PreparedModel {
     result.summary["steady_depth_of_cut_m"] = s.depth;
     result.summary["steady_rop_m_h"] = 3600 * s.rop;
     result.summary["steady_bit_torque_Nm"] = s.tob;
-    result.summary["hook_force_N"] = md_.hook_force;
+    result.summary["hook_force_N"] = md_.hook_force.Value(0.0);
     if (md_.unbalance.on) {  // whirl radius over the window, and the closed form at the steady bit speed
       result.summary["whirl_amplitude_mean_m"] = n ? lateral_sum / n : 0.0;
       result.summary["whirl_amplitude_max_m"] = lateral_max;
@@ -860,6 +865,27 @@ void BuildChannels(const StringSpec& sp, double g, Model& md) {
   for (Channel* ch : {&md.torsion, &md.axial}) FactorKelvinVoigt(*ch);
 }
 
+// The axial balance of steady drilling (chapter eq. 2.23 at rest in the moving frame): H = W_b - W0 - C V0, with the
+// buoyant weight W_b of string and bit, the viscous drag C = sum c_a L per unit rate of penetration, and
+// V0 = d0 Omega / 2 pi, d0 = (W0 - a sigma l) / (a zeta eps) (SteadyDrilling). Solved for H or, linear in W0, for W0.
+struct HoistBalance {
+  double buoyant_weight = 0, drag_per_speed = 0;
+  double RopPerWob(double omega, const Model& md) const { return omega / (2 * kPi) / md.CutWeightPerDepth(); }
+  double HookForce(const Model& md, double omega, double wob) const {
+    return buoyant_weight - wob - drag_per_speed * RopPerWob(omega, md) * std::max(wob - md.ContactForce(), 0.0);
+  }
+  double WeightOnBit(const Model& md, double omega, double hook) const {
+    const double kappa = drag_per_speed * RopPerWob(omega, md);
+    return (buoyant_weight - hook + kappa * md.ContactForce()) / (1 + kappa);
+  }
+};
+HoistBalance Balance(const Model& md, const StringSpec& string) {
+  HoistBalance b;
+  for (double l : md.axial.load) b.buoyant_weight += l;
+  for (const Section& section : string.sections) b.drag_per_speed += section.c_a * section.length;
+  return b;
+}
+
 class AxialTorsionalKind : public ModelKind {
  public:
   std::string name() const override { return "axial_torsional"; }
@@ -925,6 +951,9 @@ class AxialTorsionalKind : public ModelKind {
             {"top/motor/resistance_ohm", "R > 0"},
             {"top/motor/inductance_H", "La > 0"},
             {"hoist/mass_kg", "M_td > 0"},
+            {"hoist/hook_force_N", "H(t) [N], a number or {\"knots\": [[t, v], ...]}, instead of weight_on_bit_N: the run "
+                                   "starts in steady drilling under H(0), with W0 = (W_b - H(0) + kappa a sigma l) / "
+                                   "(1 + kappa), kappa = c_a L Omega0 / (2 pi a zeta eps), which must exceed a sigma l"},
             {"hoist/weight_on_bit_N", "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
                                       "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
             {"gravity_m_s2", "> 0, default 9.81"}};
@@ -984,24 +1013,39 @@ class AxialTorsionalKind : public ModelKind {
       throw InputError(td.PathOf("speed_rad_s"), "the run starts in steady drilling: the set-point at t = 0 must be > 0");
     const JsonReader h = r.Object("hoist");
     md.hoist_mass = h.Number("mass_kg", Range::Positive());
-    md.weight_on_bit = h.Number("weight_on_bit_N", Range::Positive());
+    const bool hook_given = h.Has("hook_force_N");
+    if (hook_given == h.Has("weight_on_bit_N"))
+      throw InputError(h.path(), "expected either weight_on_bit_N (the hook force is set for it) or hook_force_N (a "
+                                 "schedule), " + std::string(hook_given ? "not both" : "got neither"));
+    if (hook_given) md.hook_force = model::Schedule::FromJson(h.Raw("hook_force_N"), h.PathOf("hook_force_N"));
+    else md.weight_on_bit = h.Number("weight_on_bit_N", Range::Positive());
     h.Finish();
     const double g = r.Number("gravity_m_s2", Range::Positive(), 9.81);
     md.axial_coupling = r.Boolean("axial_coupling", true);
     r.Finish();
-    if (!(md.weight_on_bit > md.ContactForce()))
+    if (!hook_given && !(md.weight_on_bit > md.ContactForce()))
       throw InputError(h.PathOf("weight_on_bit_N"), "expected more than the wear-flat contact force a sigma l = " +
                                                         ReadableNumber(md.ContactForce()) + " N (no cutting otherwise; "
                                                         "a = /model/bit/radius_m, sigma l = /model/rock/sigma_l_N_per_m)");
+    if (hook_given && !md.axial_coupling && !md.hook_force.IsConstant())
+      throw InputError(h.PathOf("hook_force_N"), "expected a constant with axial_coupling false (no axial dynamics: "
+                                                 "the weight on bit stays at H(0)'s steady value)");
 
     BuildChannels(string, g, md);
     md.axial.load[md.m] += md.bit_mass * g * (1 - string.rho_mud / string.rho);
-    // Hook force for steady drilling with W0 at the initial set-point: H = buoyant weight - W0 - sum c_a L V0.
-    const Steady steady = SteadyDrilling(md, md.top_speed.Value(0.0));
-    double weight = 0, drag = 0;
-    for (double l : md.axial.load) weight += l;
-    for (const Section& section : string.sections) drag += section.c_a * section.length * steady.rop;
-    md.hook_force = weight - md.weight_on_bit - drag;
+    const HoistBalance balance = Balance(md, string);
+    const double omega0 = md.top_speed.Value(0.0);
+    if (!hook_given) {
+      md.hook_force = model::Schedule(balance.HookForce(md, omega0, md.weight_on_bit));
+    } else {
+      md.weight_on_bit = balance.WeightOnBit(md, omega0, md.hook_force.Value(0.0));
+      if (!(md.weight_on_bit > md.ContactForce()))
+        throw InputError(h.PathOf("hook_force_N"),
+                         "the hook force at t = 0, " + ReadableNumber(md.hook_force.Value(0.0)) + " N, leaves " +
+                             ReadableNumber(md.weight_on_bit) + " N on the bit in steady drilling (buoyant weight " +
+                             ReadableNumber(balance.buoyant_weight) + " N); expected more than the wear-flat contact "
+                             "force a sigma l = " + ReadableNumber(md.ContactForce()) + " N");
+    }
     return std::make_unique<AxialTorsionalModel>(std::move(md));
   }
 };
