@@ -1,17 +1,18 @@
 // An induction motor at the top of the string (chapter eqs. 2.18-2.19, written in the supply frame): its steady
 // states against the per-phase equivalent circuit, which the simulator never uses.
 #include <cmath>
-#include <complex>
 #include <iostream>
 
 #include <gtest/gtest.h>
 
 #include "drillwave/waves/network_simulation.hpp"
+#include "equivalent_circuit.hpp"
 
 namespace drillwave::waves {
 namespace {
 
-using Complex = std::complex<double>;
+using testing::CircuitPoint;
+using testing::EquivalentCircuit;
 constexpr double kC = 300;     // bit damper [N·m·s/rad], about the pipe's impedance: it absorbs the waves
 constexpr double kRatio = 8;   // gear: motor turns per string turn
 constexpr double kTwoPi = 6.283185307179586;
@@ -27,31 +28,13 @@ model::InductionMotor Machine() {
   return m;
 }
 
-// The per-phase T equivalent circuit at supply f and shaft speed w: stator current (rms) and torque
-// 3 p |I_r|^2 R_r / (s w_e).
-struct CircuitPoint {
-  double torque, stator_current;
-};
-CircuitPoint EquivalentCircuit(const model::InductionMotor& m, double f, double w) {
-  const double w_e = kTwoPi * f, s = (w_e - m.pole_pairs * w) / w_e;
-  const Complex j(0, 1);
-  const Complex z_m = j * w_e * m.magnetizing_inductance;
-  const Complex z_r = m.rotor_resistance / s + j * w_e * m.rotor_leakage_inductance;
-  const Complex z_s = m.stator_resistance + j * w_e * m.stator_leakage_inductance;
-  const double v_phase = std::min(m.volts_per_hertz * f, m.voltage_limit > 0 ? m.voltage_limit : 1e300) / std::sqrt(3.0);
-  const Complex i_s = v_phase / (z_s + z_m * z_r / (z_m + z_r)), i_r = i_s * z_m / (z_m + z_r);
-  return {3 * m.pole_pairs * std::norm(i_r) * m.rotor_resistance / (s * w_e), std::abs(i_s)};
-}
-
 // The string speed where the motor's torque-speed curve, through the gear, meets the damper's load line c w:
 // bisection between the pull-out region and synchronous speed, where the curve falls steeply through the line.
 double OperatingSpeed(const model::InductionMotor& m, double f) {
   const double w_sync = kTwoPi * f / m.pole_pairs / kRatio;
   auto excess = [&](double w) { return kRatio * EquivalentCircuit(m, f, kRatio * w).torque - kC * w; };
-  double lo = 0.9 * w_sync, hi = w_sync * (1 - 1e-12);
-  EXPECT_GT(excess(lo), 0);
-  for (int k = 0; k < 200 && hi - lo > 1e-15 * w_sync; ++k) (excess(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
-  return 0.5 * (lo + hi);
+  EXPECT_GT(excess(0.9 * w_sync), 0);
+  return testing::Bisect(excess, 0.9 * w_sync, w_sync * (1 - 1e-12));
 }
 
 Network MotorString(const model::InductionMotor& machine, const model::Schedule& supply_hz) {
@@ -93,6 +76,16 @@ TEST(InductionMotor, SteadyFluxesGiveTheEquivalentCircuitTorque) {
       EXPECT_NEAR(m.Torque(psi), c.torque, 1e-9 * std::abs(c.torque)) << f << " Hz, slip " << slip;
       EXPECT_NEAR(m.StatorCurrentRms(psi), c.stator_current, 1e-9 * c.stator_current);
     }
+}
+
+// The supply frequency that gives a torque at a speed, motoring and generating: the circuit's torque there.
+TEST(InductionMotor, SteadySupplyFrequencyGivesTheAskedTorque) {
+  const model::InductionMotor m = Machine();
+  const double w = 100;
+  for (double torque : {-3000.0, 500.0, 4000.0})
+    EXPECT_NEAR(EquivalentCircuit(m, m.SteadySupplyFrequency(torque, w), w).torque, torque, 1e-9 * 4000) << torque;
+  EXPECT_NEAR(m.SteadySupplyFrequency(0, w), m.pole_pairs * w / kTwoPi, 1e-12);  // no torque: synchronous
+  EXPECT_THROW(m.SteadySupplyFrequency(1e6, 100), std::domain_error);  // beyond the pull-out torque
 }
 
 // Started at rest at 30 Hz, the string settles where the torque-speed curve meets the load line.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <stdexcept>
 
 namespace drillwave::model {
 namespace {
@@ -70,6 +71,29 @@ InductionMotor::Fluxes InductionMotor::SteadyFluxes(double supply_hz, double sha
       std::sqrt(2.0 / 3.0) * LineVoltage(supply_hz) / (stator_resistance * (lr - lm * a) / det + j * w_e);
   const Complex psi_r = a * psi_s;
   return {psi_s.real(), psi_s.imag(), psi_r.real(), psi_r.imag()};
+}
+
+double InductionMotor::SlipTorqueGain() const {
+  return pole_pairs * volts_per_hertz * volts_per_hertz / (kTwoPi * kTwoPi * rotor_resistance);
+}
+
+double InductionMotor::SteadySupplyFrequency(double torque, double shaft_speed) const {
+  const double synchronous = pole_pairs * shaft_speed;  // electrical rad/s
+  auto excess = [&](double slip_frequency) {
+    const double f = (synchronous + slip_frequency) / kTwoPi;
+    return Torque(SteadyFluxes(f, shaft_speed)) - torque;
+  };
+  const bool motoring = torque >= 0;
+  const double pull_out = (motoring ? 1 : -1) * rotor_resistance / (stator_leakage_inductance + rotor_leakage_inductance);
+  double lo = 0, hi = pull_out;  // excess(lo) <= 0 <= excess(hi) when motoring, mirrored when generating
+  if (std::abs(excess(hi) + torque) < std::abs(torque))
+    throw std::domain_error("the motor's torque at " + std::to_string(shaft_speed) + " rad/s stays below " +
+                            std::to_string(std::abs(torque)) + " N m up to its pull-out slip");
+  for (int k = 0; k < 200 && std::abs(hi - lo) > 1e-15 * std::abs(pull_out); ++k) {
+    const double mid = 0.5 * (lo + hi);
+    ((excess(mid) < 0) == motoring ? lo : hi) = mid;
+  }
+  return (synchronous + 0.5 * (lo + hi)) / kTwoPi;
 }
 
 }  // namespace drillwave::model

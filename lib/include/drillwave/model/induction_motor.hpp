@@ -42,6 +42,13 @@ struct InductionMotor {
   double StatorCurrentRms(const Fluxes& psi) const;  // phase current, rms [A]
   // The fluxes that hold still at supply frequency f and constant shaft speed w_m.
   Fluxes SteadyFluxes(double supply_hz, double shaft_speed) const;
+  // Small-slip torque per electrical slip frequency, dT / d(w_e - p w_m) = p (V/f)^2 / (4 pi^2 R_r) [N·m·s/rad] (the
+  // R_s = 0 limit on the V/f line): what a slip-compensating drive divides a torque demand by.
+  double SlipTorqueGain() const;
+  // The supply frequency at which the steady torque at shaft speed w_m is `torque` (below pull-out; the slip
+  // frequency is bracketed by the R_s = 0 pull-out slip R_r / (L_ls + L_lr)). Throws std::domain_error if the
+  // machine cannot give that torque there.
+  double SteadySupplyFrequency(double torque, double shaft_speed) const;
 };
 
 }  // namespace drillwave::model
