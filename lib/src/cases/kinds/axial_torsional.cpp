@@ -21,6 +21,10 @@
 //   axial_coupling false: no axial dynamics; the weight on bit is held at W0 and the depth of cut at its steady value.
 //   top/motor: a DC motor between the PI and the top: V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I,
 //        torque K I on the top drive.
+//   top_drive/induction_motor: an induction motor (chapter eqs. 2.18-2.19) on a V/f supply with slip compensation
+//        between the PI and the top: f = (p n Omega_ref + u_PI / (n G)) / 2 pi, G its small-slip torque gain.
+//   top_drive/gear: the motor turns n times faster than the top drive; with a stiffness the motor is a second inertia
+//        behind a compliant gear (the rig's two-mass model), and the PI acts on the motor's speed.
 //   bit/unbalance: the BHA's lateral motion (x, y) as the Jeffcott rotor of the failure seed (eqs. 21-23), with the
 //        unbalance m at radius e turning with the bit angle Phi and reacting on the bit's torsion.
 // Three discrete regimes (rotation: forward / stuck / backward; axial: advancing / held / lifting; contact: on /
@@ -39,7 +43,10 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/simulator.hpp"
+#include "drillwave/model/gear.hpp"
+#include "drillwave/model/induction_motor.hpp"
 #include "drillwave/model/schedule.hpp"
+#include "top_components.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -105,7 +112,17 @@ struct Model {
   int blades = 4;
   double static_mu = 0, stribeck_speed = 0;  // Stribeck friction (stribeck_speed 0: Coulomb, static_mu = mu)
   bool axial_coupling = true;
-  DcMotor motor;          // between the PI and the top drive when motor.on
+  DcMotor motor;          // between the PI and the top drive when motor.on (k referred to the top drive: n K)
+  bool induction_on = false;
+  model::InductionMotor induction;  // between the PI and the top drive when induction_on
+  model::Gear gear;                 // between the motor and the top drive
+  // The top drive's own speed carries its inertia, and with a rigid gear the motor's.
+  double TopInertia() const { return top_inertia + (gear.compliant() ? 0.0 : gear.ReferredMotorInertia()); }
+  // Supply frequency of the slip-compensating V/f drive for the PI's torque demand u (on the top drive's side).
+  double SupplyFrequency(double u_pi, double omega_ref) const {
+    const double n = gear.ratio;
+    return (induction.pole_pairs * n * omega_ref + u_pi / (n * induction.SlipTorqueGain())) / (2 * kPi);
+  }
   LateralBha unbalance;   // Jeffcott rotor at the bit when unbalance.on
 
   double ContactForce() const { return a * sigma_l; }             // a sigma l
@@ -144,8 +161,13 @@ Steady SteadyDrilling(const Model& md, double omega) {
 }
 
 // State: 0 bit angle, 1 bit position, 2 top speed, 3 bit speed, 4 hoist speed, 5 bit axial speed, 6 PI integral;
-// with a motor 7 its current; with an unbalance 8-11 the BHA's lateral x, y, x', y' (and 7 unused, held at 0).
-enum Index { kPhi = 0, kU, kWtop, kWbit, kVtop, kVbit, kZ, kDim, kCurrent = kDim, kX, kY, kXd, kYd, kFullDim };
+// with a motor 7 its current; with an unbalance 8-11 the BHA's lateral x, y, x', y' (and 7 unused, held at 0); with
+// an induction motor or a compliant gear 12-15 the motor's fluxes and 16-17 the motor's speed (referred to the top
+// drive) and the gear's twist (the unused ones held at 0).
+enum Index {
+  kPhi = 0, kU, kWtop, kWbit, kVtop, kVbit, kZ, kDim, kCurrent = kDim, kX, kY, kXd, kYd, kFullDim,
+  kFlux = kFullDim, kMotorSpeed = kFlux + 4, kTwist, kTopDim
+};
 
 class Process {
  public:
@@ -157,10 +179,16 @@ class Process {
           d[0] = steady_.omega, d[1] = steady_.rop;
         }) {
     InitializeWaves();
+    // Throws std::domain_error when the motor cannot carry the steady torque (below its pull-out torque).
+    if (md.induction_on)
+      steady_supply_hz_ = md.induction.SteadySupplyFrequency(top_torque0_ / md.gear.ratio, md.gear.ratio * steady_.omega);
   }
 
   // --- Simulator interface --------------------------------------------------------------------------------
-  int Dimension() const { return md_.unbalance.on ? kFullDim : md_.motor.on ? kDim + 1 : kDim; }
+  int Dimension() const {
+    if (md_.induction_on || md_.gear.compliant()) return kTopDim;
+    return md_.unbalance.on ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
+  }
   double MaxStep() const {
     double shortest = kInf;
     for (const Run& r : runs_) shortest = std::min(shortest, r.tau);
@@ -173,9 +201,21 @@ class Process {
     x[kWtop] = steady_.omega;
     x[kWbit] = steady_.omega;
     x[kVtop] = x[kVbit] = steady_.rop;
-    // The PI holds the steady top torque with its integral part.
+    // The PI holds the steady top torque with its integral part, the motor with its steady current (DC) or fluxes
+    // (induction: at the supply frequency that gives the steady torque), the gear with its twist.
     x[kZ] = md_.ki > 0 ? top_torque0_ / md_.ki : 0.0;
-    if (md_.motor.on) x[kCurrent] = top_torque0_ / md_.motor.k;  // and the motor with its steady current
+    if (md_.motor.on) x[kCurrent] = top_torque0_ / md_.motor.k;
+    if (md_.induction_on) {
+      const auto psi = md_.induction.SteadyFluxes(steady_supply_hz_, md_.gear.ratio * steady_.omega);
+      std::copy(psi.begin(), psi.end(), x.begin() + kFlux);
+      const double u = (2 * kPi * steady_supply_hz_ - md_.induction.pole_pairs * md_.gear.ratio * steady_.omega) *
+                       md_.gear.ratio * md_.induction.SlipTorqueGain();
+      x[kZ] = md_.ki > 0 ? u / md_.ki : 0.0;
+    }
+    if (md_.gear.compliant()) {
+      x[kMotorSpeed] = steady_.omega;
+      x[kTwist] = top_torque0_ / md_.gear.stiffness;
+    }
     return x;
   }
 
@@ -186,14 +226,24 @@ class Process {
     const BitForces f = Forces(x, t, side, ends);
     dx[kPhi] = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
     dx[kU] = axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
-    // Top drive and hoist.
-    const double u = TopTorque(x, omega_ref);
+    // Top drive (with its motor and gear) and hoist.
+    const double vd = DriveSpeed(x), u = TopTorque(x, omega_ref);
     if (md_.motor.on)
-      dx[kCurrent] =
-          md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), x[kWtop], x[kCurrent]);
-    dx[kWtop] = (ends.top[0] + u) / md_.top_inertia;
+      dx[kCurrent] = md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), vd, x[kCurrent]);
+    if (md_.induction_on) {
+      const auto rates = md_.induction.FluxRates(Fluxes(x), md_.SupplyFrequency(PiOutput(x, omega_ref), omega_ref),
+                                                 md_.gear.ratio * vd);
+      std::copy(rates.begin(), rates.end(), dx.begin() + kFlux);
+    }
+    double into_top = u;
+    if (md_.gear.compliant()) {
+      into_top = GearTorque(x);
+      dx[kMotorSpeed] = (u - into_top) / md_.gear.ReferredMotorInertia();
+      dx[kTwist] = vd - x[kWtop];
+    }
+    dx[kWtop] = (ends.top[0] + into_top) / md_.TopInertia();
     dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first) / md_.hoist_mass;
-    dx[kZ] = omega_ref - x[kWtop];
+    dx[kZ] = omega_ref - vd;
     // Bit.
     dx[kWbit] = turn_ == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
     dx[kVbit] = axial_ == Axial::kHeld && contact_ ? 0.0 : (f.drive_force - f.weight) / md_.bit_mass;
@@ -330,7 +380,7 @@ class Process {
   // --- Outputs --------------------------------------------------------------------------------------------
   struct Sample {
     double top_speed, bit_speed, top_torque, bit_torque, wob, hookload, depth, bit_axial_speed, tn, stuck, off_bottom;
-    double top_current, lateral_displacement;
+    double top_current, lateral_displacement, motor_speed, gear_torque;
   };
   Sample Sampled(double t, const State& x, const State& dx) const {
     const Side side = Side::kLeft;
@@ -348,12 +398,15 @@ class Process {
     s.tn = f.tn;
     s.stuck = turn_ == Turn::kStuck ? 1.0 : 0.0;
     s.off_bottom = contact_ ? 0.0 : 1.0;
-    s.top_current = md_.motor.on ? x[kCurrent] : 0.0;
+    s.top_current = md_.motor.on ? x[kCurrent] : md_.induction_on ? md_.induction.StatorCurrentRms(Fluxes(x)) : 0.0;
+    s.motor_speed = md_.gear.compliant() ? md_.gear.ratio * x[kMotorSpeed] : 0.0;
+    s.gear_torque = md_.gear.compliant() ? GearTorque(x) : 0.0;
     s.lateral_displacement = md_.unbalance.on ? std::hypot(x[kX], x[kY]) : 0.0;
     return s;
   }
   const std::vector<StuckInterval>& stuck_intervals() const { return stuck_; }
   const Steady& steady() const { return steady_; }
+  double steady_supply_hz() const { return steady_supply_hz_; }
 
  private:
   struct BitForces {
@@ -490,11 +543,19 @@ class Process {
   }
 
   // --- Top drive and BHA components ---------------------------------------------------------------------------
-  double PiOutput(const State& x, double omega_ref) const { return md_.kp * (omega_ref - x[kWtop]) + md_.ki * x[kZ]; }
-  // Torque on the top drive: the PI's output, or the motor's K I when a DC motor sits between them.
+  double PiOutput(const State& x, double omega_ref) const { return md_.kp * (omega_ref - DriveSpeed(x)) + md_.ki * x[kZ]; }
+  // Torque of the drive (on the top drive's side): the PI's output, or the motor's K I when a DC motor sits between
+  // them, or n T_e of an induction motor. It turns the top drive, or the motor behind a compliant gear.
   double TopTorque(const State& x, double omega_ref) const {
-    return md_.motor.on ? md_.motor.k * x[kCurrent] : PiOutput(x, omega_ref);
+    if (md_.motor.on) return md_.motor.k * x[kCurrent];
+    if (md_.induction_on) return md_.gear.ratio * md_.induction.Torque(Fluxes(x));
+    return PiOutput(x, omega_ref);
   }
+  // The speed the PI and the motor see (on the top drive's side): the top drive's, or the motor's behind a compliant
+  // gear.
+  double DriveSpeed(const State& x) const { return md_.gear.compliant() ? x[kMotorSpeed] : x[kWtop]; }
+  double GearTorque(const State& x) const { return md_.gear.Torque(x[kTwist], x[kMotorSpeed], x[kWtop]); }
+  static model::InductionMotor::Fluxes Fluxes(const State& x) { return {x[kFlux], x[kFlux + 1], x[kFlux + 2], x[kFlux + 3]}; }
   double BitSpeed(const State& x) const { return turn_ == Turn::kStuck ? 0.0 : x[kWbit]; }
 
   // Forces on the BHA's lateral motion other than its inertia and the unbalance's angular acceleration term
@@ -637,6 +698,7 @@ class Process {
   std::vector<integration::HermiteHistory> waves_;  // one per run
   integration::HermiteHistory bit_history_;
   double top_torque0_ = 0;
+  double steady_supply_hz_ = 0;  // induction motor: the supply frequency of steady drilling
   Turn turn_ = Turn::kForward;
   Axial axial_ = Axial::kAdvancing;
   bool contact_ = true;
@@ -650,6 +712,18 @@ class Process {
   mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // Outgoing's and StringEnds' scratch
 };
 
+// The induction motor and the gear of the top drive block (the DC motor is read beside them).
+void ReadTopMotorAndGear(const JsonReader& top, Model& md) {
+  if (top.Has("induction_motor")) {
+    if (md.motor.on)
+      throw InputError(top.PathOf("induction_motor"), "expected either a DC motor (motor) or an induction motor, not both");
+    md.induction_on = true;
+    md.induction = ReadInductionMotor(top.Object("induction_motor"));
+  }
+  md.gear = ReadGear(top);
+  md.motor.k *= md.gear.ratio;  // a DC motor's constant referred to the top drive: torque n K I, back-emf n K w
+}
+
 class AxialTorsionalModel : public PreparedModel {
  public:
   explicit AxialTorsionalModel(Model md) : md_(std::move(md)) {}
@@ -658,7 +732,7 @@ class AxialTorsionalModel : public PreparedModel {
     Process process(md_);
     std::vector<double> x = process.InitialState();
     std::vector<double> time, top, bit, top_torque, bit_torque, wob, hook, depth, vbit, tn, stuck, off, angle;
-    std::vector<double> current, lateral;
+    std::vector<double> current, lateral, motor_rpm, gear_torque;
     std::vector<double> dx(x.size());
     auto sample = [&](double t, const std::vector<double>& s) {
       process.BeginStep(t);  // look-ups at t from the committed history (left limits inside the last piece)
@@ -668,7 +742,8 @@ class AxialTorsionalModel : public PreparedModel {
       bit_torque.push_back(v.bit_torque), wob.push_back(v.wob), hook.push_back(v.hookload), depth.push_back(v.depth);
       vbit.push_back(v.bit_axial_speed), tn.push_back(v.tn), stuck.push_back(v.stuck), off.push_back(v.off_bottom);
       angle.push_back(s[kPhi]);
-      if (md_.motor.on) current.push_back(v.top_current);
+      if (md_.motor.on || md_.induction_on) current.push_back(v.top_current);
+      if (md_.gear.compliant()) motor_rpm.push_back(v.motor_speed * 30 / kPi), gear_torque.push_back(v.gear_torque);
       if (md_.unbalance.on) lateral.push_back(v.lateral_displacement);
     };
     sample(0.0, x);
@@ -724,9 +799,15 @@ class AxialTorsionalModel : public PreparedModel {
                        {"cut_delay_s", std::move(tn)},
                        {"off_bottom", std::move(off)}};
     result.plot_panels = {{"top_rpm", "bit_rpm"}, {"top_torque_Nm", "bit_torque_Nm"}, {"wob_N"}, {"depth_of_cut_m"}};
-    if (md_.motor.on) {
+    if (md_.motor.on || md_.induction_on) {  // DC: armature current; induction: stator rms
       result.channels.push_back({"top_current_A", std::move(current)});
       result.plot_panels.push_back({"top_current_A"});
+    }
+    if (md_.induction_on) result.summary["steady_supply_frequency_Hz"] = process.steady_supply_hz();
+    if (md_.gear.compliant()) {
+      result.channels.push_back({"motor_rpm", std::move(motor_rpm)});
+      result.channels.push_back({"gear_torque_Nm", std::move(gear_torque)});
+      result.plot_panels.push_back({"gear_torque_Nm", "top_torque_Nm"});
     }
     if (md_.unbalance.on) {
       result.channels.push_back({"lateral_displacement_m", std::move(lateral)});
@@ -896,7 +977,7 @@ class AxialTorsionalKind : public ModelKind {
            "BHA mass unbalance (Jeffcott rotor at the bit), axial coupling off";
   }
   nlohmann::json FieldSchema() const override {
-    return {{"string/length_m", "> 0, top drive to bit"},
+    nlohmann::json fields = {{"string/length_m", "> 0, top drive to bit"},
             {"string/outer_diameter_m", "> 0"},
             {"string/inner_diameter_m", ">= 0, < outer"},
             {"string/youngs_modulus_Pa", "> 0"},
@@ -957,6 +1038,11 @@ class AxialTorsionalKind : public ModelKind {
             {"hoist/weight_on_bit_N", "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
                                       "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
             {"gravity_m_s2", "> 0, default 9.81"}};
+    fields.update(TopComponentFields("top_drive"));
+    fields["top_drive/induction_motor/pole_pairs"] =
+        "p, integer in [1, 64]: optional induction motor (absent: the PI output is the torque) on a V/f supply with "
+        "slip compensation, f = (p n Omega_ref + u_PI / (n G)) / 2 pi, G = p (V/f)^2 / (4 pi^2 R_r); not with motor";
+    return fields;
   }
 
   std::unique_ptr<PreparedModel> Prepare(const JsonReader& r) const override {
@@ -1008,6 +1094,7 @@ class AxialTorsionalKind : public ModelKind {
       md.motor.inductance = mo.Number("inductance_H", Range::Positive());
       mo.Finish();
     }
+    ReadTopMotorAndGear(td, md);
     td.Finish();
     if (!(md.top_speed.Value(0.0) > 0))
       throw InputError(td.PathOf("speed_rad_s"), "the run starts in steady drilling: the set-point at t = 0 must be > 0");
@@ -1045,6 +1132,13 @@ class AxialTorsionalKind : public ModelKind {
                              ReadableNumber(md.weight_on_bit) + " N on the bit in steady drilling (buoyant weight " +
                              ReadableNumber(balance.buoyant_weight) + " N); expected more than the wear-flat contact "
                              "force a sigma l = " + ReadableNumber(md.ContactForce()) + " N");
+    }
+    if (md.induction_on) {
+      try {
+        Process steady_start(md);
+      } catch (const std::domain_error& e) {
+        throw InputError(td.PathOf("induction_motor"), std::string("no steady drilling at the set-point: ") + e.what());
+      }
     }
     return std::make_unique<AxialTorsionalModel>(std::move(md));
   }

@@ -39,8 +39,6 @@ model::Gear ReadGear(const JsonReader& top) {
 nlohmann::json TopComponentFields(const std::string& top) {
   const std::string im = top + "/induction_motor/";
   return {
-      {top + "/supply_frequency_Hz", "induction_motor: supply frequency schedule [Hz] (V/f: line voltage "
-                                     "volts_per_hertz f up to voltage_limit_V)"},
       {im + "pole_pairs", "p, integer in [1, 64] (synchronous shaft speed 2 pi f / p)"},
       {im + "stator_resistance_ohm", "R_s > 0, per phase"},
       {im + "rotor_resistance_ohm", "R_r > 0, per phase, referred to the stator"},

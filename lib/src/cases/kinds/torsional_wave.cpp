@@ -250,6 +250,8 @@ class TorsionalWaveKind : public ModelKind {
         {"friction laws", bitrock::FrictionLaw::Schema()},
     };
     fields.update(TopComponentFields("top"));
+    fields["top/supply_frequency_Hz"] = "induction_motor (open loop): supply frequency schedule [Hz]; V/f: line "
+                                        "voltage volts_per_hertz f, up to voltage_limit_V";
     return fields;
   }
 
