@@ -54,7 +54,7 @@ TEST(AxialTorsionalHoist, ConstantHookForceIsTheTargetWeightOnBitRun) {
   nlohmann::json by_hook = by_weight;
   by_hook["model"]["hoist"] = {{"mass_kg", 30000}, {"hook_force_N", hook}};
   const CaseRun b = RunCase(ParseCase(by_hook));
-  const double omega = by_weight["model"]["top_drive"]["speed_rad_s"];
+  const double omega = by_weight["model"]["top"]["speed_rad_s"];
   EXPECT_NEAR(AxialBalance(by_weight["model"]).WeightOnBit(hook, omega), 90000, 1e-9 * 90000);
   for (const char* name : {"wob_N", "bit_rpm", "hookload_N"}) {
     ASSERT_EQ(Values(a, name).size(), Values(b, name).size());
@@ -69,7 +69,7 @@ TEST(AxialTorsionalHoist, HookForceStepGivesTheClosedFormSteadyWeightOnBit) {
   const nlohmann::json doc = HoistStep();
   const CaseRun run = RunCase(ParseCase(doc));
   const AxialBalance balance(doc["model"]);
-  const double omega = doc["model"]["top_drive"]["speed_rad_s"];
+  const double omega = doc["model"]["top"]["speed_rad_s"];
   const double hook = doc["model"]["hoist"]["hook_force_N"]["knots"].back()[1];
   const double wob = balance.WeightOnBit(hook, omega), rop = 3600 * balance.Rop(wob, omega);
   const double wob_mean = run.summary.at("wob_mean_N"), rop_mean = run.summary.at("rop_mean_m_h");

@@ -21,9 +21,9 @@
 //   axial_coupling false: no axial dynamics; the weight on bit is held at W0 and the depth of cut at its steady value.
 //   top/motor: a DC motor between the PI and the top: V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I,
 //        torque K I on the top drive.
-//   top_drive/induction_motor: an induction motor (chapter eqs. 2.18-2.19) on a V/f supply with slip compensation
+//   top/induction_motor: an induction motor (chapter eqs. 2.18-2.19) on a V/f supply with slip compensation
 //        between the PI and the top: f = (p n Omega_ref + u_PI / (n G)) / 2 pi, G its small-slip torque gain.
-//   top_drive/gear: the motor turns n times faster than the top drive; with a stiffness the motor is a second inertia
+//   top/gear: the motor turns n times faster than the top drive; with a stiffness the motor is a second inertia
 //        behind a compliant gear (the rig's two-mass model), and the PI acts on the motor's speed.
 //   bit/unbalance: the BHA's lateral motion (x, y) as the Jeffcott rotor of the failure seed (eqs. 21-23), with the
 //        unbalance m at radius e turning with the bit angle Phi and reacting on the bit's torsion.
@@ -1038,8 +1038,8 @@ class AxialTorsionalKind : public ModelKind {
             {"hoist/weight_on_bit_N", "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
                                       "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
             {"gravity_m_s2", "> 0, default 9.81"}};
-    fields.update(TopComponentFields("top_drive"));
-    fields["top_drive/induction_motor/pole_pairs"] =
+    fields.update(TopComponentFields("top"));
+    fields["top/induction_motor/pole_pairs"] =
         "p, integer in [1, 64]: optional induction motor (absent: the PI output is the torque) on a V/f supply with "
         "slip compensation, f = (p n Omega_ref + u_PI / (n G)) / 2 pi, G = p (V/f)^2 / (4 pi^2 R_r); not with motor";
     return fields;

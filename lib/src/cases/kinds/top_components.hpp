@@ -14,7 +14,7 @@ namespace drillwave::cases {
 model::InductionMotor ReadInductionMotor(const io::JsonReader& motor);
 // top/gear and top/motor_inertia_kgm2 (absent gear: ratio 1, rigid, no motor inertia).
 model::Gear ReadGear(const io::JsonReader& top);
-// Field documentation of both, keyed by their paths below `top` (e.g. "top" or "top_drive").
+// Field documentation of both, keyed by their paths below the top block (e.g. "top").
 nlohmann::json TopComponentFields(const std::string& top);
 
 }  // namespace drillwave::cases
