@@ -22,13 +22,14 @@ model::InductionMotor ReadInductionMotor(const JsonReader& r) {
 }
 
 model::Gear ReadGear(const JsonReader& top) {
-  model::Gear gear;
-  if (!top.Has("gear")) return gear;
-  const JsonReader g = top.Object("gear");
-  gear.ratio = g.Number("ratio", Range::Positive(), 1.0);
-  gear.stiffness = g.Number("stiffness_Nm_per_rad", Range::NonNegative(), 0.0);
-  gear.damping = g.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
-  g.Finish();
+  model::Gear gear;  // absent: ratio 1, rigid (a motor inertia alone adds to the top's)
+  if (top.Has("gear")) {
+    const JsonReader g = top.Object("gear");
+    gear.ratio = g.Number("ratio", Range::Positive(), 1.0);
+    gear.stiffness = g.Number("stiffness_Nm_per_rad", Range::NonNegative(), 0.0);
+    gear.damping = g.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
+    g.Finish();
+  }
   gear.motor_inertia = top.Number("motor_inertia_kgm2", gear.compliant() ? Range::Positive() : Range::NonNegative(), 0.0);
   if (gear.compliant() && !top.Has("motor_inertia_kgm2"))
     throw InputError(top.PathOf("motor_inertia_kgm2"), "a compliant gear (gear/stiffness_Nm_per_rad > 0) needs the "

@@ -113,9 +113,10 @@ waves::Node ReadTop(const JsonReader& r) {
     top.setpoint = model::Schedule::FromJson(r.Raw("torque_Nm"), r.PathOf("torque_Nm"));
   }
   top.ground_damping = r.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
-  if (r.Has("gear") && (top.massless() || top.drive == waves::Drive::kTorque))
-    throw InputError(r.PathOf("gear"), "a gear sits behind a motor: expected top/type top_drive, dc_motor or "
-                                       "induction_motor, got " + type);
+  for (const char* key : {"gear", "motor_inertia_kgm2"})
+    if (r.Has(key) && (top.massless() || top.drive == waves::Drive::kTorque))
+      throw InputError(r.PathOf(key), "a gear and a motor inertia belong to a motor drive: expected top/type top_drive, "
+                                      "dc_motor or induction_motor, got " + type);
   top.gear = ReadGear(r);
   r.Finish();
   return top;
