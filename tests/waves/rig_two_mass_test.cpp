@@ -2,13 +2,13 @@
 // With a bit damper equal to the pipe's impedance the string absorbs every wave, so the top sees a dashpot Z and the
 // top is a linear three-state system whose exact solution and natural frequency are known.
 #include <cmath>
-#include <complex>
 #include <iostream>
+#include <vector>
 
-#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "drillwave/waves/network_simulation.hpp"
+#include "two_mass_reference.hpp"
 
 namespace drillwave::waves {
 namespace {
@@ -42,16 +42,6 @@ NetworkRun Simulate(const Network& net, double t_end, double interval) {
   return SimulateNetwork(net, o);
 }
 
-// Motor, twist, top: J_m' w_m' = -k d - c (w_m - w), d' = w_m - w, J w' = k d + c (w_m - w) - Z w (no drive torque).
-Eigen::Matrix3d FreeTop(double z) {
-  const double jm = kRatio * kRatio * kMotorInertia, k = kStiffness, c = kGearDamping;
-  Eigen::Matrix3d a;
-  a << -c / jm, -k / jm, c / jm,  //
-      1, 0, -1,                   //
-      c / kTopInertia, k / kTopInertia, -(c + z) / kTopInertia;
-  return a;
-}
-
 // Turning at 10 rad/s with the gear wound up to carry Z w, the motor loses its torque at t = 0 (PI gains 0): the
 // top's speed, the motor's and the gear torque follow exp(A t) of the three-state system to the tolerance, and the
 // oscillation's zero crossings are those of its complex eigenvalues, near sqrt(k (1/J_m' + 1/J)) of the two masses.
@@ -60,18 +50,14 @@ TEST(RigTwoMass, FreeMotionIsTheExactSolutionOfTheTwoMassSystemOnADashpot) {
   const Network net = RigString(0, 0, 0, w0);
   const double z = net.sections.front().impedance;
   const NetworkRun run = Simulate(net, 3, 1e-4);
-  const Eigen::Matrix3d a = FreeTop(z);
-  Eigen::EigenSolver<Eigen::Matrix3d> eig(a);
+  const testing::TwoMassOnDashpot rig{kRatio * kRatio * kMotorInertia, kStiffness, kGearDamping, kTopInertia, z};
   const Eigen::Vector3d y0(w0, z * w0 / kStiffness, w0);
-  const Eigen::Vector3cd coeff = eig.eigenvectors().lu().solve(y0.cast<std::complex<double>>());
   const auto& tr = run.trajectory;
   double worst = 0;
   for (std::size_t n = 0; n < tr.time_s.size(); ++n) {
-    const Eigen::Vector3cd modes = (eig.eigenvalues() * tr.time_s[n]).array().exp() * coeff.array();
-    const Eigen::Vector3d y = (eig.eigenvectors() * modes).real();
-    const double gear = kStiffness * y(1) + kGearDamping * (y(0) - y(2));
+    const Eigen::Vector3d y = rig.Response(tr.time_s[n], y0, 0.0);
     worst = std::max({worst, std::abs(tr.top_speed_rad_s[n] - y(2)), std::abs(tr.motor_speed_rad_s[n] / kRatio - y(0)),
-                      std::abs(tr.gear_torque_nm[n] - gear) / z});
+                      std::abs(tr.gear_torque_nm[n] - rig.GearTorque(y)) / z});
   }
   // Zero crossings of the relative acceleration (central differences of w_m' - w over 0.1 ms samples, linear
   // interpolation between them): a damped sinusoid's crossings are pi / w_d apart, and differentiating scales the
@@ -87,9 +73,7 @@ TEST(RigTwoMass, FreeMotionIsTheExactSolutionOfTheTwoMassSystemOnADashpot) {
   }
   ASSERT_GE(crossings.size(), 11u);
   const double measured = M_PI * (crossings.size() - 1) / (crossings.back() - crossings.front());
-  double damped = 0;
-  for (int k = 0; k < 3; ++k) damped = std::max(damped, eig.eigenvalues()(k).imag());
-  const double undamped = std::sqrt(kStiffness * (1 / (kRatio * kRatio * kMotorInertia) + 1 / kTopInertia));
+  const double damped = rig.DampedFrequency(), undamped = rig.UndampedFrequency();
   std::cout << "[ measured ] largest deviation from exp(A t): " << worst << " rad/s; two-mass mode " << measured
             << " rad/s (eigenvalue " << damped << ", undamped closed form " << undamped << ")\n";
   EXPECT_LT(worst, 1e-7 * w0);
