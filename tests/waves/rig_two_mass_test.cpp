@@ -108,5 +108,27 @@ TEST(RigTwoMass, RigidGearAddsTheReferredMotorInertia) {
     EXPECT_DOUBLE_EQ(a.trajectory.top_speed_rad_s[n], b.trajectory.top_speed_rad_s[n]);
 }
 
+// A DC motor of constant K behind a rigid gear of ratio n is a motor of constant n K (torque n K I, back-emf n K w)
+// on a top heavier by n^2 J_m: the same run, under the speed controller in volts through a set-point ramp.
+TEST(RigTwoMass, RigidGearRefersADcMotorToTheTop) {
+  Network geared = RigString(0, 0, 10, 10);
+  Node& top = geared.nodes.front();
+  top.drive = Drive::kDcMotorSpeed;
+  top.kp = 200, top.ki = 100;  // V s/rad, V/rad
+  top.motor = {50, 0.05, 0.005, 0};
+  top.setpoint = model::Schedule({{0.5, 10.0}, {1.0, 12.0}});
+  top.gear.stiffness = top.gear.damping = 0;
+  Network referred = geared;
+  referred.nodes.front().gear = model::Gear{};
+  referred.nodes.front().motor.motor_constant = 50 * kRatio;
+  referred.nodes.front().inertia = kTopInertia + kRatio * kRatio * kMotorInertia;
+  const NetworkRun a = Simulate(geared, 5, 0.05), b = Simulate(referred, 5, 0.05);
+  ASSERT_EQ(a.trajectory.top_speed_rad_s.size(), b.trajectory.top_speed_rad_s.size());
+  for (std::size_t n = 0; n < a.trajectory.top_speed_rad_s.size(); ++n) {
+    EXPECT_NEAR(a.trajectory.top_speed_rad_s[n], b.trajectory.top_speed_rad_s[n], 1e-12 * 10);
+    EXPECT_NEAR(a.trajectory.top_current_a[n], b.trajectory.top_current_a[n], 1e-9 * (1 + std::abs(b.trajectory.top_current_a[n])));
+  }
+}
+
 }  // namespace
 }  // namespace drillwave::waves
