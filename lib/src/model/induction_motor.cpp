@@ -84,7 +84,8 @@ double InductionMotor::SteadySupplyFrequency(double torque, double shaft_speed) 
     return Torque(SteadyFluxes(f, shaft_speed)) - torque;
   };
   const bool motoring = torque >= 0;
-  const double pull_out = (motoring ? 1 : -1) * rotor_resistance / (stator_leakage_inductance + rotor_leakage_inductance);
+  const double leakage = stator_leakage_inductance + rotor_leakage_inductance;
+  const double pull_out = (motoring ? 1 : -1) * rotor_resistance / leakage;
   double lo = 0, hi = pull_out;  // excess(lo) <= 0 <= excess(hi) when motoring, mirrored when generating
   if (std::abs(excess(hi) + torque) < std::abs(torque))
     throw std::domain_error("the motor's torque at " + std::to_string(shaft_speed) + " rad/s stays below " +

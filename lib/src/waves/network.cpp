@@ -36,7 +36,8 @@ void Network::Validate() const {
         !std::isfinite(g.ratio + g.stiffness + g.damping + g.motor_inertia))
       throw std::invalid_argument("node '" + n.name + "': a gear needs a ratio > 0, stiffness, damping and motor "
                                   "inertia >= 0, all finite");
-    const bool motor_driven = n.drive == Drive::kPiSpeedController || n.has_dc_motor() || n.drive == Drive::kInductionMotor;
+    const bool motor_driven =
+        n.drive == Drive::kPiSpeedController || n.has_dc_motor() || n.drive == Drive::kInductionMotor;
     if (g.compliant() && !(motor_driven && g.motor_inertia > 0 && !n.massless()))
       throw std::invalid_argument("node '" + n.name + "': a compliant gear sits between a PI, DC or induction motor "
                                   "drive with a motor inertia > 0 and a node with an inertia > 0");

@@ -132,7 +132,8 @@ class NetworkProcess {
         std::copy(rates.begin(), rates.end(), dxdt.begin() + flux_index_[i]);
       }
       if (motor_speed_index_[i] != kNone) {
-        dxdt[motor_speed_index_[i]] = (DriveTorque(i, x, vd, t, side) - GearTorque(i, x, v)) / node.gear.ReferredMotorInertia();
+        dxdt[motor_speed_index_[i]] =
+            (DriveTorque(i, x, vd, t, side) - GearTorque(i, x, v)) / node.gear.ReferredMotorInertia();
         dxdt[motor_speed_index_[i] + 1] = vd - v;
       }
       double& a = dxdt[speed_index_[i]];
@@ -260,7 +261,8 @@ class NetworkProcess {
     out.bit_angle_rad.push_back(x[kBitAngle]);
     out.bit_stuck.push_back(regime_[bit] == Regime::kStuck && net_.nodes[bit].has_set_valued_friction() ? 1.0 : 0.0);
     if (current_index_[top] != kNone) out.top_current_a.push_back(x[current_index_[top]]);
-    if (flux_index_[top] != kNone) out.top_current_a.push_back(net_.nodes[top].induction.StatorCurrentRms(Fluxes(top, x)));
+    if (flux_index_[top] != kNone)
+      out.top_current_a.push_back(net_.nodes[top].induction.StatorCurrentRms(Fluxes(top, x)));
     if (motor_speed_index_[top] != kNone) {
       out.motor_speed_rad_s.push_back(net_.nodes[top].gear.ratio * x[motor_speed_index_[top]]);
       out.gear_torque_nm.push_back(GearTorque(top, x, v_top));

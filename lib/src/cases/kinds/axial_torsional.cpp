@@ -9,7 +9,8 @@
 // feels sum Z (2 w_in - v) from its pieces (DESIGN.md §1). Kelvin-Voigt damping (chapter eqs. 2.20, 2.24) is a
 // dashpot eta K / length across each piece, which ties the massless nodes into a tridiagonal system.
 // Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by the hook force H: constant,
-// set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)). Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
+// set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)).
+// Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
 //   t_n: Phi(t) - Phi(t - t_n) = 2 pi / n,  d = n (U(t) - U(t - t_n))   (from the stored bit angle and position;
 //        after a bounce, against the deepest of the last four blade passes at that angle)
 //   cutting (d > 0, not turning backwards): W_c = a zeta eps d, T_c = a^2 eps d / 2
@@ -181,7 +182,8 @@ class Process {
     InitializeWaves();
     // Throws std::domain_error when the motor cannot carry the steady torque (below its pull-out torque).
     if (md.induction_on)
-      steady_supply_hz_ = md.induction.SteadySupplyFrequency(top_torque0_ / md.gear.ratio, md.gear.ratio * steady_.omega);
+      steady_supply_hz_ =
+          md.induction.SteadySupplyFrequency(top_torque0_ / md.gear.ratio, md.gear.ratio * steady_.omega);
   }
 
   // --- Simulator interface --------------------------------------------------------------------------------
@@ -226,7 +228,8 @@ class Process {
     const BitForces f = Forces(x, t, side, ends);
     dx[kPhi] = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
     dx[kU] = axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
-    // Top drive (with its motor and gear) and hoist.
+    // Top drive (with its motor and gear) and hoist. States a component does not use stay at 0.
+    if (Dimension() == kTopDim) std::fill(dx.begin() + kDim, dx.end(), 0.0);
     const double vd = DriveSpeed(x), u = TopTorque(x, omega_ref);
     if (md_.motor.on)
       dx[kCurrent] = md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), vd, x[kCurrent]);
@@ -543,7 +546,9 @@ class Process {
   }
 
   // --- Top drive and BHA components ---------------------------------------------------------------------------
-  double PiOutput(const State& x, double omega_ref) const { return md_.kp * (omega_ref - DriveSpeed(x)) + md_.ki * x[kZ]; }
+  double PiOutput(const State& x, double omega_ref) const {
+    return md_.kp * (omega_ref - DriveSpeed(x)) + md_.ki * x[kZ];
+  }
   // Torque of the drive (on the top drive's side): the PI's output, or the motor's K I when a DC motor sits between
   // them, or n T_e of an induction motor. It turns the top drive, or the motor behind a compliant gear.
   double TopTorque(const State& x, double omega_ref) const {
@@ -555,7 +560,9 @@ class Process {
   // gear.
   double DriveSpeed(const State& x) const { return md_.gear.compliant() ? x[kMotorSpeed] : x[kWtop]; }
   double GearTorque(const State& x) const { return md_.gear.Torque(x[kTwist], x[kMotorSpeed], x[kWtop]); }
-  static model::InductionMotor::Fluxes Fluxes(const State& x) { return {x[kFlux], x[kFlux + 1], x[kFlux + 2], x[kFlux + 3]}; }
+  static model::InductionMotor::Fluxes Fluxes(const State& x) {
+    return {x[kFlux], x[kFlux + 1], x[kFlux + 2], x[kFlux + 3]};
+  }
   double BitSpeed(const State& x) const { return turn_ == Turn::kStuck ? 0.0 : x[kWbit]; }
 
   // Forces on the BHA's lateral motion other than its inertia and the unbalance's angular acceleration term
@@ -716,7 +723,8 @@ class Process {
 void ReadTopMotorAndGear(const JsonReader& top, Model& md) {
   if (top.Has("induction_motor")) {
     if (md.motor.on)
-      throw InputError(top.PathOf("induction_motor"), "expected either a DC motor (motor) or an induction motor, not both");
+      throw InputError(top.PathOf("induction_motor"),
+                       "expected either a DC motor (motor) or an induction motor, not both");
     md.induction_on = true;
     md.induction = ReadInductionMotor(top.Object("induction_motor"));
   }

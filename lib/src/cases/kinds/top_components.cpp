@@ -30,7 +30,8 @@ model::Gear ReadGear(const JsonReader& top) {
     gear.damping = g.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
     g.Finish();
   }
-  gear.motor_inertia = top.Number("motor_inertia_kgm2", gear.compliant() ? Range::Positive() : Range::NonNegative(), 0.0);
+  const Range motor_inertia = gear.compliant() ? Range::Positive() : Range::NonNegative();
+  gear.motor_inertia = top.Number("motor_inertia_kgm2", motor_inertia, 0.0);
   if (gear.compliant() && !top.Has("motor_inertia_kgm2"))
     throw InputError(top.PathOf("motor_inertia_kgm2"), "a compliant gear (gear/stiffness_Nm_per_rad > 0) needs the "
                                                        "motor's inertia behind it: expected a number > 0");
