@@ -118,5 +118,36 @@ TEST(InductionMotor, VoltageLimitWeakensTheFieldAboveTheBaseFrequency) {
   EXPECT_GT(std::abs(OperatingSpeed(unlimited, f) - w), 1e-4 * w);  // the limit matters at this point
 }
 
+// Under the speed controller (a torque demand to a slip-compensating V/f drive) the string turns at the set-point,
+// and the motor sits on its torque-speed curve where it carries the load c Omega: the supply frequency and stator
+// current are the equivalent circuit's there. Started at rest, and started turning at the set-point (then held).
+TEST(InductionMotor, SpeedControllerHoldsTheSetpointOnTheTorqueSpeedCurve) {
+  const model::InductionMotor m = Machine();
+  const double omega = 10, shaft = kRatio * omega;
+  const double synchronous_hz = m.pole_pairs * shaft / kTwoPi;
+  const double f = testing::Bisect(
+      [&](double hz) { return kC * omega / kRatio - EquivalentCircuit(m, hz, shaft).torque; }, synchronous_hz * (1 + 1e-12),
+      synchronous_hz + 1);
+  const double current = EquivalentCircuit(m, f, shaft).stator_current;
+  for (double start : {0.0, omega}) {
+    Network net = MotorString(m, model::Schedule(omega));
+    net.nodes.front().drive = Drive::kInductionMotorSpeed;
+    net.nodes.front().kp = 2000, net.nodes.front().ki = 1000;
+    net.initial.speed_rad_s = start;
+    const NetworkRun run = Settle(net, start == 0 ? 200 : 5);
+    const auto& tr = run.trajectory;
+    double drift = 0;
+    for (double v : tr.top_speed_rad_s) drift = std::max(drift, std::abs(v - omega));
+    std::cout << "[ measured ] from " << start << " rad/s: top " << tr.top_speed_rad_s.back() << " rad/s, stator "
+              << tr.top_current_a.back() << " A (circuit at " << f << " Hz: " << current << " A)"
+              << (start > 0 ? ", largest drift " : "") << (start > 0 ? std::to_string(drift) : "") << "\n";
+    EXPECT_NEAR(tr.top_speed_rad_s.back(), omega, 1e-6 * omega);
+    EXPECT_NEAR(tr.top_current_a.back(), current, 1e-6 * current);
+    if (start > 0) {
+      EXPECT_LT(drift, 1e-7 * omega);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace drillwave::waves

@@ -77,6 +77,15 @@ double InductionMotor::SlipTorqueGain() const {
   return pole_pairs * volts_per_hertz * volts_per_hertz / (kTwoPi * kTwoPi * rotor_resistance);
 }
 
+double InductionMotor::SupplyForTorque(double torque_demand, double shaft_speed) const {
+  const double slip = std::clamp(torque_demand / SlipTorqueGain(), -PullOutSlipFrequency(), PullOutSlipFrequency());
+  return (pole_pairs * shaft_speed + slip) / kTwoPi;
+}
+
+double InductionMotor::TorqueDemandFor(double supply_hz, double shaft_speed) const {
+  return (kTwoPi * supply_hz - pole_pairs * shaft_speed) * SlipTorqueGain();
+}
+
 double InductionMotor::SteadySupplyFrequency(double torque, double shaft_speed) const {
   const double synchronous = pole_pairs * shaft_speed;  // electrical rad/s
   auto excess = [&](double slip_frequency) {
@@ -84,8 +93,7 @@ double InductionMotor::SteadySupplyFrequency(double torque, double shaft_speed) 
     return Torque(SteadyFluxes(f, shaft_speed)) - torque;
   };
   const bool motoring = torque >= 0;
-  const double leakage = stator_leakage_inductance + rotor_leakage_inductance;
-  const double pull_out = (motoring ? 1 : -1) * rotor_resistance / leakage;
+  const double pull_out = (motoring ? 1 : -1) * PullOutSlipFrequency();
   double lo = 0, hi = pull_out;  // excess(lo) <= 0 <= excess(hi) when motoring, mirrored when generating
   if (std::abs(excess(hi) + torque) < std::abs(torque))
     throw std::domain_error("the motor's torque at " + std::to_string(shaft_speed) + " rad/s stays below " +

@@ -55,7 +55,7 @@ class NetworkProcess {
     for (int i = 0; i < num_nodes_; ++i)
       if (net.nodes[i].has_dc_motor()) current_index_[i] = next++;
     for (int i = 0; i < num_nodes_; ++i)
-      if (net.nodes[i].drive == Drive::kInductionMotor) flux_index_[i] = next, next += 4;
+      if (net.nodes[i].has_induction_motor()) flux_index_[i] = next, next += 4;
     for (int i = 0; i < num_nodes_; ++i)
       if (net.nodes[i].has_compliant_gear()) motor_speed_index_[i] = next, next += 2;  // motor speed, then twist
     dimension_ = next;
@@ -75,7 +75,8 @@ class NetworkProcess {
       if (speed_index_[i] != kNone) x[speed_index_[i]] = net_.initial.speed_rad_s;
     // In steady state a PI controller holds the steady torque (a DC motor: the steady voltage) with its integral part,
     // a DC motor carries the current of the steady torque and a compliant gear the twist of it. An induction motor
-    // starts with the fluxes that are steady at its initial speed and supply, whatever torque they give.
+    // starts with the fluxes that are steady at its initial speed and supply: under the speed controller the supply
+    // that gives the steady torque; in open loop the scheduled one, whatever torque that gives.
     const double v0 = net_.initial.speed_rad_s;
     for (int i = 0; i < num_nodes_; ++i) {
       const Node& node = net_.nodes[i];
@@ -85,11 +86,17 @@ class NetworkProcess {
         x[current_index_[i]] = steady_torque_ / k;
         held = node.motor.armature_resistance * x[current_index_[i]] + k * v0;
       }
-      if (integral_index_[i] != kNone && node.ki > 0) x[integral_index_[i]] = held / node.ki;
       if (flux_index_[i] != kNone) {
-        const auto psi = node.induction.SteadyFluxes(node.setpoint.Value(0.0), node.gear.ratio * v0);
+        const double n = node.gear.ratio;
+        const double supply = node.drive == Drive::kInductionMotor
+                                  ? node.setpoint.Value(0.0)
+                                  : node.induction.SteadySupplyFrequency(steady_torque_ / n, n * v0);
+        const auto psi = node.induction.SteadyFluxes(supply, n * v0);
         std::copy(psi.begin(), psi.end(), x.begin() + flux_index_[i]);
+        if (node.drive == Drive::kInductionMotorSpeed)  // the demand that asks for this supply
+          held = n * node.induction.TorqueDemandFor(supply, n * v0);
       }
+      if (integral_index_[i] != kNone && node.ki > 0) x[integral_index_[i]] = held / node.ki;
       if (motor_speed_index_[i] != kNone) {
         x[motor_speed_index_[i]] = v0;
         x[motor_speed_index_[i] + 1] = steady_torque_ / node.gear.stiffness;
@@ -128,7 +135,7 @@ class NetworkProcess {
                                    m.motor_constant * node.gear.ratio * vd) / m.armature_inductance;
       }
       if (flux_index_[i] != kNone) {
-        const auto rates = node.induction.FluxRates(Fluxes(i, x), Setpoint(node, t, side), node.gear.ratio * vd);
+        const auto rates = node.induction.FluxRates(Fluxes(i, x), SupplyFrequency(i, x, vd, t, side), node.gear.ratio * vd);
         std::copy(rates.begin(), rates.end(), dxdt.begin() + flux_index_[i]);
       }
       if (motor_speed_index_[i] != kNone) {
@@ -350,9 +357,20 @@ class NetworkProcess {
       }
       case Drive::kDcMotorVoltage:
       case Drive::kDcMotorSpeed: return node.gear.ratio * node.motor.motor_constant * x[current_index_[i]];
-      case Drive::kInductionMotor: return node.gear.ratio * node.induction.Torque(Fluxes(i, x));
+      case Drive::kInductionMotor:
+      case Drive::kInductionMotorSpeed: return node.gear.ratio * node.induction.Torque(Fluxes(i, x));
     }
     return 0;
+  }
+
+  // An induction motor's supply: the setpoint (open loop), or the supply for the PI's torque demand at the drive's
+  // speed (slip-frequency control).
+  double SupplyFrequency(int i, const State& x, double vd, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    if (node.drive == Drive::kInductionMotor) return Setpoint(node, t, side);
+    const double n = node.gear.ratio;
+    const double demand = node.kp * (Setpoint(node, t, side) - vd) + node.ki * x[integral_index_[i]];
+    return node.induction.SupplyForTorque(demand / n, n * vd);
   }
 
   // The drive acts on the node itself, or on the motor behind a compliant gear, which passes on the gear torque.
@@ -488,13 +506,8 @@ class NetworkProcess {
     const double v0 = net_.initial.speed_rad_s;
     std::vector<double> torque_below(net_.sections.size(), 0.0);
     double acc = 0;
-    for (int i = num_nodes_ - 1; i >= 1; --i) {
-      const Node& node = net_.nodes[i];
-      if (node.friction && v0 != 0) acc += node.friction->SlipTorque(v0);
-      acc += node.ground_damping * v0;
-      torque_below[i - 1] = acc;
-    }
-    steady_torque_ = acc + net_.nodes[0].ground_damping * v0 + (net_.nodes[0].friction && v0 != 0 ? net_.nodes[0].friction->SlipTorque(v0) : 0.0);
+    for (int i = num_nodes_ - 1; i >= 1; --i) torque_below[i - 1] = acc += net_.nodes[i].SteadyLoad(v0);
+    steady_torque_ = net_.SteadyTopTorque();
     const int m = waves_.dimension();
     std::vector<double> initial(m);
     for (std::size_t k = 0; k < net_.sections.size(); ++k) {

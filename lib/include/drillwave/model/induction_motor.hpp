@@ -45,6 +45,12 @@ struct InductionMotor {
   // Small-slip torque per electrical slip frequency, dT / d(w_e - p w_m) = p (V/f)^2 / (4 pi^2 R_r) [N·m·s/rad] (the
   // R_s = 0 limit on the V/f line): what a slip-compensating drive divides a torque demand by.
   double SlipTorqueGain() const;
+  // A V/f drive with slip-frequency control: the supply for a torque demand T at the measured shaft speed w_m,
+  // f = (p w_m + s) / 2 pi with the slip frequency s = T / G held within the (R_s = 0) pull-out slip
+  // R_r / (L_ls + L_lr), and the demand that asks for a given supply (its inverse inside that range).
+  double SupplyForTorque(double torque_demand, double shaft_speed) const;
+  double TorqueDemandFor(double supply_hz, double shaft_speed) const;
+  double PullOutSlipFrequency() const { return rotor_resistance / (stator_leakage_inductance + rotor_leakage_inductance); }
   // The supply frequency at which the steady torque at shaft speed w_m is `torque` (below pull-out; the slip
   // frequency is bracketed by the R_s = 0 pull-out slip R_r / (L_ls + L_lr)). Throws std::domain_error if the
   // machine cannot give that torque there.

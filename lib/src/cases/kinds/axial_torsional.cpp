@@ -23,7 +23,8 @@
 //   top/motor: a DC motor between the PI and the top: V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I,
 //        torque K I on the top drive.
 //   top/induction_motor: an induction motor (chapter eqs. 2.18-2.19) on a V/f supply with slip compensation
-//        between the PI and the top: f = (p n Omega_ref + u_PI / (n G)) / 2 pi, G its small-slip torque gain.
+//        between the PI and the top: slip-frequency control, f = (p n w_m + u_PI / (n G)) / 2 pi at the measured speed
+//        w_m, G the small-slip torque gain, the slip held below pull-out.
 //   top/gear: the motor turns n times faster than the top drive; with a stiffness the motor is a second inertia
 //        behind a compliant gear (the rig's two-mass model), and the PI acts on the motor's speed.
 //   bit/unbalance: the BHA's lateral motion (x, y) as the Jeffcott rotor of the failure seed (eqs. 21-23), with the
@@ -119,10 +120,9 @@ struct Model {
   model::Gear gear;                 // between the motor and the top drive
   // The top drive's own speed carries its inertia, and with a rigid gear the motor's.
   double TopInertia() const { return top_inertia + (gear.compliant() ? 0.0 : gear.ReferredMotorInertia()); }
-  // Supply frequency of the slip-compensating V/f drive for the PI's torque demand u (on the top drive's side).
-  double SupplyFrequency(double u_pi, double omega_ref) const {
-    const double n = gear.ratio;
-    return (induction.pole_pairs * n * omega_ref + u_pi / (n * induction.SlipTorqueGain())) / (2 * kPi);
+  // Supply frequency of the V/f drive for the PI's torque demand u at drive speed w (both on the top drive's side).
+  double SupplyFrequency(double u_pi, double drive_speed) const {
+    return induction.SupplyForTorque(u_pi / gear.ratio, gear.ratio * drive_speed);
   }
   LateralBha unbalance;   // Jeffcott rotor at the bit when unbalance.on
 
@@ -210,8 +210,7 @@ class Process {
     if (md_.induction_on) {
       const auto psi = md_.induction.SteadyFluxes(steady_supply_hz_, md_.gear.ratio * steady_.omega);
       std::copy(psi.begin(), psi.end(), x.begin() + kFlux);
-      const double u = (2 * kPi * steady_supply_hz_ - md_.induction.pole_pairs * md_.gear.ratio * steady_.omega) *
-                       md_.gear.ratio * md_.induction.SlipTorqueGain();
+      const double n = md_.gear.ratio, u = n * md_.induction.TorqueDemandFor(steady_supply_hz_, n * steady_.omega);
       x[kZ] = md_.ki > 0 ? u / md_.ki : 0.0;
     }
     if (md_.gear.compliant()) {
@@ -234,7 +233,7 @@ class Process {
     if (md_.motor.on)
       dx[kCurrent] = md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), vd, x[kCurrent]);
     if (md_.induction_on) {
-      const auto rates = md_.induction.FluxRates(Fluxes(x), md_.SupplyFrequency(PiOutput(x, omega_ref), omega_ref),
+      const auto rates = md_.induction.FluxRates(Fluxes(x), md_.SupplyFrequency(PiOutput(x, omega_ref), vd),
                                                  md_.gear.ratio * vd);
       std::copy(rates.begin(), rates.end(), dx.begin() + kFlux);
     }
@@ -1049,7 +1048,8 @@ class AxialTorsionalKind : public ModelKind {
     fields.update(TopComponentFields("top"));
     fields["top/induction_motor/pole_pairs"] =
         "p, integer in [1, 64]: optional induction motor (absent: the PI output is the torque) on a V/f supply with "
-        "slip compensation, f = (p n Omega_ref + u_PI / (n G)) / 2 pi, G = p (V/f)^2 / (4 pi^2 R_r); not with motor";
+        "slip-frequency control, f = (p n w_m + u_PI / (n G)) / 2 pi at the measured speed w_m, G = p (V/f)^2 / "
+        "(4 pi^2 R_r), slip held below R_r / (L_ls + L_lr); not with motor";
     return fields;
   }
 

@@ -61,6 +61,29 @@ void AddSectionsWithDamping(const std::vector<waves::Section>& sections, double 
   }
 }
 
+// How a motor top is commanded: open loop by a schedule (`open_loop_key`), or by a PI speed controller on speed_rad_s.
+struct MotorCommand {
+  const char* motor;  // "a DC motor", for messages
+  const char* open_loop_key;
+  waves::Drive open_loop, speed_controlled;
+  const char* kp_key;
+  const char* ki_key;
+};
+void ReadMotorCommand(const JsonReader& r, const MotorCommand& c, waves::Node& top) {
+  if (r.Has(c.open_loop_key)) {
+    if (r.Has("speed_rad_s"))
+      throw InputError(r.PathOf("speed_rad_s"), std::string(c.motor) + " top takes either " + c.open_loop_key +
+                                                    " (open loop) or speed_rad_s (speed controller), not both");
+    top.drive = c.open_loop;
+    top.setpoint = model::Schedule::FromJson(r.Raw(c.open_loop_key), r.PathOf(c.open_loop_key));
+  } else {
+    top.drive = c.speed_controlled;
+    top.kp = r.Number(c.kp_key, Range::NonNegative());
+    top.ki = r.Number(c.ki_key, Range::NonNegative());
+    top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
+  }
+}
+
 waves::Node ReadTop(const JsonReader& r) {
   waves::Node top;
   top.name = "top";
@@ -90,23 +113,13 @@ waves::Node ReadTop(const JsonReader& r) {
     top.motor.armature_inductance = motor.Number("inductance_H", Range::Positive());
     motor.Finish();
     top.motor.voltage_limit = r.Number("voltage_limit_V", Range::NonNegative(), 0.0);
-    if (r.Has("voltage_V")) {
-      if (r.Has("speed_rad_s"))
-        throw InputError(r.PathOf("speed_rad_s"), "a DC motor top takes either voltage_V (open loop) or speed_rad_s "
-                                                  "(speed controller), not both");
-      top.drive = waves::Drive::kDcMotorVoltage;
-      top.setpoint = model::Schedule::FromJson(r.Raw("voltage_V"), r.PathOf("voltage_V"));
-    } else {
-      top.drive = waves::Drive::kDcMotorSpeed;
-      top.kp = r.Number("kp_V_s_per_rad", Range::NonNegative());
-      top.ki = r.Number("ki_V_per_rad", Range::NonNegative());
-      top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
-    }
+    ReadMotorCommand(r, {"a DC motor", "voltage_V", waves::Drive::kDcMotorVoltage, waves::Drive::kDcMotorSpeed,
+                         "kp_V_s_per_rad", "ki_V_per_rad"}, top);
   } else if (type == "induction_motor") {
-    top.drive = waves::Drive::kInductionMotor;
     top.inertia = r.Number("inertia_kgm2", Range::Positive());
     top.induction = ReadInductionMotor(r.Object("induction_motor"));
-    top.setpoint = model::Schedule::FromJson(r.Raw("supply_frequency_Hz"), r.PathOf("supply_frequency_Hz"));
+    ReadMotorCommand(r, {"an induction motor", "supply_frequency_Hz", waves::Drive::kInductionMotor,
+                         waves::Drive::kInductionMotorSpeed, "kp_Nms_per_rad", "ki_Nm_per_rad"}, top);
   } else {
     top.drive = waves::Drive::kTorque;
     top.inertia = r.Number("inertia_kgm2", Range::NonNegative(), 0.0);  // 0: a force-controlled end (eq. 2.9)
@@ -239,8 +252,10 @@ class TorsionalWaveKind : public ModelKind {
         {"top/beta_Nms_per_rad", "dissipative top: beta > 0"},
         {"top/inertia_kgm2", "top_drive, dc_motor, induction_motor: inertia > 0; torque: >= 0, default 0 "
                              "(force-controlled end)"},
-        {"top/kp_Nms_per_rad", "top_drive: proportional gain >= 0"},
-        {"top/ki_Nm_per_rad", "top_drive: integral gain >= 0"},
+        {"top/kp_Nms_per_rad", "top_drive, induction_motor with speed_rad_s: proportional gain >= 0 (the induction "
+                               "motor's PI gives a torque demand u to its V/f drive: f = (p n w + u / (n G)) / 2 pi at "
+                               "the measured speed w, G = p (V/f)^2 / (4 pi^2 R_r), slip held below pull-out)"},
+        {"top/ki_Nm_per_rad", "top_drive, induction_motor with speed_rad_s: integral gain >= 0"},
         {"top/torque_limit_Nm", "top_drive: >= 0, 0 = unlimited"},
         {"top/torque_Nm", "torque top: schedule [N·m]"},
         {"top/damping_Nms_per_rad", "local damper at the top, >= 0, default 0"},
@@ -251,8 +266,8 @@ class TorsionalWaveKind : public ModelKind {
         {"friction laws", bitrock::FrictionLaw::Schema()},
     };
     fields.update(TopComponentFields("top"));
-    fields["top/supply_frequency_Hz"] = "induction_motor (open loop): supply frequency schedule [Hz]; V/f: line "
-                                        "voltage volts_per_hertz f, up to voltage_limit_V";
+    fields["top/supply_frequency_Hz"] = "induction_motor, open loop: supply frequency schedule [Hz] (instead of "
+                                        "speed_rad_s); V/f: line voltage volts_per_hertz f, up to voltage_limit_V";
     return fields;
   }
 
