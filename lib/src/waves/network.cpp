@@ -26,9 +26,38 @@ void Network::Validate() const {
                              !(n.motor.armature_inductance > 0) || !(n.motor.voltage_limit >= 0)))
       throw std::invalid_argument("node '" + n.name + "': a DC motor needs an inertia, a motor constant, armature "
                                   "resistance and inductance > 0 and a voltage limit >= 0");
+    if (n.has_induction_motor()) {
+      if (n.massless()) throw std::invalid_argument("node '" + n.name + "': an induction motor needs an inertia > 0");
+      const std::string problem = n.induction.Problem();
+      if (!problem.empty()) throw std::invalid_argument("node '" + n.name + "': induction motor: " + problem);
+    }
+    if (n.drive == Drive::kInductionMotorSpeed && initial.speed_rad_s != 0) {
+      try {
+        n.induction.SteadySupplyFrequency(SteadyTopTorque() / n.gear.ratio, n.gear.ratio * initial.speed_rad_s);
+      } catch (const std::domain_error& e) {
+        throw std::invalid_argument("node '" + n.name + "': induction motor: no steady start at the initial speed: " +
+                                    e.what());
+      }
+    }
+    const model::Gear& g = n.gear;
+    if (!(g.ratio > 0) || !(g.stiffness >= 0) || !(g.damping >= 0) || !(g.motor_inertia >= 0) ||
+        !std::isfinite(g.ratio + g.stiffness + g.damping + g.motor_inertia))
+      throw std::invalid_argument("node '" + n.name + "': a gear needs a ratio > 0, stiffness, damping and motor "
+                                  "inertia >= 0, all finite");
+    const bool motor_driven =
+        n.drive == Drive::kPiSpeedController || n.has_dc_motor() || n.has_induction_motor();
+    if (g.compliant() && !(motor_driven && g.motor_inertia > 0 && !n.massless()))
+      throw std::invalid_argument("node '" + n.name + "': a compliant gear sits between a PI, DC or induction motor "
+                                  "drive with a motor inertia > 0 and a node with an inertia > 0");
     if (n.drive == Drive::kPrescribedSpeed && !n.massless())
       throw std::invalid_argument("node '" + n.name + "': a prescribed-speed node has no inertia");
   }
+}
+
+double Network::SteadyTopTorque() const {
+  double torque = 0;
+  for (const Node& n : nodes) torque += n.SteadyLoad(initial.speed_rad_s);
+  return torque;
 }
 
 double Network::SmallestTravelTime() const {

@@ -28,7 +28,9 @@ constexpr double kTinySpeed = 1e-300;
 
 // The mutable side of a run: committed wave buffers, friction regimes, pending breakpoints.
 // State layout: the bit angle (for statistics and, later, the cut-depth delay), then the speeds of nodes with
-// inertia, then PI integrals. Other angles are not integrated: nothing reads them and they would only add work.
+// inertia, then PI integrals, DC motor currents, induction motor fluxes (4 each), and for a node behind a compliant
+// gear its motor's speed (referred to the node) and the gear's twist. Other angles are not integrated: nothing reads
+// them and they would only add work.
 class NetworkProcess {
  public:
   NetworkProcess(const Network& net, const NetworkRunOptions& options)
@@ -43,6 +45,8 @@ class NetworkProcess {
     speed_index_.assign(num_nodes_, kNone);
     integral_index_.assign(num_nodes_, kNone);
     current_index_.assign(num_nodes_, kNone);
+    flux_index_.assign(num_nodes_, kNone);
+    motor_speed_index_.assign(num_nodes_, kNone);
     regime_.assign(num_nodes_, Regime::kSlipPositive);
     for (int i = 0; i < num_nodes_; ++i)
       if (!net.nodes[i].massless()) speed_index_[i] = next++;
@@ -50,6 +54,10 @@ class NetworkProcess {
       if (net.nodes[i].has_speed_integral()) integral_index_[i] = next++;
     for (int i = 0; i < num_nodes_; ++i)
       if (net.nodes[i].has_dc_motor()) current_index_[i] = next++;
+    for (int i = 0; i < num_nodes_; ++i)
+      if (net.nodes[i].has_induction_motor()) flux_index_[i] = next, next += 4;
+    for (int i = 0; i < num_nodes_; ++i)
+      if (net.nodes[i].has_compliant_gear()) motor_speed_index_[i] = next, next += 2;  // motor speed, then twist
     dimension_ = next;
     for (int i = 0; i < num_nodes_; ++i)
       if (net.nodes[i].has_set_valued_friction()) frictional_nodes_.push_back(i);
@@ -66,15 +74,33 @@ class NetworkProcess {
     for (int i = 0; i < num_nodes_; ++i)
       if (speed_index_[i] != kNone) x[speed_index_[i]] = net_.initial.speed_rad_s;
     // In steady state a PI controller holds the steady torque (a DC motor: the steady voltage) with its integral part,
-    // and a DC motor carries the current of the steady torque.
+    // a DC motor carries the current of the steady torque and a compliant gear the twist of it. An induction motor
+    // starts with the fluxes that are steady at its initial speed and supply: under the speed controller the supply
+    // that gives the steady torque; in open loop the scheduled one, whatever torque that gives.
+    const double v0 = net_.initial.speed_rad_s;
     for (int i = 0; i < num_nodes_; ++i) {
       const Node& node = net_.nodes[i];
       double held = steady_torque_;
       if (current_index_[i] != kNone) {
-        x[current_index_[i]] = steady_torque_ / node.motor.motor_constant;
-        held = node.motor.armature_resistance * x[current_index_[i]] + node.motor.motor_constant * net_.initial.speed_rad_s;
+        const double k = node.motor.motor_constant * node.gear.ratio;  // referred to the node's side
+        x[current_index_[i]] = steady_torque_ / k;
+        held = node.motor.armature_resistance * x[current_index_[i]] + k * v0;
+      }
+      if (flux_index_[i] != kNone) {
+        const double n = node.gear.ratio;
+        const double supply = node.drive == Drive::kInductionMotor
+                                  ? node.setpoint.Value(0.0)
+                                  : node.induction.SteadySupplyFrequency(steady_torque_ / n, n * v0);
+        const auto psi = node.induction.SteadyFluxes(supply, n * v0);
+        std::copy(psi.begin(), psi.end(), x.begin() + flux_index_[i]);
+        if (node.drive == Drive::kInductionMotorSpeed)  // the demand that asks for this supply
+          held = n * node.induction.TorqueDemandFor(supply, n * v0);
       }
       if (integral_index_[i] != kNone && node.ki > 0) x[integral_index_[i]] = held / node.ki;
+      if (motor_speed_index_[i] != kNone) {
+        x[motor_speed_index_[i]] = v0;
+        x[motor_speed_index_[i] + 1] = steady_torque_ / node.gear.stiffness;
+      }
     }
     return x;
   }
@@ -99,24 +125,32 @@ class NetworkProcess {
     dxdt[kBitAngle] = Speed(num_nodes_ - 1, x, t, side);
     for (int i = 0; i < num_nodes_; ++i) {
       const Node& node = net_.nodes[i];
-      if (speed_index_[i] == kNone && integral_index_[i] == kNone && current_index_[i] == kNone) continue;
-      const double v = Speed(i, x, t, side);
-      if (integral_index_[i] != kNone) dxdt[integral_index_[i]] = Setpoint(node, t, side) - v;
+      if (speed_index_[i] == kNone) continue;  // drives, motors and gears sit on nodes with inertia (Validate)
+      const double v = Speed(i, x, t, side), vd = DriveSpeed(i, x, v);
+      if (integral_index_[i] != kNone) dxdt[integral_index_[i]] = Setpoint(node, t, side) - vd;
       if (current_index_[i] != kNone) {
         const DcMotor& m = node.motor;
         const double current = x[current_index_[i]];
-        dxdt[current_index_[i]] =
-            (MotorVoltage(i, x, v, t, side) - m.armature_resistance * current - m.motor_constant * v) / m.armature_inductance;
+        dxdt[current_index_[i]] = (MotorVoltage(i, x, vd, t, side) - m.armature_resistance * current -
+                                   m.motor_constant * node.gear.ratio * vd) / m.armature_inductance;
       }
-      if (speed_index_[i] == kNone) continue;
+      if (flux_index_[i] != kNone) {
+        const auto rates = node.induction.FluxRates(Fluxes(i, x), SupplyFrequency(i, x, vd, t, side), node.gear.ratio * vd);
+        std::copy(rates.begin(), rates.end(), dxdt.begin() + flux_index_[i]);
+      }
+      if (motor_speed_index_[i] != kNone) {
+        dxdt[motor_speed_index_[i]] =
+            (DriveTorque(i, x, vd, t, side) - GearTorque(i, x, v)) / node.gear.ReferredMotorInertia();
+        dxdt[motor_speed_index_[i] + 1] = vd - v;
+      }
       double& a = dxdt[speed_index_[i]];
       if (regime_[i] == Regime::kStuck) {
         a = 0;
         continue;
       }
-      double torque = StringTorqueOnNode(i, v, t, side) - node.ground_damping * v + DriveTorque(i, x, v, t, side);
+      double torque = StringTorqueOnNode(i, v, t, side) - node.ground_damping * v + TorqueIntoNode(i, x, v, t, side);
       if (node.friction) torque -= SlipFriction(i, v);
-      a = torque / node.inertia;
+      a = torque / node.LumpedInertia();
     }
   }
 
@@ -234,6 +268,12 @@ class NetworkProcess {
     out.bit_angle_rad.push_back(x[kBitAngle]);
     out.bit_stuck.push_back(regime_[bit] == Regime::kStuck && net_.nodes[bit].has_set_valued_friction() ? 1.0 : 0.0);
     if (current_index_[top] != kNone) out.top_current_a.push_back(x[current_index_[top]]);
+    if (flux_index_[top] != kNone)
+      out.top_current_a.push_back(net_.nodes[top].induction.StatorCurrentRms(Fluxes(top, x)));
+    if (motor_speed_index_[top] != kNone) {
+      out.motor_speed_rad_s.push_back(net_.nodes[top].gear.ratio * x[motor_speed_index_[top]]);
+      out.gear_torque_nm.push_back(GearTorque(top, x, v_top));
+    }
     if (options_.record_energy) out.energy_j.push_back(StoredEnergy(t, x));
   }
 
@@ -246,7 +286,13 @@ class NetworkProcess {
     for (int i = 0; i < num_nodes_; ++i)
       if (speed_index_[i] != kNone) {
         const double v = Speed(i, x, t, Side::kLeft);
-        e += 0.5 * net_.nodes[i].inertia * v * v;
+        e += 0.5 * net_.nodes[i].LumpedInertia() * v * v;
+      }
+    for (int i = 0; i < num_nodes_; ++i)
+      if (motor_speed_index_[i] != kNone) {
+        const model::Gear& g = net_.nodes[i].gear;
+        const double vm = x[motor_speed_index_[i]], twist = x[motor_speed_index_[i] + 1];
+        e += 0.5 * g.ReferredMotorInertia() * vm * vm + 0.5 * g.stiffness * twist * twist;
       }
     for (std::size_t k = 0; k < net_.sections.size(); ++k) {
       const double tau = net_.sections[k].travel_time_s;
@@ -310,9 +356,38 @@ class NetworkProcess {
         return node.torque_limit > 0 ? std::clamp(u, -node.torque_limit, node.torque_limit) : u;
       }
       case Drive::kDcMotorVoltage:
-      case Drive::kDcMotorSpeed: return node.motor.motor_constant * x[current_index_[i]];
+      case Drive::kDcMotorSpeed: return node.gear.ratio * node.motor.motor_constant * x[current_index_[i]];
+      case Drive::kInductionMotor:
+      case Drive::kInductionMotorSpeed: return node.gear.ratio * node.induction.Torque(Fluxes(i, x));
     }
     return 0;
+  }
+
+  // An induction motor's supply: the setpoint (open loop), or the supply for the PI's torque demand at the drive's
+  // speed (slip-frequency control).
+  double SupplyFrequency(int i, const State& x, double vd, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    if (node.drive == Drive::kInductionMotor) return Setpoint(node, t, side);
+    const double n = node.gear.ratio;
+    const double demand = node.kp * (Setpoint(node, t, side) - vd) + node.ki * x[integral_index_[i]];
+    return node.induction.SupplyForTorque(demand / n, n * vd);
+  }
+
+  // The drive acts on the node itself, or on the motor behind a compliant gear, which passes on the gear torque.
+  double TorqueIntoNode(int i, const State& x, double v, double t, Side side) const {
+    return motor_speed_index_[i] != kNone ? GearTorque(i, x, v) : DriveTorque(i, x, v, t, side);
+  }
+  double GearTorque(int i, const State& x, double v) const {
+    return net_.nodes[i].gear.Torque(x[motor_speed_index_[i] + 1], x[motor_speed_index_[i]], v);
+  }
+  // The speed the drive sees, referred to the node's side: the node's, or its motor's behind a compliant gear.
+  double DriveSpeed(int i, const State& x, double v) const {
+    return motor_speed_index_[i] != kNone ? x[motor_speed_index_[i]] : v;
+  }
+  model::InductionMotor::Fluxes Fluxes(int i, const State& x) const {
+    model::InductionMotor::Fluxes psi;
+    std::copy(x.begin() + flux_index_[i], x.begin() + flux_index_[i] + 4, psi.begin());
+    return psi;
   }
 
   // The armature voltage of a DC motor: the setpoint (open loop) or the speed controller's output, clamped.
@@ -335,7 +410,7 @@ class NetworkProcess {
   // Everything but friction acting on node i held at rest: what the friction must balance to keep it stuck.
   double DrivingTorqueAtRest(int i, double t, const State& x) const {
     const Side side = SideAt(t);
-    return TwiceIncoming(i, t, side) + DriveTorque(i, x, 0.0, t, side);
+    return TwiceIncoming(i, t, side) + TorqueIntoNode(i, x, 0.0, t, side);
   }
 
   Regime RegimeForDrivingTorque(int i, double drive) const {
@@ -431,13 +506,8 @@ class NetworkProcess {
     const double v0 = net_.initial.speed_rad_s;
     std::vector<double> torque_below(net_.sections.size(), 0.0);
     double acc = 0;
-    for (int i = num_nodes_ - 1; i >= 1; --i) {
-      const Node& node = net_.nodes[i];
-      if (node.friction && v0 != 0) acc += node.friction->SlipTorque(v0);
-      acc += node.ground_damping * v0;
-      torque_below[i - 1] = acc;
-    }
-    steady_torque_ = acc + net_.nodes[0].ground_damping * v0 + (net_.nodes[0].friction && v0 != 0 ? net_.nodes[0].friction->SlipTorque(v0) : 0.0);
+    for (int i = num_nodes_ - 1; i >= 1; --i) torque_below[i - 1] = acc += net_.nodes[i].SteadyLoad(v0);
+    steady_torque_ = net_.SteadyTopTorque();
     const int m = waves_.dimension();
     std::vector<double> initial(m);
     for (std::size_t k = 0; k < net_.sections.size(); ++k) {
@@ -496,7 +566,7 @@ class NetworkProcess {
   double kink_threshold_, jump_threshold_;
   int num_nodes_;
   int dimension_ = 0;
-  std::vector<int> speed_index_, integral_index_, current_index_;
+  std::vector<int> speed_index_, integral_index_, current_index_, flux_index_, motor_speed_index_;
   std::vector<int> frictional_nodes_;
   std::vector<Regime> regime_;
   integration::HermiteHistory waves_;

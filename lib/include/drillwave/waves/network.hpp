@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "drillwave/bitrock/friction.hpp"
+#include "drillwave/model/gear.hpp"
+#include "drillwave/model/induction_motor.hpp"
 #include "drillwave/model/schedule.hpp"
 
 namespace drillwave::waves {
@@ -37,6 +39,11 @@ enum class Drive {
   // +/- voltage_limit.
   kDcMotorVoltage,
   kDcMotorSpeed,
+  // Induction motor on a V/f supply (chapter eqs. 2.18-2.19): the setpoint is the supply frequency [Hz] (open loop),
+  // or the speed [rad/s] of a PI controller whose torque demand kp (setpoint - v) + ki * integral [N·m] the drive
+  // turns into the supply frequency by slip-frequency control (model::InductionMotor::SupplyForTorque).
+  kInductionMotor,
+  kInductionMotorSpeed,
 };
 
 struct DcMotor {
@@ -56,12 +63,24 @@ struct Node {
   double kp = 0, ki = 0;             // PI gains [N·m·s/rad], [N·m/rad]
   double torque_limit = 0;           // 0: unlimited
   DcMotor motor;                     // kDcMotorVoltage, kDcMotorSpeed; kp [V·s/rad], ki [V/rad] for the latter
+  model::InductionMotor induction;   // kInductionMotor
+  // Between the drive (PI, DC or induction motor) and the node. The drive's speed, torque and gains are referred to
+  // the node's side; a DC motor's constant and an induction motor's shaft speed are the motor's own.
+  model::Gear gear;
   std::optional<bitrock::FrictionLaw> friction;  // contact torque (bit–rock); set-valued laws need inertia > 0
 
   bool massless() const { return inertia == 0; }
   bool has_dc_motor() const { return drive == Drive::kDcMotorVoltage || drive == Drive::kDcMotorSpeed; }
-  bool has_speed_integral() const { return drive == Drive::kPiSpeedController || drive == Drive::kDcMotorSpeed; }
+  bool has_induction_motor() const { return drive == Drive::kInductionMotor || drive == Drive::kInductionMotorSpeed; }
+  bool has_speed_integral() const {
+    return drive == Drive::kPiSpeedController || drive == Drive::kDcMotorSpeed || drive == Drive::kInductionMotorSpeed;
+  }
   bool has_set_valued_friction() const { return friction && friction->IsSetValued(); }
+  bool has_compliant_gear() const { return gear.compliant(); }
+  // The inertia the node's own speed carries: with a rigid gear the motor's too.
+  double LumpedInertia() const { return inertia + (gear.compliant() ? 0.0 : gear.ReferredMotorInertia()); }
+  // Torque that turning steadily at v costs the node: its dampers and its friction.
+  double SteadyLoad(double v) const { return ground_damping * v + (friction && v != 0 ? friction->SlipTorque(v) : 0.0); }
 };
 
 // Initial condition: at rest, or turning rigidly at a given speed with the steady torque carried by every section.
@@ -79,6 +98,8 @@ struct Network {
   const Node& top() const { return nodes.front(); }
   const Node& bit() const { return nodes.back(); }
   double SmallestTravelTime() const;
+  // Torque the top feeds in while everything turns rigidly at the initial speed.
+  double SteadyTopTorque() const;
   double LargestTravelTime() const;
 };
 

@@ -40,7 +40,8 @@ struct NetworkTrajectory {
   std::vector<double> top_torque_nm, bit_torque_nm;
   std::vector<double> bit_angle_rad;
   std::vector<double> bit_stuck;  // 1 while the bit is stuck
-  std::vector<double> top_current_a;  // armature current of a DC motor top (empty otherwise)
+  std::vector<double> top_current_a;  // DC motor top: armature current; induction motor: stator rms (empty otherwise)
+  std::vector<double> motor_speed_rad_s, gear_torque_nm;  // top behind a compliant gear: motor shaft, gear (else empty)
   std::vector<double> energy_j;   // kinetic energy of the nodes + energy of the waves in flight (record_energy)
 };
 

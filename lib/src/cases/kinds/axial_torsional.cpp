@@ -8,8 +8,9 @@
 // end), so the d'Alembert reduction stays exact. A piece carries the force S = Z (D - U) onto its lower node; a node
 // feels sum Z (2 w_in - v) from its pieces (DESIGN.md §1). Kelvin-Voigt damping (chapter eqs. 2.20, 2.24) is a
 // dashpot eta K / length across each piece, which ties the massless nodes into a tridiagonal system.
-// Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by a constant hook
-// force H. Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
+// Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by the hook force H: constant,
+// set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)).
+// Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
 //   t_n: Phi(t) - Phi(t - t_n) = 2 pi / n,  d = n (U(t) - U(t - t_n))   (from the stored bit angle and position;
 //        after a bounce, against the deepest of the last four blade passes at that angle)
 //   cutting (d > 0, not turning backwards): W_c = a zeta eps d, T_c = a^2 eps d / 2
@@ -21,6 +22,11 @@
 //   axial_coupling false: no axial dynamics; the weight on bit is held at W0 and the depth of cut at its steady value.
 //   top/motor: a DC motor between the PI and the top: V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I,
 //        torque K I on the top drive.
+//   top/induction_motor: an induction motor (chapter eqs. 2.18-2.19) on a V/f supply with slip compensation
+//        between the PI and the top: slip-frequency control, f = (p n w_m + u_PI / (n G)) / 2 pi at the measured speed
+//        w_m, G the small-slip torque gain, the slip held below pull-out.
+//   top/gear: the motor turns n times faster than the top drive; with a stiffness the motor is a second inertia
+//        behind a compliant gear (the rig's two-mass model), and the PI acts on the motor's speed.
 //   bit/unbalance: the BHA's lateral motion (x, y) as the Jeffcott rotor of the failure seed (eqs. 21-23), with the
 //        unbalance m at radius e turning with the bit angle Phi and reacting on the bit's torsion.
 // Three discrete regimes (rotation: forward / stuck / backward; axial: advancing / held / lifting; contact: on /
@@ -39,7 +45,10 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/simulator.hpp"
+#include "drillwave/model/gear.hpp"
+#include "drillwave/model/induction_motor.hpp"
 #include "drillwave/model/schedule.hpp"
+#include "top_components.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -99,13 +108,22 @@ struct Model {
   double top_inertia = 0, hoist_mass = 0, bit_inertia = 0, bit_mass = 0;
   double kp = 0, ki = 0;
   model::Schedule top_speed;  // rad/s
-  double hook_force = 0;      // H [N], up
-  double weight_on_bit = 0;   // W0 the hook force was set for [N]
+  model::Schedule hook_force;  // H(t) [N], up
+  double weight_on_bit = 0;    // W0 of steady drilling at t = 0 [N] (the target the hook force is set for, or H(0)'s)
   double a = 0, zeta = 0, eps = 0, sigma_l = 0, mu = 0, gamma = 0;
   int blades = 4;
   double static_mu = 0, stribeck_speed = 0;  // Stribeck friction (stribeck_speed 0: Coulomb, static_mu = mu)
   bool axial_coupling = true;
-  DcMotor motor;          // between the PI and the top drive when motor.on
+  DcMotor motor;          // between the PI and the top drive when motor.on (k referred to the top drive: n K)
+  bool induction_on = false;
+  model::InductionMotor induction;  // between the PI and the top drive when induction_on
+  model::Gear gear;                 // between the motor and the top drive
+  // The top drive's own speed carries its inertia, and with a rigid gear the motor's.
+  double TopInertia() const { return top_inertia + (gear.compliant() ? 0.0 : gear.ReferredMotorInertia()); }
+  // Supply frequency of the V/f drive for the PI's torque demand u at drive speed w (both on the top drive's side).
+  double SupplyFrequency(double u_pi, double drive_speed) const {
+    return induction.SupplyForTorque(u_pi / gear.ratio, gear.ratio * drive_speed);
+  }
   LateralBha unbalance;   // Jeffcott rotor at the bit when unbalance.on
 
   double ContactForce() const { return a * sigma_l; }             // a sigma l
@@ -144,8 +162,13 @@ Steady SteadyDrilling(const Model& md, double omega) {
 }
 
 // State: 0 bit angle, 1 bit position, 2 top speed, 3 bit speed, 4 hoist speed, 5 bit axial speed, 6 PI integral;
-// with a motor 7 its current; with an unbalance 8-11 the BHA's lateral x, y, x', y' (and 7 unused, held at 0).
-enum Index { kPhi = 0, kU, kWtop, kWbit, kVtop, kVbit, kZ, kDim, kCurrent = kDim, kX, kY, kXd, kYd, kFullDim };
+// with a motor 7 its current; with an unbalance 8-11 the BHA's lateral x, y, x', y' (and 7 unused, held at 0); with
+// an induction motor or a compliant gear 12-15 the motor's fluxes and 16-17 the motor's speed (referred to the top
+// drive) and the gear's twist (the unused ones held at 0).
+enum Index {
+  kPhi = 0, kU, kWtop, kWbit, kVtop, kVbit, kZ, kDim, kCurrent = kDim, kX, kY, kXd, kYd, kFullDim,
+  kFlux = kFullDim, kMotorSpeed = kFlux + 4, kTwist, kTopDim
+};
 
 class Process {
  public:
@@ -157,10 +180,17 @@ class Process {
           d[0] = steady_.omega, d[1] = steady_.rop;
         }) {
     InitializeWaves();
+    // Throws std::domain_error when the motor cannot carry the steady torque (below its pull-out torque).
+    if (md.induction_on)
+      steady_supply_hz_ =
+          md.induction.SteadySupplyFrequency(top_torque0_ / md.gear.ratio, md.gear.ratio * steady_.omega);
   }
 
   // --- Simulator interface --------------------------------------------------------------------------------
-  int Dimension() const { return md_.unbalance.on ? kFullDim : md_.motor.on ? kDim + 1 : kDim; }
+  int Dimension() const {
+    if (md_.induction_on || md_.gear.compliant()) return kTopDim;
+    return md_.unbalance.on ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
+  }
   double MaxStep() const {
     double shortest = kInf;
     for (const Run& r : runs_) shortest = std::min(shortest, r.tau);
@@ -173,9 +203,20 @@ class Process {
     x[kWtop] = steady_.omega;
     x[kWbit] = steady_.omega;
     x[kVtop] = x[kVbit] = steady_.rop;
-    // The PI holds the steady top torque with its integral part.
+    // The PI holds the steady top torque with its integral part, the motor with its steady current (DC) or fluxes
+    // (induction: at the supply frequency that gives the steady torque), the gear with its twist.
     x[kZ] = md_.ki > 0 ? top_torque0_ / md_.ki : 0.0;
-    if (md_.motor.on) x[kCurrent] = top_torque0_ / md_.motor.k;  // and the motor with its steady current
+    if (md_.motor.on) x[kCurrent] = top_torque0_ / md_.motor.k;
+    if (md_.induction_on) {
+      const auto psi = md_.induction.SteadyFluxes(steady_supply_hz_, md_.gear.ratio * steady_.omega);
+      std::copy(psi.begin(), psi.end(), x.begin() + kFlux);
+      const double n = md_.gear.ratio, u = n * md_.induction.TorqueDemandFor(steady_supply_hz_, n * steady_.omega);
+      x[kZ] = md_.ki > 0 ? u / md_.ki : 0.0;
+    }
+    if (md_.gear.compliant()) {
+      x[kMotorSpeed] = steady_.omega;
+      x[kTwist] = top_torque0_ / md_.gear.stiffness;
+    }
     return x;
   }
 
@@ -186,14 +227,25 @@ class Process {
     const BitForces f = Forces(x, t, side, ends);
     dx[kPhi] = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
     dx[kU] = axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
-    // Top drive and hoist.
-    const double u = TopTorque(x, omega_ref);
+    // Top drive (with its motor and gear) and hoist. States a component does not use stay at 0.
+    if (Dimension() == kTopDim) std::fill(dx.begin() + kDim, dx.end(), 0.0);
+    const double vd = DriveSpeed(x), u = TopTorque(x, omega_ref);
     if (md_.motor.on)
-      dx[kCurrent] =
-          md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), x[kWtop], x[kCurrent]);
-    dx[kWtop] = (ends.top[0] + u) / md_.top_inertia;
-    dx[kVtop] = (ends.top[1] - md_.hook_force) / md_.hoist_mass;
-    dx[kZ] = omega_ref - x[kWtop];
+      dx[kCurrent] = md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), vd, x[kCurrent]);
+    if (md_.induction_on) {
+      const auto rates = md_.induction.FluxRates(Fluxes(x), md_.SupplyFrequency(PiOutput(x, omega_ref), vd),
+                                                 md_.gear.ratio * vd);
+      std::copy(rates.begin(), rates.end(), dx.begin() + kFlux);
+    }
+    double into_top = u;
+    if (md_.gear.compliant()) {
+      into_top = GearTorque(x);
+      dx[kMotorSpeed] = (u - into_top) / md_.gear.ReferredMotorInertia();
+      dx[kTwist] = vd - x[kWtop];
+    }
+    dx[kWtop] = (ends.top[0] + into_top) / md_.TopInertia();
+    dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first) / md_.hoist_mass;
+    dx[kZ] = omega_ref - vd;
     // Bit.
     dx[kWbit] = turn_ == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
     dx[kVbit] = axial_ == Axial::kHeld && contact_ ? 0.0 : (f.drive_force - f.weight) / md_.bit_mass;
@@ -316,16 +368,21 @@ class Process {
   }
 
   double NextBreakpoint() const {
-    for (const auto& knot : md_.top_speed.knots())
-      if (knot.first > passed_) return knot.first;
-    return kInf;
+    double next = kInf;
+    for (const model::Schedule* input : {&md_.top_speed, &md_.hook_force})
+      for (const auto& knot : input->knots())
+        if (knot.first > passed_) {
+          next = std::min(next, knot.first);
+          break;
+        }
+    return next;
   }
   void OnBreakpoint(double t) { passed_ = t; }
 
   // --- Outputs --------------------------------------------------------------------------------------------
   struct Sample {
     double top_speed, bit_speed, top_torque, bit_torque, wob, hookload, depth, bit_axial_speed, tn, stuck, off_bottom;
-    double top_current, lateral_displacement;
+    double top_current, lateral_displacement, motor_speed, gear_torque;
   };
   Sample Sampled(double t, const State& x, const State& dx) const {
     const Side side = Side::kLeft;
@@ -337,18 +394,21 @@ class Process {
     s.top_torque = TopTorque(x, omega_ref);
     s.bit_torque = turn_ == Turn::kStuck ? f.drive_torque : f.torque;
     s.wob = f.weight;
-    s.hookload = md_.hook_force + md_.hoist_mass * dx[kVtop];
+    s.hookload = md_.hook_force.Value(t) + md_.hoist_mass * dx[kVtop];
     s.depth = contact_ ? f.depth : std::min(f.depth, 0.0);
     s.bit_axial_speed = !md_.axial_coupling ? dx[kU] : axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
     s.tn = f.tn;
     s.stuck = turn_ == Turn::kStuck ? 1.0 : 0.0;
     s.off_bottom = contact_ ? 0.0 : 1.0;
-    s.top_current = md_.motor.on ? x[kCurrent] : 0.0;
+    s.top_current = md_.motor.on ? x[kCurrent] : md_.induction_on ? md_.induction.StatorCurrentRms(Fluxes(x)) : 0.0;
+    s.motor_speed = md_.gear.compliant() ? md_.gear.ratio * x[kMotorSpeed] : 0.0;
+    s.gear_torque = md_.gear.compliant() ? GearTorque(x) : 0.0;
     s.lateral_displacement = md_.unbalance.on ? std::hypot(x[kX], x[kY]) : 0.0;
     return s;
   }
   const std::vector<StuckInterval>& stuck_intervals() const { return stuck_; }
   const Steady& steady() const { return steady_; }
+  double steady_supply_hz() const { return steady_supply_hz_; }
 
  private:
   struct BitForces {
@@ -485,10 +545,22 @@ class Process {
   }
 
   // --- Top drive and BHA components ---------------------------------------------------------------------------
-  double PiOutput(const State& x, double omega_ref) const { return md_.kp * (omega_ref - x[kWtop]) + md_.ki * x[kZ]; }
-  // Torque on the top drive: the PI's output, or the motor's K I when a DC motor sits between them.
+  double PiOutput(const State& x, double omega_ref) const {
+    return md_.kp * (omega_ref - DriveSpeed(x)) + md_.ki * x[kZ];
+  }
+  // Torque of the drive (on the top drive's side): the PI's output, or the motor's K I when a DC motor sits between
+  // them, or n T_e of an induction motor. It turns the top drive, or the motor behind a compliant gear.
   double TopTorque(const State& x, double omega_ref) const {
-    return md_.motor.on ? md_.motor.k * x[kCurrent] : PiOutput(x, omega_ref);
+    if (md_.motor.on) return md_.motor.k * x[kCurrent];
+    if (md_.induction_on) return md_.gear.ratio * md_.induction.Torque(Fluxes(x));
+    return PiOutput(x, omega_ref);
+  }
+  // The speed the PI and the motor see (on the top drive's side): the top drive's, or the motor's behind a compliant
+  // gear.
+  double DriveSpeed(const State& x) const { return md_.gear.compliant() ? x[kMotorSpeed] : x[kWtop]; }
+  double GearTorque(const State& x) const { return md_.gear.Torque(x[kTwist], x[kMotorSpeed], x[kWtop]); }
+  static model::InductionMotor::Fluxes Fluxes(const State& x) {
+    return {x[kFlux], x[kFlux + 1], x[kFlux + 2], x[kFlux + 3]};
   }
   double BitSpeed(const State& x) const { return turn_ == Turn::kStuck ? 0.0 : x[kWbit]; }
 
@@ -632,6 +704,7 @@ class Process {
   std::vector<integration::HermiteHistory> waves_;  // one per run
   integration::HermiteHistory bit_history_;
   double top_torque0_ = 0;
+  double steady_supply_hz_ = 0;  // induction motor: the supply frequency of steady drilling
   Turn turn_ = Turn::kForward;
   Axial axial_ = Axial::kAdvancing;
   bool contact_ = true;
@@ -645,6 +718,19 @@ class Process {
   mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // Outgoing's and StringEnds' scratch
 };
 
+// The induction motor and the gear of the top drive block (the DC motor is read beside them).
+void ReadTopMotorAndGear(const JsonReader& top, Model& md) {
+  if (top.Has("induction_motor")) {
+    if (md.motor.on)
+      throw InputError(top.PathOf("induction_motor"),
+                       "expected either a DC motor (motor) or an induction motor, not both");
+    md.induction_on = true;
+    md.induction = ReadInductionMotor(top.Object("induction_motor"));
+  }
+  md.gear = ReadGear(top);
+  md.motor.k *= md.gear.ratio;  // a DC motor's constant referred to the top drive: torque n K I, back-emf n K w
+}
+
 class AxialTorsionalModel : public PreparedModel {
  public:
   explicit AxialTorsionalModel(Model md) : md_(std::move(md)) {}
@@ -653,7 +739,7 @@ class AxialTorsionalModel : public PreparedModel {
     Process process(md_);
     std::vector<double> x = process.InitialState();
     std::vector<double> time, top, bit, top_torque, bit_torque, wob, hook, depth, vbit, tn, stuck, off, angle;
-    std::vector<double> current, lateral;
+    std::vector<double> current, lateral, motor_rpm, gear_torque;
     std::vector<double> dx(x.size());
     auto sample = [&](double t, const std::vector<double>& s) {
       process.BeginStep(t);  // look-ups at t from the committed history (left limits inside the last piece)
@@ -663,7 +749,8 @@ class AxialTorsionalModel : public PreparedModel {
       bit_torque.push_back(v.bit_torque), wob.push_back(v.wob), hook.push_back(v.hookload), depth.push_back(v.depth);
       vbit.push_back(v.bit_axial_speed), tn.push_back(v.tn), stuck.push_back(v.stuck), off.push_back(v.off_bottom);
       angle.push_back(s[kPhi]);
-      if (md_.motor.on) current.push_back(v.top_current);
+      if (md_.motor.on || md_.induction_on) current.push_back(v.top_current);
+      if (md_.gear.compliant()) motor_rpm.push_back(v.motor_speed * 30 / kPi), gear_torque.push_back(v.gear_torque);
       if (md_.unbalance.on) lateral.push_back(v.lateral_displacement);
     };
     sample(0.0, x);
@@ -695,7 +782,7 @@ class AxialTorsionalModel : public PreparedModel {
     result.summary["steady_depth_of_cut_m"] = s.depth;
     result.summary["steady_rop_m_h"] = 3600 * s.rop;
     result.summary["steady_bit_torque_Nm"] = s.tob;
-    result.summary["hook_force_N"] = md_.hook_force;
+    result.summary["hook_force_N"] = md_.hook_force.Value(0.0);
     if (md_.unbalance.on) {  // whirl radius over the window, and the closed form at the steady bit speed
       result.summary["whirl_amplitude_mean_m"] = n ? lateral_sum / n : 0.0;
       result.summary["whirl_amplitude_max_m"] = lateral_max;
@@ -719,9 +806,15 @@ class AxialTorsionalModel : public PreparedModel {
                        {"cut_delay_s", std::move(tn)},
                        {"off_bottom", std::move(off)}};
     result.plot_panels = {{"top_rpm", "bit_rpm"}, {"top_torque_Nm", "bit_torque_Nm"}, {"wob_N"}, {"depth_of_cut_m"}};
-    if (md_.motor.on) {
+    if (md_.motor.on || md_.induction_on) {  // DC: armature current; induction: stator rms
       result.channels.push_back({"top_current_A", std::move(current)});
       result.plot_panels.push_back({"top_current_A"});
+    }
+    if (md_.induction_on) result.summary["steady_supply_frequency_Hz"] = process.steady_supply_hz();
+    if (md_.gear.compliant()) {
+      result.channels.push_back({"motor_rpm", std::move(motor_rpm)});
+      result.channels.push_back({"gear_torque_Nm", std::move(gear_torque)});
+      result.plot_panels.push_back({"gear_torque_Nm", "top_torque_Nm"});
     }
     if (md_.unbalance.on) {
       result.channels.push_back({"lateral_displacement_m", std::move(lateral)});
@@ -860,6 +953,27 @@ void BuildChannels(const StringSpec& sp, double g, Model& md) {
   for (Channel* ch : {&md.torsion, &md.axial}) FactorKelvinVoigt(*ch);
 }
 
+// The axial balance of steady drilling (chapter eq. 2.23 at rest in the moving frame): H = W_b - W0 - C V0, with the
+// buoyant weight W_b of string and bit, the viscous drag C = sum c_a L per unit rate of penetration, and
+// V0 = d0 Omega / 2 pi, d0 = (W0 - a sigma l) / (a zeta eps) (SteadyDrilling). Solved for H or, linear in W0, for W0.
+struct HoistBalance {
+  double buoyant_weight = 0, drag_per_speed = 0;
+  double RopPerWob(double omega, const Model& md) const { return omega / (2 * kPi) / md.CutWeightPerDepth(); }
+  double HookForce(const Model& md, double omega, double wob) const {
+    return buoyant_weight - wob - drag_per_speed * RopPerWob(omega, md) * std::max(wob - md.ContactForce(), 0.0);
+  }
+  double WeightOnBit(const Model& md, double omega, double hook) const {
+    const double kappa = drag_per_speed * RopPerWob(omega, md);
+    return (buoyant_weight - hook + kappa * md.ContactForce()) / (1 + kappa);
+  }
+};
+HoistBalance Balance(const Model& md, const StringSpec& string) {
+  HoistBalance b;
+  for (double l : md.axial.load) b.buoyant_weight += l;
+  for (const Section& section : string.sections) b.drag_per_speed += section.c_a * section.length;
+  return b;
+}
+
 class AxialTorsionalKind : public ModelKind {
  public:
   std::string name() const override { return "axial_torsional"; }
@@ -870,7 +984,7 @@ class AxialTorsionalKind : public ModelKind {
            "BHA mass unbalance (Jeffcott rotor at the bit), axial coupling off";
   }
   nlohmann::json FieldSchema() const override {
-    return {{"string/length_m", "> 0, top drive to bit"},
+    nlohmann::json fields = {{"string/length_m", "> 0, top drive to bit"},
             {"string/outer_diameter_m", "> 0"},
             {"string/inner_diameter_m", ">= 0, < outer"},
             {"string/youngs_modulus_Pa", "> 0"},
@@ -925,9 +1039,18 @@ class AxialTorsionalKind : public ModelKind {
             {"top/motor/resistance_ohm", "R > 0"},
             {"top/motor/inductance_H", "La > 0"},
             {"hoist/mass_kg", "M_td > 0"},
+            {"hoist/hook_force_N", "H(t) [N], a number or {\"knots\": [[t, v], ...]}, instead of weight_on_bit_N: the run "
+                                   "starts in steady drilling under H(0), with W0 = (W_b - H(0) + kappa a sigma l) / "
+                                   "(1 + kappa), kappa = c_a L Omega0 / (2 pi a zeta eps), which must exceed a sigma l"},
             {"hoist/weight_on_bit_N", "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
                                       "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
             {"gravity_m_s2", "> 0, default 9.81"}};
+    fields.update(TopComponentFields("top"));
+    fields["top/induction_motor/pole_pairs"] =
+        "p, integer in [1, 64]: optional induction motor (absent: the PI output is the torque) on a V/f supply with "
+        "slip-frequency control, f = (p n w_m + u_PI / (n G)) / 2 pi at the measured speed w_m, G = p (V/f)^2 / "
+        "(4 pi^2 R_r), slip held below R_r / (L_ls + L_lr); not with motor";
+    return fields;
   }
 
   std::unique_ptr<PreparedModel> Prepare(const JsonReader& r) const override {
@@ -979,29 +1102,52 @@ class AxialTorsionalKind : public ModelKind {
       md.motor.inductance = mo.Number("inductance_H", Range::Positive());
       mo.Finish();
     }
+    ReadTopMotorAndGear(td, md);
     td.Finish();
     if (!(md.top_speed.Value(0.0) > 0))
       throw InputError(td.PathOf("speed_rad_s"), "the run starts in steady drilling: the set-point at t = 0 must be > 0");
     const JsonReader h = r.Object("hoist");
     md.hoist_mass = h.Number("mass_kg", Range::Positive());
-    md.weight_on_bit = h.Number("weight_on_bit_N", Range::Positive());
+    const bool hook_given = h.Has("hook_force_N");
+    if (hook_given == h.Has("weight_on_bit_N"))
+      throw InputError(h.path(), "expected either weight_on_bit_N (the hook force is set for it) or hook_force_N (a "
+                                 "schedule), " + std::string(hook_given ? "not both" : "got neither"));
+    if (hook_given) md.hook_force = model::Schedule::FromJson(h.Raw("hook_force_N"), h.PathOf("hook_force_N"));
+    else md.weight_on_bit = h.Number("weight_on_bit_N", Range::Positive());
     h.Finish();
     const double g = r.Number("gravity_m_s2", Range::Positive(), 9.81);
     md.axial_coupling = r.Boolean("axial_coupling", true);
     r.Finish();
-    if (!(md.weight_on_bit > md.ContactForce()))
+    if (!hook_given && !(md.weight_on_bit > md.ContactForce()))
       throw InputError(h.PathOf("weight_on_bit_N"), "expected more than the wear-flat contact force a sigma l = " +
                                                         ReadableNumber(md.ContactForce()) + " N (no cutting otherwise; "
                                                         "a = /model/bit/radius_m, sigma l = /model/rock/sigma_l_N_per_m)");
+    if (hook_given && !md.axial_coupling && !md.hook_force.IsConstant())
+      throw InputError(h.PathOf("hook_force_N"), "expected a constant with axial_coupling false (no axial dynamics: "
+                                                 "the weight on bit stays at H(0)'s steady value)");
 
     BuildChannels(string, g, md);
     md.axial.load[md.m] += md.bit_mass * g * (1 - string.rho_mud / string.rho);
-    // Hook force for steady drilling with W0 at the initial set-point: H = buoyant weight - W0 - sum c_a L V0.
-    const Steady steady = SteadyDrilling(md, md.top_speed.Value(0.0));
-    double weight = 0, drag = 0;
-    for (double l : md.axial.load) weight += l;
-    for (const Section& section : string.sections) drag += section.c_a * section.length * steady.rop;
-    md.hook_force = weight - md.weight_on_bit - drag;
+    const HoistBalance balance = Balance(md, string);
+    const double omega0 = md.top_speed.Value(0.0);
+    if (!hook_given) {
+      md.hook_force = model::Schedule(balance.HookForce(md, omega0, md.weight_on_bit));
+    } else {
+      md.weight_on_bit = balance.WeightOnBit(md, omega0, md.hook_force.Value(0.0));
+      if (!(md.weight_on_bit > md.ContactForce()))
+        throw InputError(h.PathOf("hook_force_N"),
+                         "the hook force at t = 0, " + ReadableNumber(md.hook_force.Value(0.0)) + " N, leaves " +
+                             ReadableNumber(md.weight_on_bit) + " N on the bit in steady drilling (buoyant weight " +
+                             ReadableNumber(balance.buoyant_weight) + " N); expected more than the wear-flat contact "
+                             "force a sigma l = " + ReadableNumber(md.ContactForce()) + " N");
+    }
+    if (md.induction_on) {
+      try {
+        Process steady_start(md);
+      } catch (const std::domain_error& e) {
+        throw InputError(td.PathOf("induction_motor"), std::string("no steady drilling at the set-point: ") + e.what());
+      }
+    }
     return std::make_unique<AxialTorsionalModel>(std::move(md));
   }
 };

@@ -10,6 +10,7 @@
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/waves/network_simulation.hpp"
+#include "top_components.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -61,10 +62,34 @@ void AddSectionsWithDamping(const std::vector<waves::Section>& sections, double 
   }
 }
 
+// How a motor top is commanded: open loop by a schedule (`open_loop_key`), or by a PI speed controller on speed_rad_s.
+struct MotorCommand {
+  const char* motor;  // "a DC motor", for messages
+  const char* open_loop_key;
+  waves::Drive open_loop, speed_controlled;
+  const char* kp_key;
+  const char* ki_key;
+};
+void ReadMotorCommand(const JsonReader& r, const MotorCommand& c, waves::Node& top) {
+  if (r.Has(c.open_loop_key)) {
+    if (r.Has("speed_rad_s"))
+      throw InputError(r.PathOf("speed_rad_s"), std::string(c.motor) + " top takes either " + c.open_loop_key +
+                                                    " (open loop) or speed_rad_s (speed controller), not both");
+    top.drive = c.open_loop;
+    top.setpoint = model::Schedule::FromJson(r.Raw(c.open_loop_key), r.PathOf(c.open_loop_key));
+  } else {
+    top.drive = c.speed_controlled;
+    top.kp = r.Number(c.kp_key, Range::NonNegative());
+    top.ki = r.Number(c.ki_key, Range::NonNegative());
+    top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
+  }
+}
+
 waves::Node ReadTop(const JsonReader& r) {
   waves::Node top;
   top.name = "top";
-  const std::string type = r.String("type", {"prescribed_speed", "dissipative", "top_drive", "torque", "dc_motor"});
+  const std::string type = r.String("type", {"prescribed_speed", "dissipative", "top_drive", "torque", "dc_motor",
+                                                   "induction_motor"});
   if (type == "prescribed_speed") {
     top.drive = waves::Drive::kPrescribedSpeed;
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
@@ -89,24 +114,24 @@ waves::Node ReadTop(const JsonReader& r) {
     top.motor.armature_inductance = motor.Number("inductance_H", Range::Positive());
     motor.Finish();
     top.motor.voltage_limit = r.Number("voltage_limit_V", Range::NonNegative(), 0.0);
-    if (r.Has("voltage_V")) {
-      if (r.Has("speed_rad_s"))
-        throw InputError(r.PathOf("speed_rad_s"), "a DC motor top takes either voltage_V (open loop) or speed_rad_s "
-                                                  "(speed controller), not both");
-      top.drive = waves::Drive::kDcMotorVoltage;
-      top.setpoint = model::Schedule::FromJson(r.Raw("voltage_V"), r.PathOf("voltage_V"));
-    } else {
-      top.drive = waves::Drive::kDcMotorSpeed;
-      top.kp = r.Number("kp_V_s_per_rad", Range::NonNegative());
-      top.ki = r.Number("ki_V_per_rad", Range::NonNegative());
-      top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
-    }
+    ReadMotorCommand(r, {"a DC motor", "voltage_V", waves::Drive::kDcMotorVoltage, waves::Drive::kDcMotorSpeed,
+                         "kp_V_s_per_rad", "ki_V_per_rad"}, top);
+  } else if (type == "induction_motor") {
+    top.inertia = r.Number("inertia_kgm2", Range::Positive());
+    top.induction = ReadInductionMotor(r.Object("induction_motor"));
+    ReadMotorCommand(r, {"an induction motor", "supply_frequency_Hz", waves::Drive::kInductionMotor,
+                         waves::Drive::kInductionMotorSpeed, "kp_Nms_per_rad", "ki_Nm_per_rad"}, top);
   } else {
     top.drive = waves::Drive::kTorque;
     top.inertia = r.Number("inertia_kgm2", Range::NonNegative(), 0.0);  // 0: a force-controlled end (eq. 2.9)
     top.setpoint = model::Schedule::FromJson(r.Raw("torque_Nm"), r.PathOf("torque_Nm"));
   }
   top.ground_damping = r.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
+  for (const char* key : {"gear", "motor_inertia_kgm2"})
+    if (r.Has(key) && (top.massless() || top.drive == waves::Drive::kTorque))
+      throw InputError(r.PathOf(key), "a gear and a motor inertia belong to a motor drive: expected top/type top_drive, "
+                                      "dc_motor or induction_motor, got " + type);
+  top.gear = ReadGear(r);
   r.Finish();
   return top;
 }
@@ -146,7 +171,7 @@ class TorsionalWaveModel : public PreparedModel {
     result.summary["integration_wall_time_s"] = run.stats.wall_time_s;
 
     // The sampled signals are moved into the channels, not copied (long runs sample millions of points).
-    result.channels.reserve(6);
+    result.channels.reserve(9);
     result.channels.push_back({"top_rpm", ToRpm(tr.top_speed_rad_s)});
     result.channels.push_back({"bit_rpm", ToRpm(tr.bit_speed_rad_s)});
     result.channels.push_back({"top_torque_Nm", std::move(tr.top_torque_nm)});
@@ -157,6 +182,11 @@ class TorsionalWaveModel : public PreparedModel {
     if (!tr.top_current_a.empty()) {
       result.channels.push_back({"top_current_A", std::move(tr.top_current_a)});
       result.plot_panels.push_back({"top_current_A"});
+    }
+    if (!tr.motor_speed_rad_s.empty()) {  // a motor behind a compliant gear
+      result.channels.push_back({"motor_rpm", ToRpm(tr.motor_speed_rad_s)});
+      result.channels.push_back({"gear_torque_Nm", std::move(tr.gear_torque_nm)});
+      result.plot_panels.push_back({"gear_torque_Nm", "top_torque_Nm"});
     }
     result.time_s = std::move(tr.time_s);
     return result;
@@ -230,7 +260,7 @@ class TorsionalWaveKind : public ModelKind {
     return "torsional d'Alembert wave network: sections, top boundary, bit with friction (DESIGN.md §1–3)";
   }
   nlohmann::json FieldSchema() const override {
-    return {
+    nlohmann::json fields = {
         {"string/sections/*/length_m", "section length [m], > 0"},
         {"string/sections/*/shear_modulus_Pa", "G [Pa], > 0"},
         {"string/sections/*/density_kg_m3", "rho [kg/m^3], > 0"},
@@ -238,7 +268,7 @@ class TorsionalWaveKind : public ModelKind {
         {"string/sections/*/name", "optional label"},
         {"string/torsional_damping_Nms_per_rad_m", "distributed viscous damping gamma [N·m·s/rad per m], >= 0, default 0"},
         {"string/damping_subsections", "dashpot nodes per section for the damping, 1..1000, default 20"},
-        {"top/type", "prescribed_speed | dissipative | top_drive | torque | dc_motor"},
+        {"top/type", "prescribed_speed | dissipative | top_drive | torque | dc_motor | induction_motor"},
         {"top/motor/motor_constant_Nm_per_A", "dc_motor (chapter eq. 2.15): k_T = k_e [N·m/A], > 0"},
         {"top/motor/resistance_ohm", "dc_motor: armature resistance R [ohm], > 0"},
         {"top/motor/inductance_H", "dc_motor: armature inductance L [H], > 0"},
@@ -248,9 +278,12 @@ class TorsionalWaveKind : public ModelKind {
         {"top/ki_V_per_rad", "dc_motor with speed_rad_s: integral gain of the speed controller, >= 0"},
         {"top/speed_rad_s", "set-point [rad/s]: a number or {\"knots\": [[t, v], ...]}"},
         {"top/beta_Nms_per_rad", "dissipative top: beta > 0"},
-        {"top/inertia_kgm2", "top_drive, dc_motor: inertia > 0; torque: >= 0, default 0 (force-controlled end)"},
-        {"top/kp_Nms_per_rad", "top_drive: proportional gain >= 0"},
-        {"top/ki_Nm_per_rad", "top_drive: integral gain >= 0"},
+        {"top/inertia_kgm2", "top_drive, dc_motor, induction_motor: inertia > 0; torque: >= 0, default 0 "
+                             "(force-controlled end)"},
+        {"top/kp_Nms_per_rad", "top_drive, induction_motor with speed_rad_s: proportional gain >= 0 (the induction "
+                               "motor's PI gives a torque demand u to its V/f drive: f = (p n w + u / (n G)) / 2 pi at "
+                               "the measured speed w, G = p (V/f)^2 / (4 pi^2 R_r), slip held below pull-out)"},
+        {"top/ki_Nm_per_rad", "top_drive, induction_motor with speed_rad_s: integral gain >= 0"},
         {"top/torque_limit_Nm", "top_drive: >= 0, 0 = unlimited"},
         {"top/torque_Nm", "torque top: schedule [N·m]"},
         {"top/damping_Nms_per_rad", "local damper at the top, >= 0, default 0"},
@@ -260,6 +293,10 @@ class TorsionalWaveKind : public ModelKind {
         {"initial/bit_speed_rad_s", "rigid rotation at start, default 0 (at rest; a set-valued bit starts stuck)"},
         {"friction laws", bitrock::FrictionLaw::Schema()},
     };
+    fields.update(TopComponentFields("top"));
+    fields["top/supply_frequency_Hz"] = "induction_motor, open loop: supply frequency schedule [Hz] (instead of "
+                                        "speed_rad_s); V/f: line voltage volts_per_hertz f, up to voltage_limit_V";
+    return fields;
   }
 
   std::unique_ptr<PreparedModel> Prepare(const JsonReader& model) const override {

@@ -1,0 +1,131 @@
+// The hoist of the axial_torsional kind under a hook force schedule H(t) (chapter eq. 2.23): the steady weight on bit
+// of the axial balance, and the d'Alembert travel time of a hook-force step to the bit.
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/io/json_reader.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+nlohmann::json HoistStep() {
+  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/hoist-step.json");
+  doc.erase("expect");
+  return doc;
+}
+const std::vector<double>& Values(const CaseRun& run, const std::string& name) { return run.result.channel(name).values; }
+
+// Steady drilling at top speed Omega under hook force H, from the case's parameters: W_b - H = W + c_a L V with
+// V = (W - a sigma l) Omega / (2 pi a zeta eps), solved for the weight on bit W.
+struct AxialBalance {
+  double buoyant_weight, drag_per_speed, contact_force, cut_weight_per_depth;
+  explicit AxialBalance(const nlohmann::json& md) {
+    const auto& s = md["string"];
+    const double rho = s["density_kg_m3"], rho_mud = s["mud_density_kg_m3"], g = 9.81;
+    const double od = s["outer_diameter_m"], id = s["inner_diameter_m"], length = s["length_m"];
+    buoyant_weight = (rho - rho_mud) * g * M_PI / 4 * (od * od - id * id) * length +
+                     md["bit"]["mass_kg"].get<double>() * g * (1 - rho_mud / rho);
+    drag_per_speed = s["axial_damping_Ns_per_m2"].get<double>() * length;
+    const double a = md["bit"]["radius_m"];
+    contact_force = a * md["rock"]["sigma_l_N_per_m"].get<double>();
+    cut_weight_per_depth = a * md["rock"]["zeta"].get<double>() * md["rock"]["intrinsic_specific_energy_Pa"].get<double>();
+  }
+  double Rop(double wob, double omega) const { return (wob - contact_force) / cut_weight_per_depth * omega / (2 * M_PI); }
+  double WeightOnBit(double hook, double omega) const {  // linear in W: bisection would do, the closed form is exact
+    const double kappa = drag_per_speed * omega / (2 * M_PI) / cut_weight_per_depth;
+    return (buoyant_weight - hook + kappa * contact_force) / (1 + kappa);
+  }
+};
+
+// A constant hook force equal to the one the kind sets for a target weight on bit is the same run.
+TEST(AxialTorsionalHoist, ConstantHookForceIsTheTargetWeightOnBitRun) {
+  nlohmann::json by_weight = HoistStep();
+  by_weight["model"]["hoist"] = {{"mass_kg", 30000}, {"weight_on_bit_N", 90000}};
+  by_weight["simulation"]["duration_s"] = 2;
+  by_weight["statistics"]["window_s"] = {0, 2};
+  const CaseRun a = RunCase(ParseCase(by_weight));
+  const double hook = a.summary.at("hook_force_N").get<double>();
+  nlohmann::json by_hook = by_weight;
+  by_hook["model"]["hoist"] = {{"mass_kg", 30000}, {"hook_force_N", hook}};
+  const CaseRun b = RunCase(ParseCase(by_hook));
+  const double omega = by_weight["model"]["top"]["speed_rad_s"];
+  EXPECT_NEAR(AxialBalance(by_weight["model"]).WeightOnBit(hook, omega), 90000, 1e-9 * 90000);
+  for (const char* name : {"wob_N", "bit_rpm", "hookload_N"}) {
+    ASSERT_EQ(Values(a, name).size(), Values(b, name).size());
+    for (std::size_t k = 0; k < Values(a, name).size(); ++k)
+      EXPECT_NEAR(Values(a, name)[k], Values(b, name)[k], 1e-6 * std::abs(Values(a, name)[k]) + 1e-9) << name;
+  }
+}
+
+// H rises by 5 kN at 5 s: after two minutes the weight on bit and the rate of penetration are those of the axial
+// balance at the new hook force.
+TEST(AxialTorsionalHoist, HookForceStepGivesTheClosedFormSteadyWeightOnBit) {
+  const nlohmann::json doc = HoistStep();
+  const CaseRun run = RunCase(ParseCase(doc));
+  const AxialBalance balance(doc["model"]);
+  const double omega = doc["model"]["top"]["speed_rad_s"];
+  const double hook = doc["model"]["hoist"]["hook_force_N"]["knots"].back()[1];
+  const double wob = balance.WeightOnBit(hook, omega), rop = 3600 * balance.Rop(wob, omega);
+  const double wob_mean = run.summary.at("wob_mean_N"), rop_mean = run.summary.at("rop_mean_m_h");
+  std::printf("[ measured ] weight on bit %.4f N, rate of penetration %.5f m/h over the last 20 s (axial balance: "
+              "%.4f N, %.5f m/h)\n", wob_mean, rop_mean, wob, rop);
+  EXPECT_NEAR(wob_mean, wob, 1e-5 * wob);
+  EXPECT_NEAR(rop_mean, rop, 1e-4 * rop);
+  EXPECT_EQ(run.summary.at("stick_onsets").get<int>(), 0);
+}
+
+// Nothing at the bit moves before the step's axial wave arrives, t_step + L / sqrt(E / rho); the weight on bit then
+// departs within 3 ms (the hoist's mass turns the force step into a kink of the top speed, so the bit's response
+// starts smoothly).
+TEST(AxialTorsionalHoist, HookForceStepReachesTheBitOneAxialTravelTimeLater) {
+  nlohmann::json doc = HoistStep();
+  doc["simulation"]["duration_s"] = 5.6;
+  doc["simulation"]["output_interval_s"] = 1e-4;
+  doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-9;
+  doc["statistics"]["window_s"] = {0, 5.6};
+  const CaseRun run = RunCase(ParseCase(doc));
+  const auto& s = doc["model"]["string"];
+  const double step = doc["model"]["hoist"]["hook_force_N"]["knots"].back()[0];
+  const double arrival = step + s["length_m"].get<double>() /
+                                    std::sqrt(s["youngs_modulus_Pa"].get<double>() / s["density_kg_m3"].get<double>());
+  const std::vector<double>& t = run.result.time_s;
+  const std::vector<double>& wob = Values(run, "wob_N");
+  double before = 0, departure = NAN;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const double change = std::abs(wob[k] - wob.front());
+    if (t[k] < arrival - 1e-3) before = std::max(before, change);
+    if (std::isnan(departure) && change > 0.01) departure = t[k];
+  }
+  std::printf("[ measured ] largest weight-on-bit change before the arrival at %.6f s: %.3g N; departs by 0.01 N at "
+              "%.4f s\n", arrival, before, departure);
+  EXPECT_LT(before, 1e-4);
+  EXPECT_GE(departure, arrival);
+  EXPECT_LT(departure, arrival + 3e-3);
+}
+
+TEST(AxialTorsionalHoist, HookForceAndTargetWeightOnBitExcludeEachOther) {
+  nlohmann::json doc = HoistStep();
+  doc["model"]["hoist"]["weight_on_bit_N"] = 90000;
+  EXPECT_THROW(ParseCase(doc), InputError);
+  doc["model"]["hoist"].erase("hook_force_N");
+  doc["model"]["hoist"]["weight_on_bit_N"] = 90000;
+  EXPECT_NO_THROW(ParseCase(doc));
+  doc["model"]["hoist"].erase("weight_on_bit_N");
+  EXPECT_THROW(ParseCase(doc), InputError);
+  doc["model"]["hoist"]["hook_force_N"] = 600000;  // leaves less than a sigma l on the bit
+  try {
+    ParseCase(doc);
+    FAIL() << "a hook force that lifts the bit off was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/model/hoist/hook_force_N");
+  }
+}
+
+}  // namespace
+}  // namespace drillwave::cases
