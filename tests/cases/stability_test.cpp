@@ -99,6 +99,17 @@ TEST(CaseStability, KindsWithoutALinearizationSaySo) {
   }
   // Every top of the torsional string linearizes now: the force-controlled bar (torque top) has its steady states.
   EXPECT_NO_THROW(Analyze(LoadCase("bar-step")));
+  // An induction motor's fluxes and a gear's motor side are not among the linearization's states: refused, not
+  // linearized as a plain top.
+  for (const char* name : {"induction-motor-stickslip", "rig-two-mass"}) {
+    try {
+      Analyze(LoadCase(name));
+      ADD_FAILURE() << name << " was linearized";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.json_path(), "/model") << name;
+      EXPECT_NE(std::string(e.what()).find("no linearization"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(CaseStability, AMapStopsAtAValueWithoutALinearizationWhateverTheThreads) {

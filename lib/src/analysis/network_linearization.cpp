@@ -75,10 +75,23 @@ NetworkOperatingPoint PointAt(const Network& net, double set, double w) {
   return {set, w, Load(net, w), NodeTorque(net.bit(), w), NodeTorqueSlope(net.bit(), w)};
 }
 
+// The drives this linearization has equations for: an induction motor's fluxes and a gear's motor side (its
+// inertia, its compliance, the referred motor constant) are not among its states, so such a top is refused rather
+// than linearized as if it were a plain one.
+void RequireLinearizedDrives(const Network& net) {
+  for (const Node& node : net.nodes) {
+    if (node.drive == Drive::kInductionMotor || node.drive == Drive::kInductionMotorSpeed)
+      throw std::invalid_argument("node '" + node.name + "': an induction motor top has no linearization yet");
+    if (node.gear.compliant() || node.gear.ratio != 1 || node.gear.motor_inertia != 0)
+      throw std::invalid_argument("node '" + node.name + "': a gear and motor inertia have no linearization yet");
+  }
+}
+
 }  // namespace
 
 std::vector<NetworkOperatingPoint> NetworkSteadyStates(const Network& net) {
   net.Validate();
+  RequireLinearizedDrives(net);
   const Node& top = net.top();
   const double set = top.setpoint.knots().back().second;
   std::vector<NetworkOperatingPoint> points;
@@ -127,6 +140,7 @@ std::vector<NetworkOperatingPoint> NetworkSteadyStates(const Network& net) {
 
 NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperatingPoint& point) {
   net.Validate();
+  RequireLinearizedDrives(net);
   const int sections = static_cast<int>(net.sections.size()), nodes = sections + 1;
   const double w0 = point.speed_rad_s;
   NetworkLinearization out;

@@ -231,7 +231,13 @@ class TorsionalWaveModel : public PreparedModel {
 
   std::vector<LinearizedOperatingPoint> LinearizeNetwork() const {
     std::vector<LinearizedOperatingPoint> points;
-    for (const analysis::NetworkOperatingPoint& p : analysis::NetworkSteadyStates(net_)) {
+    std::vector<analysis::NetworkOperatingPoint> steady;
+    try {
+      steady = analysis::NetworkSteadyStates(net_);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("/model", std::string("no linearization for this string: ") + e.what());
+    }
+    for (const analysis::NetworkOperatingPoint& p : steady) {
       analysis::NetworkLinearization lin;
       try {
         lin = analysis::LinearizeNetwork(net_, p);
