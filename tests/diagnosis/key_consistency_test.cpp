@@ -110,7 +110,9 @@ TEST_P(KeyConsistency, TheConcealedEffectsAtTheirKeyValuesBringTheModelToTheReco
   std::printf("[ measured ] %s { %s}: held-out error, baseline %.3g, with the KEY's effects %.3g\n",
               name.c_str(), list.c_str(), before, after);
   if (kExplained.count(name)) GTEST_SKIP() << name << ": " << kExplained.at(name);
-  if (!effects.empty()) EXPECT_LT(after, before) << name << ": the true effects do not bring the model closer";
+  if (!effects.empty()) {
+    EXPECT_LT(after, before) << name << ": the true effects do not bring the model closer";
+  }
   if (kNotYetExplained.count(name)) GTEST_SKIP() << name << ": error " << after << ": " << kNotYetExplained.at(name);
   EXPECT_LT(after, 5.0) << name << ": more than about two spreads off with the true effects on";
 }
