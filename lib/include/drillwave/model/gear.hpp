@@ -17,6 +17,9 @@ struct Gear {
 
   bool compliant() const { return stiffness > 0; }
   double ReferredMotorInertia() const { return ratio * ratio * motor_inertia; }
+  // What the motor adds to the inertia of the node it drives: all of it through a rigid gear, none through a
+  // compliant one (there the motor is an inertia of its own).
+  double InertiaAddedToNode() const { return compliant() ? 0.0 : ReferredMotorInertia(); }
   double Torque(double twist, double motor_speed_referred, double node_speed) const {
     return stiffness * twist + damping * (motor_speed_referred - node_speed);
   }

@@ -78,7 +78,7 @@ struct Node {
   bool has_set_valued_friction() const { return friction && friction->IsSetValued(); }
   bool has_compliant_gear() const { return gear.compliant(); }
   // The inertia the node's own speed carries: with a rigid gear the motor's too.
-  double LumpedInertia() const { return inertia + (gear.compliant() ? 0.0 : gear.ReferredMotorInertia()); }
+  double LumpedInertia() const { return inertia + gear.InertiaAddedToNode(); }
   // Torque that turning steadily at v costs the node: its dampers and its friction.
   double SteadyLoad(double v) const { return ground_damping * v + (friction && v != 0 ? friction->SlipTorque(v) : 0.0); }
 };

@@ -119,7 +119,7 @@ struct Model {
   model::InductionMotor induction;  // between the PI and the top drive when induction_on
   model::Gear gear;                 // between the motor and the top drive
   // The top drive's own speed carries its inertia, and with a rigid gear the motor's.
-  double TopInertia() const { return top_inertia + (gear.compliant() ? 0.0 : gear.ReferredMotorInertia()); }
+  double TopInertia() const { return top_inertia + gear.InertiaAddedToNode(); }
   // Supply frequency of the V/f drive for the PI's torque demand u at drive speed w (both on the top drive's side).
   double SupplyFrequency(double u_pi, double drive_speed) const {
     return induction.SupplyForTorque(u_pi / gear.ratio, gear.ratio * drive_speed);
