@@ -291,6 +291,7 @@ int Fit(const std::string& file, const std::string& recording_file, const std::s
 struct DiagnoseArguments {
   std::string fit_window, held_out;
   double margin = 0.2;
+  double fit_tolerance = 1e-4;
   int threads = 1;
   int evaluations_per_parameter = 10;
 };
@@ -315,7 +316,11 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
   if (a.evaluations_per_parameter < 1)
     throw drillwave::InputError("--evaluations", "expected a whole number >= 1, got " +
                                                      std::to_string(a.evaluations_per_parameter));
+  if (!(a.fit_tolerance == 0 || (a.fit_tolerance >= 1e-14 && a.fit_tolerance <= 1e-2)))
+    throw drillwave::InputError("--fit-tolerance", "expected 0 (the case's) or a tolerance in [1e-14, 1e-2], got " +
+                                                       drillwave::ReadableNumber(a.fit_tolerance));
   o.margin = a.margin;
+  o.fit_tolerance = a.fit_tolerance;
   o.threads = a.threads;
   o.evaluations_per_parameter = a.evaluations_per_parameter;
   o.maps = dg::ResolveChannelMaps(map_texts, recording, dg::ProbeChannels(c));
@@ -455,6 +460,9 @@ int main(int argc, char** argv) {
                        "an effect is kept when the held-out error falls by at least this fraction (default 0.2)");
   diagnose->add_option("--evaluations", diagnose_args.evaluations_per_parameter,
                        "model runs per fitted parameter and candidate (default 10)");
+  diagnose->add_option("--fit-tolerance", diagnose_args.fit_tolerance,
+                       "the fits' runs use at most this tolerance's accuracy; candidates are judged at the case's "
+                       "(default 1e-4; 0: the case's)");
   diagnose->add_option("-j,--jobs", diagnose_args.threads, "candidates fitted in parallel (default 1)");
   diagnose->add_option("--out,-o", diagnose_out, "output folder (written all or nothing)");
   diagnose->add_option("--set", overrides, "override a parameter of the case by JSON pointer");

@@ -1,6 +1,7 @@
 // The diagnosis loop on recordings whose truth is known: a noisy twin of a case's own run (nothing to find, the
 // noise estimated), a recording of another scale (refused), bad windows (refused before any run), and the HTML
 // report opened in Debian's headless Chromium.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -124,6 +125,35 @@ TEST(DiagnosisLoop, TheReportOpensInHeadlessChromiumWithItsPlotsDrawn) {
   // No message from the page's console.
   EXPECT_EQ(messages.str().find("CONSOLE"), std::string::npos) << messages.str();
   fs::remove_all(dir);
+}
+
+// The decision asks for a held-out gain larger than chance gives (sqrt(2 / K) over K features), not only a relative
+// one: a twin whose bit is 16 % heavier differs within the features' own scales (period 8 % longer, 1.6 scales), so
+// the fitted inertia's gain (the error falls by more than 80 %, yet by less than chance) is not kept; at 20 % it is,
+// with the inertia recovered as well as the period's floor allows.
+TEST(DiagnosisLoop, AGainWithinChanceIsNotKeptAndALargerOneIs) {
+  const double j_bit = 471.9698;
+  for (const double heavier : {0.16, 0.20}) {
+    nlohmann::json truth = TwoMassCase();
+    truth["model"]["bit"]["inertia_kgm2"] = j_bit * (1 + heavier);
+    const DiagnosisLoop loop = RunDiagnosisLoop(TwoMassCase(), NoisyTwin(truth, 0.5), Options());
+    ASSERT_EQ(loop.candidates.size(), 1u) << heavier;
+    const Candidate& fitted = loop.candidates[0];
+    std::printf("[ measured ] bit %.0f %% heavier: held-out error %.4f, fitted inertia %.4g kg m^2 gives %.4f; "
+                "chance %.4f\n", 100 * heavier, loop.baseline_held_out_error, fitted.parameters[0].value,
+                fitted.held_out_error, loop.error_chance);
+    EXPECT_NEAR(loop.error_chance, std::sqrt(2.0 / 10), 1e-12);  // 10 features: 2 channels x 4, period, stick
+    EXPECT_LT(fitted.held_out_error, 0.8 * loop.baseline_held_out_error);  // the relative margin alone would keep it
+    // The period is counted in a 5 % floor, so the inertia (the period squared) is identified to about 10 %.
+    EXPECT_NEAR(fitted.parameters[0].value, j_bit * (1 + heavier), 0.12 * j_bit * (1 + heavier));
+    if (heavier < 0.18) {
+      EXPECT_LT(loop.baseline_held_out_error - fitted.held_out_error, loop.error_chance);
+      EXPECT_EQ(loop.kept, -1);
+    } else {
+      EXPECT_GT(loop.baseline_held_out_error - fitted.held_out_error, loop.error_chance);
+      EXPECT_EQ(loop.kept, 0);
+    }
+  }
 }
 
 }  // namespace

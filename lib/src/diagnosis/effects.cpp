@@ -92,7 +92,7 @@ std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, c
       d["model"]["top"]["speed_rad_s"] = speed + torque / v[0];
     };
     const double z = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_std"));
-    if (z > 3) e.strength = z, e.evidence = "the drive's speed moves more than the model's controller lets it: " +
+    if (z > kWeakEvidence) e.strength = z, e.evidence = "the drive's speed moves more than the model's controller lets it: " +
                                             Describe(m, r, "top_rpm std");
     effects.push_back(e);
   }
@@ -111,7 +111,7 @@ std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, c
     const double z = !std::isfinite(period) ? 0.0
                      : oscillates           ? std::abs(Z(m, r, "period_s"))
                                             : std::abs(std::log(period / reference)) / 0.05;
-    if (z > 3)
+    if (z > kWeakEvidence)
       e.strength = z, e.evidence = "the recording oscillates with period " + Significant(period, 3) + " s, the " +
                                    (oscillates ? "model" : "shaft and disc's natural period") + " with " +
                                    Significant(reference, 3) + " s: the inertia " + Significant(estimate, 3) +
@@ -136,7 +136,7 @@ std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, c
     };
     const double z = -std::min(Z(m, r, "stick_fraction") - 1, 0.0) - std::min(Z(m, r, "bit_rpm std"), 0.0) +
                      std::max(Z(m, r, "tob_Nm mean"), 0.0);
-    if (z > 3) e.strength = z, e.evidence = "the disc sticks or swings more, at less torque, than with Coulomb "
+    if (z > kWeakEvidence) e.strength = z, e.evidence = "the disc sticks or swings more, at less torque, than with Coulomb "
                                             "friction: " + Describe(m, r, "stick_fraction") + "; " +
                                             Describe(m, r, "bit_rpm std") + "; " + Describe(m, r, "tob_Nm mean");
     effects.push_back(e);
@@ -170,7 +170,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
       d["model"]["top"]["ki_Nm_per_rad"] = v[1];
     };
     const double z = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_std"));
-    if (z > 3) e.strength = z, e.evidence = "the top speed moves more than the model's drive lets it: " +
+    if (z > kWeakEvidence) e.strength = z, e.evidence = "the top speed moves more than the model's drive lets it: " +
                                             Describe(m, r, "top_rpm std");
     effects.push_back(e);
   }
@@ -184,7 +184,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
       d["model"]["string"]["side_friction"] = {{"torque_per_m_Nm", v[0]}, {"from_m", 0.0}};
     };
     const double z = -Z(m, r, "top_torque_kNm mean");
-    if (z > 3) e.strength = z, e.evidence = "more torque at the top than in the model: " +
+    if (z > kWeakEvidence) e.strength = z, e.evidence = "more torque at the top than in the model: " +
                                             Describe(m, r, "top_torque_kNm mean") + ", first estimate " +
                                             Fixed(estimate, 2) + " N m/m over the string";
     effects.push_back(e);
@@ -199,7 +199,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
       d["model"]["rock"]["stribeck"] = {{"static_mu", v[0]}, {"velocity_rad_s", v[1]}};
     };
     const double z = -std::min(Z(m, r, "stick_fraction") - 1, 0.0) - std::min(Z(m, r, "bit_rpm std"), 0.0);
-    if (z > 3) e.strength = z, e.evidence = "the bit sticks or swings more than in the model: " +
+    if (z > kWeakEvidence) e.strength = z, e.evidence = "the bit sticks or swings more than in the model: " +
                                             Describe(m, r, "stick_fraction") + "; " + Describe(m, r, "bit_rpm std");
     effects.push_back(e);
   }
@@ -210,7 +210,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
     e.apply = [](nlohmann::json& d, const std::vector<double>&) { d["model"]["axial_coupling"] = false; };
     const double z = Z(m, r, "wob_kN std");
     const double level = r.Value("wob_kN std") / std::max(m.Value("wob_kN std"), 1e-12);
-    if (z > 3 && level < 0.5)
+    if (z > kWeakEvidence && level < 0.5)
       e.strength = z, e.evidence = "the weight on bit is steady where the coupled model's swings: " +
                                    Describe(m, r, "wob_kN std");
     effects.push_back(e);
@@ -231,7 +231,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
     };
     const double z = std::max(Z(m, r, "stick_fraction") - 1, 0.0) + std::max(Z(m, r, "bit_rpm std"), 0.0);
     const bool wob_moves = !(Z(m, r, "wob_kN std") > 3 && r.Value("wob_kN std") < 0.5 * m.Value("wob_kN std"));
-    if (z > 3 && wob_moves)
+    if (z > kWeakEvidence && wob_moves)
       e.strength = z, e.evidence = "the recorded bit runs smoother than the model's: " +
                                    Describe(m, r, "stick_fraction") + "; " + Describe(m, r, "bit_rpm std");
     effects.push_back(e);
@@ -243,7 +243,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
     e.parameters = {{"eta_s", "s", 1e-3, 0.2, true, 0.02}};
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["string"]["kelvin_voigt_s"] = v[0]; };
     const double z = std::max(Z(m, r, "bit_rpm fast_std"), 0.0) + std::max(Z(m, r, "top_torque_kNm fast_std"), 0.0);
-    if (z > 3) e.strength = z, e.evidence = "less fast motion than in the model: " +
+    if (z > kWeakEvidence) e.strength = z, e.evidence = "less fast motion than in the model: " +
                                             Describe(m, r, "bit_rpm fast_std") + "; " +
                                             Describe(m, r, "top_torque_kNm fast_std");
     effects.push_back(e);
@@ -262,7 +262,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
                                           {"inductance_H", v[0] * resistance}};
     };
     const double z = std::abs(Z(m, r, "top_torque_kNm fast_std")) + std::abs(Z(m, r, "top_torque_kNm std"));
-    if (z > 6) e.strength = 0.5 * z, e.evidence = "the surface torque's dynamics differ: " +
+    if (0.5 * z > kWeakEvidence) e.strength = 0.5 * z, e.evidence = "the surface torque's dynamics differ: " +
                                                   Describe(m, r, "top_torque_kNm std") + "; " +
                                                   Describe(m, r, "top_torque_kNm fast_std");
     effects.push_back(e);
@@ -281,10 +281,20 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
                                         {"unbalance_mass_kg", v[0] / eccentricity},
                                         {"eccentricity_m", eccentricity}};
     };
-    const double z = -std::min({Z(m, r, "wob_kN rotation_amplitude"), Z(m, r, "bit_rpm rotation_amplitude"), 0.0});
-    if (z > 3) e.strength = z, e.evidence = "a line at the bit's rotation frequency: " +
-                                            Describe(m, r, "wob_kN rotation_amplitude") + "; " +
-                                            Describe(m, r, "bit_rpm rotation_amplitude");
+    // Its signature is a line at the rotation frequency; but the whirl also drains the torsional oscillation (the
+    // lateral damping acts on the bit's rotation through the unbalance), so a bit that runs smoother than the
+    // model's points to it as well as to a BHA.
+    const double line = -std::min({Z(m, r, "wob_kN rotation_amplitude"), Z(m, r, "bit_rpm rotation_amplitude"), 0.0});
+    const double smoother = std::max(Z(m, r, "stick_fraction") - 1, 0.0) + std::max(Z(m, r, "bit_rpm std"), 0.0);
+    const double z = std::max(line, smoother);
+    if (z > kWeakEvidence)
+      e.strength = z, e.evidence = line >= smoother ? "a line at the bit's rotation frequency: " +
+                                                          Describe(m, r, "wob_kN rotation_amplitude") + "; " +
+                                                          Describe(m, r, "bit_rpm rotation_amplitude")
+                                                    : "the recorded bit runs smoother than the model's (a whirl drains "
+                                                      "torsional energy): " +
+                                                          Describe(m, r, "stick_fraction") + "; " +
+                                                          Describe(m, r, "bit_rpm std");
     effects.push_back(e);
   }
   // sensor_delay: the bit speed follows the surface torque later than in the model: the downhole channels arrive
@@ -301,7 +311,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
         if (Downhole(channel)) sensor["delay_s"] = v[0];
     };
     const double z = std::abs(Z(m, r, "torque_to_bit_lag_s"));
-    if (z > 3) e.strength = z, e.evidence = "the bit speed follows the surface torque " + Fixed(shift, 2) +
+    if (z > kWeakEvidence) e.strength = z, e.evidence = "the bit speed follows the surface torque " + Fixed(shift, 2) +
                                             " s later than in the model: " + Describe(m, r, "torque_to_bit_lag_s");
     effects.push_back(e);
   }

@@ -146,8 +146,14 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   std::mutex cache_mutex;
   std::map<std::string, std::shared_ptr<const cases::RunResult>> simulations;
   double evaluations_per_second = 0;  // the baseline's, once it has run
-  auto run = [&](nlohmann::json doc, double duration) {
+  // A fit's runs may use a looser tolerance than the case's (features are statistics of the motion, which do not
+  // move with it: tests/diagnosis/loop_test.cpp); the runs that decide (whole span, held out) use the case's own.
+  enum class Tolerance { kCase, kFit };
+  auto run = [&](nlohmann::json doc, double duration, Tolerance tolerance = Tolerance::kCase) {
     doc["simulation"]["duration_s"] = duration;
+    if (tolerance == Tolerance::kFit && o.fit_tolerance > 0)
+      for (const char* key : {"rel_tol", "abs_tol"})
+        doc["simulation"][key] = std::max(doc["simulation"].value(key, 1e-8), o.fit_tolerance);
     const auto window = nlohmann::json::json_pointer("/statistics/window_s");
     if (doc.contains(window) && doc.at(window).is_array() && doc.at(window).size() == 2)  // kept inside the run
       doc.at(window) = {std::min(doc.at(window)[0].get<double>(), 0.5 * duration), duration};
@@ -204,7 +210,8 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   std::stable_sort(loop.proposals.begin(), loop.proposals.end(),
                    [](const Effect& a, const Effect& b) { return a.strength > b.strength; });
   for (const Effect& e : loop.proposals)
-    if (e.strength > 0) say("proposed " + e.name + " (evidence " + Fixed(e.strength, 1) + "): " + e.evidence);
+    if (e.strength > 0)
+      say((e.Proposed() ? "proposed " : "indicated ") + e.name + " (evidence " + Fixed(e.strength, 1) + "): " + e.evidence);
 
   auto document_at = [&](const std::vector<int>& set, const std::vector<double>& u) {
     nlohmann::json doc = base;
@@ -245,7 +252,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     auto objective = [&](const std::vector<double>& u) {
       ++c.evaluations;
       try {
-        const Recording m = run(document_at(set, u), fit_duration);
+        const Recording m = run(document_at(set, u), fit_duration, Tolerance::kFit);
         return FeatureDistance(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, o.features), target);
       } catch (const InputError& e) {
         if (c.failed_runs++ == 0) c.first_failure = e.what();
@@ -287,9 +294,14 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
         " held out (baseline " + Significant(loop.baseline_held_out_error, 3) + ")");
     return c;
   };
-  // 4. The decision: held-out error below (1 - margin) of the reference's and a lower AIC on the fit window.
+  // 4. The decision: held-out error below (1 - margin) of the reference's, by more than chance moves it, and a lower
+  //    AIC on the fit window. Each feature's difference is counted in the spread between two runs of the same
+  //    physics, so for a model that matches, the error (the mean of K squared differences) is about 1 and varies by
+  //    sqrt(2 / K) from one window to the next: a smaller gain is not evidence, whatever the relative margin says.
+  loop.error_chance = std::sqrt(2.0 / std::max(1.0, FiniteCount(loop.recording_held_out)));
   auto qualifies = [&](const Candidate& c, double reference_error, double reference_aic) {
-    return c.failure.empty() && c.held_out_error < (1 - o.margin) * reference_error && c.aic < reference_aic;
+    return c.failure.empty() && c.held_out_error < (1 - o.margin) * reference_error &&
+           reference_error - c.held_out_error > loop.error_chance && c.aic < reference_aic;
   };
   auto best_of = [&](std::size_t from, double reference_error, double reference_aic) {
     int best = -1;
@@ -479,7 +491,8 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
   return {{"hypotheses", hypotheses},
           {"held_out", {{"window_s", {loop.recording_held_out.begin_s, loop.recording_held_out.end_s}},
                         {"error_before", loop.baseline_held_out_error},
-                        {"error_after", loop.fitted_held_out_error}}},
+                        {"error_after", loop.fitted_held_out_error},
+                        {"error_chance", loop.error_chance}}},
           {"fit", {{"window_s", {loop.recording_fit.begin_s, loop.recording_fit.end_s}},
                    {"error_before", loop.baseline_fit_error},
                    {"error_after", loop.fitted_fit_error},

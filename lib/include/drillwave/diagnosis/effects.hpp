@@ -14,6 +14,13 @@
 
 namespace drillwave::diagnosis {
 
+// Evidence is graded in feature scales (a scale is how much two runs of the same physics differ in that feature). An
+// effect is proposed on a difference above kStrongEvidence; one above kWeakEvidence is only indicated: a difference
+// that large happens by chance, but an effect it points to is still worth a fit when fewer effects are proposed than
+// the loop can try. The fit and the held-out window decide either way.
+constexpr double kStrongEvidence = 3;
+constexpr double kWeakEvidence = 1;
+
 struct EffectParameter {
   std::string name;   // e.g. "kp_Nms_per_rad"
   std::string unit;
@@ -29,8 +36,9 @@ struct Effect {
   std::vector<EffectParameter> parameters;
   // Switches the component on in a case document with these parameter values (one per parameter).
   std::function<void(nlohmann::json& document, const std::vector<double>& values)> apply;
-  double strength = 0;    // how strongly the evidence points to it (in feature scales); 0: no evidence
+  double strength = 0;    // how strongly the evidence points to it (in feature scales, see above); 0: none
   std::string evidence;   // the measured numbers behind it
+  bool Proposed() const { return strength > kStrongEvidence; }
 };
 
 // Every effect of the vocabulary for an axial_torsional case document, each with its evidence from the features of

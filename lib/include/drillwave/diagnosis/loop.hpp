@@ -7,11 +7,12 @@
 //      sensors block), so that model and recording are compared as the recording was made.
 //   2. The usable recording is split into a fit window and a later held-out window. The baseline's error on each is
 //      the feature distance (features.hpp): differences counted in each feature's own variability.
-//   3. Rules read the baseline's differences as evidence and propose effects (effects.hpp); the strongest the case
+//   3. Rules read the baseline's differences as graded evidence for effects (effects.hpp); the strongest the case
 //      can model are fitted alone on the fit window (NLopt, bounded); then forward selection: the best so far is
 //      extended by each other effect in turn while an extension qualifies; then backward elimination: an effect
 //      the kept set does not need (the set without it, refitted, is not beaten by the margin) is dropped.
-//   4. A candidate is kept only when its held-out error falls below (1 - margin) of the baseline's and an
+//   4. A candidate is kept only when its held-out error falls below (1 - margin) of the baseline's, by more than
+//      chance moves the error (sqrt(2 / K) over K features: see loop.cpp), and an
 //      information criterion on the fit window (AIC over the features) agrees; an extension only when it beats what
 //      it extends the same way. The fitted parameters get uncertainties from the objective's curvature.
 #include <functional>
@@ -37,6 +38,9 @@ struct LoopOptions {
   int evaluations_per_parameter = 10;  // fit budget of a candidate: this times its parameters, plus 2
   int max_singles = 4;            // the strongest proposals tried alone, and partners tried with the best one
   int max_effects = 3;            // forward selection stops at this many effects
+  // The fits' runs use at most this tolerance's accuracy (rel and abs; 0: the case's); candidates are judged by runs
+  // at the case's own tolerance.
+  double fit_tolerance = 1e-4;
   int threads = 1;
   bool carry_noise = true;        // estimated sensor noise added to the model's measured channels
   unsigned seed = 1;
@@ -69,6 +73,7 @@ struct DiagnosisLoop {
   FeatureSet recording_fit, recording_held_out;
   FeatureSet baseline_fit, baseline_held_out, fitted_fit, fitted_held_out;
   double baseline_fit_error = 0, baseline_held_out_error = 0, fitted_fit_error = 0, fitted_held_out_error = 0;
+  double error_chance = 0;  // how much the held-out error moves by chance for a model that matches (sqrt(2 / K))
   double baseline_aic = 0;
   std::vector<Effect> proposals;  // every effect with its evidence (strength 0: no evidence)
   std::vector<Candidate> candidates;
