@@ -67,21 +67,31 @@ TEST(UfrjRig, FittedCasePredictsTheHeldOutFeaturesBetterThanItsStart) {
 // The loop from the user's start (json-cases/ufrj-rig.json: stiff drive, Coulomb friction): fitted on 2-20 s, held
 // out 20-30 s, it must add the physics the rig shows (velocity weakening, a soft drive) and predict the held-out part
 // far better. Measured: stribeck + soft_topdrive + bit_inertia kept, held-out error 32.5 -> 4.55.
-TEST(UfrjRig, TheLoopAddsVelocityWeakeningAndASoftDriveAndPredictsTheHeldOutPart) {
-  const std::string file = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/ufrj-rig/rig-0-30s.csv";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "the laboratory recording is not at " << file;
-  const Recording rec = LoadRecording(file);
+LoopOptions RigLoopOptions() {
   LoopOptions o;
   o.maps = {{"top_rpm", "top_rpm", 1}, {"bit_rpm", "bit_rpm", 1}, {"tob_Nm", "bit_torque_Nm", 1}};
   o.fit_begin_s = 2, o.fit_end_s = 20, o.held_out_begin_s = 20, o.held_out_end_s = 30;
   o.features.top_torque = "tob_Nm";
   o.threads = 2;
-  const DiagnosisLoop loop =
-      RunDiagnosisLoop(io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/ufrj-rig.json"), rec, o);
+  return o;
+}
+
+std::string KeptNames(const DiagnosisLoop& loop) {
+  std::string names;
+  if (loop.kept >= 0)
+    for (const std::string& e : loop.candidates[loop.kept].effects) names += e + " ";
+  return names;
+}
+
+TEST(UfrjRig, TheLoopAddsVelocityWeakeningAndASoftDriveAndPredictsTheHeldOutPart) {
+  const std::string file = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/ufrj-rig/rig-0-30s.csv";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "the laboratory recording is not at " << file;
+  const Recording rec = LoadRecording(file);
+  const DiagnosisLoop loop = RunDiagnosisLoop(
+      io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/ufrj-rig.json"), rec, RigLoopOptions());
   ASSERT_GE(loop.kept, 0) << "nothing kept";
   const std::vector<std::string>& kept = loop.candidates[loop.kept].effects;
-  std::string names;
-  for (const std::string& e : kept) names += e + " ";
+  const std::string names = KeptNames(loop);
   std::printf("[ measured ] ufrj-rig loop: kept %s; held-out error %.3g -> %.3g; masked top_rpm samples %d\n",
               names.c_str(), loop.baseline_held_out_error, loop.fitted_held_out_error, loop.masked_samples[0].second);
   for (const char* effect : {"stribeck", "soft_topdrive"})
