@@ -363,6 +363,9 @@ int Orbits(const std::string& file, const std::string& out_dir, const std::vecto
     for (const auto& f : result.branches[b].folds) std::cout << "; fold at " << drillwave::Significant(f.p, 8);
     std::cout << "\n";
   }
+  for (const auto& [a, b] : drillwave::cases::CoexistenceRanges(result))
+    std::cout << "stable steady state and stable periodic orbit coexist for " << spec.pointer << " in ["
+              << drillwave::Significant(a, 6) << ", " << drillwave::Significant(b, 6) << "]\n";
   std::cout << "wall time " << drillwave::Significant(result.wall_time_s, 3) << " s\nwrote "
             << std::filesystem::absolute(out_dir).string() << "/orbits.csv, orbits.svg, report.md, case.json"
             << std::endl;

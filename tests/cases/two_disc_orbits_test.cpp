@@ -103,6 +103,15 @@ TEST(TwoDiscOrbits, BifurcationDiagramOfTheSeedsFigure4) {
   for (const auto& pt : branch.points) sticks |= pt.orbit.switches > 0;
   EXPECT_TRUE(sticks);
 
+  // Bistability: the steady state and the cycle coexist between D and C, on the grid's resolution (0.05 V).
+  const auto coexist = CoexistenceRanges(result);
+  ASSERT_EQ(coexist.size(), 1u);
+  std::printf("[ measured ] coexistence on the grid: [%.4f, %.4f] V\n", coexist[0].first, coexist[0].second);
+  EXPECT_GT(coexist[0].first, u_d);
+  EXPECT_LT(coexist[0].first, u_d + 0.051);
+  EXPECT_LT(coexist[0].second, fold);
+  EXPECT_GT(coexist[0].second, fold - 0.051);
+
   // Brute force: from rest the set-up ends on the cycle just below the fold and at steady rotation just above it
   // (near the fold the transient creeps past the cycle's ghost: 2 mV above it, 800 s suffice).
   const Simulated below = Simulate(doc, fold - 0.002, 800), above = Simulate(doc, fold + 0.002, 800);

@@ -77,6 +77,26 @@ OrbitsResult ContinueOrbits(const nlohmann::json& document, const OrbitsSpec& sp
   return result;
 }
 
+std::vector<std::pair<double, double>> CoexistenceRanges(const OrbitsResult& result) {
+  auto stable_orbit_at = [&](double p) {
+    for (const auto& br : result.branches)
+      for (std::size_t i = 1; i < br.points.size(); ++i) {
+        const auto &a = br.points[i - 1], &b = br.points[i];
+        if (a.orbit.stable && b.orbit.stable && (a.p - p) * (b.p - p) <= 0) return true;
+      }
+    return false;
+  };
+  std::vector<std::pair<double, double>> ranges;
+  bool open = false;
+  for (const auto& e : result.equilibria.points) {
+    const bool both = e.stable && stable_orbit_at(e.p);
+    if (both && open) ranges.back().second = e.p;
+    if (both && !open) ranges.push_back({e.p, e.p});
+    open = both;
+  }
+  return ranges;
+}
+
 void WriteOrbitsOutputs(const nlohmann::json& document, const OrbitsSpec& spec, const OrbitsResult& result,
                         const std::string& out_dir) {
   io::OutputDirectory out(out_dir);
@@ -149,6 +169,14 @@ void WriteOrbitsOutputs(const nlohmann::json& document, const OrbitsSpec& spec, 
   for (const auto& h : result.equilibria.hopf)
     report << "| " << Significant(h.p, 10) << " | " << Significant(h.omega, 8) << " | "
            << Significant(2 * M_PI / h.omega, 8) << " | " << Significant(last(h.x), 8) << " |\n";
+  const auto coexistence = CoexistenceRanges(result);
+  if (!coexistence.empty()) {
+    report << "\n## Coexisting attractors\n\nA stable steady state and a stable periodic orbit at the same value (which one "
+              "a run reaches depends on its start; an unstable orbit between them separates the basins):\n";
+    for (const auto& [a, b] : coexistence)
+      report << "- " << spec.pointer << " in [" << Significant(a, 8) << ", " << Significant(b, 8)
+             << "] (grid values of stable steady states inside a stable stretch of a branch)\n";
+  }
   for (std::size_t b = 0; b < result.branches.size(); ++b) {
     const auto& br = result.branches[b];
     report << "\n## Branch " << b << " (from the Hopf point at " << Significant(result.starts[b].p, 10) << ")\n\n"

@@ -7,6 +7,7 @@
 //   WriteOrbitsOutputs(doc, spec, ContinueOrbits(doc, spec, nullptr), "out");
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -38,6 +39,10 @@ struct OrbitsResult {
 // progress(branch, points, p, period) after every continuation point.
 using OrbitsProgress = std::function<void(int branch, int points, double p, double period)>;
 OrbitsResult ContinueOrbits(const nlohmann::json& document, const OrbitsSpec& spec, const OrbitsProgress& progress);
+
+// Ranges of grid values where a stable steady state coexists with a stable periodic orbit of a branch (bistability:
+// the start decides), each from its first to its last such grid value.
+std::vector<std::pair<double, double>> CoexistenceRanges(const OrbitsResult& result);
 
 // orbits.csv (one row per equilibrium and per orbit: type, branch, parameter, period, amplitude measure = range of
 // the last inertia's speed, its min and max, max |nontrivial Floquet multiplier|, stable, stick-slip flag), orbits.svg
