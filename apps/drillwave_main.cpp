@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/orbits.hpp"
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/stability_map.hpp"
 #include "drillwave/cases/sweep.hpp"
@@ -344,6 +345,38 @@ int ListKinds() {
   return 0;
 }
 
+// Steady states and periodic orbits over one parameter (pseudo-arclength continuation from each Hopf point).
+int Orbits(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
+           const std::string& continue_text) {
+  if (continue_text.empty()) throw drillwave::InputError("--continue", "required: /json/pointer=first:last[:count]");
+  const nlohmann::json doc = LoadCaseDocument(file, overrides);
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
+  const auto spec = drillwave::cases::ParseContinueOption(continue_text, doc);
+  std::cout << "drillwave: steady states on " << spec.grid.size() << " values of " << spec.pointer
+            << ", then periodic orbits from each Hopf point" << std::endl;
+  const auto result = drillwave::cases::ContinueOrbits(doc, spec, [](int branch, int points, double p, double period) {
+    if (points % 10 == 0)
+      std::cout << "  branch " << branch << ": " << points << " orbits, now at " << drillwave::Significant(p, 6)
+                << " (period " << drillwave::Significant(period, 5) << " s)" << std::endl;
+  });
+  drillwave::cases::WriteOrbitsOutputs(doc, spec, result, out_dir);
+  std::cout << result.equilibria.hopf.size() << " Hopf point(s):";
+  for (const auto& h : result.equilibria.hopf) std::cout << " " << drillwave::Significant(h.p, 8);
+  std::cout << "\n";
+  for (std::size_t b = 0; b < result.branches.size(); ++b) {
+    std::cout << "branch " << b << ": " << result.branches[b].points.size() << " orbits, " << result.branches[b].end;
+    for (const auto& f : result.branches[b].folds) std::cout << "; fold at " << drillwave::Significant(f.p, 8);
+    std::cout << "\n";
+  }
+  for (const auto& [a, b] : drillwave::cases::CoexistenceRanges(result))
+    std::cout << "stable steady state and stable periodic orbit coexist for " << spec.pointer << " in ["
+              << drillwave::Significant(a, 6) << ", " << drillwave::Significant(b, 6) << "]\n";
+  std::cout << "wall time " << drillwave::Significant(result.wall_time_s, 3) << " s\nwrote "
+            << std::filesystem::absolute(out_dir).string() << "/orbits.csv, orbits.svg, report.md, case.json"
+            << std::endl;
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -381,6 +414,16 @@ int main(int argc, char** argv) {
   sweep->add_option("--jobs,-j", jobs, "runs at once (default: the number of cores)");
   sweep->add_option("--out,-o", sweep_out, "output folder (written all or nothing)");
   sweep->add_option("--set", overrides, "override another parameter by JSON pointer");
+
+  auto* orbits = app.add_subcommand(
+      "orbits", "steady states and periodic orbits over one parameter: Hopf points, branches of periodic orbits by "
+                "pseudo-arclength continuation with Floquet multipliers (saltation matrices at stick/slip), folds");
+  std::string orbits_out = "drillwave-orbits", orbits_continue;
+  orbits->add_option("case", case_file, "case JSON file (default: the embedded default case)");
+  orbits->add_option("--continue", orbits_continue, "/json/pointer=first:last[:count], the parameter and its range")
+      ->required();
+  orbits->add_option("--out,-o", orbits_out, "output folder (written all or nothing)");
+  orbits->add_option("--set", overrides, "override another parameter by JSON pointer");
 
   auto* stability = app.add_subcommand(
       "stability", "steady states at the inputs' final values and the characteristic roots of the linearization "
@@ -513,6 +556,7 @@ int main(int argc, char** argv) {
         throw drillwave::InputError("--param/--values", "a stability map needs both --param and --values");
       return Stability(case_file, stability_out, overrides, sweep_pointer, sweep_values, jobs);
     }
+    if (orbits->parsed()) return Orbits(case_file, orbits_out, overrides, orbits_continue);
     if (sweep->parsed()) return Sweep(case_file, sweep_out, overrides, sweep_pointer, sweep_values, jobs);
     return RunAndWrite(case_file, out_dir, overrides, check);
   } catch (const drillwave::InputError& e) {

@@ -227,6 +227,30 @@ TEST_F(Cli, TwoParameterStabilityMap) {
   }
 }
 
+TEST_F(Cli, OrbitsContinuesTheBranchFromTheHopfPointAndRefusesBadInput) {
+  const std::string file = std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/two-disc-setup.json";
+  const std::string out = (dir_ / "orbits").string();
+  Outcome o = RunTool("orbits " + file + " --continue /model/upper_disc/input_voltage_V=4:5.2:25 -o " + out);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("1 Hopf point(s): 4.322"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("fold at 4.93"), std::string::npos) << o.output;
+  for (const char* f : {"orbits.csv", "orbits.svg", "report.md", "case.json"})
+    EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+  const std::string bad = (dir_ / "orbits-bad").string();
+  for (const std::string args : {file + " --continue /model/upper_disc/no_such=1:2",
+                                 file + " --continue /model/upper_disc/input_voltage_V=2:1",
+                                 file + " --continue model/upper_disc/input_voltage_V=1:2",
+                                 file + " --continue /model/string/stiffness_Nm_per_rad=-1:2",
+                                 std::string(DRILLWAVE_TEST_SOURCE_DIR) +
+                                     "/json-cases/saldivar-stickslip.json --continue /model/bit/inertia_kgm2=80:90",
+                                 file}) {
+    o = RunTool("orbits " + args + " -o " + bad);
+    EXPECT_EQ(o.exit_code, 2) << args << ": " << o.output;
+    EXPECT_NE(o.output.find("--continue"), std::string::npos) << args << ": " << o.output;
+    EXPECT_FALSE(fs::exists(bad)) << args;
+  }
+}
+
 TEST_F(Cli, InspectNamesAMissingChannel) {
   const std::string csv = (dir_ / "rec.csv").string();
   {

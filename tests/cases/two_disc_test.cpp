@@ -15,6 +15,7 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "two_disc_reference.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -193,23 +194,13 @@ TEST(TwoDisc, EachDiscSticksOnItsOwn) {
 // friction laws; the simulation must rotate steadily just below that voltage and oscillate just above it.
 TEST(TwoDisc, OscillationStartsWhereRouthHurwitzFails) {
   nlohmann::json doc = LoadCase("two-disc-steady");
-  const auto& m = doc["model"];
-  const double ju = m["upper_disc"]["inertia_kgm2"], km = m["upper_disc"]["motor_constant_Nm_per_V"];
-  const double k = m["string"]["stiffness_Nm_per_rad"], jl = m["lower_disc"]["inertia_kgm2"];
-  const auto upper = bitrock::FrictionLaw::FromJson(m["upper_disc"]["friction"], "/upper");
-  const auto lower = bitrock::FrictionLaw::FromJson(m["lower_disc"]["friction"], "/lower");
-  auto stable = [&](double w) {
-    const double d = lower.SlipTorqueDerivative(w), du = upper.SlipTorqueDerivative(w);
-    const double a3 = ju * jl, a2 = ju * d + jl * du, a1 = k * (ju + jl) + du * d, a0 = k * (du + d);
-    return a2 > 0 && a1 > 0 && a0 > 0 && a2 * a1 > a3 * a0;
-  };
+  const testing::TwoDiscRouthHurwitz rh(doc["model"]);
   // First loss of stability along the branch, by bisection on w.
-  double lo = 0.01, hi = 2.0;
-  ASSERT_TRUE(stable(lo));
-  ASSERT_FALSE(stable(hi));
-  for (int i = 0; i < 100; ++i) (stable(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
-  const double u_hopf = (upper.SlipTorque(lo) + lower.SlipTorque(lo)) / km;
-  const double d_hopf = lower.SlipTorqueDerivative(lo);
+  ASSERT_TRUE(rh.Stable(0.01));
+  ASSERT_FALSE(rh.Stable(2.0));
+  const double lo = rh.Boundary(0.01, 2.0);
+  const double u_hopf = rh.Voltage(lo);
+  const double d_hopf = rh.lower().SlipTorqueDerivative(lo);
   std::printf("[ measured ] Routh-Hurwitz: equilibrium unstable from w = %.5f rad/s, u_c = %.5f V (d_l = %.6f; the "
               "seed's eq. 12 bound, with its own lower-disc values: -0.00114)\n", lo, u_hopf, d_hopf);
   EXPECT_NEAR(d_hopf, -0.00114, 1.5e-4);  // published values of a later identification: close, not equal

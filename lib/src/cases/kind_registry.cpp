@@ -37,4 +37,9 @@ std::vector<LinearizedOperatingPoint> PreparedModel::Linearize() const {
   throw InputError("/model/kind", "this model kind has no linearization for stability analysis");
 }
 
+std::shared_ptr<const analysis::PiecewiseSmoothField> PreparedModel::OrbitField() const {
+  throw InputError("/model/kind", "this model kind has no autonomous field for periodic orbits (two_disc and "
+                                  "two_mass have)");
+}
+
 }  // namespace drillwave::cases

@@ -42,7 +42,8 @@ bool IsOutputName(const std::string& name) {
   static const std::set<std::string> names = {
       kMarker,         "trajectory.csv",  "summary.json",  "plot.svg",         "report.md",        "case.json",
       "sweep.csv",     "bifurcation.svg", "stability.json", "roots.csv",       "stability_map.csv", "stability_map.svg",
-      "findings.json", "comparison.json", "fit.json",       "fitted-case.json", "diagnosis.json", "report.html"};
+      "findings.json", "comparison.json", "fit.json",       "fitted-case.json", "diagnosis.json", "report.html",
+      "orbits.csv",    "orbits.svg"};
   return names.count(name) > 0;
 }
 

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/analysis/periodic_orbits.hpp"
 #include "drillwave/analysis/spectrum.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/io/json_reader.hpp"
@@ -64,6 +65,9 @@ class PreparedModel {
   // Every steady state at the inputs' final values with its linearization (possibly none: e.g. the bit held by
   // static friction). Throws InputError naming "/model" if this kind or configuration has no linearization.
   virtual std::vector<LinearizedOperatingPoint> Linearize() const;
+  // The model at its inputs' final values as an autonomous piecewise-smooth field, for periodic orbits
+  // (`drillwave orbits`). Throws InputError naming "/model" if this kind has none.
+  virtual std::shared_ptr<const analysis::PiecewiseSmoothField> OrbitField() const;
 };
 
 class ModelKind {

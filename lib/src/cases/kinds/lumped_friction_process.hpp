@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "drillwave/analysis/periodic_orbits.hpp"
 #include "drillwave/bitrock/friction.hpp"
 #include "drillwave/cases/model_kind.hpp"
 #include "drillwave/cases/statistics.hpp"
@@ -76,6 +77,10 @@ RunResult ChainResult(const ChainRun& run, const RunSettings& settings);
 // speed end fixes w; a torque drive gives every root of drive = sum of friction and damper torques at w), each
 // with the linear system of small perturbations: state (twists, speeds of the free inertias, PI integral).
 std::vector<LinearizedOperatingPoint> LinearizeChain(const Chain& chain);
+
+// The chain at its inputs' final values as a piecewise-smooth field (state as LinearizeChain's, one mode per
+// combination of stick regimes), for periodic orbits and their continuation; its Equilibria() are LinearizeChain's.
+std::shared_ptr<const analysis::PiecewiseSmoothField> ChainOrbitField(const Chain& chain);
 
 // The optional field "friction_smoothing_rad_s" of a chain kind: 0 (set-valued laws with stick phases) or a
 // smoothing speed of at least kMinFrictionSmoothing_rad_s.

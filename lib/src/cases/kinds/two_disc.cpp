@@ -57,6 +57,9 @@ class TwoDiscModel : public PreparedModel {
   }
 
   std::vector<LinearizedOperatingPoint> Linearize() const override { return lumped::LinearizeChain(chain_); }
+  std::shared_ptr<const analysis::PiecewiseSmoothField> OrbitField() const override {
+    return lumped::ChainOrbitField(chain_);
+  }
 
  private:
   lumped::Chain chain_;

@@ -30,6 +30,9 @@ class TwoMassModel : public PreparedModel {
   }
 
   std::vector<LinearizedOperatingPoint> Linearize() const override { return lumped::LinearizeChain(chain_); }
+  std::shared_ptr<const analysis::PiecewiseSmoothField> OrbitField() const override {
+    return lumped::ChainOrbitField(chain_);
+  }
 
  private:
   lumped::Chain chain_;
