@@ -237,7 +237,7 @@ TEST_F(Cli, OrbitsContinuesTheBranchFromTheHopfPointAndRefusesBadInput) {
   for (const char* f : {"orbits.csv", "orbits.svg", "report.md", "case.json"})
     EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
   const std::string bad = (dir_ / "orbits-bad").string();
-  for (const std::string args : {file + " --continue /model/upper_disc/no_such=1:2",
+  for (const std::string& args : {file + " --continue /model/upper_disc/no_such=1:2",
                                  file + " --continue /model/upper_disc/input_voltage_V=2:1",
                                  file + " --continue model/upper_disc/input_voltage_V=1:2",
                                  file + " --continue /model/string/stiffness_Nm_per_rad=-1:2",

@@ -28,6 +28,11 @@ std::string Describe(const FeatureSet& model, const FeatureSet& recording, const
          Significant(recording.Value(name), 4) + " recorded (" + Fixed(Z(model, recording, name), 1) + " scales)";
 }
 
+// How much smoother the recorded bit runs than the model's: less sticking, smaller speed swings (in scales, >= 0).
+double BitRunsSmoother(const FeatureSet& model, const FeatureSet& recording) {
+  return std::max(Z(model, recording, "stick_fraction") - 1, 0.0) + std::max(Z(model, recording, "bit_rpm std"), 0.0);
+}
+
 // The downhole channels of a sensors block (bit speed, weight on bit): what telemetry delays.
 bool Downhole(const std::string& channel) { return channel.rfind("bit_", 0) == 0 || channel.rfind("wob", 0) == 0; }
 
@@ -169,9 +174,15 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
       d["model"]["top"]["kp_Nms_per_rad"] = v[0];
       d["model"]["top"]["ki_Nm_per_rad"] = v[1];
     };
-    const double z = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_std"));
-    if (z > kWeakEvidence) e.strength = z, e.evidence = "the top speed moves more than the model's drive lets it: " +
-                                            Describe(m, r, "top_rpm std");
+    // A drive soft enough to let the top speed move also absorbs the torsional waves that make the bit stick: where
+    // the top moves more, a smoother bit adds to the evidence (no other effect moves the top).
+    const double top_moves = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_std"));
+    const double smoother = top_moves > kWeakEvidence ? BitRunsSmoother(m, r) : 0.0;
+    const double z = top_moves + smoother;
+    if (z > kWeakEvidence)
+      e.strength = z, e.evidence = "the top speed moves more than the model's drive lets it: " +
+                                   Describe(m, r, "top_rpm std") +
+                                   (smoother > 0 ? "; and the bit runs smoother: " + Describe(m, r, "bit_rpm std") : "");
     effects.push_back(e);
   }
   // side_friction: more torque at the top than the model needs to turn the same bit, torque lost along the string.
@@ -229,7 +240,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
       d["model"]["bit"]["inertia_kgm2"] = 0.05 * bit_inertia;
       d["model"]["bit"]["mass_kg"] = 0.05 * bit_mass;
     };
-    const double z = std::max(Z(m, r, "stick_fraction") - 1, 0.0) + std::max(Z(m, r, "bit_rpm std"), 0.0);
+    const double z = BitRunsSmoother(m, r);
     const bool wob_moves = !(Z(m, r, "wob_kN std") > 3 && r.Value("wob_kN std") < 0.5 * m.Value("wob_kN std"));
     if (z > kWeakEvidence && wob_moves)
       e.strength = z, e.evidence = "the recorded bit runs smoother than the model's: " +
@@ -285,7 +296,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
     // lateral damping acts on the bit's rotation through the unbalance), so a bit that runs smoother than the
     // model's points to it as well as to a BHA.
     const double line = -std::min({Z(m, r, "wob_kN rotation_amplitude"), Z(m, r, "bit_rpm rotation_amplitude"), 0.0});
-    const double smoother = std::max(Z(m, r, "stick_fraction") - 1, 0.0) + std::max(Z(m, r, "bit_rpm std"), 0.0);
+    const double smoother = BitRunsSmoother(m, r);
     const double z = std::max(line, smoother);
     if (z > kWeakEvidence)
       e.strength = z, e.evidence = line >= smoother ? "a line at the bit's rotation frequency: " +
