@@ -37,6 +37,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <boost/math/tools/toms748_solve.hpp>
 
@@ -1013,7 +1014,12 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
                                                        std::exp(-omega / md_.stribeck_speed)
                                                  : 0.0;
   const double friction_slope = 0.5 * md_.a * md_.gamma * mu_slope * md_.ContactForce();
-  analysis::NetworkLinearization lin = analysis::LinearizeAxialTorsional(string, {omega, s.rop, friction_slope});
+  analysis::NetworkLinearization lin;
+  try {
+    lin = analysis::LinearizeAxialTorsional(string, {omega, s.rop, friction_slope});
+  } catch (const std::invalid_argument& e) {  // parameters out of the linearization's range (e.g. mutated to 1e-300)
+    throw InputError("/model", std::string("no linearization for this model: ") + e.what());
+  }
   return {{{{"bit_speed_rad_s", omega},
             {"weight_on_bit_N", s.wob},
             {"hook_force_N", md_.hook_force.knots().back().second},
