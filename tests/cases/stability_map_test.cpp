@@ -98,9 +98,11 @@ TEST(StabilityMap2D, SimulatedRegimeAndOutputs) {
   std::filesystem::remove_all(dir);
 }
 
-// A kind without linearization maps the simulated regimes alone (with simulate), and refuses a linear map.
-TEST(StabilityMap2D, AxialTorsionalMapsTheSimulatedRegimeOnly) {
+// The coupled kind maps its linear verdict and, with simulate, the regime of the run beside it (the baseline in 5
+// sub-sections: the linear analysis of the 20 of the case costs about 10 s a point).
+TEST(StabilityMap2D, AxialTorsionalMapsTheLinearVerdictAndTheSimulatedRegime) {
   nlohmann::json doc = LoadCase("baseline-60rpm");
+  doc["model"]["string"]["subsections"] = 5;
   doc["simulation"]["duration_s"] = 10;
   doc["statistics"]["window_s"] = {5, 10};
   StabilityMapSpec spec{ParseMapAxis("/model/top/speed_rad_s/knots/2/1=3,12", doc),
@@ -108,15 +110,34 @@ TEST(StabilityMap2D, AxialTorsionalMapsTheSimulatedRegimeOnly) {
   const StabilityMapResult r = StabilityMap2D(doc, spec);
   ASSERT_EQ(r.cells.size(), 2u);
   for (const StabilityMapCell& c : r.cells) {
-    std::printf("[ measured ] baseline at %g rad/s, WOB %g N: %s (stick fraction %.3f)\n", c.x, c.y, RegimeName(c.regime),
-                c.stick_fraction);
-    EXPECT_FALSE(c.analysed);
+    std::printf("[ measured ] baseline (5 pieces) at %g rad/s, WOB %g N: %s, rightmost root %.5f%+.5fi; simulated %s "
+                "(stick fraction %.3f)\n", c.x, c.y, analysis::VerdictName(c.verdict), c.spectral_abscissa,
+                c.frequency_rad_s, RegimeName(c.regime), c.stick_fraction);
+    EXPECT_TRUE(c.analysed);
+    EXPECT_EQ(c.steady_states, 1);
+    // RGD's regenerative axial mode: steady drilling is unstable at both speeds.
+    EXPECT_EQ(c.verdict, analysis::Spectrum::Verdict::kUnstable);
     EXPECT_TRUE(c.regime == Regime::kSmooth || c.regime == Regime::kStickSlip || c.regime == Regime::kBitBouncing);
+  }
+}
+
+// A kind without linearization maps the simulated regimes alone (with simulate), and refuses a linear map.
+TEST(StabilityMap2D, KindWithoutLinearizationMapsTheSimulatedRegimeOnly) {
+  nlohmann::json doc = LoadCase("jeffcott-unbalance");
+  doc["simulation"]["duration_s"] = 2;
+  doc["statistics"]["window_s"] = {1, 2};
+  StabilityMapSpec spec{ParseMapAxis("/model/rotor_mass_kg=10,12", doc),
+                        ParseMapAxis("/model/eccentricity_m=0.1", doc), 2, true};
+  const StabilityMapResult r = StabilityMap2D(doc, spec);
+  ASSERT_EQ(r.cells.size(), 2u);
+  for (const StabilityMapCell& c : r.cells) {
+    EXPECT_FALSE(c.analysed);
+    EXPECT_NE(c.regime, Regime::kNotSimulated);
   }
   spec.simulate = false;
   try {
     StabilityMap2D(doc, spec);
-    ADD_FAILURE() << "axial_torsional has no linearization";
+    ADD_FAILURE() << "jeffcott has no linearization";
   } catch (const InputError& e) {
     EXPECT_EQ(e.json_path(), "/model/kind");
   }

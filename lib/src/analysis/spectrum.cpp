@@ -59,28 +59,62 @@ Eigen::RowVectorXd LagrangeRow(const ChebyshevGrid& g, double theta) {
   return row / row.sum();
 }
 
-// Eigenvalues of the discretized infinitesimal generator: the state is the history on the Chebyshev grid; rows
-// 1..N differentiate it, row 0 is the system's equation at theta = 0 with delayed values and (neutral) delayed
-// derivatives taken from the interpolant.
-std::vector<Complex> GeneratorEigenvalues(const LinearDelaySystem& sys, int nodes) {
+// Eigenvalues of the discretized infinitesimal generator: the state is the history on Chebyshev grids; rows
+// 1..N of each grid differentiate it, row 0 is the system's equation at theta = 0 with delayed values and (neutral)
+// delayed derivatives taken from the interpolants. Each state keeps only the history the system reads of it: over
+// [-tau_j, 0], tau_j its longest delay, with nodes(tau_j) points (a state read without delay: its present value only).
+// A wave integral read one short travel time late then costs a few nodes where the longest delay (the cut delay of
+// the coupled model) would cost dozens.
+template <typename NodesFor>
+std::vector<Complex> GeneratorEigenvalues(const LinearDelaySystem& sys, NodesFor nodes_for) {
   const int n = sys.dimension();
-  double tau_max = 0;
-  for (const DelayTerm& d : sys.delays) tau_max = std::max(tau_max, d.tau);
-  const ChebyshevGrid g = MakeGrid(nodes, tau_max);
-  const int m = nodes + 1;
-  Eigen::MatrixXd big = Eigen::MatrixXd::Zero(n * m, n * m);
-  for (int i = 1; i < m; ++i)
-    for (int j = 0; j < m; ++j)
-      big.block(i * n, j * n, n, n).diagonal().setConstant(g.d(i, j));
-  big.block(0, 0, n, n) += sys.a0;
-  for (const DelayTerm& d : sys.delays) {
-    const Eigen::RowVectorXd ell = LagrangeRow(g, -d.tau);
-    const Eigen::RowVectorXd ell_prime = ell * g.d;
-    for (int j = 0; j < m; ++j) {
-      if (d.retarded.size() > 0) big.block(0, j * n, n, n) += ell(j) * d.retarded;
-      if (d.neutral.size() > 0) big.block(0, j * n, n, n) += ell_prime(j) * d.neutral;
+  std::vector<double> history(n, 0.0);
+  for (const DelayTerm& d : sys.delays)
+    for (int j = 0; j < n; ++j) {
+      const bool read = (d.retarded.size() > 0 && !d.retarded.col(j).isZero(0)) ||
+                        (d.neutral.size() > 0 && !d.neutral.col(j).isZero(0));
+      if (read) history[j] = std::max(history[j], d.tau);
     }
+  std::vector<ChebyshevGrid> grids;  // one per distinct history length
+  std::vector<double> grid_tau;
+  std::vector<int> grid_of(n, -1), offset(n, 0);
+  int size = 0;
+  for (int j = 0; j < n; ++j) {
+    offset[j] = size;
+    if (history[j] == 0) {
+      ++size;
+      continue;
+    }
+    const auto same = std::find(grid_tau.begin(), grid_tau.end(), history[j]);
+    if (same == grid_tau.end()) {
+      grid_tau.push_back(history[j]);
+      grids.push_back(MakeGrid(nodes_for(history[j]), history[j]));
+    }
+    grid_of[j] = static_cast<int>(std::find(grid_tau.begin(), grid_tau.end(), history[j]) - grid_tau.begin());
+    size += static_cast<int>(grids[grid_of[j]].theta.size());
   }
+  Eigen::MatrixXd big = Eigen::MatrixXd::Zero(size, size);
+  for (int j = 0; j < n; ++j) {
+    if (grid_of[j] < 0) continue;
+    const ChebyshevGrid& g = grids[grid_of[j]];
+    const int m = static_cast<int>(g.theta.size());
+    big.block(offset[j] + 1, offset[j], m - 1, m) = g.d.bottomRows(m - 1);
+  }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) big(offset[i], offset[j]) += sys.a0(i, j);
+  for (const DelayTerm& d : sys.delays)
+    for (int j = 0; j < n; ++j) {
+      if (grid_of[j] < 0) continue;
+      const ChebyshevGrid& g = grids[grid_of[j]];
+      const Eigen::RowVectorXd ell = LagrangeRow(g, -d.tau);
+      const Eigen::RowVectorXd ell_prime = ell * g.d;
+      for (int i = 0; i < n; ++i) {
+        const double a = d.retarded.size() > 0 ? d.retarded(i, j) : 0.0;
+        const double b = d.neutral.size() > 0 ? d.neutral(i, j) : 0.0;
+        if (a != 0) big.block(offset[i], offset[j], 1, ell.size()) += a * ell;
+        if (b != 0) big.block(offset[i], offset[j], 1, ell.size()) += b * ell_prime;
+      }
+    }
   const Eigen::EigenSolver<Eigen::MatrixXd> solver(big, false);
   if (solver.info() != Eigen::Success) throw std::runtime_error("eigenvalues of the discretized generator failed");
   const auto ev = solver.eigenvalues();
@@ -264,6 +298,78 @@ bool Refine(const LinearDelaySystem& sys, Complex& s, const SpectrumOptions& o) 
 }
 
 
+// The difference operator's core split into blocks of states no B_k couples (connected components of the graph with
+// an edge wherever some B_k(i, j) != 0); each block keeps the terms that act on it.
+std::vector<std::vector<NeutralTerm>> DecoupledBlocks(const std::vector<NeutralTerm>& terms) {
+  std::vector<std::vector<NeutralTerm>> blocks;
+  const int n = terms.empty() ? 0 : static_cast<int>(terms.front().b.rows());
+  if (n == 0) return blocks;
+  std::vector<int> block(n, -1);
+  int count = 0;
+  for (int seed = 0; seed < n; ++seed) {
+    if (block[seed] >= 0) continue;
+    std::vector<int> stack{seed};
+    block[seed] = count;
+    while (!stack.empty()) {
+      const int i = stack.back();
+      stack.pop_back();
+      for (int j = 0; j < n; ++j)
+        if (block[j] < 0 && std::any_of(terms.begin(), terms.end(), [&](const NeutralTerm& t) {
+              return t.b(i, j) != 0 || t.b(j, i) != 0;
+            }))
+          block[j] = count, stack.push_back(j);
+    }
+    ++count;
+  }
+  for (int b = 0; b < count; ++b) {
+    std::vector<int> members;
+    for (int i = 0; i < n; ++i)
+      if (block[i] == b) members.push_back(i);
+    std::vector<NeutralTerm> sub;
+    for (const NeutralTerm& t : terms) {
+      Eigen::MatrixXd m(members.size(), members.size());
+      for (std::size_t i = 0; i < members.size(); ++i)
+        for (std::size_t j = 0; j < members.size(); ++j) m(i, j) = t.b(members[i], members[j]);
+      if (m.norm() > 0) sub.push_back({t.tau, m});
+    }
+    if (!sub.empty()) blocks.push_back(std::move(sub));
+  }
+  return blocks;
+}
+
+// Essential abscissa of one block of the difference operator; with commensurate delays also the starting points of
+// its root chains (appended to starts).
+double BlockEssentialAbscissa(const std::vector<NeutralTerm>& terms, const SpectrumOptions& o,
+                              std::vector<Complex>& starts) {
+  double tau0 = 0;
+  std::vector<int> multiples;
+  // The companion matrix has (largest multiple) x (core states) rows: beyond a few hundred, or for incommensurate
+  // delays, the robust abscissa on the torus (exact for one delay) replaces it.
+  const int core = static_cast<int>(terms.front().b.rows());
+  if (CommensurateNeutral(terms, std::max(1, 400 / core), tau0, multiples)) {
+    double rho = 0;
+    for (const Complex mu : DifferenceOperatorMultipliers(terms, multiples)) {
+      const double r = std::abs(mu);
+      rho = std::max(rho, r);
+      if (r == 0) continue;
+      // The chain of roots that approaches Re s = ln|mu| / tau0, Im s = (arg mu + 2 pi j) / tau0.
+      const double re = std::log(r) / tau0;
+      // The chain has about im_max tau0 / 2 pi roots in the region: refuse rather than loop for ever (tau0 = 1e300).
+      if (!(o.im_max * tau0 / (2 * kPi) < 1e5))
+        throw std::invalid_argument("the neutral delay " + ReadableNumber(tau0) + " s puts more than 1e5 roots of a "
+                                    "chain below Im s = " + ReadableNumber(o.im_max) + "; the delay is out of range");
+      for (int j = 0;; ++j) {
+        const double im = (std::arg(mu) + 2 * kPi * j) / tau0;
+        if (im > o.im_max) break;
+        if (im >= 0) starts.emplace_back(re, im);
+      }
+    }
+    return rho > 0 ? std::log(rho) / tau0 : -std::numeric_limits<double>::infinity();
+  }
+  if (terms.size() <= 6) return RobustEssentialAbscissa(terms, o.re_min);
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
 
 bool LinearDelaySystem::IsNeutral() const {
@@ -292,10 +398,28 @@ void LinearDelaySystem::Validate() const {
   }
   const int m = derivative_only_states;
   if (m < 0 || m > n) throw std::invalid_argument("derivative_only_states must be in 0..n");
-  auto zero_tail = [&](const Eigen::MatrixXd& a) { return a.size() == 0 || a.rightCols(m).isZero(0); };
-  if (!zero_tail(a0) || !std::all_of(delays.begin(), delays.end(), [&](const DelayTerm& d) { return zero_tail(d.retarded); }))
-    throw std::invalid_argument("a derivative-only state has a non-zero column in A_0 or A_k");
+  // A_0 + sum_k A_k must vanish in those columns (to rounding: the sum of terms of either sign).
+  Eigen::MatrixXd sum = a0.rightCols(m), size = a0.rightCols(m).cwiseAbs();
+  for (const DelayTerm& d : delays)
+    if (d.retarded.size() > 0) sum += d.retarded.rightCols(m), size += d.retarded.rightCols(m).cwiseAbs();
+  if (((sum.cwiseAbs() - 1e-12 * size).array() > 0).any())
+    throw std::invalid_argument("a derivative-only state has a non-zero column in A_0 + sum_k A_k");
 }
+
+namespace {
+// (1 - e^{-s tau}) / s and its derivative in s, by their series near s = 0 (where both forms lose digits).
+Complex DelayedDifference(Complex s, double tau) {
+  const Complex z = s * tau;
+  if (std::abs(z) < 1e-3) return tau * (1.0 - z / 2.0 + z * z / 6.0 - z * z * z / 24.0);
+  return (1.0 - std::exp(-z)) / s;
+}
+Complex DelayedDifferenceDerivative(Complex s, double tau) {
+  const Complex z = s * tau;
+  if (std::abs(z) < 1e-3) return tau * tau * (-0.5 + z / 3.0 - z * z / 8.0 + z * z * z / 30.0);
+  const Complex e = std::exp(-z);
+  return (z * e - (1.0 - e)) / (s * s);
+}
+}  // namespace
 
 Eigen::MatrixXcd LinearDelaySystem::Characteristic(Complex s) const {
   const int n = dimension(), m = derivative_only_states;
@@ -309,7 +433,10 @@ Eigen::MatrixXcd LinearDelaySystem::Characteristic(Complex s) const {
       delta.leftCols(n - m) -= (s * e) * d.neutral.leftCols(n - m).cast<Complex>();
       delta.rightCols(m) -= e * d.neutral.rightCols(m).cast<Complex>();
     }
-    if (d.retarded.size() > 0) delta.leftCols(n - m) -= e * d.retarded.leftCols(n - m).cast<Complex>();
+    if (d.retarded.size() > 0) {
+      delta.leftCols(n - m) -= e * d.retarded.leftCols(n - m).cast<Complex>();
+      delta.rightCols(m) += DelayedDifference(s, d.tau) * d.retarded.rightCols(m).cast<Complex>();
+    }
   }
   return delta;
 }
@@ -324,7 +451,10 @@ Eigen::MatrixXcd LinearDelaySystem::CharacteristicDerivative(Complex s) const {
       derivative.leftCols(n - m) -= (e * (1.0 - s * d.tau)) * d.neutral.leftCols(n - m).cast<Complex>();
       derivative.rightCols(m) += (d.tau * e) * d.neutral.rightCols(m).cast<Complex>();
     }
-    if (d.retarded.size() > 0) derivative.leftCols(n - m) += (d.tau * e) * d.retarded.leftCols(n - m).cast<Complex>();
+    if (d.retarded.size() > 0) {
+      derivative.leftCols(n - m) += (d.tau * e) * d.retarded.leftCols(n - m).cast<Complex>();
+      derivative.rightCols(m) += DelayedDifferenceDerivative(s, d.tau) * d.retarded.rightCols(m).cast<Complex>();
+    }
   }
   return derivative;
 }
@@ -350,46 +480,27 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
     const Eigen::EigenSolver<Eigen::MatrixXd> solver(sys.a0, false);
     for (int i = 0; i < solver.eigenvalues().size(); ++i) starts.push_back(solver.eigenvalues()(i));
   } else {
-    // N + 1 Chebyshev points over [-tau_max, 0] resolve the roots up to |Im s| of about N / tau_max: a short longest
-    // delay (a string split into damping sub-sections) needs far fewer nodes than the maximum, and the eigenproblem's
-    // cost grows as the cube of nodes x dimension.
+    // N + 1 Chebyshev points over [-tau, 0] resolve the roots up to |Im s| of about N / tau: a short history (a string
+    // split into damping sub-sections) needs far fewer nodes than the maximum, and the eigenproblem's cost grows as
+    // the cube of the nodes summed over the states.
+    // Histories shorter than the longest delay take 8 nodes beyond that instead of 16: their roots in the region are
+    // few (a chain's roots lie 2 pi / tau apart) and Newton refines every start; the wave integrals of a string in 20
+    // sub-sections are most of the states.
     double tau_max = 0;
     for (const DelayTerm& d : sys.delays) tau_max = std::max(tau_max, d.tau);
-    const double wanted = 0.5 * o.im_max * tau_max + 16;
-    starts = GeneratorEigenvalues(sys, wanted < o.collocation_nodes ? static_cast<int>(std::ceil(wanted)) : o.collocation_nodes);
+    starts = GeneratorEigenvalues(sys, [&](double tau) {
+      const double wanted = 0.5 * o.im_max * tau + (tau < tau_max ? 8 : 16);
+      return wanted < o.collocation_nodes ? static_cast<int>(std::ceil(wanted)) : o.collocation_nodes;
+    });
   }
   if (sys.IsNeutral()) {
-    const std::vector<NeutralTerm> terms = DifferenceOperator(sys);
-    double tau0 = 0;
-    std::vector<int> multiples;
-    // The companion matrix has (largest multiple) x (core states) rows: beyond a few hundred, or for incommensurate
-    // delays, the robust abscissa on the torus (exact for one delay) replaces it.
-    const int core = static_cast<int>(terms.front().b.rows());
-    if (core == 0) {
-      // Only states whose derivative the difference operator does not feed back: its determinant is 1.
-    } else if (CommensurateNeutral(terms, std::max(1, 400 / core), tau0, multiples)) {
-      double rho = 0;
-      for (const Complex mu : DifferenceOperatorMultipliers(terms, multiples)) {
-        const double r = std::abs(mu);
-        rho = std::max(rho, r);
-        if (r == 0) continue;
-        // The chain of roots that approaches Re s = ln|mu| / tau0, Im s = (arg mu + 2 pi j) / tau0.
-        const double re = std::log(r) / tau0;
-        // The chain has about im_max tau0 / 2 pi roots in the region: refuse rather than loop for ever (tau0 = 1e300).
-        if (!(o.im_max * tau0 / (2 * kPi) < 1e5))
-          throw std::invalid_argument("the neutral delay " + ReadableNumber(tau0) + " s puts more than 1e5 roots of a "
-                                      "chain below Im s = " + ReadableNumber(o.im_max) + "; the delay is out of range");
-        for (int j = 0;; ++j) {
-          const double im = (std::arg(mu) + 2 * kPi * j) / tau0;
-          if (im > o.im_max) break;
-          if (im >= 0) starts.emplace_back(re, im);
-        }
-      }
-      out.essential_abscissa = rho > 0 ? std::log(rho) / tau0 : -std::numeric_limits<double>::infinity();
-    } else if (terms.size() <= 6) {
-      out.essential_abscissa = RobustEssentialAbscissa(terms, o.re_min);
-    } else {
-      out.essential_abscissa = std::numeric_limits<double>::quiet_NaN();
+    // Channels the difference operator does not couple (the torsional and axial waves of the coupled model) are
+    // separate blocks: its roots are the blocks' roots, each block's abscissa exact when its delays are commensurate.
+    out.essential_abscissa = -std::numeric_limits<double>::infinity();
+    for (const std::vector<NeutralTerm>& block : DecoupledBlocks(DifferenceOperator(sys))) {
+      const double abscissa = BlockEssentialAbscissa(block, o, starts);  // NaN (not computed) prevails
+      if (std::isnan(abscissa) || abscissa > out.essential_abscissa) out.essential_abscissa = abscissa;
+      if (std::isnan(abscissa)) break;
     }
   }
   out.candidates = static_cast<int>(starts.size());

@@ -205,9 +205,14 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
 }
 
 void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
+  constexpr int kLinearVerdictStates = 64;
   if (!summary.contains("stick_onsets") || !summary.at("stick_onsets").is_number()) return;
   std::vector<OperatingPointStability> points;
   try {
+    // Beyond 64 states (the coupled model's 20 sub-sections: 87) the spectrum costs seconds, more than the run:
+    // `stability` answers there.
+    for (const LinearizedOperatingPoint& p : c.model->Linearize())
+      if (p.system.dimension() > kLinearVerdictStates) return;
     points = AnalyzeStability(c);
   } catch (const InputError&) {
     return;  // this kind or configuration has no linearization

@@ -33,9 +33,11 @@ struct DelayTerm {
 struct LinearDelaySystem {
   Eigen::MatrixXd a0;  // n x n
   std::vector<DelayTerm> delays;
-  // The last m states are integrals of signals that enter only through their derivatives (the waves of a network):
-  // the system is one in those signals, so its characteristic function is det Delta(s) / s^m, and the m roots at
-  // s = 0 that the integration adds are no motions. Their columns of A_0 and of every A_k must be zero.
+  // The last m states are integrals of signals that enter only through their derivatives (the waves of a network)
+  // or through differences of their delayed values (the bit's angle and position in the depth of cut,
+  // n (U(t) - U(t - t_n))): the system is one in those signals, so its characteristic function is det Delta(s) / s^m,
+  // and the m roots at s = 0 that the integration adds are no motions. Their columns of A_0 + sum_k A_k must be zero
+  // (each such column of Delta(s) / s is then I - sum_k B_k e^{-s tau_k} + sum_k A_k (1 - e^{-s tau_k}) / s, entire).
   int derivative_only_states = 0;
 
   int dimension() const { return static_cast<int>(a0.rows()); }

@@ -51,7 +51,8 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
 // Where the model linearizes, sets summary["linear_verdict"] when the motion a run found (its summary's stick_onsets)
 // differs from the linear verdict at the same set-point: stick-slip beside a stable steady state (two attractors: the
 // start decides), or no sticking although every steady state is unstable. Otherwise leaves the summary as it is.
-// The linearization costs a fraction of a second; sweeps and fits do not ask for it.
+// The linearization costs a fraction of a second (larger systems than 64 states are left out); sweeps and fits do not
+// ask for it.
 void AddLinearVerdict(const Case& c, nlohmann::json& summary);
 
 }  // namespace drillwave::cases

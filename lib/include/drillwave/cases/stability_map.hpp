@@ -40,7 +40,7 @@ Regime ClassifyRun(const nlohmann::json& summary);
 
 struct StabilityMapCell {
   double x = 0, y = 0;
-  bool analysed = true;   // false: the kind has no linearization (a simulate-only map, e.g. axial_torsional)
+  bool analysed = true;   // false: the kind has no linearization (a simulate-only map, e.g. jeffcott)
   int steady_states = 0;  // 0: nothing turns steadily (the verdict columns are NaN)
   // Of the steady state with the best verdict (stable before marginal before unstable; then the smallest rightmost
   // real part): a stable one means a stable steady motion exists at this point.

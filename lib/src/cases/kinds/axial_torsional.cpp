@@ -37,9 +37,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <boost/math/tools/toms748_solve.hpp>
 
+#include "drillwave/analysis/axial_torsional_linearization.hpp"
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/error.hpp"
@@ -734,6 +736,8 @@ void ReadTopMotorAndGear(const JsonReader& top, Model& md) {
 class AxialTorsionalModel : public PreparedModel {
  public:
   explicit AxialTorsionalModel(Model md) : md_(std::move(md)) {}
+  // Steady drilling at the inputs' final values and its linearization (analysis/axial_torsional_linearization.hpp).
+  std::vector<LinearizedOperatingPoint> Linearize() const override;
 
   RunResult Run(const RunSettings& settings) const override {
     Process process(md_);
@@ -972,6 +976,61 @@ HoistBalance Balance(const Model& md, const StringSpec& string) {
   for (double l : md.axial.load) b.buoyant_weight += l;
   for (const Section& section : string.sections) b.drag_per_speed += section.c_a * section.length;
   return b;
+}
+
+// Components without linear equations yet are refused by their field.
+void RequireLinearizable(const Model& md) {
+  const char* field = md.torsion.kelvin_voigt() ? "/model/string/kelvin_voigt_s"
+                      : md.axial.kelvin_voigt() ? "/model/string/axial_kelvin_voigt_s"
+                      : md.motor.on             ? "/model/top/motor"
+                      : md.induction_on         ? "/model/top/induction_motor"
+                      : md.gear.compliant()     ? "/model/top/gear/stiffness_Nm_per_rad"
+                      : md.unbalance.on         ? "/model/bit/unbalance"
+                                                : nullptr;
+  if (field) throw InputError(field, "the coupled model's stability analysis has no linearization of this component yet");
+}
+
+analysis::WaveChannel LinearChannel(const Channel& ch, double top_inertia, double bit_inertia) {
+  return {ch.z, ch.tau, ch.damping, top_inertia, bit_inertia};
+}
+
+std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
+  RequireLinearizable(md_);
+  // Steady drilling at the final set-points: the hook force leaves W0 on the bit by the axial balance.
+  const double omega = md_.top_speed.knots().back().second;
+  HoistBalance balance;
+  for (double l : md_.axial.load) balance.buoyant_weight += l;
+  for (double c : md_.axial.damping) balance.drag_per_speed += c;  // sum of c_a times piece length
+  Model at = md_;
+  if (md_.axial_coupling) at.weight_on_bit = balance.WeightOnBit(md_, omega, md_.hook_force.knots().back().second);
+  if (!(omega > 0) || !(at.weight_on_bit > md_.ContactForce())) return {};  // no steady drilling
+  const Steady s = SteadyDrilling(at, omega);
+  analysis::AxialTorsionalString string{LinearChannel(md_.torsion, md_.TopInertia(), md_.bit_inertia),
+                                        LinearChannel(md_.axial, md_.hoist_mass, md_.bit_mass),
+                                        md_.kp, md_.ki, md_.CutWeightPerDepth(), md_.CutTorquePerDepth(),
+                                        md_.blades, md_.axial_coupling};
+  // Stribeck: d mu / dw = -(mu_s - mu) / w_s e^{-w / w_s} while turning forward.
+  const double mu_slope = md_.stribeck_speed > 0 ? -(md_.static_mu - md_.mu) / md_.stribeck_speed *
+                                                       std::exp(-omega / md_.stribeck_speed)
+                                                 : 0.0;
+  const double friction_slope = 0.5 * md_.a * md_.gamma * mu_slope * md_.ContactForce();
+  analysis::NetworkLinearization lin;
+  try {
+    lin = analysis::LinearizeAxialTorsional(string, {omega, s.rop, friction_slope});
+  } catch (const std::invalid_argument& e) {  // parameters out of the linearization's range (e.g. mutated to 1e-300)
+    throw InputError("/model", std::string("no linearization for this model: ") + e.what());
+  }
+  return {{{{"bit_speed_rad_s", omega},
+            {"weight_on_bit_N", s.wob},
+            {"hook_force_N", md_.hook_force.knots().back().second},
+            {"depth_of_cut_m", s.depth},
+            {"rop_m_h", 3600 * s.rop},
+            {"bit_torque_Nm", s.tob},
+            {"bit_torque_slope_Nms_per_rad", friction_slope},
+            {"cut_delay_s", 2 * kPi / (md_.blades * omega)},
+            {"axial_coupling", md_.axial_coupling}},
+           std::move(lin.state_names),
+           std::move(lin.system)}};
 }
 
 class AxialTorsionalKind : public ModelKind {

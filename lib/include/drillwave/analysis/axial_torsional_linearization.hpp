@@ -1,0 +1,53 @@
+#pragma once
+// Steady drilling of the coupled axial-torsional model (cases kind "axial_torsional") and the linear delay system of
+// small perturbations about it: the stability of the Richard-Germay-Detournay model with distributed strings
+// (DESIGN.md §3-4).
+//
+// Each channel is a chain of wave pieces between massless nodes (network_linearization.hpp builds its equations): the
+// torsional one between a top drive under a PI speed controller and the bit's inertia, the axial one between the
+// hoist's mass (under a constant hook force: no linear term) and the bit's mass. The bit-rock law couples them
+// through the depth of cut d = n (U(t) - U(t - t_n)), t_n solving Phi(t) - Phi(t - t_n) = 2 pi / n. About steady
+// drilling (Phi = Omega0 t, U = V0 t, t_n0 = 2 pi / (n Omega0)) the cut delay moves by
+//   delta t_n = -(phi(t) - phi(t - t_n0)) / Omega0     (the bit ahead of its steady angle reaches the last cut sooner)
+// and the depth of cut by
+//   delta d = n (u(t) - u(t - t_n0)) + n V0 delta t_n = n (u - u(t - t_n0)) - (n V0 / Omega0) (phi - phi(t - t_n0)),
+// which the cutting forces W_c = a zeta eps d and T_c = a^2 eps d / 2 feed back into the bit's two equations; the
+// wear-flat contact W_f = a sigma l is constant while the bit advances, its friction torque moves only with a
+// Stribeck slope. The bit angle phi and position u enter only through these differences: they are derivative-only
+// states of the LinearDelaySystem (its characteristic function is divided by s for each), so a shift of the bit's
+// angle or depth, which changes nothing, is no root.
+#include <vector>
+
+#include "drillwave/analysis/network_linearization.hpp"
+
+namespace drillwave::analysis {
+
+// One channel: pieces top to bottom, the ground (viscous) damping lumped at each node, the end inertias.
+struct WaveChannel {
+  std::vector<double> impedance, travel_time_s;  // per piece, > 0
+  std::vector<double> node_damping;              // per node (pieces + 1), >= 0
+  double top_inertia = 0;                        // J_td [kg m^2] or the hoist's mass [kg], > 0
+  double bit_inertia = 0;                        // J_b or M_b, > 0
+};
+
+struct AxialTorsionalString {
+  WaveChannel torsion, axial;
+  double kp = 0, ki = 0;            // the top drive's PI speed controller
+  double cut_weight_per_depth = 0;  // a zeta eps [N/m]
+  double cut_torque_per_depth = 0;  // a^2 eps / 2 [N m/m]
+  int blades = 1;                   // n
+  bool axial_coupling = true;       // false: the depth of cut is held (no axial channel, no cut delay)
+};
+
+struct SteadyDrilling {
+  double speed_rad_s = 0;              // Omega0 of top and bit
+  double rop_m_s = 0;                  // V0 > 0
+  double friction_slope_Nms_per_rad = 0;  // d T_f / d w at Omega0 (0 for Coulomb friction)
+};
+
+// States: the top drive's speed, the bit's speed, the PI's integral, the hoist's speed, the bit's axial speed, then
+// the derivative-only states: bit angle, bit position, the torsional waves, the axial waves (without axial coupling:
+// the torsional network alone). Throws std::invalid_argument for inconsistent sizes or non-positive inertias.
+NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string, const SteadyDrilling& point);
+
+}  // namespace drillwave::analysis

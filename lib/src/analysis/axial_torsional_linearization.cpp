@@ -1,0 +1,134 @@
+#include "drillwave/analysis/axial_torsional_linearization.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+namespace drillwave::analysis {
+namespace {
+
+// The channel as a wave network (massless nodes between the pieces): its linearization is the network's. The top
+// drive's PI is a network drive; the hoist under a constant hook force has no drive term.
+waves::Network ChannelNetwork(const WaveChannel& ch, bool torsion, double kp, double ki, double speed) {
+  const std::size_t pieces = ch.impedance.size();
+  if (pieces == 0 || ch.travel_time_s.size() != pieces || ch.node_damping.size() != pieces + 1)
+    throw std::invalid_argument("a channel needs impedances and travel times per piece and a damping per node");
+  if (!(ch.top_inertia > 0) || !(ch.bit_inertia > 0))
+    throw std::invalid_argument("the coupled model's top and bit need inertias (masses) > 0");
+  waves::Network net;
+  for (std::size_t k = 0; k < pieces; ++k) {
+    waves::Section s;
+    s.travel_time_s = ch.travel_time_s[k];
+    s.impedance = ch.impedance[k];
+    net.sections.push_back(s);
+  }
+  net.nodes.resize(pieces + 1);
+  for (std::size_t j = 0; j <= pieces; ++j) net.nodes[j].ground_damping = ch.node_damping[j];
+  waves::Node& top = net.nodes.front();
+  top.name = torsion ? "top" : "hoist";
+  top.inertia = ch.top_inertia;
+  if (torsion) {
+    top.drive = waves::Drive::kPiSpeedController;
+    top.kp = kp, top.ki = ki;
+    top.setpoint = model::Schedule(speed);
+  }
+  net.nodes.back().name = "bit";
+  net.nodes.back().inertia = ch.bit_inertia;
+  return net;
+}
+
+NetworkLinearization LinearizeChannel(const WaveChannel& ch, bool torsion, double kp, double ki, double speed) {
+  NetworkOperatingPoint point;
+  point.top_setpoint = point.speed_rad_s = speed;  // the network's damping terms are linear: only the speed matters
+  return LinearizeNetwork(ChannelNetwork(ch, torsion, kp, ki, speed), point);
+}
+
+int IndexOf(const std::vector<std::string>& names, const std::string& name) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<int>(i);
+  throw std::logic_error("no state named " + name);
+}
+
+// Axial states in metres: the network names them in radians.
+std::string AxialName(std::string name) {
+  for (const char* unit : {"_rad_s", "_rad"}) {
+    const auto at = name.rfind(unit);
+    if (at != std::string::npos && at + std::string(unit).size() == name.size())
+      return name.substr(0, at) + (std::string(unit) == "_rad_s" ? "_m_s" : "_m");
+  }
+  return name;
+}
+
+}  // namespace
+
+NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string, const SteadyDrilling& point) {
+  const double w0 = point.speed_rad_s, v0 = point.rop_m_s;
+  if (!(w0 > 0)) throw std::invalid_argument("steady drilling needs a bit speed > 0");
+  NetworkLinearization torsion = LinearizeChannel(string.torsion, true, string.kp, string.ki, w0);
+  const double bit_inertia = string.torsion.bit_inertia;
+  const int tb = IndexOf(torsion.state_names, "bit_speed_rad_s");
+  // Friction of the wear flats: only a Stribeck law's slope moves it.
+  torsion.system.a0(tb, tb) -= point.friction_slope_Nms_per_rad / bit_inertia;
+  if (!string.axial_coupling) return torsion;  // the depth of cut is held: the bit torque moves with friction alone
+  if (!(v0 > 0)) throw std::invalid_argument("steady drilling needs a rate of penetration > 0");
+
+  const NetworkLinearization axial = LinearizeChannel(string.axial, false, 0, 0, v0);
+  const LinearDelaySystem& ts = torsion.system;
+  const LinearDelaySystem& as = axial.system;
+  const int t_waves = ts.derivative_only_states, a_waves = as.derivative_only_states;
+  const int t_nodes = ts.dimension() - t_waves, a_nodes = as.dimension() - a_waves;
+  // Node states of both channels, then the derivative-only tail: bit angle, bit position, torsional and axial waves.
+  const int phi = t_nodes + a_nodes, u = phi + 1, n = u + 1 + t_waves + a_waves;
+  auto map_t = [&](int i) { return i < t_nodes ? i : u + 1 + (i - t_nodes); };
+  auto map_a = [&](int i) { return i < a_nodes ? t_nodes + i : u + 1 + t_waves + (i - a_nodes); };
+
+  NetworkLinearization out;
+  out.state_names.resize(n);
+  for (int i = 0; i < ts.dimension(); ++i) out.state_names[map_t(i)] = "torsion_" + torsion.state_names[i];
+  for (int i = 0; i < as.dimension(); ++i) out.state_names[map_a(i)] = "axial_" + AxialName(axial.state_names[i]);
+  out.state_names[phi] = "bit_angle_rad";
+  out.state_names[u] = "bit_position_m";
+
+  LinearDelaySystem& sys = out.system;
+  sys.a0 = Eigen::MatrixXd::Zero(n, n);
+  sys.derivative_only_states = 2 + t_waves + a_waves;
+  auto scatter = [n](const Eigen::MatrixXd& from, auto map) {
+    Eigen::MatrixXd to = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < from.rows(); ++i)
+      for (int j = 0; j < from.cols(); ++j) to(map(i), map(j)) = from(i, j);
+    return to;
+  };
+  sys.a0 = scatter(ts.a0, map_t) + scatter(as.a0, map_a);
+  // One term per distinct travel time (the pieces of a channel share theirs): the characteristic matrix then costs a
+  // few matrix sums instead of one per piece.
+  auto add_neutral = [&](double tau, const Eigen::MatrixXd& b) {
+    for (DelayTerm& d : sys.delays)
+      if (d.tau == tau) {
+        d.neutral += b;
+        return;
+      }
+    sys.delays.push_back({tau, {}, b});
+  };
+  for (const DelayTerm& d : ts.delays) add_neutral(d.tau, scatter(d.neutral, map_t));
+  for (const DelayTerm& d : as.delays) add_neutral(d.tau, scatter(d.neutral, map_a));
+
+  // The cut: delta d = n (u - u(t - t_n0)) - (n V0 / Omega0) (phi - phi(t - t_n0)), t_n0 = 2 pi / (n Omega0).
+  const double pi = 3.14159265358979323846;
+  const double tn0 = 2 * pi / (string.blades * w0);
+  const int wb = map_t(tb), vb = map_a(IndexOf(axial.state_names, "bit_speed_rad_s"));
+  const double mass = string.axial.bit_inertia;
+  DelayTerm cut{tn0, Eigen::MatrixXd::Zero(n, n), {}};
+  sys.a0(phi, wb) = 1;
+  sys.a0(u, vb) = 1;
+  const double per_u = string.blades, per_phi = -string.blades * v0 / w0;  // d(delta d) / du, / dphi
+  for (const auto& [row, force_per_depth, inertia] :
+       {std::tuple{wb, string.cut_torque_per_depth, bit_inertia}, std::tuple{vb, string.cut_weight_per_depth, mass}}) {
+    const double k = force_per_depth / inertia;  // the cutting force opposes the bit's motion
+    sys.a0(row, u) -= k * per_u, cut.retarded(row, u) += k * per_u;
+    sys.a0(row, phi) -= k * per_phi, cut.retarded(row, phi) += k * per_phi;
+  }
+  sys.delays.push_back(std::move(cut));
+  return out;
+}
+
+}  // namespace drillwave::analysis
