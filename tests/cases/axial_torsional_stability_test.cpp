@@ -188,7 +188,9 @@ TEST(AxialTorsionalStability, RightmostRootIsTheGrowthRateOfTheSimulatedCoupledM
     EXPECT_NEAR(axial, r.s.real(), 0.03 * std::abs(r.s.real()) + 3e-3) << p.rpm << " rpm";
     // At 150 rpm the bit speed's component at 42.8 rad/s is small beside the slowly decaying torsional modes, whose
     // leakage through the window bends its slope (measured 0.389 against 0.420): checked in the axial speed only.
-    if (p.rpm == 60) EXPECT_NEAR(torsional, r.s.real(), 0.03 * std::abs(r.s.real()) + 3e-3) << p.rpm << " rpm";
+    if (p.rpm == 60) {
+      EXPECT_NEAR(torsional, r.s.real(), 0.03 * std::abs(r.s.real()) + 3e-3) << p.rpm << " rpm";
+    }
   }
 }
 
