@@ -212,11 +212,14 @@ nlohmann::json LoadJsonFile(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
   std::error_code ignored;  // a folder opens, but then cannot be read
   if (!in || std::filesystem::is_directory(file, ignored)) throw InputError("", "cannot open case file " + file);
-  // Read at most one byte more than the limit, so that a huge file (or an endless pipe) is refused, not read.
-  std::string text(kMaxJsonBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  // Read at most one byte more than the limit, so that a huge file (or an endless pipe) is refused, not read; in
+  // chunks, so that a case of a few kB does not clear a buffer of the limit's size first.
+  std::string text;
+  char chunk[1 << 16];
+  while (text.size() <= kMaxJsonBytes && in.read(chunk, sizeof chunk).gcount() > 0)
+    text.append(chunk, static_cast<std::size_t>(std::min<std::streamsize>(
+                           in.gcount(), static_cast<std::streamsize>(kMaxJsonBytes + 1 - text.size()))));
   if (in.bad()) throw InputError("", "cannot read case file " + file);
-  text.resize(static_cast<std::size_t>(in.gcount()));
   return ParseJsonText(text, file);
 }
 
