@@ -258,19 +258,31 @@ class Process {
     if (md_.unbalance.on) LateralRates(x, dx[kWbit], dx);
   }
 
+  // The waves leaving every node over the piece, and the error of the quartic the history stores for them (ends,
+  // end rates, midpoint) against their exact value at a quarter of the piece (the state there from the piece's own
+  // interpolant): a wave buffer is history too, and its interpolation error is invisible to the stepper. (As the
+  // torsional network engine measures it; the cubic against the midpoint, measured before, is the error of an
+  // interpolant one order lower than the one stored, and asked for steps about half as long.)
   double PrepareCommit(const integration::Piece& p, double abs_tol, double rel_tol) {
     const int k = 4 * m_;
-    out0_.resize(k), out1_.resize(k), outm_.resize(k), d0_.resize(k), d1_.resize(k);
-    Outgoing(p.t0, p.x0, p.f0, Side::kRight, out0_.data(), d0_.data());
+    out0_.resize(k), out1_.resize(k), outm_.resize(k), outq_.resize(k), d0_.resize(k), d1_.resize(k);
+    // Without an event or breakpoint in between, the start of this piece is the end of the last one.
+    if (!(start_is_last_end_ && p.t0 == last_end_)) Outgoing(p.t0, p.x0, p.f0, Side::kRight, out0_.data(), d0_.data());
     Outgoing(p.t1, p.x1, p.f1, Side::kLeft, out1_.data(), d1_.data());
     Outgoing(0.5 * (p.t0 + p.t1), p.x_mid, p.f1, Side::kLeft, outm_.data(), nullptr);
-    // The waves' cubic Hermite interpolant against their exact midpoint: history error the stepper does not see.
-    const double h = p.t1 - p.t0;
+    const double h = p.t1 - p.t0, tq = p.t0 + 0.25 * h;
+    state_quarter_.resize(p.x0.size());
+    integration::InterpolatePiece(p, tq, state_quarter_);
+    Outgoing(tq, state_quarter_, p.f1, Side::kLeft, outq_.data(), nullptr);
+    constexpr double s = 0.25, s2 = s * s, s3 = s2 * s, r = 1 - s;
     double worst = 0;
     for (int i = 0; i < k; ++i) {
-      const double cubic = 0.5 * (out0_[i] + out1_[i]) + 0.125 * h * (d0_[i] - d1_[i]);
+      const double cubic_mid = 0.5 * (out0_[i] + out1_[i]) + 0.125 * h * (d0_[i] - d1_[i]);
+      const double stored = (2 * s3 - 3 * s2 + 1) * out0_[i] + (s3 - 2 * s2 + s) * h * d0_[i] +
+                            (-2 * s3 + 3 * s2) * out1_[i] + (s3 - s2) * h * d1_[i] +
+                            16.0 * (outm_[i] - cubic_mid) * s2 * r * r;
       const double scale = abs_tol + rel_tol * std::max(std::abs(out0_[i]), std::abs(out1_[i]));
-      worst = std::max(worst, std::abs(outm_[i] - cubic) / scale);
+      worst = std::max(worst, std::abs(outq_[i] - stored) / scale);
     }
     return worst;
   }
@@ -281,6 +293,9 @@ class Process {
       waves_[r].Append(p.t0, out0_.data() + base, d0_.data() + base, p.t1, out1_.data() + base, d1_.data() + base,
                        outm_.data() + base);
     }
+    out0_.swap(out1_);
+    d0_.swap(d1_);
+    start_is_last_end_ = true;
     const double b0[2] = {p.x0[kPhi], p.x0[kU]}, b1[2] = {p.x1[kPhi], p.x1[kU]}, bm[2] = {p.x_mid[kPhi], p.x_mid[kU]};
     const double e0[2] = {p.f0[kPhi], p.f0[kU]}, e1[2] = {p.f1[kPhi], p.f1[kU]};
     bit_history_.Append(p.t0, b0, e0, p.t1, b1, e1, bm);
@@ -328,6 +343,7 @@ class Process {
 
   bool OnEvent(int k, double t, State& x) {
     const Side side = Side::kLeft;
+    start_is_last_end_ = false;  // the regime (and with it the waves leaving the bit) may change here
     const Turn turn_before = turn_;
     const Axial axial_before = axial_;
     const bool contact_before = contact_;
@@ -379,7 +395,10 @@ class Process {
         }
     return next;
   }
-  void OnBreakpoint(double t) { passed_ = t; }
+  void OnBreakpoint(double t) {
+    passed_ = t;
+    start_is_last_end_ = false;  // an input may jump here
+  }
 
   // --- Outputs --------------------------------------------------------------------------------------------
   struct Sample {
@@ -716,7 +735,9 @@ class Process {
   double step_start_ = 0, passed_ = 0;
   int stick_onsets_ = 0;
   std::vector<StuckInterval> stuck_;
-  std::vector<double> out0_, out1_, outm_, d0_, d1_;
+  std::vector<double> out0_, out1_, outm_, outq_, d0_, d1_;  // the prepared piece's waves (ends, midpoint, quarter, rates)
+  State state_quarter_;
+  bool start_is_last_end_ = false;  // out0_ and d0_ hold the waves at the end of the last committed piece
   mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // Outgoing's and StringEnds' scratch
 };
 
