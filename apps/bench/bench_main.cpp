@@ -6,6 +6,7 @@
 //                   [time budget for one reference run in s, default 30]
 //   drillwave_bench delay      (only the generic delay solver against RADAR5's figures)
 //   drillwave_bench diagnose [recNN ...]   (the diagnosis loop on synthetic recordings; default rec01 rec07)
+//   drillwave_bench coupled    (the coupled axial–torsional kind per simulated second, over tolerances)
 //
 // Errors are relative to a tight engine run (tol 1e-11). Wall times are the best of several repeats of
 // cases::RunCase (integration and statistics, no output files) or of the reference's integration.
@@ -157,6 +158,7 @@ void BenchDelaySolver() {
 
 int BenchDiagnose(const std::vector<std::string>& names);  // diagnose_bench.cpp
 int BenchStabilityMap();                                    // stability_bench.cpp
+int BenchCoupled();                                         // coupled_bench.cpp
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "diagnose") {
@@ -165,6 +167,7 @@ int main(int argc, char** argv) {
     return BenchDiagnose(names);
   }
   if (argc > 1 && std::string(argv[1]) == "stability") return BenchStabilityMap();
+  if (argc > 1 && std::string(argv[1]) == "coupled") return BenchCoupled();
   if (argc > 1 && std::string(argv[1]) == "delay") {
     BenchDelaySolver();
     return 0;
