@@ -71,18 +71,25 @@ bool ArgumentChange(const CharacteristicDeterminant& det, Complex a, Complex b, 
   return true;
 }
 
-// Newton's method on det Delta with the derivative of ln det Delta by central differences (the banded LU gives the
-// determinant, not Delta^{-1}); the difference step shrinks with Newton's steps so that the root is resolved to about
-// 1e-9 relative.
-bool NewtonOnDeterminant(const CharacteristicDeterminant& det, Complex& s, int iterations) {
+// Newton's method on det Delta(s) / prod_j (s - r_j), the roots r_j already found divided out (deflation: two seeds
+// cannot both end on one root when the roots moved far since the neighbouring point). The derivative of ln det Delta
+// by central differences (the banded LU gives the determinant, not Delta^{-1}); the difference step shrinks with
+// Newton's steps so that the root is resolved to about 1e-9 relative.
+bool NewtonOnDeterminant(const CharacteristicDeterminant& det, Complex& s, int iterations,
+                         const std::vector<Complex>& known) {
   double last_step = std::numeric_limits<double>::infinity();
   for (int it = 0; it < iterations; ++it) {
     const double scale = 1.0 + std::abs(s);
     const double h = std::max(1e-9 * scale, std::min(1e-5 * scale, 1e-3 * last_step));
     const auto plus = det(s + h), minus = det(s - h);
     if (!std::isfinite(plus.log_modulus) || !std::isfinite(minus.log_modulus)) return true;  // a root to rounding
-    const Complex log_derivative =
+    Complex log_derivative =
         Complex(plus.log_modulus - minus.log_modulus, PhaseChange(minus.phase, plus.phase)) / (2 * h);
+    for (const Complex r : known) {
+      if (std::abs(s - r) <= 1e-7 * scale) return false;  // on a known root
+      log_derivative -= 1.0 / (s - r);
+      if (r.imag() != 0) log_derivative -= 1.0 / (s - std::conj(r));
+    }
     if (!std::isfinite(log_derivative.real()) || !std::isfinite(log_derivative.imag()) || log_derivative == 0.0)
       return false;
     const Complex step = 1.0 / log_derivative;
@@ -176,7 +183,12 @@ CharacteristicDeterminant::Value CharacteristicDeterminant::operator()(Complex s
       Complex* row_i = &m[static_cast<std::size_t>(i) * n];
       if (row_i[k] == 0.0) continue;
       const Complex f = row_i[k] / p;
-      for (int j = k + 1; j <= last_col; ++j) row_i[j] -= f * row_k[j];
+      // Written out: std::complex's operator* guards against inf and NaN by a library call per product.
+      const double fr = f.real(), fi = f.imag();
+      for (int j = k + 1; j <= last_col; ++j) {
+        const double ur = row_k[j].real(), ui = row_k[j].imag();
+        row_i[j] = Complex(row_i[j].real() - (fr * ur - fi * ui), row_i[j].imag() - (fr * ui + fi * ur));
+      }
     }
   }
   out.phase /= std::abs(out.phase);
@@ -233,7 +245,7 @@ SeededSpectrum SpectrumFromSeeds(const LinearDelaySystem& sys, const std::vector
   std::vector<Complex> found;
   for (Complex s : seeds) {
     if (s.imag() < 0) s = std::conj(s);
-    if (!NewtonOnDeterminant(det, s, o.newton_iterations)) continue;
+    if (!NewtonOnDeterminant(det, s, o.newton_iterations, found)) continue;
     if (s.imag() < 0) s = std::conj(s);
     if (std::abs(s.imag()) < 1e-9 * (1.0 + std::abs(s))) s = {s.real(), 0.0};
     if (s.real() < o.re_min || s.imag() > o.im_max) continue;
