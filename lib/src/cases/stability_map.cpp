@@ -179,9 +179,9 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
     const std::vector<OperatingPointStability> no_neighbour;
     const auto origin = AnalyzeStabilityFromNeighbour(cases[0], no_neighbour, options, full_spectra);
     auto rightmost_moves = [&](std::size_t k) {
-      int full = 0;
-      const auto next = AnalyzeStabilityFromNeighbour(cases[k], origin, options, full);
-      if (full > 0 || next.empty() || origin.empty() || next[0].spectrum.roots.empty() ||
+      const int full_before = full_spectra;
+      const auto next = AnalyzeStabilityFromNeighbour(cases[k], origin, options, full_spectra);
+      if (full_spectra > full_before || next.empty() || origin.empty() || next[0].spectrum.roots.empty() ||
           origin[0].spectrum.roots.empty())
         return std::numeric_limits<double>::infinity();
       return std::abs(next[0].spectrum.roots.front().s - origin[0].spectrum.roots.front().s);

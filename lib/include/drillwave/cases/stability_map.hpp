@@ -57,7 +57,9 @@ struct StabilityMapCell {
 struct StabilityMapResult {
   std::vector<StabilityMapCell> cells;  // x varies fastest: cells[j * nx + i] is (x[i], y[j])
   double linear_wall_time_s = 0, simulation_wall_time_s = 0;
-  int full_spectra = 0;  // steady states whose spectrum was computed in full (every one with spec.full_spectrum)
+  // Full spectra computed: every steady state's with spec.full_spectrum; otherwise the first point's and those where
+  // the argument principle did not certify the continued roots (the two probes that choose the walking axis included).
+  int full_spectra = 0;
 };
 
 // Every grid point's document is built and parsed before any work (InputError naming the pointers and values), and
