@@ -243,15 +243,23 @@ SeededSpectrum SpectrumFromSeeds(const LinearDelaySystem& sys, const std::vector
   sp.candidates = static_cast<int>(seeds.size());
   const CharacteristicDeterminant det(sys);
   std::vector<Complex> found;
-  for (Complex s : seeds) {
+  // A real seed starts a little above the axis (Newton from a real start on a real function stays real, and two real
+  // roots that met since the neighbouring point are a complex pair now); a complex seed that ends on the axis starts
+  // once more (deflated: the pair may have split into two real roots).
+  auto newton_from = [&](Complex s) {
     if (s.imag() < 0) s = std::conj(s);
-    if (!NewtonOnDeterminant(det, s, o.newton_iterations, found)) continue;
+    if (s.imag() == 0) s += Complex(0.0, 0.05 * (1.0 + std::abs(s)));
+    if (!NewtonOnDeterminant(det, s, o.newton_iterations, found)) return false;
     if (s.imag() < 0) s = std::conj(s);
     if (std::abs(s.imag()) < 1e-9 * (1.0 + std::abs(s))) s = {s.real(), 0.0};
-    if (s.real() < o.re_min || s.imag() > o.im_max) continue;
-    if (std::none_of(found.begin(), found.end(), [&](Complex r) { return std::abs(r - s) <= 1e-7 * (1.0 + std::abs(s)); }))
-      found.push_back(s);
-  }
+    if (s.real() < o.re_min || s.imag() > o.im_max) return false;
+    if (std::any_of(found.begin(), found.end(), [&](Complex r) { return std::abs(r - s) <= 1e-7 * (1.0 + std::abs(s)); }))
+      return false;
+    found.push_back(s);
+    return s.imag() == 0;
+  };
+  for (const Complex seed : seeds)
+    if (newton_from(seed) && seed.imag() != 0) newton_from(seed);
   SortRightmostFirst(found);
   sp.spectral_abscissa = -std::numeric_limits<double>::infinity();
   if (found.empty()) return out;
