@@ -67,8 +67,8 @@ struct SeededSpectrum {
   bool certified = false;
 };
 
-// Newton from each seed (conjugates folded into Im s >= 0), then the box count. Without a root found in the region,
-// not certified.
+// Newton from each seed (conjugates folded into Im s >= 0; real seeds a little above the axis), each run with the roots
+// already found divided out, then the box count. Without a root found in the region, not certified.
 SeededSpectrum SpectrumFromSeeds(const LinearDelaySystem& system, const std::vector<std::complex<double>>& seeds,
                                  const SpectrumOptions& options = {});
 
