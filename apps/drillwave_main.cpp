@@ -99,12 +99,13 @@ int Sweep(const std::string& file, const std::string& out_dir, const std::vector
 }
 
 int StabilityMap2D(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
-                   const std::vector<std::string>& axes, bool simulate, int jobs) {
+                   const std::vector<std::string>& axes, bool simulate, bool full_spectrum, int jobs) {
   const nlohmann::json doc = LoadCaseDocument(file, overrides);
   if (axes.size() != 2)
     throw drillwave::InputError("--map", "expected two axes, POINTER1=first:last:n POINTER2=first:last:n");
   const drillwave::cases::StabilityMapSpec spec{drillwave::cases::ParseMapAxis(axes[0], doc),
-                                                drillwave::cases::ParseMapAxis(axes[1], doc), jobs, simulate};
+                                                drillwave::cases::ParseMapAxis(axes[1], doc), jobs, simulate,
+                                                full_spectrum};
   if (jobs < 1) throw drillwave::InputError("-j", "expected a whole number >= 1, got " + std::to_string(jobs));
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: stability map " << spec.x.pointer << " (" << spec.x.values.size() << ") x "
@@ -112,7 +113,8 @@ int StabilityMap2D(const std::string& file, const std::string& out_dir, const st
             << (simulate ? ", with a simulation per point" : "") << std::endl;
   const auto result = drillwave::cases::StabilityMap2D(doc, spec);
   drillwave::cases::WriteStabilityMap2D(doc, spec, result, out_dir);
-  std::cout << "linear analysis " << result.linear_wall_time_s << " s";
+  std::cout << "linear analysis " << result.linear_wall_time_s << " s (full spectrum at " << result.full_spectra
+            << " steady states)";
   if (simulate) std::cout << ", simulations " << result.simulation_wall_time_s << " s";
   std::cout << "\nwrote " << std::filesystem::absolute(out_dir).string()
             << "/stability_map.csv, stability_map.svg, report.md, case.json" << std::endl;
@@ -439,6 +441,10 @@ int main(int argc, char** argv) {
       ->expected(2);
   stability->add_flag("--simulate", stability_simulate, "with --map: also run the case at every grid point and mark "
                                                          "the regime it reaches (stick-slip, smooth, bit bouncing)");
+  bool stability_full_spectrum = false;
+  stability->add_flag("--full-spectrum", stability_full_spectrum,
+                      "with --map: every point's full spectrum (the reference) instead of roots continued from the "
+                      "neighbouring point and certified by the argument principle");
   stability->add_option("--jobs,-j", jobs, "analyses at once (default: the number of cores)");
   stability->add_option("--out,-o", stability_out, "output folder (written all or nothing)");
   stability->add_option("--set", overrides, "override a parameter by JSON pointer");
@@ -549,7 +555,8 @@ int main(int argc, char** argv) {
     if (stability->parsed()) {
       if (!stability_map_axes.empty()) {
         if (!sweep_pointer.empty()) throw drillwave::InputError("--map", "give either --map or --param, not both");
-        return StabilityMap2D(case_file, stability_out, overrides, stability_map_axes, stability_simulate, jobs);
+        return StabilityMap2D(case_file, stability_out, overrides, stability_map_axes, stability_simulate,
+                              stability_full_spectrum, jobs);
       }
       if (stability_simulate) throw drillwave::InputError("--simulate", "only with --map");
       if (sweep_pointer.empty() != sweep_values.empty())

@@ -1,7 +1,9 @@
 // `drillwave_bench stability`: the cost of two-parameter stability maps (linear analysis only): the saldivar string
 // (one section: scalar neutral form) on a 100 x 100 grid and the collars string (two sections: wave network with the
-// robust essential abscissa) on a coarser one, on 1 and 2 threads.
+// robust essential abscissa) on a coarser one, on 1 and 2 threads; the coupled axial-torsional string (27 states) by
+// the full spectrum and by continued roots.
 #include <cstdio>
+#include <ctime>
 #include <string>
 
 #include "drillwave/cases/stability_map.hpp"
@@ -25,6 +27,44 @@ int BenchStabilityMap() {
       std::fflush(stdout);
     }
   }
-  std::printf("\nGoal: 100 x 100 linear points of the one-section string under 10 s on 2 cores.\n");
+  std::printf("\nGoal: 100 x 100 linear points of the one-section string under 10 s on 2 cores.\n\n");
+
+  // The coupled model (5 sub-sections, 27 states): rpm x WOB, the full spectrum at every point (the reference) on a
+  // small grid, the continued and certified rightmost roots on the same grid and on 100 x 100.
+  std::printf("## coupled axial-torsional map (baseline-coupled-stability, rpm x WOB, 2 threads)\n\n");
+  std::printf("| method | grid | wall [s] | CPU [s] | ms CPU per point | full spectra | verdicts differing from full |\n"
+              "|---|---|---|---|---|---|---|\n");
+  const nlohmann::json coupled =
+      drillwave::io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-coupled-stability.json");
+  double cpu_s = 0;  // of the last map (std::clock: the process's CPU time over both threads)
+  auto coupled_map = [&](int n, bool full) {
+    const std::string count = std::to_string(n);
+    const drillwave::cases::StabilityMapSpec spec{ParseMapAxis("/model/top/speed_rad_s=4.18879:16.75516:" + count, coupled),
+                                                  ParseMapAxis("/model/hoist/weight_on_bit_N=50000:160000:" + count,
+                                                               coupled),
+                                                  2, false, full};
+    const std::clock_t start = std::clock();
+    auto result = drillwave::cases::StabilityMap2D(coupled, spec);
+    cpu_s = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+    return result;
+  };
+  const int small = 6;
+  const auto reference = coupled_map(small, true);
+  const double full_ms = 1e3 * cpu_s / (small * small);
+  std::printf("| full spectrum | %d x %d | %.2f | %.2f | %.2f | %d | - |\n", small, small, reference.linear_wall_time_s,
+              cpu_s, full_ms, reference.full_spectra);
+  const auto continued = coupled_map(small, false);
+  int differing = 0;
+  for (std::size_t k = 0; k < reference.cells.size(); ++k)
+    differing += reference.cells[k].verdict != continued.cells[k].verdict;
+  std::printf("| continued | %d x %d | %.2f | %.2f | %.2f | %d | %d |\n", small, small, continued.linear_wall_time_s,
+              cpu_s, 1e3 * cpu_s / (small * small), continued.full_spectra, differing);
+  std::fflush(stdout);
+  const auto large = coupled_map(100, false);
+  const double large_ms = 1e3 * cpu_s / 1e4;
+  std::printf("| continued | 100 x 100 | %.2f | %.2f | %.3f | %d | (not computed) |\n", large.linear_wall_time_s, cpu_s,
+              large_ms, large.full_spectra);
+  std::printf("\nFull spectrum over continued, CPU per point: %.0f x. Goal: the coupled 100 x 100 map under 10 s on 2 "
+              "cores.\n", full_ms / large_ms);
   return 0;
 }

@@ -121,6 +121,46 @@ TEST(StabilityMap2D, AxialTorsionalMapsTheLinearVerdictAndTheSimulatedRegime) {
   }
 }
 
+// The fast path (roots continued from the neighbouring point, certified by the argument principle) against the full
+// spectrum at every point of an rpm x WOB map of the coupled model: the same verdicts, rightmost real parts and
+// frequencies. The grid is coarse (25 rpm and 22 kN apart), so that the roots move far between neighbours. The
+// baseline is unstable everywhere (RGD's regenerative mode); with 40 times its axial damping some points are marginal
+// (the rightmost root is one of the root chains that hug the imaginary axis).
+TEST(StabilityMap2D, ContinuedRootsAgreeWithTheFullSpectrumOnTheCoupledModel) {
+  for (const double axial_damping : {50.0, 2000.0}) {
+    nlohmann::json doc = LoadCase("baseline-coupled-stability");
+    doc["model"]["string"]["axial_damping_Ns_per_m2"] = axial_damping;
+    StabilityMapSpec spec{ParseMapAxis("/model/top/speed_rad_s=4.18879:16.75516:6", doc),
+                          ParseMapAxis("/model/hoist/weight_on_bit_N=50000:160000:6", doc), 2, false, true};
+    const StabilityMapResult full = StabilityMap2D(doc, spec);
+    spec.full_spectrum = false;
+    const StabilityMapResult continued = StabilityMap2D(doc, spec);
+    ASSERT_EQ(full.cells.size(), 36u);
+    ASSERT_EQ(continued.cells.size(), 36u);
+    EXPECT_EQ(full.full_spectra, 36);
+    EXPECT_LT(continued.full_spectra, 18);  // the point of the fast path: most points need no full spectrum
+    int verdicts[3] = {0, 0, 0};
+    for (std::size_t k = 0; k < full.cells.size(); ++k) {
+      const StabilityMapCell &a = full.cells[k], &b = continued.cells[k];
+      ASSERT_EQ(a.steady_states, 1) << "at " << a.x << " rad/s, " << a.y << " N";
+      ++verdicts[static_cast<int>(a.verdict)];
+      EXPECT_EQ(b.steady_states, a.steady_states);
+      EXPECT_EQ(b.verdict, a.verdict) << "at " << a.x << " rad/s, " << a.y << " N";
+      EXPECT_NEAR(b.spectral_abscissa, a.spectral_abscissa, 1e-6 * std::abs(a.spectral_abscissa))
+          << "at " << a.x << " rad/s, " << a.y << " N";
+      EXPECT_NEAR(b.frequency_rad_s, a.frequency_rad_s, 1e-6 * (1 + std::abs(a.frequency_rad_s)))
+          << "at " << a.x << " rad/s, " << a.y << " N";
+      EXPECT_EQ(b.essential_abscissa, a.essential_abscissa);
+    }
+    std::printf("[ measured ] 6 x 6 coupled map, axial damping %g N s/m^2: %d stable, %d marginal, %d unstable; full "
+                "%.2f s, continued %.2f s (%d full spectra)\n", axial_damping, verdicts[0], verdicts[1], verdicts[2],
+                full.linear_wall_time_s, continued.linear_wall_time_s, continued.full_spectra);
+    if (axial_damping > 50) {
+      EXPECT_GT(verdicts[1], 0);  // the map covers marginal points too
+    }
+  }
+}
+
 // A kind without linearization maps the simulated regimes alone (with simulate), and refuses a linear map.
 TEST(StabilityMap2D, KindWithoutLinearizationMapsTheSimulatedRegimeOnly) {
   nlohmann::json doc = LoadCase("jeffcott-unbalance");

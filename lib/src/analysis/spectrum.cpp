@@ -280,8 +280,10 @@ double Residual(const LinearDelaySystem& sys, Complex s) {
   return sv(0) > 0 ? sv(sv.size() - 1) / sv(0) : 0.0;
 }
 
+}  // namespace
+
 // Newton's method on det Delta(s): d/ds ln det Delta = tr(Delta^{-1} Delta').
-bool Refine(const LinearDelaySystem& sys, Complex& s, const SpectrumOptions& o) {
+bool RefineRoot(const LinearDelaySystem& sys, Complex& s, const SpectrumOptions& o) {
   for (int it = 0; it < o.newton_iterations; ++it) {
     const Eigen::MatrixXcd delta = sys.Characteristic(s);
     const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(delta);
@@ -297,6 +299,7 @@ bool Refine(const LinearDelaySystem& sys, Complex& s, const SpectrumOptions& o) 
   return false;
 }
 
+namespace {
 
 // The difference operator's core split into blocks of states no B_k couples (connected components of the graph with
 // an edge wherever some B_k(i, j) != 0); each block keeps the terms that act on it.
@@ -406,13 +409,14 @@ void LinearDelaySystem::Validate() const {
     throw std::invalid_argument("a derivative-only state has a non-zero column in A_0 + sum_k A_k");
 }
 
-namespace {
 // (1 - e^{-s tau}) / s and its derivative in s, by their series near s = 0 (where both forms lose digits).
 Complex DelayedDifference(Complex s, double tau) {
   const Complex z = s * tau;
   if (std::abs(z) < 1e-3) return tau * (1.0 - z / 2.0 + z * z / 6.0 - z * z * z / 24.0);
   return (1.0 - std::exp(-z)) / s;
 }
+
+namespace {
 Complex DelayedDifferenceDerivative(Complex s, double tau) {
   const Complex z = s * tau;
   if (std::abs(z) < 1e-3) return tau * tau * (-0.5 + z / 3.0 - z * z / 8.0 + z * z * z / 30.0);
@@ -493,16 +497,7 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
       return wanted < o.collocation_nodes ? static_cast<int>(std::ceil(wanted)) : o.collocation_nodes;
     });
   }
-  if (sys.IsNeutral()) {
-    // Channels the difference operator does not couple (the torsional and axial waves of the coupled model) are
-    // separate blocks: its roots are the blocks' roots, each block's abscissa exact when its delays are commensurate.
-    out.essential_abscissa = -std::numeric_limits<double>::infinity();
-    for (const std::vector<NeutralTerm>& block : DecoupledBlocks(DifferenceOperator(sys))) {
-      const double abscissa = BlockEssentialAbscissa(block, o, starts);  // NaN (not computed) prevails
-      if (std::isnan(abscissa) || abscissa > out.essential_abscissa) out.essential_abscissa = abscissa;
-      if (std::isnan(abscissa)) break;
-    }
-  }
+  out.essential_abscissa = EssentialAbscissa(sys, o, starts);
   out.candidates = static_cast<int>(starts.size());
 
   // Refine, keep those in the region (upper half plane), merge duplicates.
@@ -510,7 +505,7 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
   for (Complex s : starts) {
     if (s.imag() < 0) s = std::conj(s);
     if (s.real() < o.re_min - 10 || s.imag() > 1.5 * o.im_max) continue;
-    if (!Refine(sys, s, o)) continue;
+    if (!RefineRoot(sys, s, o)) continue;
     if (s.imag() < 0) s = std::conj(s);
     if (std::abs(s.imag()) < 1e-9 * (1.0 + std::abs(s))) s = {s.real(), 0.0};
     if (s.real() < o.re_min || s.imag() > o.im_max) continue;
@@ -520,17 +515,38 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
     });
     if (!duplicate) found.push_back(s);
   }
-  std::sort(found.begin(), found.end(), [](Complex a, Complex b) {
-    return a.real() != b.real() ? a.real() > b.real() : a.imag() < b.imag();
-  });
+  SortRightmostFirst(found);
   for (Complex s : found) out.roots.push_back({s, Residual(sys, s)});
   out.spectral_abscissa = found.empty() ? -std::numeric_limits<double>::infinity() : found.front().real();
+  SetVerdict(out);
+  return out;
+}
+
+void SortRightmostFirst(std::vector<Complex>& roots) {
+  std::sort(roots.begin(), roots.end(), [](Complex a, Complex b) {
+    return a.real() != b.real() ? a.real() > b.real() : a.imag() < b.imag();
+  });
+}
+
+void SetVerdict(Spectrum& out) {
   out.stable = out.spectral_abscissa < 0 && out.essential_abscissa < -kEssentialOnAxis;  // NaN: not stable
   const bool on_axis = std::abs(out.essential_abscissa) <= kEssentialOnAxis;
   out.verdict = out.stable ? Spectrum::Verdict::kStable
                 : on_axis && out.spectral_abscissa <= kEssentialOnAxis ? Spectrum::Verdict::kMarginal
                                                                        : Spectrum::Verdict::kUnstable;
-  return out;
+}
+
+double EssentialAbscissa(const LinearDelaySystem& sys, const SpectrumOptions& o, std::vector<Complex>& chain_starts) {
+  double essential = -std::numeric_limits<double>::infinity();
+  if (!sys.IsNeutral()) return essential;
+  // Channels the difference operator does not couple (the torsional and axial waves of the coupled model) are
+  // separate blocks: its roots are the blocks' roots, each block's abscissa exact when its delays are commensurate.
+  for (const std::vector<NeutralTerm>& block : DecoupledBlocks(DifferenceOperator(sys))) {
+    const double abscissa = BlockEssentialAbscissa(block, o, chain_starts);  // NaN (not computed) prevails
+    if (std::isnan(abscissa) || abscissa > essential) essential = abscissa;
+    if (std::isnan(abscissa)) break;
+  }
+  return essential;
 }
 
 }  // namespace drillwave::analysis

@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "drillwave/analysis/rightmost_root.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
@@ -28,11 +29,33 @@ nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 }  // namespace
 
 std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analysis::SpectrumOptions& options) {
+  int full_spectra = 0;
+  return AnalyzeStabilityFromNeighbour(c, {}, options, full_spectra);
+}
+
+std::vector<OperatingPointStability> AnalyzeStabilityFromNeighbour(const Case& c,
+                                                                   const std::vector<OperatingPointStability>& neighbour,
+                                                                   const analysis::SpectrumOptions& options,
+                                                                   int& full_spectra) {
+  constexpr std::size_t kSeedRoots = 24;  // the neighbour's rightmost roots Newton starts from
   std::vector<OperatingPointStability> out;
   for (LinearizedOperatingPoint& p : c.model->Linearize()) {
+    const std::size_t b = out.size();
     analysis::Spectrum sp;
     try {
-      sp = analysis::ComputeSpectrum(p.system, options);
+      bool certified = false;
+      if (b < neighbour.size() && neighbour[b].point.system.dimension() == p.system.dimension()) {
+        std::vector<std::complex<double>> seeds;
+        for (const auto& r : neighbour[b].spectrum.roots)
+          if (seeds.size() < kSeedRoots) seeds.push_back(r.s);
+        analysis::SeededSpectrum seeded = analysis::SpectrumFromSeeds(p.system, seeds, options);
+        certified = seeded.certified;
+        if (certified) sp = std::move(seeded.spectrum);
+      }
+      if (!certified) {
+        sp = analysis::ComputeSpectrum(p.system, options);
+        ++full_spectra;
+      }
     } catch (const std::invalid_argument& e) {  // parameters so extreme that the linearization is out of range
       throw InputError("/model", std::string("the linearization cannot be analysed: ") + e.what());
     }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/stability.hpp"
@@ -150,16 +151,71 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
 
   StabilityMapResult result;
   auto start = std::chrono::steady_clock::now();
-  result.cells = ParallelMap(cases.size(), spec.jobs, [&](std::size_t k) {
+  auto blank_cell = [&](std::size_t k) {
     StabilityMapCell cell;
     cell.x = spec.x.values[k % nx];
     cell.y = spec.y.values[k / nx];
     cell.stick_fraction = std::nan("");
     cell.analysed = linearizable;
-    if (linearizable) TakeBestSteadyState(AnalyzeStability(cases[k], options), cell);
-    else cell.spectral_abscissa = cell.frequency_rad_s = cell.essential_abscissa = std::nan("");
+    if (!linearizable) cell.spectral_abscissa = cell.frequency_rad_s = cell.essential_abscissa = std::nan("");
     return cell;
-  });
+  };
+  if (!linearizable || spec.full_spectrum) {
+    result.cells = ParallelMap(cases.size(), spec.jobs, [&](std::size_t k) {
+      StabilityMapCell cell = blank_cell(k);
+      if (linearizable) {
+        const auto points = AnalyzeStability(cases[k], options);
+        TakeBestSteadyState(points, cell);
+      }
+      return cell;
+    });
+    result.full_spectra = linearizable ? static_cast<int>(nx * ny) : 0;
+  } else {
+    // Lines of points walked one by one in parallel, each point starting from its neighbour's roots (a point without
+    // steady state passes its neighbour's on); the lines' first points along a spine across them. The lines run along
+    // the axis on which the rightmost root moves less from the first point (where the roots move far between
+    // neighbours, Newton may miss one and the point needs the full spectrum).
+    int full_spectra = 0;
+    const std::vector<OperatingPointStability> no_neighbour;
+    const auto origin = AnalyzeStabilityFromNeighbour(cases[0], no_neighbour, options, full_spectra);
+    auto rightmost_moves = [&](std::size_t k) {
+      const int full_before = full_spectra;
+      const auto next = AnalyzeStabilityFromNeighbour(cases[k], origin, options, full_spectra);
+      if (full_spectra > full_before || next.empty() || origin.empty() || next[0].spectrum.roots.empty() ||
+          origin[0].spectrum.roots.empty())
+        return std::numeric_limits<double>::infinity();
+      return std::abs(next[0].spectrum.roots.front().s - origin[0].spectrum.roots.front().s);
+    };
+    const bool lines_along_x = nx > 1 && (ny == 1 || rightmost_moves(1) <= rightmost_moves(nx));
+    const std::size_t lines = lines_along_x ? ny : nx, length = lines_along_x ? nx : ny;
+    auto cell_index = [&](std::size_t line, std::size_t p) { return lines_along_x ? line * nx + p : p * nx + line; };
+    std::vector<std::vector<OperatingPointStability>> spine(lines), line_seeds(lines);
+    for (std::size_t l = 0; l < lines; ++l) {
+      spine[l] = l == 0 ? origin
+                        : AnalyzeStabilityFromNeighbour(cases[cell_index(l, 0)], line_seeds[l - 1], options,
+                                                        full_spectra);
+      line_seeds[l] = !spine[l].empty() || l == 0 ? spine[l] : line_seeds[l - 1];
+    }
+    const auto walked = ParallelMap(lines, spec.jobs, [&](std::size_t l) {
+      std::pair<std::vector<StabilityMapCell>, int> line{{}, 0};
+      std::vector<OperatingPointStability> previous = line_seeds[l];
+      for (std::size_t p = 0; p < length; ++p) {
+        const std::size_t k = cell_index(l, p);
+        std::vector<OperatingPointStability> points =
+            p == 0 ? spine[l] : AnalyzeStabilityFromNeighbour(cases[k], previous, options, line.second);
+        line.first.push_back(blank_cell(k));
+        TakeBestSteadyState(points, line.first.back());
+        if (!points.empty()) previous = std::move(points);
+      }
+      return line;
+    });
+    result.full_spectra = full_spectra;
+    result.cells.resize(nx * ny);
+    for (std::size_t l = 0; l < lines; ++l) {
+      for (std::size_t p = 0; p < length; ++p) result.cells[cell_index(l, p)] = walked[l].first[p];
+      result.full_spectra += walked[l].second;
+    }
+  }
   result.linear_wall_time_s = Seconds(start);
   if (!spec.simulate) return result;
   start = std::chrono::steady_clock::now();
@@ -251,7 +307,10 @@ void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec&
          << ").\n\n| verdict | points |\n|---|---|\n| stable | " << counts[0] << " |\n| marginal | " << counts[1]
          << " |\n| unstable | " << counts[2] << " |\n| no steady rotation | " << counts[3] << " |\n\n"
          << "Linear analysis: " << Significant(result.linear_wall_time_s, 3) << " s wall time on " << spec.jobs
-         << " thread(s).";
+         << " thread(s); " << result.full_spectra << " steady states by the full spectrum"
+         << (spec.full_spectrum ? "" : ", the others' rightmost roots continued from the neighbouring point and "
+                                       "certified by the argument principle")
+         << ".";
   if (spec.simulate)
     report << " Simulations: " << Significant(result.simulation_wall_time_s, 3) << " s. At " << disagree
            << " points the run from the case's start disagrees with the linear verdict (stick-slip beside a stable or "

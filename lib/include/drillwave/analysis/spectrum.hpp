@@ -85,4 +85,18 @@ const char* VerdictName(Spectrum::Verdict v);  // "stable", "marginal", "unstabl
 
 Spectrum ComputeSpectrum(const LinearDelaySystem& system, const SpectrumOptions& options = {});
 
+// The pieces ComputeSpectrum is made of, for methods that find the roots otherwise (rightmost_root.hpp).
+// Newton's method on det Delta from s (false: no convergence within options.newton_iterations).
+bool RefineRoot(const LinearDelaySystem& system, std::complex<double>& s, const SpectrumOptions& options);
+// Spectrum::essential_abscissa; appends the starting points of the difference operator's root chains (commensurate
+// delays) up to options.im_max to chain_starts.
+double EssentialAbscissa(const LinearDelaySystem& system, const SpectrumOptions& options,
+                         std::vector<std::complex<double>>& chain_starts);
+// By real part, descending (equal real parts: by imaginary part, ascending), the order of Spectrum::roots.
+void SortRightmostFirst(std::vector<std::complex<double>>& roots);
+// stable and verdict from spectral_abscissa and essential_abscissa.
+void SetVerdict(Spectrum& spectrum);
+// (1 - e^{-s tau}) / s, entire (by its series near s = 0): a derivative-only column's retarded coefficient in Delta.
+std::complex<double> DelayedDifference(std::complex<double> s, double tau);
+
 }  // namespace drillwave::analysis

@@ -19,6 +19,15 @@ struct OperatingPointStability {
 
 // Every steady state of the case with its spectrum. Throws InputError if the kind has no linearization.
 std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analysis::SpectrumOptions& options = {});
+// As AnalyzeStability, with each steady state's roots found again from the same steady state's rightmost roots at a
+// neighbouring parameter value (analysis/rightmost_root.hpp): where the argument principle certifies the rightmost
+// root, the spectrum holds the roots found so (the verdict, the spectral and essential abscissae are ComputeSpectrum's;
+// roots beyond the rightmost few are not sought); elsewhere, and without a neighbour, the full spectrum, counted in
+// full_spectra.
+std::vector<OperatingPointStability> AnalyzeStabilityFromNeighbour(const Case& c,
+                                                                   const std::vector<OperatingPointStability>& neighbour,
+                                                                   const analysis::SpectrumOptions& options,
+                                                                   int& full_spectra);
 
 // {"operating_points": [{"steady_state", "stable", "spectral_abscissa", "essential_abscissa", "roots": [[re, im,
 // residual], ...] (the rightmost max_roots)}]}

@@ -29,6 +29,10 @@ struct StabilityMapSpec {
   MapAxis x, y;
   int jobs = 1;           // threads, >= 1
   bool simulate = false;  // also run the case at every grid point
+  // Every point by ComputeSpectrum (the reference). Otherwise (the default) the rows are walked point by point, each
+  // point's rightmost roots found again from its neighbour's and certified by the argument principle
+  // (AnalyzeStabilityFromNeighbour): the same verdicts and rightmost roots at a fraction of the cost for large systems.
+  bool full_spectrum = false;
 };
 
 // The simulated regime at a grid point, from the run's summary statistics over the case's statistics window.
@@ -53,6 +57,9 @@ struct StabilityMapCell {
 struct StabilityMapResult {
   std::vector<StabilityMapCell> cells;  // x varies fastest: cells[j * nx + i] is (x[i], y[j])
   double linear_wall_time_s = 0, simulation_wall_time_s = 0;
+  // Full spectra computed: every steady state's with spec.full_spectrum; otherwise the first point's and those where
+  // the argument principle did not certify the continued roots (the two probes that choose the walking axis included).
+  int full_spectra = 0;
 };
 
 // Every grid point's document is built and parsed before any work (InputError naming the pointers and values), and
