@@ -13,6 +13,7 @@ const std::vector<std::unique_ptr<ModelKind>>& AllKinds() {
     k.push_back(MakeTwoDiscKind());
     k.push_back(MakeJeffcottKind());
     k.push_back(MakeAxialTorsionalKind());
+    k.push_back(MakeLumpedAxialTorsionalKind());
     return k;
   }();
   return kinds;

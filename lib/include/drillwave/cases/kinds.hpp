@@ -11,5 +11,6 @@ std::unique_ptr<ModelKind> MakeTwoMassKind();
 std::unique_ptr<ModelKind> MakeTwoDiscKind();
 std::unique_ptr<ModelKind> MakeJeffcottKind();
 std::unique_ptr<ModelKind> MakeAxialTorsionalKind();
+std::unique_ptr<ModelKind> MakeLumpedAxialTorsionalKind();
 
 }  // namespace drillwave::cases

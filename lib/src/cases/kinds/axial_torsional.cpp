@@ -39,9 +39,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include "drillwave/analysis/axial_torsional_linearization.hpp"
+#include "drillwave/bitrock/rgd.hpp"
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/error.hpp"
@@ -103,7 +102,8 @@ struct LateralBha {
   }
 };
 
-struct Model {
+// The bit-rock law's parameters and forces are bitrock::RgdLaw's (a, zeta, eps, sigma_l, mu, gamma, blades, Stribeck).
+struct Model : bitrock::RgdLaw {
   int m = 20;
   double length = 0;
   Channel torsion, axial;
@@ -112,9 +112,6 @@ struct Model {
   model::Schedule top_speed;  // rad/s
   model::Schedule hook_force;  // H(t) [N], up
   double weight_on_bit = 0;    // W0 of steady drilling at t = 0 [N] (the target the hook force is set for, or H(0)'s)
-  double a = 0, zeta = 0, eps = 0, sigma_l = 0, mu = 0, gamma = 0;
-  int blades = 4;
-  double static_mu = 0, stribeck_speed = 0;  // Stribeck friction (stribeck_speed 0: Coulomb, static_mu = mu)
   bool axial_coupling = true;
   DcMotor motor;          // between the PI and the top drive when motor.on (k referred to the top drive: n K)
   bool induction_on = false;
@@ -128,15 +125,6 @@ struct Model {
   }
   LateralBha unbalance;   // Jeffcott rotor at the bit when unbalance.on
 
-  double ContactForce() const { return a * sigma_l; }             // a sigma l
-  // Friction coefficient of the wear flats at bit speed w (Stribeck: decays from static_mu to mu).
-  double MuAt(double w) const {
-    return stribeck_speed > 0 ? mu + (static_mu - mu) * std::exp(-std::abs(w) / stribeck_speed) : mu;
-  }
-  double FrictionArm(double w) const { return 0.5 * a * gamma * MuAt(w); }  // T_f = arm * W_f while turning
-  double StaticFrictionArm() const { return 0.5 * a * gamma * static_mu; }  // the most a stuck bit holds
-  double CutWeightPerDepth() const { return a * zeta * eps; }      // W_c / d
-  double CutTorquePerDepth() const { return 0.5 * a * a * eps; }   // T_c / d
   // The bit's inertia against its angular acceleration when the BHA moves laterally with it: eliminating x'' and
   // y'' from seed eq. 23 leaves J_b + m e^2 - (m e)^2 / (M + m) (J_b itself without an unbalance).
   double EffectiveBitInertia() const {
@@ -146,8 +134,8 @@ struct Model {
   }
 };
 
-enum class Turn { kForward, kStuck, kBackward };
-enum class Axial { kAdvancing, kHeld, kLifting };
+using bitrock::Axial;
+using bitrock::Turn;
 
 // Steady drilling at top speed omega with weight on bit W0: depth of cut per revolution, speeds, torques.
 struct Steady {
@@ -177,10 +165,7 @@ class Process {
   using State = std::vector<double>;
   explicit Process(const Model& md)
       : md_(md), m_(md.m), steady_(SteadyDrilling(md, md.top_speed.Value(0.0))),
-        bit_history_(2, [this](double t, double* v, double* d) {
-          v[0] = steady_.omega * t, v[1] = steady_.rop * t;
-          d[0] = steady_.omega, d[1] = steady_.rop;
-        }) {
+        cut_(md.blades, steady_.omega, steady_.rop) {
     InitializeWaves();
     // Throws std::domain_error when the motor cannot carry the steady torque (below its pull-out torque).
     if (md.induction_on)
@@ -227,8 +212,8 @@ class Process {
     const double omega_ref = md_.top_speed.Evaluate(t, t > step_start_).first;
     const Ends ends = StringEnds(x, t, side);
     const BitForces f = Forces(x, t, side, ends);
-    dx[kPhi] = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
-    dx[kU] = axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
+    dx[kPhi] = rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
+    dx[kU] = rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : x[kVbit];
     // Top drive (with its motor and gear) and hoist. States a component does not use stay at 0.
     if (Dimension() == kTopDim) std::fill(dx.begin() + kDim, dx.end(), 0.0);
     const double vd = DriveSpeed(x), u = TopTorque(x, omega_ref);
@@ -249,8 +234,8 @@ class Process {
     dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first) / md_.hoist_mass;
     dx[kZ] = omega_ref - vd;
     // Bit.
-    dx[kWbit] = turn_ == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
-    dx[kVbit] = axial_ == Axial::kHeld && contact_ ? 0.0 : (f.drive_force - f.weight) / md_.bit_mass;
+    dx[kWbit] = rg_.turn == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
+    dx[kVbit] = rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : (f.drive_force - f.weight) / md_.bit_mass;
     if (!md_.axial_coupling) {  // no axial dynamics: the bit drills the steady depth per revolution
       dx[kU] = steady_.depth / (2 * kPi) * std::max(BitSpeed(x), 0.0);
       dx[kVtop] = dx[kVbit] = 0;
@@ -267,7 +252,7 @@ class Process {
     const int k = 4 * m_;
     out0_.resize(k), out1_.resize(k), outm_.resize(k), outq_.resize(k), d0_.resize(k), d1_.resize(k);
     // Without an event or breakpoint in between, the start of this piece is the end of the last one.
-    if (!(start_is_last_end_ && p.t0 == last_end_)) Outgoing(p.t0, p.x0, p.f0, Side::kRight, out0_.data(), d0_.data());
+    if (!(start_is_last_end_ && p.t0 == last_commit_end_)) Outgoing(p.t0, p.x0, p.f0, Side::kRight, out0_.data(), d0_.data());
     Outgoing(p.t1, p.x1, p.f1, Side::kLeft, out1_.data(), d1_.data());
     Outgoing(0.5 * (p.t0 + p.t1), p.x_mid, p.f1, Side::kLeft, outm_.data(), nullptr);
     const double h = p.t1 - p.t0, tq = p.t0 + 0.25 * h;
@@ -296,93 +281,33 @@ class Process {
     out0_.swap(out1_);
     d0_.swap(d1_);
     start_is_last_end_ = true;
-    const double b0[2] = {p.x0[kPhi], p.x0[kU]}, b1[2] = {p.x1[kPhi], p.x1[kU]}, bm[2] = {p.x_mid[kPhi], p.x_mid[kU]};
-    const double e0[2] = {p.f0[kPhi], p.f0[kU]}, e1[2] = {p.f1[kPhi], p.f1[kU]};
-    bit_history_.Append(p.t0, b0, e0, p.t1, b1, e1, bm);
-    phi_max_before_ = std::max(phi_max_before_, p.x0[kPhi]);
-    phi_max_ = std::max({phi_max_, p.x0[kPhi], p.x1[kPhi]});
-    last_end_ = p.t1;
+    last_commit_end_ = p.t1;
     const double keep = 2 * std::max(md_.torsion.travel_time(), md_.axial.travel_time()) + 1.0;
     for (auto& w : waves_) w.DiscardBefore(p.t1 - keep);
-    DepthOfCut(p.x1, p.t1, Side::kLeft, &tn_committed_);
-    bit_history_.DiscardBefore(p.t1 - std::max(keep, 20.0 * tn_committed_ + 5.0));
+    cut_.Commit(p, kPhi, kU, rg_.contact, rg_.last_contact_change, keep);
   }
 
-  // Witnesses: 0 rotation, 1 rotation (second margin while stuck), 2 axial, 3 axial (second margin), 4 contact.
-  int NumWitnesses() const { return 5; }
+  // Witnesses: bitrock::RgdRegimes's (0, 1 rotation; 2, 3 axial; 4 contact).
+  int NumWitnesses() const { return bitrock::RgdRegimes::kWitnesses; }
   double Witness(int k, double t, const State& x) const {
     const Side side = Side::kLeft;
     if (k >= 2 && !md_.axial_coupling) return 1.0;  // always on bottom and advancing
-    switch (k) {
-      case 0:
-      case 1: {
-        if (turn_ == Turn::kForward) return k == 0 ? x[kWbit] : 1.0;
-        if (turn_ == Turn::kBackward) return k == 0 ? -x[kWbit] : 1.0;
-        const BitForces f = Forces(x, t, side);  // stuck: the margins to the static limits
-        return k == 0 ? f.static_forward - f.drive_torque : f.drive_torque + f.static_backward;
-      }
-      case 2:
-      case 3: {
-        if (!contact_) return 1.0;
-        if (axial_ == Axial::kAdvancing) return k == 2 ? x[kVbit] : 1.0;
-        if (axial_ == Axial::kLifting) return k == 2 ? -x[kVbit] : 1.0;
-        const BitForces f = Forces(x, t, side);  // held: the net force must stay within [0, a sigma l]
-        const double net = f.drive_force - f.cut_weight;
-        return k == 2 ? md_.ContactForce() - net : net;
-      }
-      case 4: {
-        // 1 nm of hysteresis: right after a landing (or lift-off) the depth of cut is zero to rounding, and the cut
-        // delay's root finding may place it on either side; without it the contact would chatter.
-        constexpr double kHysteresis = 1e-9;
-        const double d = DepthOfCut(x, t, side);
-        return contact_ ? d + kHysteresis : kHysteresis - d;
-      }
-    }
-    return 1.0;
+    return rg_.Witness(
+        k, x[kWbit], x[kVbit], md_.ContactForce(), [&] { return Forces(x, t, side); },
+        [&] { return DepthOfCut(x, t, side); });
   }
 
   bool OnEvent(int k, double t, State& x) {
     const Side side = Side::kLeft;
     start_is_last_end_ = false;  // the regime (and with it the waves leaving the bit) may change here
-    const Turn turn_before = turn_;
-    const Axial axial_before = axial_;
-    const bool contact_before = contact_;
-    if (k == 4) {
-      contact_ = !contact_;
-      last_contact_change_ = t;
-      if (!contact_) {  // lift-off: no contact forces; both motions free
-        if (turn_ == Turn::kStuck) turn_ = Forces(x, t, side).drive_torque >= 0 ? Turn::kForward : Turn::kBackward;
-        axial_ = x[kVbit] >= 0 ? Axial::kAdvancing : Axial::kLifting;
-      } else {
-        axial_ = x[kVbit] > 0 ? Axial::kAdvancing : Axial::kLifting;
-      }
-    } else if (k <= 1) {
-      if (turn_ == Turn::kStuck) {
-        turn_ = k == 0 ? Turn::kForward : Turn::kBackward;
-      } else {
-        x[kWbit] = 0;
-        turn_ = Turn::kStuck;
-        const BitForces f = Forces(x, t, side);
-        if (f.drive_torque > f.static_forward) turn_ = Turn::kForward;
-        else if (f.drive_torque < -f.static_backward) turn_ = Turn::kBackward;
-      }
-      if (turn_ == Turn::kStuck) x[kWbit] = 0;
-      if (turn_ == Turn::kStuck) ++stick_onsets_, stuck_.push_back({t, kInf});
+    const Turn turn_before = rg_.turn;
+    const bool changed =
+        rg_.OnEvent(k, t, x[kWbit], x[kVbit], md_.ContactForce(), [&] { return Forces(x, t, side); });
+    if (k <= 1) {
+      if (rg_.turn == Turn::kStuck) ++stick_onsets_, stuck_.push_back({t, kInf});
       if (turn_before == Turn::kStuck && !stuck_.empty()) stuck_.back().end_s = t;
-    } else {
-      if (axial_ == Axial::kHeld) {
-        axial_ = k == 2 ? Axial::kAdvancing : Axial::kLifting;
-      } else {
-        x[kVbit] = 0;
-        axial_ = Axial::kHeld;
-        const BitForces f = Forces(x, t, side);
-        const double net = f.drive_force - f.cut_weight;
-        if (net > md_.ContactForce()) axial_ = Axial::kAdvancing;
-        else if (net < 0) axial_ = Axial::kLifting;
-      }
-      if (axial_ == Axial::kHeld) x[kVbit] = 0;
     }
-    return turn_ != turn_before || axial_ != axial_before || contact_ != contact_before;
+    return changed;
   }
 
   double NextBreakpoint() const {
@@ -411,16 +336,16 @@ class Process {
     const auto omega_ref = md_.top_speed.Value(t);
     Sample s;
     s.top_speed = x[kWtop];
-    s.bit_speed = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
+    s.bit_speed = rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
     s.top_torque = TopTorque(x, omega_ref);
-    s.bit_torque = turn_ == Turn::kStuck ? f.drive_torque : f.torque;
+    s.bit_torque = rg_.turn == Turn::kStuck ? f.drive_torque : f.torque;
     s.wob = f.weight;
     s.hookload = md_.hook_force.Value(t) + md_.hoist_mass * dx[kVtop];
-    s.depth = contact_ ? f.depth : std::min(f.depth, 0.0);
-    s.bit_axial_speed = !md_.axial_coupling ? dx[kU] : axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
+    s.depth = rg_.contact ? f.depth : std::min(f.depth, 0.0);
+    s.bit_axial_speed = !md_.axial_coupling ? dx[kU] : rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : x[kVbit];
     s.tn = f.tn;
-    s.stuck = turn_ == Turn::kStuck ? 1.0 : 0.0;
-    s.off_bottom = contact_ ? 0.0 : 1.0;
+    s.stuck = rg_.turn == Turn::kStuck ? 1.0 : 0.0;
+    s.off_bottom = rg_.contact ? 0.0 : 1.0;
     s.top_current = md_.motor.on ? x[kCurrent] : md_.induction_on ? md_.induction.StatorCurrentRms(Fluxes(x)) : 0.0;
     s.motor_speed = md_.gear.compliant() ? md_.gear.ratio * x[kMotorSpeed] : 0.0;
     s.gear_torque = md_.gear.compliant() ? GearTorque(x) : 0.0;
@@ -432,13 +357,7 @@ class Process {
   double steady_supply_hz() const { return steady_supply_hz_; }
 
  private:
-  struct BitForces {
-    double depth = 0, tn = 0;
-    double drive_torque = 0, drive_force = 0;  // from the string (and gravity) on the bit at its current speeds
-    double torque = 0, weight = 0;             // the rock's reaction while moving (slip values)
-    double cut_weight = 0;
-    double static_forward = 0, static_backward = 0;  // torque the contact can hold at rest
-  };
+  using BitForces = bitrock::RgdForces;
 
   // Consecutive pieces of a channel with equal travel time share one history, read in one look-up at that delay
   // (each history is read at its own delay, so its look-up hint stays valid).
@@ -470,8 +389,8 @@ class Process {
   }
   double EndSpeed(int c, bool bit, const State& x) const {
     if (!bit) return c == 0 ? x[kWtop] : x[kVtop];
-    if (c == 0) return turn_ == Turn::kStuck ? 0.0 : x[kWbit];
-    return axial_ == Axial::kHeld && contact_ ? 0.0 : x[kVbit];
+    if (c == 0) return rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
+    return rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : x[kVbit];
   }
 
   Ends StringEnds(const State& x, double t, Side side) const {
@@ -495,73 +414,25 @@ class Process {
     return e;
   }
 
-  // When the bit angle last stood `back` radians behind its present value, from the stored angle. The root lies near
-  // t - guess (t_n changes little from one evaluation to the next): a bracket around it, widened if needed, and
-  // TOMS 748 inside it take a handful of look-ups where bisection took sixty.
-  double TimeAngleBehind(const State& x, double t, Side side, double back, double guess) const {
-    const double target = x[kPhi] - back;
-    auto behind = [&](double s) { return (s >= t ? x[kPhi] : bit_history_.Value(s, 0, side)) - target; };
-    double lo = t - guess, hi = t;
-    double g_lo = behind(lo), g_hi = back;
-    for (int i = 0; i < 60 && g_lo > 0; ++i) hi = lo, g_hi = g_lo, lo = t - (t - lo) * 2, g_lo = behind(lo);
-    if (g_lo >= 0) return lo;  // on the root, or the history holds no such angle (then the oldest time looked at)
-    const double width = 1e-12 * (1 + std::abs(t));
-    std::uintmax_t iterations = 60;
-    const auto [a, b] = boost::math::tools::toms748_solve(
-        behind, lo, hi, g_lo, g_hi, [width](double l, double h) { return h - l <= width; }, iterations);
-    return 0.5 * (a + b);
-  }
-  // The depth of cut against the rock surface under the blades: the deepest position any of the last kProfilePasses
-  // blades reached at the present angle. After a bounce the previous blade may have passed in the air; the rock is
-  // where a blade last cut, not where the previous one happened to be (with continuous contact the previous blade
-  // is the deepest, and d = n (U(t) - U(t - t_n)) as in RGD).
-  // The cut delay t_n is returned through tn. The search starts from the t_n of the last committed step end, so
-  // that no evaluation depends on the ones before it (trial stages, samples).
+  // The depth of cut against the rock surface under the blades, and the cut delay t_n through tn (bitrock::CutProfile).
   double DepthOfCut(const State& x, double t, Side side, double* tn = nullptr) const {
-    constexpr int kProfilePasses = 4;
-    const double pitch = 2 * kPi / md_.blades;
-    double guess = tn_committed_ > 0 ? tn_committed_ : pitch / std::max(steady_.omega, 1e-3);
-    double surface = -kInf;
-    for (int k = 1; k <= kProfilePasses; ++k) {
-      const double s = TimeAngleBehind(x, t, side, k * pitch, k * guess);
-      if (k == 1) guess = t - s;
-      if (k == 1 && tn) *tn = t - s;
-      surface = std::max(surface, s >= t ? x[kU] : bit_history_.Value(s, 1, side));
-      // In contact ever since the previous blade passed (no lift-off or landing, no backward turn since then): that
-      // blade is the deepest.
-      if (k == 1 && contact_ && last_contact_change_ < s && phi_max_ <= x[kPhi]) break;
-    }
-    return md_.blades * (x[kU] - surface);
+    return cut_.DepthOfCut(x[kPhi], x[kU], t, side, rg_.contact, rg_.last_contact_change, tn);
   }
 
   BitForces Forces(const State& x, double t, Side side) const { return Forces(x, t, side, StringEnds(x, t, side)); }
   BitForces Forces(const State& x, double t, Side side, const Ends& ends) const {
     BitForces f;
-    const double w = turn_ == Turn::kStuck ? 0.0 : x[kWbit];
+    const double w = rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
     f.drive_torque = ends.bit[0];
     f.drive_force = ends.bit[1];
     if (md_.unbalance.on) f.drive_torque += LateralReaction(x);
     f.depth = DepthOfCut(x, t, side, &f.tn);
     if (!md_.axial_coupling) f.depth = steady_.depth;
-    if (!contact_) return f;
-    const double d = std::max(f.depth, 0.0);
+    if (!rg_.contact) return f;
     // Cutting only into new rock: not while turning backwards, nor before the bit is back past its furthest angle.
-    // (Outputs sampled inside the last committed piece compare with the furthest angle before that piece.)
-    const double furthest = t < last_end_ ? phi_max_before_ : phi_max_;
-    const bool cutting = turn_ != Turn::kBackward && x[kPhi] >= furthest;
-    f.cut_weight = cutting ? md_.CutWeightPerDepth() * d : 0.0;
-    const double cut_torque = cutting ? md_.CutTorquePerDepth() * d : 0.0;
-    double contact = 0;  // W_f
-    switch (axial_) {
-      case Axial::kAdvancing: contact = md_.ContactForce(); break;
-      case Axial::kLifting: contact = 0; break;
-      case Axial::kHeld: contact = std::clamp(f.drive_force - f.cut_weight, 0.0, md_.ContactForce()); break;
-    }
-    f.weight = md_.axial_coupling ? f.cut_weight + contact : md_.weight_on_bit;
-    const double friction = md_.FrictionArm(w) * contact, holding = md_.StaticFrictionArm() * contact;
-    f.torque = turn_ == Turn::kBackward ? -friction : cut_torque + friction;
-    f.static_forward = cut_torque + holding;
-    f.static_backward = holding;
+    const bool cutting = rg_.turn != Turn::kBackward && x[kPhi] >= cut_.Furthest(t);
+    md_.OnBottom(rg_.turn, rg_.axial, w, cutting, f);
+    if (!md_.axial_coupling) f.weight = md_.weight_on_bit;
     return f;
   }
 
@@ -583,7 +454,7 @@ class Process {
   static model::InductionMotor::Fluxes Fluxes(const State& x) {
     return {x[kFlux], x[kFlux + 1], x[kFlux + 2], x[kFlux + 3]};
   }
-  double BitSpeed(const State& x) const { return turn_ == Turn::kStuck ? 0.0 : x[kWbit]; }
+  double BitSpeed(const State& x) const { return rg_.turn == Turn::kStuck ? 0.0 : x[kWbit]; }
 
   // Forces on the BHA's lateral motion other than its inertia and the unbalance's angular acceleration term
   // (seed eqs. 21-22 with Phi'' = 0): m e Phi'^2 (cos Phi, sin Phi) - c (x', y') - k (x, y).
@@ -723,21 +594,17 @@ class Process {
   std::vector<Run> runs_;
   std::array<std::vector<int>, 2> run_of_;  // per channel and piece: its run
   std::vector<integration::HermiteHistory> waves_;  // one per run
-  integration::HermiteHistory bit_history_;
+  bitrock::CutProfile cut_;
   double top_torque0_ = 0;
   double steady_supply_hz_ = 0;  // induction motor: the supply frequency of steady drilling
-  Turn turn_ = Turn::kForward;
-  Axial axial_ = Axial::kAdvancing;
-  bool contact_ = true;
-  double phi_max_ = 0, phi_max_before_ = 0, last_end_ = 0;
-  double last_contact_change_ = -kInf;
-  double tn_committed_ = 0;  // t_n at the end of the last committed piece: where the next searches start
+  bitrock::RgdRegimes rg_;
   double step_start_ = 0, passed_ = 0;
   int stick_onsets_ = 0;
   std::vector<StuckInterval> stuck_;
   std::vector<double> out0_, out1_, outm_, outq_, d0_, d1_;  // the prepared piece's waves (ends, midpoint, quarter, rates)
   State state_quarter_;
   bool start_is_last_end_ = false;  // out0_ and d0_ hold the waves at the end of the last committed piece
+  double last_commit_end_ = 0;
   mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // Outgoing's and StringEnds' scratch
 };
 
@@ -1091,22 +958,12 @@ class AxialTorsionalKind : public ModelKind {
             {"string/side_friction/to_m", "> from_m, default: the bit"},
             {"bit/inertia_kgm2", "J_b > 0 (bit, and the BHA unless string/bha distributes it)"},
             {"bit/mass_kg", "M_b > 0"},
-            {"bit/radius_m", "a > 0"},
-            {"bit/blades", "n, integer in [1, 20]"},
             {"bit/unbalance/lateral_mass_kg", "M > 0: BHA lateral (Jeffcott) mass; optional object, absent: no "
                                               "lateral motion"},
             {"bit/unbalance/lateral_stiffness_N_per_m", "k > 0"},
             {"bit/unbalance/lateral_damping_Ns_per_m", "c >= 0"},
             {"bit/unbalance/unbalance_mass_kg", "m >= 0, turning with the bit (adds m e^2 to J_b)"},
             {"bit/unbalance/eccentricity_m", "e >= 0"},
-            {"rock/intrinsic_specific_energy_Pa", "eps > 0"},
-            {"rock/zeta", "> 0, cutting force orientation"},
-            {"rock/sigma_l_N_per_m", "sigma l >= 0, wear-flat contact strength times length"},
-            {"rock/mu", ">= 0, wear-flat friction coefficient"},
-            {"rock/gamma", ">= 0, friction distribution factor"},
-            {"rock/stribeck/static_mu", ">= mu: optional object (absent: Coulomb); mu(w) = mu + (static_mu - mu) "
-                                        "exp(-|w| / velocity_rad_s), a stuck bit holds with static_mu"},
-            {"rock/stribeck/velocity_rad_s", "> 0, Stribeck speed"},
             {"axial_coupling", "boolean, default true; false: no axial dynamics, weight on bit held at W0 and depth "
                                "of cut at its steady value"},
             {"top/type", "top_drive (a PI speed controller, the only top of this kind; optional)"},
@@ -1126,6 +983,7 @@ class AxialTorsionalKind : public ModelKind {
                                       "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
             {"gravity_m_s2", "> 0, default 9.81"}};
     fields.update(TopComponentFields("top"));
+    fields.update(bitrock::RgdFieldSchema());
     fields["top/induction_motor/pole_pairs"] =
         "p, integer in [1, 64]: optional induction motor (absent: the PI output is the torque) on a V/f supply with "
         "slip-frequency control, f = (p n w_m + u_PI / (n G)) / 2 pi at the measured speed w_m, G = p (V/f)^2 / "
@@ -1140,8 +998,7 @@ class AxialTorsionalKind : public ModelKind {
     const JsonReader b = r.Object("bit");
     md.bit_inertia = b.Number("inertia_kgm2", Range::Positive());
     md.bit_mass = b.Number("mass_kg", Range::Positive());
-    md.a = b.Number("radius_m", Range::Positive());
-    md.blades = b.Integer("blades", 1, 20);
+    bitrock::ReadRgdBit(b, md);
     if (b.Has("unbalance")) {
       const JsonReader u = b.Object("unbalance");
       md.unbalance.on = true;
@@ -1153,20 +1010,7 @@ class AxialTorsionalKind : public ModelKind {
       u.Finish();
     }
     b.Finish();
-    const JsonReader k = r.Object("rock");
-    md.eps = k.Number("intrinsic_specific_energy_Pa", Range::Positive());
-    md.zeta = k.Number("zeta", Range::Positive());
-    md.sigma_l = k.Number("sigma_l_N_per_m", Range::NonNegative());
-    md.mu = k.Number("mu", Range::NonNegative());
-    md.gamma = k.Number("gamma", Range::NonNegative());
-    md.static_mu = md.mu;
-    if (k.Has("stribeck")) {
-      const JsonReader st = k.Object("stribeck");
-      md.static_mu = st.Number("static_mu", Range::AtLeast(md.mu));
-      md.stribeck_speed = st.Number("velocity_rad_s", Range::Positive());
-      st.Finish();
-    }
-    k.Finish();
+    bitrock::ReadRgdRock(r.Object("rock"), md);
     r.RefuseRenamed("top_drive", "/model/top");
     const JsonReader td = r.Object("top");
     td.String("type", {"top_drive"}, "top_drive");

@@ -1,0 +1,121 @@
+#include "drillwave/bitrock/rgd.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+#include <boost/math/tools/toms748_solve.hpp>
+
+namespace drillwave::bitrock {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+void RgdLaw::OnBottom(Turn turn, Axial axial, double w, bool cutting, RgdForces& f) const {
+  const double d = std::max(f.depth, 0.0);
+  f.cut_weight = cutting ? CutWeightPerDepth() * d : 0.0;
+  const double cut_torque = cutting ? CutTorquePerDepth() * d : 0.0;
+  double contact = 0;  // W_f
+  switch (axial) {
+    case Axial::kAdvancing: contact = ContactForce(); break;
+    case Axial::kLifting: contact = 0; break;
+    case Axial::kHeld: contact = std::clamp(f.drive_force - f.cut_weight, 0.0, ContactForce()); break;
+  }
+  f.weight = f.cut_weight + contact;
+  const double friction = FrictionArm(w) * contact, holding = StaticFrictionArm() * contact;
+  f.torque = turn == Turn::kBackward ? -friction : cut_torque + friction;
+  f.static_forward = cut_torque + holding;
+  f.static_backward = holding;
+}
+
+void ReadRgdBit(const io::JsonReader& b, RgdLaw& law) {
+  law.a = b.Number("radius_m", io::Range::Positive());
+  law.blades = b.Integer("blades", 1, 20);
+}
+
+void ReadRgdRock(const io::JsonReader& k, RgdLaw& law) {
+  using io::Range;
+  law.eps = k.Number("intrinsic_specific_energy_Pa", Range::Positive());
+  law.zeta = k.Number("zeta", Range::Positive());
+  law.sigma_l = k.Number("sigma_l_N_per_m", Range::NonNegative());
+  law.mu = k.Number("mu", Range::NonNegative());
+  law.gamma = k.Number("gamma", Range::NonNegative());
+  law.static_mu = law.mu;
+  if (k.Has("stribeck")) {
+    const io::JsonReader st = k.Object("stribeck");
+    law.static_mu = st.Number("static_mu", Range::AtLeast(law.mu));
+    law.stribeck_speed = st.Number("velocity_rad_s", Range::Positive());
+    st.Finish();
+  }
+  k.Finish();
+}
+
+nlohmann::json RgdFieldSchema() {
+  return {{"bit/radius_m", "a > 0"},
+          {"bit/blades", "n, integer in [1, 20]"},
+          {"rock/intrinsic_specific_energy_Pa", "eps > 0"},
+          {"rock/zeta", "> 0, cutting force orientation"},
+          {"rock/sigma_l_N_per_m", "sigma l >= 0, wear-flat contact strength times length"},
+          {"rock/mu", ">= 0, wear-flat friction coefficient"},
+          {"rock/gamma", ">= 0, friction distribution factor"},
+          {"rock/stribeck/static_mu", ">= mu: optional object (absent: Coulomb); mu(w) = mu + (static_mu - mu) "
+                                      "exp(-|w| / velocity_rad_s), a stuck bit holds with static_mu"},
+          {"rock/stribeck/velocity_rad_s", "> 0, Stribeck speed"}};
+}
+
+CutProfile::CutProfile(int blades, double omega0, double rop0)
+    : blades_(blades), omega0_(omega0), history_(2, [omega0, rop0](double t, double* v, double* d) {
+        v[0] = omega0 * t, v[1] = rop0 * t;
+        d[0] = omega0, d[1] = rop0;
+      }) {}
+
+// When the bit angle last stood `back` radians behind phi, from the stored angle. The root lies near t - guess (t_n
+// changes little from one evaluation to the next): a bracket around it, widened if needed, and TOMS 748 inside it
+// take a handful of look-ups where bisection took sixty.
+double CutProfile::TimeAngleBehind(double phi, double t, integration::Side side, double back, double guess) const {
+  const double target = phi - back;
+  auto behind = [&](double s) { return (s >= t ? phi : history_.Value(s, 0, side)) - target; };
+  double lo = t - guess, hi = t;
+  double g_lo = behind(lo), g_hi = back;
+  for (int i = 0; i < 60 && g_lo > 0; ++i) hi = lo, g_hi = g_lo, lo = t - (t - lo) * 2, g_lo = behind(lo);
+  if (g_lo >= 0) return lo;  // on the root, or the history holds no such angle (then the oldest time looked at)
+  const double width = 1e-12 * (1 + std::abs(t));
+  std::uintmax_t iterations = 60;
+  const auto [a, b] = boost::math::tools::toms748_solve(
+      behind, lo, hi, g_lo, g_hi, [width](double l, double h) { return h - l <= width; }, iterations);
+  return 0.5 * (a + b);
+}
+
+double CutProfile::DepthOfCut(double phi, double u, double t, integration::Side side, bool contact,
+                              double last_contact_change, double* tn) const {
+  constexpr int kProfilePasses = 4;
+  const double pitch = 2 * kPi / blades_;
+  double guess = tn_committed_ > 0 ? tn_committed_ : pitch / std::max(omega0_, 1e-3);
+  double surface = -kInf;
+  for (int k = 1; k <= kProfilePasses; ++k) {
+    const double s = TimeAngleBehind(phi, t, side, k * pitch, k * guess);
+    if (k == 1) guess = t - s;
+    if (k == 1 && tn) *tn = t - s;
+    surface = std::max(surface, s >= t ? u : history_.Value(s, 1, side));
+    // In contact ever since the previous blade passed (no lift-off or landing, no backward turn since then): that
+    // blade is the deepest.
+    if (k == 1 && contact && last_contact_change < s && phi_max_ <= phi) break;
+  }
+  return blades_ * (u - surface);
+}
+
+void CutProfile::Commit(const integration::Piece& p, int phi_index, int u_index, bool contact,
+                        double last_contact_change, double keep) {
+  const double b0[2] = {p.x0[phi_index], p.x0[u_index]}, b1[2] = {p.x1[phi_index], p.x1[u_index]};
+  const double bm[2] = {p.x_mid[phi_index], p.x_mid[u_index]};
+  const double e0[2] = {p.f0[phi_index], p.f0[u_index]}, e1[2] = {p.f1[phi_index], p.f1[u_index]};
+  history_.Append(p.t0, b0, e0, p.t1, b1, e1, bm);
+  phi_max_before_ = std::max(phi_max_before_, p.x0[phi_index]);
+  phi_max_ = std::max({phi_max_, p.x0[phi_index], p.x1[phi_index]});
+  last_end_ = p.t1;
+  DepthOfCut(p.x1[phi_index], p.x1[u_index], p.t1, integration::Side::kLeft, contact, last_contact_change,
+             &tn_committed_);
+  history_.DiscardBefore(p.t1 - std::max(keep, 20.0 * tn_committed_ + 5.0));
+}
+
+}  // namespace drillwave::bitrock
