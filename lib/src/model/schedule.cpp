@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -72,6 +73,12 @@ nlohmann::json Schedule::ToJson() const {
   nlohmann::json k = nlohmann::json::array();
   for (const auto& [t, v] : knots_) k.push_back({t, v});
   return {{"knots", k}};
+}
+
+double Schedule::NextKnotAfter(double t) const {
+  const auto it = std::upper_bound(knots_.begin(), knots_.end(), t,
+                                   [](double time, const std::pair<double, double>& knot) { return time < knot.first; });
+  return it == knots_.end() ? std::numeric_limits<double>::infinity() : it->first;
 }
 
 }  // namespace drillwave::model

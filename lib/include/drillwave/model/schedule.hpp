@@ -30,6 +30,8 @@ class Schedule {
   std::pair<double, double> Evaluate(double t, bool left_limit) const;
 
   const std::vector<std::pair<double, double>>& knots() const { return knots_; }
+  // The first knot time later than t (+inf if none): the next breakpoint this input puts into a run.
+  double NextKnotAfter(double t) const;
   bool IsConstant() const { return knots_.size() == 1; }
 
  private:

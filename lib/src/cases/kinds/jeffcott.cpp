@@ -59,11 +59,7 @@ class RotorProcess {
   double Witness(int, double, const State&) const { return 1; }
   bool OnEvent(int, double, State&) { return false; }
   double NextBreakpoint() const {
-    double next = std::numeric_limits<double>::infinity();
-    for (const model::Schedule* s : {&r_.drive_speed, &r_.torque})
-      for (const auto& knot : s->knots())
-        if (knot.first > passed_) next = std::min(next, knot.first);
-    return next;
+    return std::min(r_.drive_speed.NextKnotAfter(passed_), r_.torque.NextKnotAfter(passed_));
   }
   void OnBreakpoint(double t) { passed_ = t; }
 

@@ -135,14 +135,7 @@ class Process {
   }
 
   double NextBreakpoint() const {
-    double next = kInf;
-    for (const model::Schedule* input : {&md_.top_speed, &md_.weight})
-      for (const auto& knot : input->knots())
-        if (knot.first > passed_) {
-          next = std::min(next, knot.first);
-          break;
-        }
-    return next;
+    return std::min(md_.top_speed.NextKnotAfter(passed_), md_.weight.NextKnotAfter(passed_));
   }
   void OnBreakpoint(double t) { passed_ = t; }
 

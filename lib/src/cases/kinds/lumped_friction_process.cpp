@@ -107,13 +107,8 @@ class ChainProcess {
   }
 
   double NextBreakpoint() const {
-    double next = kInf;
-    auto scan = [&](const model::Schedule& s) {
-      for (const auto& knot : s.knots())
-        if (knot.first > passed_) next = std::min(next, knot.first);
-    };
-    scan(c_.setpoint);
-    for (const auto& in : c_.inertias) scan(in.friction_scale);
+    double next = c_.setpoint.NextKnotAfter(passed_);
+    for (const auto& in : c_.inertias) next = std::min(next, in.friction_scale.NextKnotAfter(passed_));
     return next;
   }
   void OnBreakpoint(double t) { passed_ = t; }
