@@ -42,6 +42,7 @@
 #include "drillwave/analysis/axial_torsional_linearization.hpp"
 #include "drillwave/bitrock/rgd.hpp"
 #include "drillwave/cases/kinds.hpp"
+#include "drilling_run.hpp"
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/integration/hermite_history.hpp"
@@ -623,17 +624,17 @@ class AxialTorsionalModel : public PreparedModel {
   RunResult Run(const RunSettings& settings) const override {
     Process process(md_);
     std::vector<double> x = process.InitialState();
-    std::vector<double> time, top, bit, top_torque, bit_torque, wob, hook, depth, vbit, tn, stuck, off, angle;
-    std::vector<double> current, lateral, motor_rpm, gear_torque;
+    DrillingSamples d;
+    std::vector<double> hook, current, lateral, motor_rpm, gear_torque;
     std::vector<double> dx(x.size());
     auto sample = [&](double t, const std::vector<double>& s) {
       process.BeginStep(t);  // look-ups at t from the committed history (left limits inside the last piece)
       process.Derivatives(s, dx, t);
       const Process::Sample v = process.Sampled(t, s, dx);
-      time.push_back(t), top.push_back(v.top_speed), bit.push_back(v.bit_speed), top_torque.push_back(v.top_torque);
-      bit_torque.push_back(v.bit_torque), wob.push_back(v.wob), hook.push_back(v.hookload), depth.push_back(v.depth);
-      vbit.push_back(v.bit_axial_speed), tn.push_back(v.tn), stuck.push_back(v.stuck), off.push_back(v.off_bottom);
-      angle.push_back(s[kPhi]);
+      d.time.push_back(t), d.top.push_back(v.top_speed), d.bit.push_back(v.bit_speed);
+      d.top_torque.push_back(v.top_torque), d.bit_torque.push_back(v.bit_torque), d.wob.push_back(v.wob);
+      hook.push_back(v.hookload), d.depth.push_back(v.depth), d.vbit.push_back(v.bit_axial_speed);
+      d.tn.push_back(v.tn), d.stuck.push_back(v.stuck), d.off.push_back(v.off_bottom), d.angle.push_back(s[kPhi]);
       if (md_.motor.on || md_.induction_on) current.push_back(v.top_current);
       if (md_.gear.compliant()) motor_rpm.push_back(v.motor_speed * 30 / kPi), gear_torque.push_back(v.gear_torque);
       if (md_.unbalance.on) lateral.push_back(v.lateral_displacement);
@@ -648,25 +649,16 @@ class AxialTorsionalModel : public PreparedModel {
     integration::Simulator<Process> sim(process, integrator);
     sim.Integrate(0.0, x, settings.duration_s, observer);
 
-    RunResult result;
-    result.summary = ComputeStickSlipStatistics(process.stuck_intervals(), time, bit, angle, settings.window_begin_s,
-                                                settings.window_end_s)
-                         .ToJson();
-    double wob_sum = 0, rop_sum = 0, off_sum = 0, torque_sum = 0, lateral_sum = 0, lateral_max = 0;
+    double lateral_sum = 0, lateral_max = 0;
     int n = 0;
-    for (std::size_t i = 0; i < time.size(); ++i)
-      if (time[i] >= settings.window_begin_s && time[i] <= settings.window_end_s) {
-        wob_sum += wob[i], rop_sum += vbit[i], off_sum += off[i], torque_sum += bit_torque[i], ++n;
-        if (md_.unbalance.on) lateral_sum += lateral[i], lateral_max = std::max(lateral_max, lateral[i]);
-      }
+    if (md_.unbalance.on)
+      for (std::size_t i = 0; i < d.time.size(); ++i)
+        if (d.time[i] >= settings.window_begin_s && d.time[i] <= settings.window_end_s)
+          lateral_sum += lateral[i], lateral_max = std::max(lateral_max, lateral[i]), ++n;
+    RunResult result;
     const Steady& s = process.steady();
-    result.summary["wob_mean_N"] = n ? wob_sum / n : 0.0;
-    result.summary["bit_torque_mean_Nm"] = n ? torque_sum / n : 0.0;
-    result.summary["rop_mean_m_h"] = n ? 3600 * rop_sum / n : 0.0;
-    result.summary["off_bottom_fraction"] = n ? off_sum / n : 0.0;
-    result.summary["steady_depth_of_cut_m"] = s.depth;
-    result.summary["steady_rop_m_h"] = 3600 * s.rop;
-    result.summary["steady_bit_torque_Nm"] = s.tob;
+    SummarizeDrillingRun(d, std::move(hook), process.stuck_intervals(), settings, {s.depth, s.rop, s.tob},
+                         sim.stats(), result);
     result.summary["hook_force_N"] = md_.hook_force.Value(0.0);
     if (md_.unbalance.on) {  // whirl radius over the window, and the closed form at the steady bit speed
       result.summary["whirl_amplitude_mean_m"] = n ? lateral_sum / n : 0.0;
@@ -674,23 +666,6 @@ class AxialTorsionalModel : public PreparedModel {
       result.summary["steady_whirl_amplitude_m"] = md_.unbalance.WhirlAmplitude(s.omega);
       result.summary["lateral_natural_frequency_rad_s"] = md_.unbalance.NaturalFrequency();
     }
-    result.summary["steps"] = sim.stats().steps;
-    result.summary["events"] = sim.stats().events;
-    result.summary["derivative_evaluations"] = sim.stats().derivative_evaluations;
-    result.summary["history_rejections"] = sim.stats().history_rejections;
-    result.channels = {{"top_rpm", ToRpm(top)},
-                       {"bit_rpm", ToRpm(bit)},
-                       {"top_torque_Nm", std::move(top_torque)},
-                       {"bit_torque_Nm", std::move(bit_torque)},
-                       {"bit_angle_rad", std::move(angle)},
-                       {"bit_stuck", std::move(stuck)},
-                       {"wob_N", std::move(wob)},
-                       {"hookload_N", std::move(hook)},
-                       {"depth_of_cut_m", std::move(depth)},
-                       {"bit_axial_speed_m_s", std::move(vbit)},
-                       {"cut_delay_s", std::move(tn)},
-                       {"off_bottom", std::move(off)}};
-    result.plot_panels = {{"top_rpm", "bit_rpm"}, {"top_torque_Nm", "bit_torque_Nm"}, {"wob_N"}, {"depth_of_cut_m"}};
     if (md_.motor.on || md_.induction_on) {  // DC: armature current; induction: stator rms
       result.channels.push_back({"top_current_A", std::move(current)});
       result.plot_panels.push_back({"top_current_A"});
@@ -705,7 +680,6 @@ class AxialTorsionalModel : public PreparedModel {
       result.channels.push_back({"lateral_displacement_m", std::move(lateral)});
       result.plot_panels.push_back({"lateral_displacement_m"});
     }
-    result.time_s = std::move(time);
     return result;
   }
 

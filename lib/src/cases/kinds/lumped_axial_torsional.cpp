@@ -24,6 +24,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/model/schedule.hpp"
+#include "drilling_run.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -191,59 +192,28 @@ class LumpedAxialTorsionalModel : public PreparedModel {
   RunResult Run(const RunSettings& settings) const override {
     Process process(md_);
     std::vector<double> x = process.InitialState();
-    std::vector<double> time, top, bit, top_torque, bit_torque, wob, depth, vbit, tn, stuck, off, angle;
+    DrillingSamples d;
     auto sample = [&](double t, const std::vector<double>& s) {
       process.BeginStep(t);  // look-ups at t from the committed history (left limits inside the last piece)
       const Process::Sample v = process.Sampled(t, s);
-      time.push_back(t), top.push_back(md_.top_speed.Value(t)), bit.push_back(v.bit_speed);
-      top_torque.push_back(v.top_torque), bit_torque.push_back(v.bit_torque), wob.push_back(v.wob);
-      depth.push_back(v.depth), vbit.push_back(v.axial_speed), tn.push_back(v.tn), stuck.push_back(v.stuck);
-      off.push_back(v.off_bottom), angle.push_back(s[kPhi]);
+      d.time.push_back(t), d.top.push_back(md_.top_speed.Value(t)), d.bit.push_back(v.bit_speed);
+      d.top_torque.push_back(v.top_torque), d.bit_torque.push_back(v.bit_torque), d.wob.push_back(v.wob);
+      d.depth.push_back(v.depth), d.vbit.push_back(v.axial_speed), d.tn.push_back(v.tn), d.stuck.push_back(v.stuck);
+      d.off.push_back(v.off_bottom), d.angle.push_back(s[kPhi]);
     };
     sample(0.0, x);
     integration::Simulator<Process> sim(process, settings.integrator);
     sim.Integrate(0.0, x, settings.duration_s, integration::SampleEvery(settings.output_interval_s, sample));
 
     RunResult result;
-    result.summary = ComputeStickSlipStatistics(process.stuck_intervals(), time, bit, angle, settings.window_begin_s,
-                                                settings.window_end_s)
-                         .ToJson();
-    double wob_sum = 0, rop_sum = 0, off_sum = 0, torque_sum = 0;
-    int n = 0;
-    for (std::size_t i = 0; i < time.size(); ++i)
-      if (time[i] >= settings.window_begin_s && time[i] <= settings.window_end_s)
-        wob_sum += wob[i], rop_sum += vbit[i], off_sum += off[i], torque_sum += bit_torque[i], ++n;
     const Steady& s = process.steady();
+    SummarizeDrillingRun(d, {}, process.stuck_intervals(), settings, {s.depth, s.rop, s.tob}, sim.stats(), result);
     const Groups g = NonDimensional(md_, s);
-    result.summary["wob_mean_N"] = n ? wob_sum / n : 0.0;
-    result.summary["bit_torque_mean_Nm"] = n ? torque_sum / n : 0.0;
-    result.summary["rop_mean_m_h"] = n ? 3600 * rop_sum / n : 0.0;
-    result.summary["off_bottom_fraction"] = n ? off_sum / n : 0.0;
-    result.summary["steady_depth_of_cut_m"] = s.depth;
-    result.summary["steady_rop_m_h"] = 3600 * s.rop;
-    result.summary["steady_bit_torque_Nm"] = s.tob;
     result.summary["torsional_frequency_rad_s"] = md_.NaturalFrequency();
     result.summary["psi"] = g.psi;
     result.summary["beta"] = g.beta;
     result.summary["scaled_cut_delay"] = g.tau_n;
     result.summary["damping_ratio"] = g.xi;
-    result.summary["steps"] = sim.stats().steps;
-    result.summary["events"] = sim.stats().events;
-    result.summary["derivative_evaluations"] = sim.stats().derivative_evaluations;
-    result.summary["history_rejections"] = sim.stats().history_rejections;
-    result.channels = {{"top_rpm", ToRpm(top)},
-                       {"bit_rpm", ToRpm(bit)},
-                       {"top_torque_Nm", std::move(top_torque)},
-                       {"bit_torque_Nm", std::move(bit_torque)},
-                       {"bit_angle_rad", std::move(angle)},
-                       {"bit_stuck", std::move(stuck)},
-                       {"wob_N", std::move(wob)},
-                       {"depth_of_cut_m", std::move(depth)},
-                       {"bit_axial_speed_m_s", std::move(vbit)},
-                       {"cut_delay_s", std::move(tn)},
-                       {"off_bottom", std::move(off)}};
-    result.plot_panels = {{"top_rpm", "bit_rpm"}, {"top_torque_Nm", "bit_torque_Nm"}, {"wob_N"}, {"depth_of_cut_m"}};
-    result.time_s = std::move(time);
     return result;
   }
 
