@@ -25,6 +25,18 @@ inline double QuarticDerivative(double s, double h, double x0, double x1, double
 
 }  // namespace
 
+double QuarterPointError(int n, double h, const double* x0, const double* x1, const double* d0, const double* d1,
+                         const double* x_mid, const double* x_quarter, double abs_tol, double rel_tol) {
+  double worst = 0;
+  for (int i = 0; i < n; ++i) {
+    const double cubic_mid = 0.5 * (x0[i] + x1[i]) + 0.125 * h * (d0[i] - d1[i]);
+    const double stored = QuarticValue(0.25, h, x0[i], x1[i], d0[i], d1[i], 16.0 * (x_mid[i] - cubic_mid));
+    const double scale = abs_tol + rel_tol * std::max(std::abs(x0[i]), std::abs(x1[i]));
+    worst = std::max(worst, std::abs(x_quarter[i] - stored) / scale);
+  }
+  return worst;
+}
+
 HermiteHistory::HermiteHistory(int dimension)
     : HermiteHistory(dimension, [dimension](double, double* x, double* d) {
         std::fill(x, x + dimension, 0.0);

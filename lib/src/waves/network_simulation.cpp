@@ -170,17 +170,8 @@ class NetworkProcess {
     outq_.resize(m);
     integration::InterpolatePiece(p, tq, state_quarter_);
     OutgoingWaves(tq, state_quarter_, p.f1, Side::kLeft, outq_.data(), nullptr);
-    constexpr double s = 0.25, s2 = s * s, s3 = s2 * s, r = 1 - s;
-    double worst = 0;
-    for (int k = 0; k < m; ++k) {
-      const double cubic_mid = 0.5 * (out0_[k] + out1_[k]) + 0.125 * h * (d0_[k] - d1_[k]);
-      const double stored = (2 * s3 - 3 * s2 + 1) * out0_[k] + (s3 - 2 * s2 + s) * h * d0_[k] +
-                            (-2 * s3 + 3 * s2) * out1_[k] + (s3 - s2) * h * d1_[k] +
-                            16.0 * (outm_[k] - cubic_mid) * s2 * r * r;
-      const double scale = abs_tol + rel_tol * std::max(std::abs(out0_[k]), std::abs(out1_[k]));
-      worst = std::max(worst, std::abs(outq_[k] - stored) / scale);
-    }
-    return worst;
+    return integration::QuarterPointError(m, h, out0_.data(), out1_.data(), d0_.data(), d1_.data(), outm_.data(),
+                                          outq_.data(), abs_tol, rel_tol);
   }
 
   void Commit(const integration::Piece& p) {

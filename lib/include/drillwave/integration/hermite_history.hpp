@@ -8,6 +8,12 @@
 
 namespace drillwave::integration {
 
+// The error of the quartic HermiteHistory stores for a piece of length h (ends x0 and x1, end derivatives d0 and d1,
+// midpoint x_mid) against the exact values x_quarter at a quarter of the piece, in units of abs_tol + rel_tol
+// max(|x0|, |x1|): the largest over the n components (> 1: the piece is not stored within the tolerance).
+double QuarterPointError(int n, double h, const double* x0, const double* x1, const double* d0, const double* d1,
+                         const double* x_mid, const double* x_quarter, double abs_tol, double rel_tol);
+
 // Which one-sided limit to take when a query time falls on a piece boundary.
 enum class Side { kLeft, kRight };
 

@@ -260,17 +260,8 @@ class Process {
     state_quarter_.resize(p.x0.size());
     integration::InterpolatePiece(p, tq, state_quarter_);
     Outgoing(tq, state_quarter_, p.f1, Side::kLeft, outq_.data(), nullptr);
-    constexpr double s = 0.25, s2 = s * s, s3 = s2 * s, r = 1 - s;
-    double worst = 0;
-    for (int i = 0; i < k; ++i) {
-      const double cubic_mid = 0.5 * (out0_[i] + out1_[i]) + 0.125 * h * (d0_[i] - d1_[i]);
-      const double stored = (2 * s3 - 3 * s2 + 1) * out0_[i] + (s3 - 2 * s2 + s) * h * d0_[i] +
-                            (-2 * s3 + 3 * s2) * out1_[i] + (s3 - s2) * h * d1_[i] +
-                            16.0 * (outm_[i] - cubic_mid) * s2 * r * r;
-      const double scale = abs_tol + rel_tol * std::max(std::abs(out0_[i]), std::abs(out1_[i]));
-      worst = std::max(worst, std::abs(outq_[i] - stored) / scale);
-    }
-    return worst;
+    return integration::QuarterPointError(k, h, out0_.data(), out1_.data(), d0_.data(), d1_.data(), outm_.data(),
+                                          outq_.data(), abs_tol, rel_tol);
   }
 
   void Commit(const integration::Piece& p) {
