@@ -125,5 +125,51 @@ TEST(HermiteHistory, DiscardBeforeKeepsLaterValues) {
   EXPECT_EQ(h.Value(27.0, 0), before[200]);
 }
 
+// |t - 1| + 0.1 t^2 in one component (a kink at 1 and at 2.5 after a jump of slope), smooth in the other: KinksIn
+// reports exactly the knots where a component's slope jumps, with the jump, and only in [a, b); the index survives
+// the compaction of DiscardBefore.
+TEST(HermiteHistory, KinksInFindsTheKnotsWhereASlopeJumps) {
+  HermiteHistory h(2);
+  auto slope = [](double t, bool right) { return (t > 1 || (t == 1 && right) ? 1.0 : -1.0) + 0.2 * t +
+                                                 (t > 2.5 || (t == 2.5 && right) ? 3.0 : 0.0); };
+  auto value = [](double t) { return std::abs(t - 1) + 0.1 * t * t + (t > 2.5 ? 3.0 * (t - 2.5) : 0.0); };
+  const double step = 0.25;
+  for (int k = 0; k < 2400; ++k) {
+    const double t0 = k * step, t1 = t0 + step, tm = t0 + 0.5 * step;
+    const double x0[] = {value(t0), std::sin(t0)}, d0[] = {slope(t0, true), std::cos(t0)};
+    const double x1[] = {value(t1), std::sin(t1)}, d1[] = {slope(t1, false), std::cos(t1)};
+    const double xm[] = {value(tm), std::sin(tm)};
+    h.Append(t0, x0, d0, t1, x1, d1, xm);
+  }
+  std::vector<HermiteHistory::Kink> kinks;
+  h.KinksIn(0.0, 10.0, 0, kinks);
+  ASSERT_EQ(kinks.size(), 2u);
+  EXPECT_EQ(kinks[0].time_s, 1.0);
+  EXPECT_NEAR(kinks[0].slope_jump, 2.0, 1e-15);
+  EXPECT_EQ(kinks[1].time_s, 2.5);
+  EXPECT_NEAR(kinks[1].slope_jump, 3.0, 1e-15);
+  kinks.clear();
+  h.KinksIn(0.0, 10.0, 1, kinks);  // the smooth component: none
+  EXPECT_TRUE(kinks.empty());
+  h.KinksIn(1.0, 2.5, 0, kinks);  // [a, b): the first only
+  ASSERT_EQ(kinks.size(), 1u);
+  EXPECT_EQ(kinks[0].time_s, 1.0);
+  kinks.clear();
+  h.KinksIn(1.1, 2.5, 0, kinks);
+  EXPECT_TRUE(kinks.empty());
+
+  // After a compaction past both kinks, a new one is still found, at its place.
+  h.DiscardBefore(400.0);
+  const double t0 = 600.0, t1 = 600.25;
+  const double x0[] = {value(t0), std::sin(t0)}, d0[] = {slope(t0, true) - 1.5, std::cos(t0)};
+  const double x1[] = {value(t0) + 0.25 * d0[0], std::sin(t1)}, d1[] = {d0[0], std::cos(t1)};
+  const double xm[] = {value(t0) + 0.125 * d0[0], std::sin(t0 + 0.125)};
+  h.Append(t0, x0, d0, t1, x1, d1, xm);
+  h.KinksIn(0.0, 1000.0, 0, kinks);
+  ASSERT_EQ(kinks.size(), 1u);
+  EXPECT_EQ(kinks[0].time_s, 600.0);
+  EXPECT_NEAR(kinks[0].slope_jump, -1.5, 1e-12);
+}
+
 }  // namespace
 }  // namespace drillwave::integration

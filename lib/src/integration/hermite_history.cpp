@@ -61,6 +61,10 @@ void HermiteHistory::Append(double t0, const double* x0, const double* d0, doubl
     t0 = t_end_.back();  // keep the pieces contiguous despite rounding in the caller's times
     if (!(t1 > t0)) return;  // a piece within rounding of the end: nothing to add
   }
+  if (!empty()) {
+    const double* last_d1 = PieceData(t_begin_.size() - 1) + 3 * dimension_;
+    if (!std::equal(d0, d0 + dimension_, last_d1)) kinked_.push_back(t_begin_.size());
+  }
   t_begin_.push_back(t0);
   t_end_.push_back(t1);
   data_.insert(data_.end(), x0, x0 + dimension_);
@@ -184,6 +188,17 @@ double HermiteHistory::IntegrateSquare(int i, double a, double b) const {
   return total;
 }
 
+void HermiteHistory::KinksIn(double a, double b, int i, std::vector<Kink>& out) const {
+  if (empty()) return;
+  auto starts_before = [this](std::size_t piece, double t) { return t_begin_[piece] < t; };
+  for (auto it = std::lower_bound(kinked_.begin(), kinked_.end(), a, starts_before);
+       it != kinked_.end() && t_begin_[*it] < b; ++it) {
+    if (*it <= first_) continue;  // the oldest piece kept: its predecessor is gone
+    const double jump = PieceData(*it)[2 * dimension_ + i] - PieceData(*it - 1)[3 * dimension_ + i];
+    if (jump != 0) out.push_back({t_begin_[*it], jump});
+  }
+}
+
 void HermiteHistory::DiscardBefore(double t) {
   while (first_ + 1 < t_begin_.size() && t_end_[first_] < t) ++first_;
   // Compact when more than half of the storage is dead, so appends stay amortized O(1).
@@ -192,6 +207,8 @@ void HermiteHistory::DiscardBefore(double t) {
     t_begin_.erase(t_begin_.begin(), t_begin_.begin() + n);
     t_end_.erase(t_end_.begin(), t_end_.begin() + n);
     data_.erase(data_.begin(), data_.begin() + n * kPerPiece * dimension_);
+    kinked_.erase(kinked_.begin(), std::lower_bound(kinked_.begin(), kinked_.end(), first_));
+    for (std::size_t& piece : kinked_) piece -= first_;
     first_ = 0;
     hint_ = 0;
   }

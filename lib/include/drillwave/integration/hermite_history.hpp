@@ -46,6 +46,16 @@ class HermiteHistory {
   // (5-point Gauss–Legendre per piece). Used for the energy carried by waves in flight.
   double IntegrateSquare(int i, double a, double b) const;
 
+  // A knot between two stored pieces where component i's slope jumps (a kink, which the pieces store exactly): its
+  // time and the jump, right slope minus left.
+  struct Kink {
+    double time_s;
+    double slope_jump;
+  };
+  // Appends to out the knots in [a, b) (not the start of the oldest piece kept) where component i's slope jumps.
+  // Cheap: Append indexes the knots where any slope jumps, and most knots have none.
+  void KinksIn(double a, double b, int i, std::vector<Kink>& out) const;
+
   // Forgets pieces that end before t (for constant delays: t = now - largest delay).
   void DiscardBefore(double t);
 
@@ -65,6 +75,7 @@ class HermiteHistory {
   std::vector<double> t_begin_;
   std::vector<double> t_end_;
   std::vector<double> data_;    // per piece: x0[dim], x1[dim], d0[dim], d1[dim], bubble[dim]
+  std::vector<std::size_t> kinked_;  // pieces (indices as above, ascending) whose start slope differs from the last end's
   mutable std::vector<double> scratch_value_, scratch_deriv_;
   mutable std::size_t hint_ = 0;  // piece of the last look-up (a cache; makes a history unsafe to share across threads)
 };

@@ -36,7 +36,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <queue>
 #include <stdexcept>
 
 #include "drillwave/analysis/axial_torsional_linearization.hpp"
@@ -181,7 +183,8 @@ class Process {
   }
   double MaxStep() const {
     double shortest = kInf;
-    for (const Run& r : runs_) shortest = std::min(shortest, r.tau);
+    for (const Channel* ch : {&md_.torsion, &md_.axial})
+      for (double tau : ch->tau) shortest = std::min(shortest, tau);
     return shortest;
   }
   void BeginStep(double t0) { step_start_ = t0; }
@@ -249,8 +252,12 @@ class Process {
   // interpolant): a wave buffer is history too, and its interpolation error is invisible to the stepper. (As the
   // torsional network engine measures it; the cubic against the midpoint, measured before, is the error of an
   // interpolant one order lower than the one stored, and asked for steps about half as long.)
+  // A kink that arrives at an internal node within the piece (an event's, passed on from node to node) would fail
+  // that check for any piece across it, and cost rejected steps at every node it passes. The node's waves are
+  // algebraic in the waves arriving at it, so they are stored in parts split at the kink, each part exact to the
+  // check (SplitNodeWaves).
   double PrepareCommit(const integration::Piece& p, double abs_tol, double rel_tol) {
-    const int k = 4 * m_;
+    const int k = 4 * (m_ + 1);
     out0_.resize(k), out1_.resize(k), outm_.resize(k), outq_.resize(k), d0_.resize(k), d1_.resize(k);
     // Without an event or breakpoint in between, the start of this piece is the end of the last one.
     if (!(start_is_last_end_ && p.t0 == last_commit_end_)) Outgoing(p.t0, p.x0, p.f0, Side::kRight, out0_.data(), d0_.data());
@@ -260,23 +267,61 @@ class Process {
     state_quarter_.resize(p.x0.size());
     integration::InterpolatePiece(p, tq, state_quarter_);
     Outgoing(tq, state_quarter_, p.f1, Side::kLeft, outq_.data(), nullptr);
-    return integration::QuarterPointError(k, h, out0_.data(), out1_.data(), d0_.data(), d1_.data(), outm_.data(),
-                                          outq_.data(), abs_tol, rel_tol);
+    num_splits_ = 0;
+    double worst = 0;
+    for (int c = 0; c < 2; ++c) {
+      // Kelvin-Voigt dashpots tie every node to its neighbours: its nodes' waves are not split (a kink then costs
+      // rejected steps as before).
+      const bool splits = !Chan(c).kelvin_voigt();
+      for (int j = 0; j <= m_; ++j) {
+        const int b = NodeBlock(c, j);
+        if (splits && j > 0 && j < m_) {
+          const double scale = WaveScale(b, abs_tol, rel_tol);
+          split_times_.clear();
+          ArrivingKinks(c, j, p.t0, p.t1, scale, split_times_);
+          if (!split_times_.empty()) {
+            worst = std::max(worst, SplitNodeWaves(c, j, p, abs_tol, rel_tol));
+            continue;
+          }
+        }
+        worst = std::max(worst, integration::QuarterPointError(2, h, &out0_[b], &out1_[b], &d0_[b], &d1_[b],
+                                                               &outm_[b], &outq_[b], abs_tol, rel_tol));
+      }
+    }
+    prepared_scale_ = {abs_tol, rel_tol};
+    return worst;
   }
 
   void Commit(const integration::Piece& p) {
-    for (std::size_t r = 0; r < runs_.size(); ++r) {
-      const int base = 2 * m_ * runs_[r].channel + 2 * runs_[r].first;
-      waves_[r].Append(p.t0, out0_.data() + base, d0_.data() + base, p.t1, out1_.data() + base, d1_.data() + base,
-                       outm_.data() + base);
-    }
+    std::size_t split = 0;
+    for (int c = 0; c < 2; ++c)
+      for (int j = 0; j <= m_; ++j) {
+        integration::HermiteHistory& history = NodeHistory(c, j);
+        if (split < num_splits_ && splits_[split].channel == c && splits_[split].node == j) {
+          const SplitWaves& s = splits_[split++];
+          for (std::size_t q = 0; q + 1 < s.time.size(); ++q)
+            history.Append(s.time[q], &s.value[2 * q], &s.rate_right[2 * q], s.time[q + 1], &s.value[2 * q + 2],
+                           &s.rate_left[2 * q + 2], &s.mid[2 * q]);
+        } else {
+          const int b = NodeBlock(c, j);
+          history.Append(p.t0, &out0_[b], &d0_[b], p.t1, &out1_[b], &d1_[b], &outm_[b]);
+        }
+      }
     out0_.swap(out1_);
     d0_.swap(d1_);
     start_is_last_end_ = true;
     last_commit_end_ = p.t1;
     const double keep = 2 * std::max(md_.torsion.travel_time(), md_.axial.travel_time()) + 1.0;
-    for (auto& w : waves_) w.DiscardBefore(p.t1 - keep);
+    for (auto& w : node_waves_) w.DiscardBefore(p.t1 - keep);
     cut_.Commit(p, kPhi, kU, rg_.contact, rg_.last_contact_change, keep);
+    // The kinks just stored next to the top and the bit reach them one piece later: the steps stop there, as at a
+    // breakpoint (the state's own dense output is then smooth within each step, and the end waves too).
+    while (!end_kinks_.empty() && end_kinks_.top() < p.t1) end_kinks_.pop();
+    for (int c = 0; c < 2; ++c) {
+      const std::vector<double>& tau = Chan(c).tau;
+      ScheduleEndKinks(NodeHistory(c, 1), 0, tau[0], p, NodeBlock(c, 1));                // up-going, to the top
+      ScheduleEndKinks(NodeHistory(c, m_ - 1), 1, tau[m_ - 1], p, NodeBlock(c, m_ - 1) + 1);  // down, to the bit
+    }
   }
 
   // Witnesses: bitrock::RgdRegimes's (0, 1 rotation; 2, 3 axial; 4 contact).
@@ -303,11 +348,13 @@ class Process {
   }
 
   double NextBreakpoint() const {
-    return std::min(md_.top_speed.NextKnotAfter(passed_), md_.hook_force.NextKnotAfter(passed_));
+    const double input = std::min(md_.top_speed.NextKnotAfter(passed_), md_.hook_force.NextKnotAfter(passed_));
+    return end_kinks_.empty() ? input : std::min(input, end_kinks_.top());
   }
   void OnBreakpoint(double t) {
     passed_ = t;
-    start_is_last_end_ = false;  // an input may jump here
+    start_is_last_end_ = false;  // an input may jump here, or a kink arrive at an end
+    while (!end_kinks_.empty() && end_kinks_.top() <= t + 1e-12 * std::max(1.0, std::abs(t))) end_kinks_.pop();
   }
 
   // --- Outputs --------------------------------------------------------------------------------------------
@@ -344,11 +391,11 @@ class Process {
  private:
   using BitForces = bitrock::RgdForces;
 
-  // Consecutive pieces of a channel with equal travel time share one history, read in one look-up at that delay
-  // (each history is read at its own delay, so its look-up hint stays valid).
-  struct Run {
-    int channel, first, count;
-    double tau;
+  // A node's waves over a piece, stored in parts split where kinks arrive: part q spans time[q]..time[q + 1]; per
+  // boundary the two waves' values and their left and right rates, per part the midpoint.
+  struct SplitWaves {
+    int channel = 0, node = 0;
+    std::vector<double> time, value, rate_left, rate_right, mid;
   };
   // Force of the string on the top node and on the bit node of each channel (0 torsion, 1 axial) at the state's end
   // speeds, with the end nodes' own share of damping and weight.
@@ -357,20 +404,125 @@ class Process {
   };
 
   // Arrival at node j of channel c (0 torsion, 1 axial) from above (from_above) or below, at time t.
+  // Each node j keeps the history of the two waves it sends: component 0 up-going into piece j - 1 (U_{j-1}),
+  // component 1 down-going into piece j (D_j); the top's first and the bit's second are unused (zero). The prepared
+  // waves are laid out the same way, node after node, channel after channel.
+  const Channel& Chan(int c) const { return c == 0 ? md_.torsion : md_.axial; }
+  integration::HermiteHistory& NodeHistory(int c, int j) { return node_waves_[c * (m_ + 1) + j]; }
+  const integration::HermiteHistory& NodeHistory(int c, int j) const { return node_waves_[c * (m_ + 1) + j]; }
+  int NodeBlock(int c, int j) const { return 2 * ((m_ + 1) * c + j); }
+
+  // Arrival at node j of channel c (0 torsion, 1 axial) from above (from_above) or below, at time t.
   double Arrival(int c, int j, double t, Side side, bool from_above) const {
-    const int piece = from_above ? j - 1 : j;
-    const int comp = from_above ? 2 * (j - 1) : 2 * j + 1;  // D_{j-1} leaves node j-1; U_j leaves node j+1
-    const Run& r = runs_[run_of_[c][piece]];
-    return waves_[run_of_[c][piece]].Value(t - r.tau, comp - 2 * r.first, side);
+    const std::vector<double>& tau = Chan(c).tau;
+    return from_above ? NodeHistory(c, j - 1).Value(t - tau[j - 1], 1, side)  // D_{j-1}, sent by node j - 1
+                      : NodeHistory(c, j + 1).Value(t - tau[j], 0, side);     // U_j, sent by node j + 1
   }
   // All waves arriving in channel c at time t (component 2k down-going at the bottom of piece k, 2k + 1 up-going at
   // its top), and their rates when rate != nullptr.
   void Arrivals(int c, double t, Side side, double* in, double* rate) const {
-    for (std::size_t r = 0; r < runs_.size(); ++r) {
-      if (runs_[r].channel != c) continue;
-      waves_[r].Values(t - runs_[r].tau, in + 2 * runs_[r].first, side);
-      if (rate) waves_[r].Derivatives(t - runs_[r].tau, rate + 2 * runs_[r].first, side);
+    const std::vector<double>& tau = Chan(c).tau;
+    for (int j = 0; j <= m_; ++j) {  // node j's U_{j-1} arrives as in[2j - 1], its D_j as in[2j]
+      const integration::HermiteHistory& sent = NodeHistory(c, j);
+      if (j > 0 && j < m_ && tau[j - 1] == tau[j]) {  // both sent at the same time: one look-up
+        double two[2];
+        sent.Values(t - tau[j], two, side);
+        in[2 * j - 1] = two[0], in[2 * j] = two[1];
+        if (rate) {
+          sent.Derivatives(t - tau[j], two, side);
+          rate[2 * j - 1] = two[0], rate[2 * j] = two[1];
+        }
+        continue;
+      }
+      if (j > 0) {
+        in[2 * j - 1] = sent.Value(t - tau[j - 1], 0, side);
+        if (rate) rate[2 * j - 1] = sent.Derivative(t - tau[j - 1], 0, side);
+      }
+      if (j < m_) {
+        in[2 * j] = sent.Value(t - tau[j], 1, side);
+        if (rate) rate[2 * j] = sent.Derivative(t - tau[j], 1, side);
+      }
     }
+  }
+  // The tolerance unit of the waves of the prepared node block b.
+  double WaveScale(int b, double abs_tol, double rel_tol) const {
+    return abs_tol + rel_tol * std::max({std::abs(out0_[b]), std::abs(out0_[b + 1]), std::abs(out1_[b]),
+                                         std::abs(out1_[b + 1])});
+  }
+  // A kink matters to a piece of length h when the quartic across it would miss by more than the tolerance unit: by
+  // up to 0.077 |slope jump| h (a kink at 0.4 h). Smaller ones (the weak reflections at the damped nodes) are left
+  // to the pieces.
+  static bool Matters(double slope_jump, double h, double scale) { return 0.08 * std::abs(slope_jump) * h > scale; }
+  // Times within (t0, t1) at which kinks that matter arrive at internal node j of channel c, sorted, without repeats.
+  void ArrivingKinks(int c, int j, double t0, double t1, double scale, std::vector<double>& times) const {
+    const std::vector<double>& tau = Chan(c).tau;
+    kinks_.clear();
+    NodeHistory(c, j - 1).KinksIn(t0 - tau[j - 1], t1 - tau[j - 1], 1, kinks_);
+    for (auto& k : kinks_) k.time_s += tau[j - 1];
+    const std::size_t from_above = kinks_.size();
+    NodeHistory(c, j + 1).KinksIn(t0 - tau[j], t1 - tau[j], 0, kinks_);
+    for (std::size_t i = from_above; i < kinks_.size(); ++i) kinks_[i].time_s += tau[j];
+    const double h = t1 - t0, margin = 1e-9 * h;
+    for (const auto& k : kinks_)
+      if (k.time_s > t0 + margin && k.time_s < t1 - margin && Matters(k.slope_jump, h, scale))
+        times.push_back(k.time_s);
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end(), [&](double a, double b) { return b - a <= margin; }),
+                times.end());
+  }
+  // The two waves internal node j of channel c sends at time t (and their rates): algebraic in the waves arriving.
+  void NodeWaves(int c, int j, double t, Side side, double* out, double* rate) const {
+    const Channel& ch = Chan(c);
+    const double sent_above = t - ch.tau[j - 1], sent_below = t - ch.tau[j];
+    const double a = NodeHistory(c, j - 1).Value(sent_above, 1, side), b = NodeHistory(c, j + 1).Value(sent_below, 0, side);
+    const double v = InternalNodeSpeed(ch, j, a, b);
+    out[0] = v - a, out[1] = v - b;
+    if (!rate) return;
+    const double ra = NodeHistory(c, j - 1).Derivative(sent_above, 1, side);
+    const double rb = NodeHistory(c, j + 1).Derivative(sent_below, 0, side);
+    const double dv = InternalNodeRate(ch, j, ra, rb, v);
+    rate[0] = dv - ra, rate[1] = dv - rb;
+  }
+  // Node j's waves over the prepared piece in parts split at split_times_ (splits_ keeps them for Commit), and the
+  // largest quarter-point error of the parts.
+  double SplitNodeWaves(int c, int j, const integration::Piece& p, double abs_tol, double rel_tol) {
+    const int b = NodeBlock(c, j);
+    if (num_splits_ == splits_.size()) splits_.emplace_back();
+    SplitWaves& s = splits_[num_splits_++];  // reused, with its storage
+    s.channel = c, s.node = j;
+    s.time.assign(1, p.t0);
+    s.time.insert(s.time.end(), split_times_.begin(), split_times_.end());
+    s.time.push_back(p.t1);
+    const std::size_t parts = s.time.size() - 1;
+    s.value.resize(2 * (parts + 1)), s.rate_left.resize(2 * (parts + 1)), s.rate_right.resize(2 * (parts + 1));
+    s.mid.resize(2 * parts);
+    std::copy_n(&out0_[b], 2, &s.value[0]), std::copy_n(&d0_[b], 2, &s.rate_right[0]);
+    std::copy_n(&out1_[b], 2, &s.value[2 * parts]), std::copy_n(&d1_[b], 2, &s.rate_left[2 * parts]);
+    double unused[2];
+    for (std::size_t q = 1; q < parts; ++q) {
+      NodeWaves(c, j, s.time[q], Side::kLeft, &s.value[2 * q], &s.rate_left[2 * q]);
+      NodeWaves(c, j, s.time[q], Side::kRight, unused, &s.rate_right[2 * q]);
+    }
+    double worst = 0, quarter[2];
+    for (std::size_t q = 0; q < parts; ++q) {
+      const double t0 = s.time[q], h = s.time[q + 1] - t0;
+      NodeWaves(c, j, t0 + 0.5 * h, Side::kLeft, &s.mid[2 * q], nullptr);
+      NodeWaves(c, j, t0 + 0.25 * h, Side::kLeft, quarter, nullptr);
+      worst = std::max(worst, integration::QuarterPointError(2, h, &s.value[2 * q], &s.value[2 * q + 2],
+                                                             &s.rate_right[2 * q], &s.rate_left[2 * q + 2],
+                                                             &s.mid[2 * q], quarter, abs_tol, rel_tol));
+    }
+    return worst;
+  }
+  // Kinks of component comp of an end's neighbour stored with this piece (the knot at its start included) reach the
+  // end tau later: they become breakpoints. b: the component's place in the prepared waves (for its scale).
+  void ScheduleEndKinks(const integration::HermiteHistory& sender, int comp, double tau, const integration::Piece& p,
+                        int b) {
+    kinks_.clear();
+    sender.KinksIn(p.t0, p.t1, comp, kinks_);
+    const double scale = prepared_scale_[0] + prepared_scale_[1] * std::abs(out0_[b]);  // out0_: now this piece's end
+    for (const auto& k : kinks_)
+      if (Matters(k.slope_jump, p.t1 - p.t0, scale)) end_kinks_.push(k.time_s + tau);
   }
   double EndSpeed(int c, bool bit, const State& x) const {
     if (!bit) return c == 0 ? x[kWtop] : x[kVtop];
@@ -478,13 +630,21 @@ class Process {
       SolveKelvinVoigtNodes(ch, in, top, bit, true, v);
       return;
     }
-    for (int j = 1; j < m_; ++j) {
-      // A massless node with Coulomb friction T_f: 0 in (Z_a + Z_b + c) v - q + T_f sign(v), q = 2 Z_a a + 2 Z_b b +
-      // load, solved in closed form: the node stands still while |q| <= T_f and slides with the excess otherwise.
-      const double q = Incoming(ch.z[j - 1], in[2 * (j - 1)], ch.z[j], in[2 * j + 1]) + ch.load[j];
-      const double excess = std::max(std::abs(q) - ch.coulomb[j], 0.0);
-      v[j] = std::copysign(excess, q) / (ch.z[j - 1] + ch.z[j] + ch.damping[j]);
-    }
+    for (int j = 1; j < m_; ++j) v[j] = InternalNodeSpeed(ch, j, in[2 * (j - 1)], in[2 * j + 1]);
+  }
+  // A massless node j with Coulomb friction T_f, wave a arriving from above and b from below: 0 in
+  // (Z_a + Z_b + c) v - q + T_f sign(v), q = 2 Z_a a + 2 Z_b b + load, solved in closed form: the node stands still
+  // while |q| <= T_f and slides with the excess otherwise.
+  static double InternalNodeSpeed(const Channel& ch, int j, double a, double b) {
+    const double q = Incoming(ch.z[j - 1], a, ch.z[j], b) + ch.load[j];
+    const double excess = std::max(std::abs(q) - ch.coulomb[j], 0.0);
+    return std::copysign(excess, q) / (ch.z[j - 1] + ch.z[j] + ch.damping[j]);
+  }
+  // Its rate from the arriving waves' rates (a node held by Coulomb friction stays).
+  static double InternalNodeRate(const Channel& ch, int j, double rate_a, double rate_b, double v) {
+    return v != 0 || ch.coulomb[j] == 0
+               ? Incoming(ch.z[j - 1], rate_a, ch.z[j], rate_b) / (ch.z[j - 1] + ch.z[j] + ch.damping[j])
+               : 0.0;
   }
   // Their rates from the arriving waves' rates and the end accelerations (a node held by Coulomb friction stays).
   void NodeRates(const Channel& ch, const double* in_rate, const double* v, double top, double bit, double* dv) const {
@@ -493,11 +653,7 @@ class Process {
       SolveKelvinVoigtNodes(ch, in_rate, top, bit, false, dv);
       return;
     }
-    for (int j = 1; j < m_; ++j)
-      dv[j] = v[j] != 0 || ch.coulomb[j] == 0
-                  ? Incoming(ch.z[j - 1], in_rate[2 * (j - 1)], ch.z[j], in_rate[2 * j + 1]) /
-                        (ch.z[j - 1] + ch.z[j] + ch.damping[j])
-                  : 0.0;
+    for (int j = 1; j < m_; ++j) dv[j] = InternalNodeRate(ch, j, in_rate[2 * (j - 1)], in_rate[2 * j + 1], v[j]);
   }
   // With Kelvin-Voigt dashpots kv_k across the pieces, node j (1..m-1) balances
   //   (Z_{j-1} + Z_j + c_j + kv_{j-1} + kv_j) v_j - kv_{j-1} v_{j-1} - kv_j v_{j+1} = 2 Z_{j-1} a + 2 Z_j b + load_j,
@@ -515,25 +671,25 @@ class Process {
     for (int j = m_ - 2; j >= 1; --j) v[j] += ch.kv_ratio[j] * v[j + 1];
   }
 
-  // Waves leaving every node at time t (and their rates when rate != nullptr).
+  // Waves leaving every node at time t (and their rates when rate != nullptr), laid out by node (NodeBlock).
   void Outgoing(double t, const State& x, const State& dx, Side side, double* out, double* rate) const {
     arriving_.resize(2 * m_), arriving_rate_.resize(2 * m_), speeds_.resize(m_ + 1), speed_rates_.resize(m_ + 1);
     for (int c = 0; c < 2; ++c) {
       const Channel& ch = c == 0 ? md_.torsion : md_.axial;
       Arrivals(c, t, side, arriving_.data(), rate ? arriving_rate_.data() : nullptr);
       NodeSpeeds(ch, arriving_.data(), EndSpeed(c, false, x), EndSpeed(c, true, x), speeds_.data());
-      const int base = 2 * m_ * c;
       for (int j = 0; j <= m_; ++j) {
-        const double above = j > 0 ? arriving_[2 * (j - 1)] : 0.0, below = j < m_ ? arriving_[2 * j + 1] : 0.0;
-        if (j < m_) out[base + 2 * j] = speeds_[j] - below;            // down-going into piece j
-        if (j > 0) out[base + 2 * (j - 1) + 1] = speeds_[j] - above;   // up-going into piece j-1
+        const int b = NodeBlock(c, j);
+        out[b] = j > 0 ? speeds_[j] - arriving_[2 * (j - 1)] : 0.0;      // up-going into piece j-1
+        out[b + 1] = j < m_ ? speeds_[j] - arriving_[2 * j + 1] : 0.0;   // down-going into piece j
       }
       if (!rate) continue;
       NodeRates(ch, arriving_rate_.data(), speeds_.data(), c == 0 ? dx[kWtop] : dx[kVtop],
                 c == 0 ? dx[kWbit] : dx[kVbit], speed_rates_.data());
       for (int j = 0; j <= m_; ++j) {
-        if (j < m_) rate[base + 2 * j] = speed_rates_[j] - arriving_rate_[2 * j + 1];
-        if (j > 0) rate[base + 2 * (j - 1) + 1] = speed_rates_[j] - arriving_rate_[2 * (j - 1)];
+        const int b = NodeBlock(c, j);
+        rate[b] = j > 0 ? speed_rates_[j] - arriving_rate_[2 * (j - 1)] : 0.0;
+        rate[b + 1] = j < m_ ? speed_rates_[j] - arriving_rate_[2 * j + 1] : 0.0;
       }
     }
   }
@@ -541,44 +697,33 @@ class Process {
   // Steady drilling: every node of a channel at the same speed; each section carries the force that balances the
   // nodes below it (S_{j-1} = S_j + c_j v - load_j, bit: S_{m-1} = reaction + c_m v - load_m).
   void InitializeWaves() {
-    std::vector<double> initial(4 * m_);
+    std::vector<double> initial(4 * (m_ + 1), 0.0);  // by node, as Outgoing lays the waves out
     for (int c = 0; c < 2; ++c) {
       const Channel& ch = c == 0 ? md_.torsion : md_.axial;
       const double v = c == 0 ? steady_.omega : steady_.rop;
       // Steady forward rotation: the Coulomb friction of the nodes acts as a constant torque against it.
       double s = (c == 0 ? steady_.tob : steady_.wob) + ch.damping[m_] * v - ch.load[m_] + ch.coulomb[m_];
       for (int j = m_ - 1; j >= 0; --j) {
-        initial[2 * m_ * c + 2 * j] = 0.5 * (v + s / ch.z[j]);      // D - U = S / Z, D + U = v
-        initial[2 * m_ * c + 2 * j + 1] = 0.5 * (v - s / ch.z[j]);
+        initial[NodeBlock(c, j) + 1] = 0.5 * (v + s / ch.z[j]);  // D_j: D - U = S / Z, D + U = v
+        initial[NodeBlock(c, j + 1)] = 0.5 * (v - s / ch.z[j]);  // U_j
         if (j > 0) s += ch.damping[j] * v - ch.load[j] + ch.coulomb[j];
       }
       if (c == 0) top_torque0_ = s + ch.damping[0] * v - ch.load[0];  // the top drive balances the top section
     }
-    for (int c = 0; c < 2; ++c) {
-      const Channel& ch = c == 0 ? md_.torsion : md_.axial;
-      run_of_[c].resize(m_);
-      for (int k = 0; k < m_; ++k) {
-        if (k == 0 || ch.tau[k] != ch.tau[k - 1]) runs_.push_back({c, k, 0, ch.tau[k]});
-        ++runs_.back().count;
-        run_of_[c][k] = static_cast<int>(runs_.size()) - 1;
+    for (int c = 0; c < 2; ++c)
+      for (int j = 0; j <= m_; ++j) {
+        const double up = initial[NodeBlock(c, j)], down = initial[NodeBlock(c, j) + 1];
+        node_waves_.emplace_back(2, [up, down](double, double* value, double* rate) {
+          value[0] = up, value[1] = down;
+          rate[0] = rate[1] = 0.0;
+        });
       }
-    }
-    for (const Run& r : runs_) {
-      const auto begin = initial.begin() + 2 * m_ * r.channel + 2 * r.first;
-      const std::vector<double> run(begin, begin + 2 * r.count);
-      waves_.emplace_back(2 * r.count, [run](double, double* value, double* rate) {
-        std::copy(run.begin(), run.end(), value);
-        std::fill(rate, rate + run.size(), 0.0);
-      });
-    }
   }
 
   const Model& md_;
   int m_;
   Steady steady_;
-  std::vector<Run> runs_;
-  std::array<std::vector<int>, 2> run_of_;  // per channel and piece: its run
-  std::vector<integration::HermiteHistory> waves_;  // one per run
+  std::vector<integration::HermiteHistory> node_waves_;  // per channel and node: the two waves it sends (NodeHistory)
   bitrock::CutProfile cut_;
   double top_torque0_ = 0;
   double steady_supply_hz_ = 0;  // induction motor: the supply frequency of steady drilling
@@ -588,6 +733,13 @@ class Process {
   std::vector<StuckInterval> stuck_;
   std::vector<double> out0_, out1_, outm_, outq_, d0_, d1_;  // the prepared piece's waves (ends, midpoint, quarter, rates)
   State state_quarter_;
+  std::vector<SplitWaves> splits_;  // the prepared piece's nodes stored in parts, by channel and node (the first
+  std::size_t num_splits_ = 0;      // num_splits_ are this piece's)
+  std::vector<double> split_times_;
+  std::array<double, 2> prepared_scale_{};  // abs_tol, rel_tol of the last PrepareCommit
+  // Times at which kinks reach the top or the bit (breakpoints), earliest first.
+  std::priority_queue<double, std::vector<double>, std::greater<double>> end_kinks_;
+  mutable std::vector<integration::HermiteHistory::Kink> kinks_;
   bool start_is_last_end_ = false;  // out0_ and d0_ hold the waves at the end of the last committed piece
   double last_commit_end_ = 0;
   mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // Outgoing's and StringEnds' scratch
@@ -632,11 +784,9 @@ class AxialTorsionalModel : public PreparedModel {
     };
     sample(0.0, x);
     const auto observer = integration::SampleEvery(settings.output_interval_s, sample);
-    // Every stick, slip and contact event sends kinks through all 2 x m sub-sections, which are not tracked as
-    // breakpoints here: their interpolation error is accepted below 0.1 ms steps instead of chased to 1e-9 t.
-    // Measured on the baseline at 60 rpm: the same period (3.12242 s) and stick fraction with or without it.
-    integration::IntegratorOptions integrator = settings.integrator;
-    integrator.history_step_floor = std::max(integrator.history_step_floor, 1e-4);
+    // (No floor on the history's step: the kinks that events send through the sub-sections are followed, see
+    // PrepareCommit; before they were, 0.1 ms steps were accepted across them.)
+    const integration::IntegratorOptions& integrator = settings.integrator;
     integration::Simulator<Process> sim(process, integrator);
     sim.Integrate(0.0, x, settings.duration_s, observer);
 
