@@ -41,6 +41,7 @@ class HermiteHistory {
   double Derivative(double t, int i, Side side = Side::kRight) const;
   void Values(double t, double* out, Side side = Side::kRight) const;
   void Derivatives(double t, double* out, Side side = Side::kRight) const;
+  void ValuesAndDerivatives(double t, double* value, double* derivative, Side side = Side::kRight) const;
 
   // Integral of component i squared over [a, b] (within the stored pieces): exact for the quartic pieces
   // (5-point Gauss–Legendre per piece). Used for the energy carried by waves in flight.

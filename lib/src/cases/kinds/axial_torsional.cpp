@@ -425,13 +425,14 @@ class Process {
     for (int j = 0; j <= m_; ++j) {  // node j's U_{j-1} arrives as in[2j - 1], its D_j as in[2j]
       const integration::HermiteHistory& sent = NodeHistory(c, j);
       if (j > 0 && j < m_ && tau[j - 1] == tau[j]) {  // both sent at the same time: one look-up
-        double two[2];
-        sent.Values(t - tau[j], two, side);
-        in[2 * j - 1] = two[0], in[2 * j] = two[1];
+        double two[2], two_rates[2];
         if (rate) {
-          sent.Derivatives(t - tau[j], two, side);
-          rate[2 * j - 1] = two[0], rate[2 * j] = two[1];
+          sent.ValuesAndDerivatives(t - tau[j], two, two_rates, side);
+          rate[2 * j - 1] = two_rates[0], rate[2 * j] = two_rates[1];
+        } else {
+          sent.Values(t - tau[j], two, side);
         }
+        in[2 * j - 1] = two[0], in[2 * j] = two[1];
         continue;
       }
       if (j > 0) {
