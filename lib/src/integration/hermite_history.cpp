@@ -216,7 +216,7 @@ void HermiteHistory::KinksIn(double a, double b, int i, std::vector<Kink>& out) 
 void HermiteHistory::DiscardBefore(double t) {
   while (first_ + 1 < t_begin_.size() && t_end_[first_] < t) ++first_;
   // Compact when more than half of the storage is dead, so appends stay amortized O(1).
-  if (first_ > 1024 && first_ * 2 > t_begin_.size()) {
+  if (first_ > 256 && first_ * 2 > t_begin_.size()) {
     const auto n = static_cast<std::ptrdiff_t>(first_);
     t_begin_.erase(t_begin_.begin(), t_begin_.begin() + n);
     t_end_.erase(t_end_.begin(), t_end_.begin() + n);

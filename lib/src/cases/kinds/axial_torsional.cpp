@@ -181,6 +181,12 @@ class Process {
     if (md_.induction_on || md_.gear.compliant()) return kTopDim;
     return md_.unbalance.on ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
   }
+  double MaxPieceTravelTime() const {
+    double longest = 0;
+    for (const Channel* ch : {&md_.torsion, &md_.axial})
+      for (double tau : ch->tau) longest = std::max(longest, tau);
+    return longest;
+  }
   double MaxStep() const {
     double shortest = kInf;
     for (const Channel* ch : {&md_.torsion, &md_.axial})
@@ -311,8 +317,10 @@ class Process {
     d0_.swap(d1_);
     start_is_last_end_ = true;
     last_commit_end_ = p.t1;
+    // A node's waves are read one piece's travel time later, never earlier: keeping two of the longest makes the
+    // histories a few dozen pieces each, which stay in cache.
+    for (auto& w : node_waves_) w.DiscardBefore(p.t1 - 2 * MaxPieceTravelTime());
     const double keep = 2 * std::max(md_.torsion.travel_time(), md_.axial.travel_time()) + 1.0;
-    for (auto& w : node_waves_) w.DiscardBefore(p.t1 - keep);
     cut_.Commit(p, kPhi, kU, rg_.contact, rg_.last_contact_change, keep);
     // The kinks just stored next to the top and the bit reach them one piece later: the steps stop there, as at a
     // breakpoint (the state's own dense output is then smooth within each step, and the end waves too).
