@@ -61,9 +61,13 @@ void HermiteHistory::Append(double t0, const double* x0, const double* d0, doubl
     t0 = t_end_.back();  // keep the pieces contiguous despite rounding in the caller's times
     if (!(t1 > t0)) return;  // a piece within rounding of the end: nothing to add
   }
-  if (!empty()) {
+  if (!empty()) {  // a slope that differs by more than rounding (a rate recomputed after a breakpoint differs by that)
     const double* last_d1 = PieceData(t_begin_.size() - 1) + 3 * dimension_;
-    if (!std::equal(d0, d0 + dimension_, last_d1)) kinked_.push_back(t_begin_.size());
+    for (int i = 0; i < dimension_; ++i)
+      if (std::abs(d0[i] - last_d1[i]) > 1e-12 * std::max(std::abs(d0[i]), std::abs(last_d1[i]))) {
+        kinked_.push_back(t_begin_.size());
+        break;
+      }
   }
   t_begin_.push_back(t0);
   t_end_.push_back(t1);

@@ -53,8 +53,8 @@ class HermiteHistory {
     double time_s;
     double slope_jump;
   };
-  // Appends to out the knots in [a, b) (not the start of the oldest piece kept) where component i's slope jumps.
-  // Cheap: Append indexes the knots where any slope jumps, and most knots have none.
+  // Appends to out the knots in [a, b) (not the start of the oldest piece kept) where component i's slope jumps by
+  // more than rounding (1e-12 relative). Cheap: Append indexes such knots, and most knots have none.
   void KinksIn(double a, double b, int i, std::vector<Kink>& out) const;
 
   // Forgets pieces that end before t (for constant delays: t = now - largest delay).
