@@ -5,10 +5,12 @@
 // Z (Z_L cosh s tau + Z sinh s tau) / (Z cosh s tau + Z_L sinh s tau). The top closes the loop: Z_top + Z_in = 0, with
 // Z_top = J s + kp + ki / s for a PI top drive, beta for a dissipative top, and Z_in's denominator = 0 for an imposed
 // speed. Written as numerator and denominator this is an entire function whose zeros must be the spectrum's roots.
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -352,6 +354,35 @@ TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedInductionMotorTop) {
                                 "induction motor at 10.5 Hz");
   ExpectGrowthRatesOfSimulation(Chain(InductionTop(30.6), {kPipe}, StribeckBit()), 1e-3, 5, 40,
                                 "induction motor at 30.6 Hz");
+}
+
+// The steady states of the motor tops are rest points of the simulation: started exactly there (the simulation sets
+// its motor states, fluxes, currents and twists from its own steady equations), nothing moves. A steady state from
+// other equations (an unreferred motor constant, the wrong flux balance) would leave a torque that accelerates it.
+TEST(NetworkStability, MotorTopsSteadyStatesAreRestPointsOfTheSimulation) {
+  waves::Node slip_control = CompliantGearTop(12);
+  slip_control.drive = waves::Drive::kInductionMotorSpeed;
+  slip_control.induction = InductionTop(0).induction;
+  waves::Node dc_voltage = DcMotorTop(0);
+  dc_voltage.drive = waves::Drive::kDcMotorVoltage;
+  dc_voltage.setpoint = model::Schedule(500.0);  // volts: k_n w = 48 w balances it near 10 rad/s
+  const std::vector<std::pair<waves::Node, const char*>> tops = {
+      {InductionTop(10.5), "induction motor at 10.5 Hz"}, {InductionTop(30.6), "induction motor at 30.6 Hz"},
+      {CompliantGearTop(12), "PI behind a compliant gear"}, {slip_control, "slip-controlled induction motor"},
+      {DcMotorTop(10), "DC motor under a PI"}, {dc_voltage, "DC motor at 500 V"}};
+  for (const auto& [top, what] : tops) {
+    const waves::Network net = Chain(top, {kPipe}, StribeckBit());
+    const auto points = NetworkSteadyStates(net);
+    ASSERT_EQ(points.size(), 1u) << what;
+    const double w0 = points[0].speed_rad_s;
+    const waves::NetworkTrajectory tr = KickedRun(net, w0, 0, 5);
+    double drift = 0;
+    for (std::size_t i = 0; i < tr.time_s.size(); ++i)
+      drift = std::max({drift, std::abs(tr.bit_speed_rad_s[i] - w0), std::abs(tr.top_speed_rad_s[i] - w0)});
+    std::printf("[ measured ] %s: steady state %.9f rad/s, largest drift of the simulation started there over 5 s "
+                "%.2e rad/s\n", what, w0, drift);
+    EXPECT_LT(drift, 1e-9 * w0) << what;
+  }
 }
 
 // The string's harmonics just below the supply frequency (25.5 Hz: 160 rad/s) lose their damping to the induction
