@@ -232,6 +232,42 @@ TEST(AxialTorsionalStability, RightmostRootIsTheGrowthRateOfTheSimulatedCoupledM
   }
 }
 
+// The induction motor on the slip-compensated V/f supply behind the rig's compliant gear
+// (json-cases/baseline-induction-rig-60rpm.json) without the axial coupling, whose regenerative mode would swamp the
+// torsional ones: after a 1e-6 rad/s set-point blip the bit speed's stick-slip mode and the next one decay at the
+// real parts of their roots. The stick-slip mode is held to 2e-5 1/s: with the motor's torque taken as the PI's output
+// (no fluxes) its root moves by 7.4e-5.
+TEST(AxialTorsionalStability, InductionMotorTopsTorsionalModesDecayAsSimulated) {
+  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) +
+                                        "/json-cases/baseline-induction-rig-60rpm.json");
+  const double w = 2 * M_PI;
+  doc["model"]["axial_coupling"] = false;
+  doc["model"]["string"]["subsections"] = 5;
+  doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {0.05, w + 1e-6}, {0.1, w}}}};
+  doc["simulation"] = {{"duration_s", 30}, {"output_interval_s", 2e-3}, {"abs_tol", 1e-12}, {"rel_tol", 1e-10}};
+  doc["statistics"]["window_s"] = {0, 30};
+  doc.erase("expect");
+  const Case c = ParseCase(doc);
+  const auto points = c.model->Linearize();
+  ASSERT_EQ(points.size(), 1u);
+  const analysis::Spectrum sp = analysis::ComputeSpectrum(points[0].system);
+  const CaseRun run = RunCase(c);
+  struct Mode {
+    double im_min, im_max, t0, t1, tolerance;
+  };
+  for (const Mode& m : {Mode{1, 3, 2, 30, 2e-5}, Mode{4, 8, 1, 15, 3e-3}}) {
+    const auto r = std::find_if(sp.roots.begin(), sp.roots.end(), [&](const analysis::CharacteristicRoot& x) {
+      return x.s.imag() > m.im_min && x.s.imag() < m.im_max;
+    });
+    ASSERT_NE(r, sp.roots.end());
+    const double measured = ModeGrowthRate(run.result, "bit_rpm", r->s.imag(), m.t0, m.t1);
+    std::printf("[ measured ] induction motor behind the compliant gear, no axial coupling: root %.6f%+.6fi, "
+                "simulated decay at its frequency over [%.0f, %.0f] s %.6f 1/s\n", r->s.real(), r->s.imag(), m.t0, m.t1,
+                measured);
+    EXPECT_NEAR(measured, r->s.real(), m.tolerance) << r->s;
+  }
+}
+
 TEST(AxialTorsionalStability, ComponentsWithoutLinearizationAreRefusedByTheirField) {
   auto refused = [](nlohmann::json doc) {
     try {
