@@ -363,18 +363,24 @@ TEST(NetworkStability, MotorTopsSteadyStatesAreRestPointsOfTheSimulation) {
   waves::Node slip_control = CompliantGearTop(12);
   slip_control.drive = waves::Drive::kInductionMotorSpeed;
   slip_control.induction = InductionTop(0).induction;
+  waves::Node proportional = slip_control;  // balances below the set-point
+  proportional.ki = 0;
   waves::Node dc_voltage = DcMotorTop(0);
   dc_voltage.drive = waves::Drive::kDcMotorVoltage;
   dc_voltage.setpoint = model::Schedule(500.0);  // volts: k_n w = 48 w balances it near 10 rad/s
   const std::vector<std::pair<waves::Node, const char*>> tops = {
       {InductionTop(10.5), "induction motor at 10.5 Hz"}, {InductionTop(30.6), "induction motor at 30.6 Hz"},
       {CompliantGearTop(12), "PI behind a compliant gear"}, {slip_control, "slip-controlled induction motor"},
-      {DcMotorTop(10), "DC motor under a PI"}, {dc_voltage, "DC motor at 500 V"}};
+      {proportional, "slip-controlled induction motor, proportional only"}, {DcMotorTop(10), "DC motor under a PI"},
+      {dc_voltage, "DC motor at 500 V"}};
   for (const auto& [top, what] : tops) {
     const waves::Network net = Chain(top, {kPipe}, StribeckBit());
+    // The fastest steady state: the proportional-only slip control also balances at 0.36 rad/s, on the friction's
+    // steep velocity weakening (-2950 N m s/rad), where a real root at 29.8 1/s grows rounding errors to the full
+    // motion within the 5 s.
     const auto points = NetworkSteadyStates(net);
-    ASSERT_EQ(points.size(), 1u) << what;
-    const double w0 = points[0].speed_rad_s;
+    ASSERT_FALSE(points.empty()) << what;
+    const double w0 = points.back().speed_rad_s;
     const waves::NetworkTrajectory tr = KickedRun(net, w0, 0, 5);
     double drift = 0;
     for (std::size_t i = 0; i < tr.time_s.size(); ++i)

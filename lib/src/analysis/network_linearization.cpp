@@ -37,11 +37,13 @@ bool HoldsSpeed(const Node& top) {
 double ReferredMotorConstant(const Node& top) { return top.gear.ratio * top.motor.motor_constant; }
 
 // An induction motor's supply in steady rotation at w carrying `torque` (on the node's side): the set-point in open
-// loop, else the frequency the simulation starts from (model::InductionMotor::SteadySupplyFrequency at the motor's
-// shaft speed n w).
+// loop; under a proportional controller the supply of its demand; with an integral gain the frequency the simulation
+// starts from (model::InductionMotor::SteadySupplyFrequency at the motor's shaft speed n w; it throws
+// std::domain_error beyond the pull-out torque).
 double SteadySupplyHz(const Node& top, double set, double w, double torque) {
   if (top.drive == Drive::kInductionMotor) return set;
   const double n = top.gear.ratio;
+  if (!(top.ki > 0)) return top.induction.SupplyForTorque(top.kp * (set - w) / n, n * w);
   return top.induction.SteadySupplyFrequency(torque / n, n * w);
 }
 
