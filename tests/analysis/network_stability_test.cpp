@@ -5,10 +5,12 @@
 // Z (Z_L cosh s tau + Z sinh s tau) / (Z cosh s tau + Z_L sinh s tau). The top closes the loop: Z_top + Z_in = 0, with
 // Z_top = J s + kp + ki / s for a PI top drive, beta for a dissipative top, and Z_in's denominator = 0 for an imposed
 // speed. Written as numerator and denominator this is an entire function whose zeros must be the spectrum's roots.
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -42,6 +44,36 @@ waves::Node PiTop(double speed, double inertia, double kp, double ki) {
   top.kp = kp;
   top.ki = ki;
   top.setpoint = model::Schedule(speed);
+  return top;
+}
+
+// The rig's two-mass top (json-cases/rig-two-mass.json): the PI acts on the motor's speed behind an 8:1 gear.
+waves::Node CompliantGearTop(double speed) {
+  waves::Node top = PiTop(speed, 500, 2000, 1000);
+  top.gear = {8, 3e5, 20, 10};
+  return top;
+}
+
+// A DC motor under a PI speed controller in volts, through a rigid 8:1 gear with its own inertia (640 kg m^2 on the
+// string's side).
+waves::Node DcMotorTop(double speed) {
+  waves::Node top = PiTop(speed, 500, 2, 1);
+  top.drive = waves::Drive::kDcMotorSpeed;
+  top.motor = {6, 0.05, 5e-3, 0};
+  top.gear = {8, 0, 0, 10};
+  return top;
+}
+
+// The induction motor of json-cases/induction-motor-stickslip.json through a rigid 8:1 gear with its inertia: open
+// loop at a supply frequency, or (speed > 0) under slip-frequency control by a PI on the speed.
+waves::Node InductionTop(double supply_hz) {
+  waves::Node top;
+  top.name = "top";
+  top.inertia = 500;
+  top.drive = waves::Drive::kInductionMotor;
+  top.induction = {2, 0.01, 0.01, 2e-4, 2e-4, 8e-3, 11.5, 0};
+  top.gear = {8, 0, 0, 10};
+  top.setpoint = model::Schedule(supply_hz);
   return top;
 }
 
@@ -87,6 +119,32 @@ struct Fraction {
   Complex num, den;
 };
 
+// The top's impedance Y_top (torque it takes per speed, Laplace domain) as numerator and denominator. A rigid gear
+// adds n^2 J_m to the top's inertia J. PI: J s + kp + ki / s. DC motor under a PI in volts, torque n k I with
+// (L s + R) I = -(kp + ki / s + n k) w: J s + n k (kp + ki / s + n k) / (L s + R). A PI on the motor behind a
+// compliant gear: the gear's K = k / s + c in series with the motor side M = J_r s + kp + ki / s,
+// Y = J s + K M / (K + M).
+Fraction TopImpedance(const waves::Node& top, Complex s) {
+  const double j = top.LumpedInertia();
+  const Complex pi_poly = top.kp * s + top.ki;  // s (kp + ki / s)
+  if (top.has_compliant_gear()) {
+    const model::Gear& g = top.gear;
+    const Complex motor = g.ReferredMotorInertia() * s * s + pi_poly, gear = g.stiffness + g.damping * s;
+    return {j * s * s * (motor + gear) + gear * motor, s * (motor + gear)};
+  }
+  switch (top.drive) {
+    case waves::Drive::kSpeedDashpot: return {top.drive_damping, 1.0};
+    case waves::Drive::kPiSpeedController: return {j * s * s + pi_poly, s};
+    case waves::Drive::kDcMotorSpeed: {
+      const waves::DcMotor& m = top.motor;
+      const double k = top.gear.ratio * m.motor_constant;
+      const Complex electric = m.armature_inductance * s + m.armature_resistance;
+      return {j * s * s * electric + k * (pi_poly + k * s), s * electric};
+    }
+    default: ADD_FAILURE() << "no closed form for this top"; return {0.0, 1.0};
+  }
+}
+
 // The closed-form characteristic function of a chain with a bit of inertia I and damping c (see the file comment).
 std::function<Complex(Complex)> ClosedForm(const waves::Network& net, double bit_damping) {
   return [&net, bit_damping](Complex s) {
@@ -96,13 +154,9 @@ std::function<Complex(Complex)> ClosedForm(const waves::Network& net, double bit
       const Complex ch = std::cosh(s * net.sections[k].travel_time_s), sh = std::sinh(s * net.sections[k].travel_time_s);
       z = {zk * (z.num * ch + zk * z.den * sh), zk * z.den * ch + z.num * sh};
     }
-    const waves::Node& top = net.top();
-    switch (top.drive) {
-      case waves::Drive::kPrescribedSpeed: return z.den;
-      case waves::Drive::kSpeedDashpot: return top.drive_damping * z.den + z.num;
-      case waves::Drive::kPiSpeedController: return (top.inertia * s * s + top.kp * s + top.ki) * z.den + s * z.num;
-      default: ADD_FAILURE() << "no closed form for this top"; return Complex(0);
-    }
+    if (net.top().drive == waves::Drive::kPrescribedSpeed) return z.den;
+    const Fraction top = TopImpedance(net.top(), s);
+    return top.num * z.den + top.den * z.num;
   };
 }
 
@@ -157,6 +211,17 @@ TEST(NetworkStability, RootsAreTheZerosOfTheTransferMatrixClosedForm) {
   ExpectRootsOfClosedForm(Chain(DissipativeTop(10), {kPipe, kCollars}, DampedBit(50)), 50, "dissipative top, pipe + collars");
   // One section with a PI top drive.
   ExpectRootsOfClosedForm(Chain(PiTop(10, 500, 1000, 300), {kPipe}, DampedBit(50)), 50, "PI top, one section");
+}
+
+// The rig's two-mass top (a PI on the motor speed behind a compliant gear) and a DC motor through a rigid gear with
+// its inertia: the motor side's states join the string's.
+TEST(NetworkStability, GearedTopsRootsAreTheZerosOfTheTransferMatrixClosedForm) {
+  ExpectRootsOfClosedForm(Chain(CompliantGearTop(10), {kPipe}, DampedBit(50)), 50,
+                          "PI behind a compliant gear, one section");
+  ExpectRootsOfClosedForm(Chain(CompliantGearTop(10), {kPipe, kCollars}, DampedBit(50)), 50,
+                          "PI behind a compliant gear, pipe + collars");
+  ExpectRootsOfClosedForm(Chain(DcMotorTop(10), {kPipe}, DampedBit(50)), 50,
+                          "DC motor through a rigid gear, one section");
 }
 
 // Where both apply (one section, dissipative top), the network form and the chapter's scalar neutral DDE have the
@@ -242,7 +307,9 @@ double ModeGrowthRate(const waves::NetworkTrajectory& tr, double w0, double omeg
 // a root's frequency is its real part. Checked for the rightmost three that decay at most 0.3 1/s faster than the
 // rightmost: faster ones sink into the leakage of the slower modes through the window. (Above, the string's harmonics; with an inertial top their chain approaches
 // the imaginary axis, and a rigid kick hardly excites them at the bit.)
-void ExpectGrowthRatesOfSimulation(const waves::Network& net, double kick, double t0, double t1, const char* what) {
+// max_modes below 3 leaves out slower-growing modes next to a fast-growing one, whose leakage they cannot outgrow.
+void ExpectGrowthRatesOfSimulation(const waves::Network& net, double kick, double t0, double t1, const char* what,
+                                   int max_modes = 3) {
   const auto points = NetworkSteadyStates(net);
   ASSERT_EQ(points.size(), 1u) << what;
   const Spectrum sp = ComputeSpectrum(LinearizeNetwork(net, points[0]).system);
@@ -253,7 +320,7 @@ void ExpectGrowthRatesOfSimulation(const waves::Network& net, double kick, doubl
   int modes = 0;
   double first = 0;
   for (const CharacteristicRoot& r : sp.roots) {  // by real part, descending
-    if (!(r.s.imag() > 1 && r.s.imag() < 30) || modes == 3) continue;
+    if (!(r.s.imag() > 1 && r.s.imag() < 30) || modes == max_modes) continue;
     if (modes > 0 && r.s.real() < first - 0.3) break;
     if (modes == 0) first = r.s.real();
     const double measured = ModeGrowthRate(tr, points[0].speed_rad_s, r.s.imag(), t0, t1);
@@ -277,6 +344,91 @@ TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedPiTopDrive) {
                                 "PI top at 4 rad/s");
   ExpectGrowthRatesOfSimulation(Chain(PiTop(12, 500, 1000, 300), {kPipe}, StribeckBit()), 1e-3, 5, 40,
                                 "PI top at 12 rad/s");
+}
+
+// The motor tops: the induction motor's fluxes (open loop through a rigid gear; under slip-frequency control behind
+// the compliant gear) and the rig's two-mass top, at a speed where the stick-slip mode grows and one where it decays.
+TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedInductionMotorTop) {
+  // Synchronous string speed 2 pi f / (p n): 4.12 and 12.0 rad/s.
+  ExpectGrowthRatesOfSimulation(Chain(InductionTop(10.5), {kPipe}, StribeckBit()), 1e-6, 5, 30,
+                                "induction motor at 10.5 Hz");
+  ExpectGrowthRatesOfSimulation(Chain(InductionTop(30.6), {kPipe}, StribeckBit()), 1e-3, 5, 40,
+                                "induction motor at 30.6 Hz");
+}
+
+// The steady states of the motor tops are rest points of the simulation: started exactly there (the simulation sets
+// its motor states, fluxes, currents and twists from its own steady equations), nothing moves. A steady state from
+// other equations (an unreferred motor constant, the wrong flux balance) would leave a torque that accelerates it.
+TEST(NetworkStability, MotorTopsSteadyStatesAreRestPointsOfTheSimulation) {
+  waves::Node slip_control = CompliantGearTop(12);
+  slip_control.drive = waves::Drive::kInductionMotorSpeed;
+  slip_control.induction = InductionTop(0).induction;
+  waves::Node proportional = slip_control;  // balances below the set-point
+  proportional.ki = 0;
+  waves::Node dc_voltage = DcMotorTop(0);
+  dc_voltage.drive = waves::Drive::kDcMotorVoltage;
+  dc_voltage.setpoint = model::Schedule(500.0);  // volts: k_n w = 48 w balances it near 10 rad/s
+  const std::vector<std::pair<waves::Node, const char*>> tops = {
+      {InductionTop(10.5), "induction motor at 10.5 Hz"}, {InductionTop(30.6), "induction motor at 30.6 Hz"},
+      {CompliantGearTop(12), "PI behind a compliant gear"}, {slip_control, "slip-controlled induction motor"},
+      {proportional, "slip-controlled induction motor, proportional only"}, {DcMotorTop(10), "DC motor under a PI"},
+      {dc_voltage, "DC motor at 500 V"}};
+  for (const auto& [top, what] : tops) {
+    const waves::Network net = Chain(top, {kPipe}, StribeckBit());
+    // The fastest steady state: the proportional-only slip control also balances at 0.36 rad/s, on the friction's
+    // steep velocity weakening (-2950 N m s/rad), where a real root at 29.8 1/s grows rounding errors to the full
+    // motion within the 5 s.
+    const auto points = NetworkSteadyStates(net);
+    ASSERT_FALSE(points.empty()) << what;
+    const double w0 = points.back().speed_rad_s;
+    const waves::NetworkTrajectory tr = KickedRun(net, w0, 0, 5);
+    double drift = 0;
+    for (std::size_t i = 0; i < tr.time_s.size(); ++i)
+      drift = std::max({drift, std::abs(tr.bit_speed_rad_s[i] - w0), std::abs(tr.top_speed_rad_s[i] - w0)});
+    std::printf("[ measured ] %s: steady state %.9f rad/s, largest drift of the simulation started there over 5 s "
+                "%.2e rad/s\n", what, w0, drift);
+    EXPECT_LT(drift, 1e-9 * w0) << what;
+  }
+}
+
+// The string's harmonics just below the supply frequency (25.5 Hz: 160 rad/s) lose their damping to the induction
+// motor's flux dynamics: the linearization puts five of them right of the axis, at Re s ~ 1e-5 to 6e-5 1/s, and the
+// simulated string grows at those rates (and decays at those of the neighbours), to 0.2 % over 100 s.
+TEST(NetworkStability, InductionMotorTopUndampsTheHarmonicsBelowItsSupplyFrequency) {
+  const waves::Network net = Chain(InductionTop(25.5), {kPipe}, StribeckBit());
+  const auto points = NetworkSteadyStates(net);
+  ASSERT_EQ(points.size(), 1u);
+  const double w0 = points[0].speed_rad_s;
+  const Spectrum sp = ComputeSpectrum(LinearizeNetwork(net, points[0]).system);
+  EXPECT_GT(sp.roots[0].s.real(), 0);
+  EXPECT_GT(sp.roots[0].s.imag(), 100);
+  EXPECT_LT(sp.roots[0].s.imag(), 2 * M_PI * 25.5);
+  const waves::NetworkTrajectory tr = KickedRun(net, w0, 1e-3, 105);
+  int checked = 0, growing = 0;
+  for (const CharacteristicRoot& r : sp.roots) {  // by real part, descending
+    if (r.s.imag() < 100 || r.s.imag() > 170) continue;
+    const double measured = ModeGrowthRate(tr, w0, r.s.imag(), 5, 105);
+    std::printf("[ measured ] induction motor at 25.5 Hz, root %.6e%+.5fi: simulated growth rate %.6e 1/s\n",
+                r.s.real(), r.s.imag(), measured);
+    EXPECT_NEAR(measured, r.s.real(), 0.01 * std::abs(r.s.real()) + 1e-7) << r.s;
+    growing += r.s.real() > 0;
+    if (++checked == 8) break;
+  }
+  EXPECT_EQ(checked, 8);
+  EXPECT_GE(growing, 3);
+}
+
+TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedCompliantGearTop) {
+  // At 4 rad/s the stick-slip mode grows at 0.31 1/s; the next ones (0.087 and 0.027 1/s) drown in its leakage.
+  ExpectGrowthRatesOfSimulation(Chain(CompliantGearTop(4), {kPipe}, StribeckBit()), 1e-6, 5, 30,
+                                "PI behind a compliant gear at 4 rad/s", 1);
+  ExpectGrowthRatesOfSimulation(Chain(CompliantGearTop(12), {kPipe}, StribeckBit()), 1e-3, 5, 40,
+                                "PI behind a compliant gear at 12 rad/s");
+  waves::Node slip_control = CompliantGearTop(12);
+  slip_control.drive = waves::Drive::kInductionMotorSpeed;
+  slip_control.induction = InductionTop(0).induction;
+  ExpectGrowthRatesOfSimulation(Chain(slip_control, {kPipe}, StribeckBit()), 1e-3, 5, 40,
+                                "slip-controlled induction motor behind a compliant gear at 12 rad/s");
 }
 
 }  // namespace

@@ -180,6 +180,10 @@ TEST_F(Cli, StabilityReportsTheSteadyStateOrSaysWhyNot) {
   EXPECT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("stable: rightmost root -0.2094"), std::string::npos) << o.output;
   EXPECT_TRUE(fs::exists(fs::path(out) / "stability.json"));
+  // An induction motor top (its fluxes linearized) is analysed, no longer refused.
+  o = RunTool("stability " + std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/induction-motor-stickslip.json -o " +
+              (dir_ / "stab_induction").string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
   const std::string out2 = (dir_ / "stab2").string();
   o = RunTool("stability " + std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/jeffcott-unbalance.json -o " + out2);
   EXPECT_EQ(o.exit_code, 2) << o.output;

@@ -2,6 +2,7 @@
 // independent figures (Routh-Hurwitz for the two-disc set-up, the wave-network growth rates for the string, the
 // measured start of linear stability of the two-mass pendulum), maps, and clear errors where no linearization
 // exists.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -99,17 +100,26 @@ TEST(CaseStability, KindsWithoutALinearizationSaySo) {
   }
   // Every top of the torsional string linearizes now: the force-controlled bar (torque top) has its steady states.
   EXPECT_NO_THROW(Analyze(LoadCase("bar-step")));
-  // An induction motor's fluxes and a gear's motor side are not among the linearization's states: refused, not
-  // linearized as a plain top.
-  for (const char* name : {"induction-motor-stickslip", "rig-two-mass"}) {
-    try {
-      Analyze(LoadCase(name));
-      ADD_FAILURE() << name << " was linearized";
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.json_path(), "/model") << name;
-      EXPECT_NE(std::string(e.what()).find("no linearization"), std::string::npos) << e.what();
-    }
-  }
+}
+
+// The motor tops linearize with their own states: an induction motor's fluxes, a compliant gear's motor speed and
+// twist (tests/analysis/network_stability_test.cpp checks their roots).
+TEST(CaseStability, MotorAndGearTopsAddTheirStates) {
+  auto has_state = [](const OperatingPointStability& p, const std::string& name) {
+    return std::find(p.point.state_names.begin(), p.point.state_names.end(), name) != p.point.state_names.end();
+  };
+  const auto induction = Analyze(LoadCase("induction-motor-stickslip"));
+  ASSERT_FALSE(induction.empty());
+  EXPECT_TRUE(has_state(induction.back(), "top_rotor_flux_q_Wb"));
+  // On the motor's steep torque-speed curve just below the synchronous 2 pi 25.5 / 16 rad/s.
+  const double synchronous = 2 * M_PI * 25.5 / 16;
+  const double w0 = induction.back().point.steady_state.at("bit_speed_rad_s").get<double>();
+  EXPECT_LT(w0, synchronous);
+  EXPECT_GT(w0, 0.95 * synchronous);
+  const auto rig = Analyze(LoadCase("rig-two-mass"));
+  ASSERT_EQ(rig.size(), 1u);
+  EXPECT_TRUE(has_state(rig[0], "top_gear_twist_rad"));
+  EXPECT_NEAR(rig[0].point.steady_state.at("bit_speed_rad_s").get<double>(), 20.0, 1e-12);
 }
 
 TEST(CaseStability, AMapStopsAtAValueWithoutALinearizationWhateverTheThreads) {

@@ -8,8 +8,9 @@ namespace drillwave::analysis {
 namespace {
 
 // The channel as a wave network (massless nodes between the pieces): its linearization is the network's. The top
-// drive's PI is a network drive; the hoist under a constant hook force has no drive term.
-waves::Network ChannelNetwork(const WaveChannel& ch, bool torsion, double kp, double ki, double speed) {
+// drive's PI, motor and gear are a network top; the hoist under a constant hook force has no drive term.
+waves::Network ChannelNetwork(const WaveChannel& ch, const AxialTorsionalString* top_drive, double speed) {
+  const bool torsion = top_drive != nullptr;
   const std::size_t pieces = ch.impedance.size();
   if (pieces == 0 || ch.travel_time_s.size() != pieces || ch.node_damping.size() != pieces + 1)
     throw std::invalid_argument("a channel needs impedances and travel times per piece and a damping per node");
@@ -28,8 +29,11 @@ waves::Network ChannelNetwork(const WaveChannel& ch, bool torsion, double kp, do
   top.name = torsion ? "top" : "hoist";
   top.inertia = ch.top_inertia;
   if (torsion) {
-    top.drive = waves::Drive::kPiSpeedController;
-    top.kp = kp, top.ki = ki;
+    top.drive = top_drive->top_drive;
+    top.kp = top_drive->kp, top.ki = top_drive->ki;
+    top.motor = top_drive->dc_motor;
+    top.induction = top_drive->induction_motor;
+    top.gear = top_drive->gear;
     top.setpoint = model::Schedule(speed);
   }
   net.nodes.back().name = "bit";
@@ -37,10 +41,13 @@ waves::Network ChannelNetwork(const WaveChannel& ch, bool torsion, double kp, do
   return net;
 }
 
-NetworkLinearization LinearizeChannel(const WaveChannel& ch, bool torsion, double kp, double ki, double speed) {
+// The network's damping terms are linear: only the speed matters, and for an induction motor the top's torque.
+NetworkLinearization LinearizeChannel(const WaveChannel& ch, const AxialTorsionalString* top_drive, double speed,
+                                      double top_torque) {
   NetworkOperatingPoint point;
-  point.top_setpoint = point.speed_rad_s = speed;  // the network's damping terms are linear: only the speed matters
-  return LinearizeNetwork(ChannelNetwork(ch, torsion, kp, ki, speed), point);
+  point.top_setpoint = point.speed_rad_s = speed;
+  point.top_torque_Nm = top_torque;
+  return LinearizeNetwork(ChannelNetwork(ch, top_drive, speed), point);
 }
 
 int IndexOf(const std::vector<std::string>& names, const std::string& name) {
@@ -64,7 +71,7 @@ std::string AxialName(std::string name) {
 NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string, const SteadyDrilling& point) {
   const double w0 = point.speed_rad_s, v0 = point.rop_m_s;
   if (!(w0 > 0)) throw std::invalid_argument("steady drilling needs a bit speed > 0");
-  NetworkLinearization torsion = LinearizeChannel(string.torsion, true, string.kp, string.ki, w0);
+  NetworkLinearization torsion = LinearizeChannel(string.torsion, &string, w0, point.top_torque_Nm);
   const double bit_inertia = string.torsion.bit_inertia;
   const int tb = IndexOf(torsion.state_names, "bit_speed_rad_s");
   // Friction of the wear flats: only a Stribeck law's slope moves it.
@@ -72,7 +79,7 @@ NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string,
   if (!string.axial_coupling) return torsion;  // the depth of cut is held: the bit torque moves with friction alone
   if (!(v0 > 0)) throw std::invalid_argument("steady drilling needs a rate of penetration > 0");
 
-  const NetworkLinearization axial = LinearizeChannel(string.axial, false, 0, 0, v0);
+  const NetworkLinearization axial = LinearizeChannel(string.axial, nullptr, v0, 0);
   const LinearDelaySystem& ts = torsion.system;
   const LinearDelaySystem& as = axial.system;
   const int t_waves = ts.derivative_only_states, a_waves = as.derivative_only_states;

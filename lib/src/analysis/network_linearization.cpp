@@ -33,9 +33,25 @@ bool HoldsSpeed(const Node& top) {
   return top.drive == Drive::kPrescribedSpeed || (top.has_speed_integral() && top.ki > 0);
 }
 
-// The torque a balancing top supplies when it turns at w, and whether its limit (torque or voltage) is reached there.
+// A DC motor's constant referred to the node's side of its gear: torque n k I, back-emf n k w (as the simulation).
+double ReferredMotorConstant(const Node& top) { return top.gear.ratio * top.motor.motor_constant; }
+
+// An induction motor's supply in steady rotation at w carrying `torque` (on the node's side): the set-point in open
+// loop; under a proportional controller the supply of its demand; with an integral gain the frequency the simulation
+// starts from (model::InductionMotor::SteadySupplyFrequency at the motor's shaft speed n w; it throws
+// std::domain_error beyond the pull-out torque).
+double SteadySupplyHz(const Node& top, double set, double w, double torque) {
+  if (top.drive == Drive::kInductionMotor) return set;
+  const double n = top.gear.ratio;
+  if (!(top.ki > 0)) return top.induction.SupplyForTorque(top.kp * (set - w) / n, n * w);
+  return top.induction.SteadySupplyFrequency(torque / n, n * w);
+}
+
+// The torque a balancing top supplies when it turns at w, and whether its limit (torque, voltage or the slip of a
+// slip-frequency drive) is reached there. Everything on the node's side of the gear.
 double Supply(const Node& top, double set, double w, bool& saturated) {
   const waves::DcMotor& m = top.motor;
+  const double n = top.gear.ratio;
   double u = 0;
   switch (top.drive) {
     case Drive::kSpeedDashpot: return top.drive_damping * (set - w);
@@ -45,10 +61,20 @@ double Supply(const Node& top, double set, double w, bool& saturated) {
       saturated = top.torque_limit > 0 && std::abs(u) >= top.torque_limit;
       return Clamp(u, top.torque_limit);
     case Drive::kDcMotorVoltage:
-    case Drive::kDcMotorSpeed:
+    case Drive::kDcMotorSpeed: {
+      const double k = ReferredMotorConstant(top);
       u = top.drive == Drive::kDcMotorVoltage ? set : top.kp * (set - w);
       saturated = m.voltage_limit > 0 && std::abs(u) >= m.voltage_limit;
-      return m.motor_constant * (Clamp(u, m.voltage_limit) - m.motor_constant * w) / m.armature_resistance;
+      return k * (Clamp(u, m.voltage_limit) - k * w) / m.armature_resistance;
+    }
+    case Drive::kInductionMotor: return n * top.induction.Torque(top.induction.SteadyFluxes(set, n * w));
+    case Drive::kInductionMotorSpeed: {  // proportional only: the demand's slip at the measured speed
+      const model::InductionMotor& im = top.induction;
+      u = top.kp * (set - w);
+      saturated = std::abs(u / n) >= im.SlipTorqueGain() * im.PullOutSlipFrequency();
+      const double f = im.SupplyForTorque(u / n, n * w);
+      return n * im.Torque(im.SteadyFluxes(f, n * w));
+    }
     default: return 0;
   }
 }
@@ -57,11 +83,14 @@ double Supply(const Node& top, double set, double w, bool& saturated) {
 double LargestSpeed(const Network& net, double set) {
   const Node& top = net.top();
   const waves::DcMotor& m = top.motor;
+  const double pi = 3.14159265358979323846;
   switch (top.drive) {
     case Drive::kSpeedDashpot:
-    case Drive::kPiSpeedController: return set;
-    case Drive::kDcMotorVoltage: return Clamp(set, m.voltage_limit) / m.motor_constant;
-    case Drive::kDcMotorSpeed: return top.kp * set / (top.kp + m.motor_constant);
+    case Drive::kPiSpeedController:
+    case Drive::kInductionMotorSpeed: return set;  // no demand, no slip: no torque
+    case Drive::kDcMotorVoltage: return Clamp(set, m.voltage_limit) / ReferredMotorConstant(top);
+    case Drive::kDcMotorSpeed: return top.kp * set / (top.kp + ReferredMotorConstant(top));
+    case Drive::kInductionMotor: return 2 * pi * set / (top.induction.pole_pairs * top.gear.ratio);  // synchronous
     case Drive::kTorque: {
       double damping = 0;
       for (const Node& n : net.nodes) damping += n.ground_damping;
@@ -75,36 +104,81 @@ NetworkOperatingPoint PointAt(const Network& net, double set, double w) {
   return {set, w, Load(net, w), NodeTorque(net.bit(), w), NodeTorqueSlope(net.bit(), w)};
 }
 
-// The drives this linearization has equations for: an induction motor's fluxes and a gear's motor side (its
-// inertia, its compliance, the referred motor constant) are not among its states, so such a top is refused rather
-// than linearized as if it were a plain one.
-void RequireLinearizedDrives(const Network& net) {
-  for (const Node& node : net.nodes) {
-    if (node.drive == Drive::kInductionMotor || node.drive == Drive::kInductionMotorSpeed)
-      throw std::invalid_argument("node '" + node.name + "': an induction motor top has no linearization yet");
-    if (node.gear.compliant() || node.gear.ratio != 1 || node.gear.motor_inertia != 0)
-      throw std::invalid_argument("node '" + node.name + "': a gear and motor inertia have no linearization yet");
+// Whether a speed-holding top can supply the load at the set-point: within its torque or voltage limit, and for an
+// induction motor below its pull-out torque (SteadySupplyFrequency throws beyond it).
+bool CanHold(const Node& top, const NetworkOperatingPoint& p) {
+  const waves::DcMotor& m = top.motor;
+  if (top.drive == Drive::kPiSpeedController && top.torque_limit > 0 && p.top_torque_Nm >= top.torque_limit)
+    return false;
+  if (top.has_dc_motor() && m.voltage_limit > 0) {
+    const double k = ReferredMotorConstant(top);
+    if (m.armature_resistance * p.top_torque_Nm / k + k * p.speed_rad_s >= m.voltage_limit) return false;
   }
+  if (top.drive == Drive::kInductionMotorSpeed) {
+    try {
+      SteadySupplyHz(top, p.top_setpoint, p.speed_rad_s, p.top_torque_Nm);
+    } catch (const std::domain_error&) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The induction motor's flux equations and torque linearized about the fluxes psi0 that hold still at supply f0 and
+// shaft speed wm0, by central differences of the model's own FluxRates and Torque (so they cannot drift from what the
+// simulation integrates). These are exact up to rounding: the flux rates are affine in the fluxes and in the shaft
+// speed (currents are linear in the fluxes), the torque is a quadratic form of the fluxes, and a central difference
+// of a quadratic has no truncation error. The steps are therefore large (1e-4 of the scale), which keeps the rounding
+// near 1e-12 relative. In the supply the rates are affine too except where the V/f line meets the voltage limit: the
+// step stays within half the distance to that corner.
+struct InductionJacobian {
+  Eigen::Matrix4d flux = Eigen::Matrix4d::Zero();             // d psi' / d psi
+  Eigen::Vector4d supply_hz = Eigen::Vector4d::Zero();        // d psi' / d f
+  Eigen::Vector4d shaft_speed = Eigen::Vector4d::Zero();      // d psi' / d w_m
+  Eigen::RowVector4d torque = Eigen::RowVector4d::Zero();     // d T / d psi
+};
+
+InductionJacobian LinearizeInductionMotor(const model::InductionMotor& m, double f0, double wm0) {
+  using Fluxes = model::InductionMotor::Fluxes;
+  const Fluxes psi0 = m.SteadyFluxes(f0, wm0);
+  auto column = [](const Fluxes& plus, const Fluxes& minus, double h) {
+    Eigen::Vector4d d;
+    for (int r = 0; r < 4; ++r) d(r) = (plus[r] - minus[r]) / (2 * h);
+    return d;
+  };
+  InductionJacobian jac;
+  double scale = 0;
+  for (double p : psi0) scale = std::max(scale, std::abs(p));
+  const double h = 1e-4 * scale;
+  for (int j = 0; j < 4; ++j) {
+    Fluxes plus = psi0, minus = psi0;
+    plus[j] += h, minus[j] -= h;
+    jac.flux.col(j) = column(m.FluxRates(plus, f0, wm0), m.FluxRates(minus, f0, wm0), h);
+    jac.torque(j) = (m.Torque(plus) - m.Torque(minus)) / (2 * h);
+  }
+  const double pi = 3.14159265358979323846;
+  const double hw = 1e-4 * std::max(std::abs(wm0), 2 * pi * std::abs(f0) / m.pole_pairs + 1.0);
+  jac.shaft_speed = column(m.FluxRates(psi0, f0, wm0 + hw), m.FluxRates(psi0, f0, wm0 - hw), hw);
+  double hf = 1e-4 * std::max(std::abs(f0), 1.0);
+  if (m.voltage_limit > 0) {
+    const double corner = m.voltage_limit / m.volts_per_hertz, distance = std::abs(std::abs(f0) - corner);
+    if (distance > 0) hf = std::min(hf, 0.5 * distance);
+  }
+  jac.supply_hz = column(m.FluxRates(psi0, f0 + hf, wm0), m.FluxRates(psi0, f0 - hf, wm0), hf);
+  return jac;
 }
 
 }  // namespace
 
 std::vector<NetworkOperatingPoint> NetworkSteadyStates(const Network& net) {
   net.Validate();
-  RequireLinearizedDrives(net);
   const Node& top = net.top();
   const double set = top.setpoint.knots().back().second;
   std::vector<NetworkOperatingPoint> points;
   if (HoldsSpeed(top)) {
     if (!(set > 0)) return points;
     const NetworkOperatingPoint p = PointAt(net, set, set);
-    const waves::DcMotor& m = top.motor;
-    if (top.drive == Drive::kPiSpeedController && top.torque_limit > 0 && p.top_torque_Nm >= top.torque_limit)
-      return points;  // the controller saturates: the set-point cannot be held
-    if (top.has_dc_motor() && m.voltage_limit > 0 &&
-        m.armature_resistance * p.top_torque_Nm / m.motor_constant + m.motor_constant * set >= m.voltage_limit)
-      return points;
-    points.push_back(p);
+    if (CanHold(top, p)) points.push_back(p);
     return points;
   }
   const double w_max = LargestSpeed(net, set);
@@ -140,7 +214,6 @@ std::vector<NetworkOperatingPoint> NetworkSteadyStates(const Network& net) {
 
 NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperatingPoint& point) {
   net.Validate();
-  RequireLinearizedDrives(net);
   const int sections = static_cast<int>(net.sections.size()), nodes = sections + 1;
   const double w0 = point.speed_rad_s;
   NetworkLinearization out;
@@ -148,8 +221,10 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
   auto node_label = [&](int i) {
     return i == 0 ? std::string("top") : i == nodes - 1 ? std::string("bit") : "node" + std::to_string(i);
   };
-  // Node states: speeds of inertial nodes, then integrals of speed controllers with an integral gain, then currents.
-  std::vector<int> speed(nodes, -1), integral(nodes, -1), current(nodes, -1);
+  // Node states in the simulation's order: speeds of inertial nodes, integrals of speed controllers with an integral
+  // gain, DC currents, induction fluxes, then behind a compliant gear the motor's speed (referred to the node) and
+  // the gear's twist.
+  std::vector<int> speed(nodes, -1), integral(nodes, -1), current(nodes, -1), flux(nodes, -1), motor(nodes, -1);
   for (int i = 0; i < nodes; ++i)
     if (!net.nodes[i].massless()) speed[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_speed_rad_s");
   for (int i = 0; i < nodes; ++i)
@@ -157,6 +232,18 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
       integral[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_speed_error_integral_rad");
   for (int i = 0; i < nodes; ++i)
     if (net.nodes[i].has_dc_motor()) current[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_current_A");
+  for (int i = 0; i < nodes; ++i)
+    if (net.nodes[i].has_induction_motor()) {
+      flux[i] = static_cast<int>(names.size());
+      for (const char* axis : {"_stator_flux_d_Wb", "_stator_flux_q_Wb", "_rotor_flux_d_Wb", "_rotor_flux_q_Wb"})
+        names.push_back(node_label(i) + axis);
+    }
+  for (int i = 0; i < nodes; ++i)
+    if (net.nodes[i].has_compliant_gear()) {
+      motor[i] = static_cast<int>(names.size());
+      names.push_back(node_label(i) + "_motor_speed_referred_rad_s");
+      names.push_back(node_label(i) + "_gear_twist_rad");
+    }
   const int first_wave = static_cast<int>(names.size());
   for (int k = 0; k < sections; ++k) {
     names.push_back("section" + std::to_string(k) + "_down_wave_integral_rad");
@@ -182,26 +269,21 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
     if (i < sections) a.push_back({i, up(i), net.sections[i].impedance});
     return a;
   };
-  // Damping of node i in the linearization: ground, friction slope, and a top's proportional torque on the speed.
-  auto damping = [&](int i) {
-    const Node& node = net.nodes[i];
-    double c = NodeTorqueSlope(node, w0);
-    if (node.drive == Drive::kSpeedDashpot) c += node.drive_damping;
-    if (node.drive == Drive::kPiSpeedController) c += node.kp;
-    return c;
-  };
   auto impedance_sum = [&](int i) {
     double z = 0;
     for (const Arrival& a : arrivals(i)) z += a.impedance;
     return z;
   };
-  // factor * (speed of node i) into row `row`: a state, nothing (imposed), or the massless balance of the arrivals.
+  // factor * (speed of node i) into row `row`: a state, nothing (imposed), or the massless balance of the arrivals
+  // (whose damping is the ground's, the friction slope and a dissipative top's beta).
   auto add_speed = [&](int row, int i, double factor) {
     const Node& node = net.nodes[i];
     if (speed[i] >= 0) {
       sys.a0(row, speed[i]) += factor;
     } else if (node.drive != Drive::kPrescribedSpeed) {
-      const double denominator = impedance_sum(i) + damping(i);
+      const double damping =
+          NodeTorqueSlope(node, w0) + (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0.0);
+      const double denominator = impedance_sum(i) + damping;
       if (!(std::abs(denominator) > 1e-12 * impedance_sum(i)))
         throw std::invalid_argument("node '" + node.name + "' is massless and its torque slope cancels the string's "
                                     "impedance: the linearization is singular");
@@ -219,20 +301,75 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
     }
     if (speed[i] < 0) continue;
     const int v = speed[i];
-    const double inertia = node.inertia;
+    // The speed the drive sees (referred to the node's side): the node's, or its motor's behind a compliant gear.
+    const int vd = motor[i] >= 0 ? motor[i] : v;
+    const double n_gear = node.gear.ratio;
+    InductionJacobian induction;
+    if (flux[i] >= 0) {
+      if (i != 0)  // its steady supply comes from the top's set-point and torque
+        throw std::invalid_argument("node '" + node.name + "': an induction motor is linearized at the top only");
+      const double f0 = SteadySupplyHz(node, point.top_setpoint, w0, point.top_torque_Nm);
+      induction = LinearizeInductionMotor(node.induction, f0, n_gear * w0);
+    }
+    // factor * (the drive's torque on the node's side) into row `row`.
+    auto add_drive_torque = [&](int row, double factor) {
+      switch (node.drive) {
+        case Drive::kSpeedDashpot: sys.a0(row, vd) -= factor * node.drive_damping; break;
+        case Drive::kPiSpeedController:
+          sys.a0(row, vd) -= factor * node.kp;
+          if (integral[i] >= 0) sys.a0(row, integral[i]) += factor * node.ki;
+          break;
+        case Drive::kDcMotorVoltage:
+        case Drive::kDcMotorSpeed: sys.a0(row, current[i]) += factor * ReferredMotorConstant(node); break;
+        case Drive::kInductionMotor:
+        case Drive::kInductionMotorSpeed:
+          for (int j = 0; j < 4; ++j) sys.a0(row, flux[i] + j) += factor * n_gear * induction.torque(j);
+          break;
+        default: break;
+      }
+    };
+
+    const double inertia = node.LumpedInertia();
     for (const Arrival& a : arrivals(i)) sys.delays[a.section].neutral(v, a.column) += 2 * a.impedance / inertia;
-    sys.a0(v, v) -= (impedance_sum(i) + damping(i)) / inertia;
-    if (integral[i] >= 0) sys.a0(integral[i], v) = -1;  // d/dt integral of (set-point - speed)
-    if (node.drive == Drive::kPiSpeedController && integral[i] >= 0) sys.a0(v, integral[i]) += node.ki / inertia;
-    if (current[i] >= 0) {
+    sys.a0(v, v) -= (impedance_sum(i) + NodeTorqueSlope(node, w0)) / inertia;
+    if (motor[i] >= 0) {  // the gear passes k twist + c (w_m - w) to the node
+      const model::Gear& g = node.gear;
+      const int vm = motor[i], twist = motor[i] + 1;
+      const double jm = g.ReferredMotorInertia();
+      sys.a0(v, twist) += g.stiffness / inertia;
+      sys.a0(v, vm) += g.damping / inertia;
+      sys.a0(v, v) -= g.damping / inertia;
+      add_drive_torque(vm, 1 / jm);
+      sys.a0(vm, twist) -= g.stiffness / jm;
+      sys.a0(vm, vm) -= g.damping / jm;
+      sys.a0(vm, v) += g.damping / jm;
+      sys.a0(twist, vm) = 1;
+      sys.a0(twist, v) = -1;
+    } else {
+      add_drive_torque(v, 1 / inertia);
+    }
+    if (integral[i] >= 0) sys.a0(integral[i], vd) = -1;  // d/dt integral of (set-point - drive speed)
+    if (current[i] >= 0) {  // L I' = V - R I - n k w_d, V = the set-point or kp (set - w_d) + ki integral
       const waves::DcMotor& m = node.motor;
       const int c = current[i];
-      sys.a0(v, c) += m.motor_constant / inertia;
       sys.a0(c, c) = -m.armature_resistance / m.armature_inductance;
-      sys.a0(c, v) = -m.motor_constant / m.armature_inductance;
+      sys.a0(c, vd) -= ReferredMotorConstant(node) / m.armature_inductance;
       if (node.drive == Drive::kDcMotorSpeed) {
-        sys.a0(c, v) -= node.kp / m.armature_inductance;
+        sys.a0(c, vd) -= node.kp / m.armature_inductance;
         if (integral[i] >= 0) sys.a0(c, integral[i]) += node.ki / m.armature_inductance;
+      }
+    }
+    if (flux[i] >= 0) {
+      // psi' = F(psi, f, n w_d). Open loop f is the set-point; slip-frequency control sets
+      // f = (p n w_d + u / (n G)) / 2 pi for the PI's demand u = kp (set - w_d) + ki integral.
+      const int f = flux[i];
+      sys.a0.block(f, f, 4, 4) += induction.flux;
+      sys.a0.block(f, vd, 4, 1) += n_gear * induction.shaft_speed;
+      if (node.drive == Drive::kInductionMotorSpeed) {
+        const double two_pi = 6.283185307179586, gain = n_gear * node.induction.SlipTorqueGain();
+        const double supply_per_speed = (node.induction.pole_pairs * n_gear - node.kp / gain) / two_pi;
+        sys.a0.block(f, vd, 4, 1) += supply_per_speed * induction.supply_hz;
+        if (integral[i] >= 0) sys.a0.block(f, integral[i], 4, 1) += node.ki / gain / two_pi * induction.supply_hz;
       }
     }
   }

@@ -4,7 +4,8 @@
 // (DESIGN.md §3-4).
 //
 // Each channel is a chain of wave pieces between massless nodes (network_linearization.hpp builds its equations): the
-// torsional one between a top drive under a PI speed controller and the bit's inertia, the axial one between the
+// torsional one between a top drive under a PI speed controller (its output the torque, a DC motor's voltage or an
+// induction motor's torque demand, through a rigid or compliant gear) and the bit's inertia, the axial one between the
 // hoist's mass (under a constant hook force: no linear term) and the bit's mass. The bit-rock law couples them
 // through the depth of cut d = n (U(t) - U(t - t_n)), t_n solving Phi(t) - Phi(t - t_n) = 2 pi / n. About steady
 // drilling (Phi = Omega0 t, U = V0 t, t_n0 = 2 pi / (n Omega0)) the cut delay moves by
@@ -31,21 +32,31 @@ struct WaveChannel {
 };
 
 struct AxialTorsionalString {
-  WaveChannel torsion, axial;
-  double kp = 0, ki = 0;            // the top drive's PI speed controller
+  WaveChannel torsion, axial;       // torsion's top_inertia: the top drive's own (the gear adds a rigid motor's)
+  double kp = 0, ki = 0;            // the top drive's PI speed controller, in its drive's units (see top_drive)
   double cut_weight_per_depth = 0;  // a zeta eps [N/m]
   double cut_torque_per_depth = 0;  // a^2 eps / 2 [N m/m]
   int blades = 1;                   // n
   bool axial_coupling = true;       // false: the depth of cut is held (no axial channel, no cut delay)
+  // What the PI drives, as a waves::Node top (constants referred as it refers them): kPiSpeedController, its output is
+  // the torque; kDcMotorSpeed, its output is dc_motor's armature voltage (kp [V s/rad], ki [V/rad]);
+  // kInductionMotorSpeed, its output is the torque demand of induction_motor's slip-frequency drive. The gear sits
+  // between the motor and the top drive.
+  waves::Drive top_drive = waves::Drive::kPiSpeedController;
+  waves::DcMotor dc_motor{};
+  model::InductionMotor induction_motor{};
+  model::Gear gear{};
 };
 
 struct SteadyDrilling {
   double speed_rad_s = 0;              // Omega0 of top and bit
   double rop_m_s = 0;                  // V0 > 0
   double friction_slope_Nms_per_rad = 0;  // d T_f / d w at Omega0 (0 for Coulomb friction)
+  double top_torque_Nm = 0;            // what the top drive supplies (sets an induction motor's steady supply)
 };
 
-// States: the top drive's speed, the bit's speed, the PI's integral, the hoist's speed, the bit's axial speed, then
+// States: the top drive's speed, the bit's speed, the PI's integral, the motor's current, fluxes or speed and gear
+// twist (network_linearization.hpp), the hoist's speed, the bit's axial speed, then
 // the derivative-only states: bit angle, bit position, the torsional waves, the axial waves (without axial coupling:
 // the torsional network alone). Throws std::invalid_argument for inconsistent sizes or non-positive inertias.
 NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string, const SteadyDrilling& point);

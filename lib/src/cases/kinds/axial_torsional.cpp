@@ -987,9 +987,6 @@ HoistBalance Balance(const Model& md, const StringSpec& string) {
 void RequireLinearizable(const Model& md) {
   const char* field = md.torsion.kelvin_voigt() ? "/model/string/kelvin_voigt_s"
                       : md.axial.kelvin_voigt() ? "/model/string/axial_kelvin_voigt_s"
-                      : md.motor.on             ? "/model/top/motor"
-                      : md.induction_on         ? "/model/top/induction_motor"
-                      : md.gear.compliant()     ? "/model/top/gear/stiffness_Nm_per_rad"
                       : md.unbalance.on         ? "/model/bit/unbalance"
                                                 : nullptr;
   if (field) throw InputError(field, "the coupled model's stability analysis has no linearization of this component yet");
@@ -997,6 +994,31 @@ void RequireLinearizable(const Model& md) {
 
 analysis::WaveChannel LinearChannel(const Channel& ch, double top_inertia, double bit_inertia) {
   return {ch.z, ch.tau, ch.damping, top_inertia, bit_inertia};
+}
+
+// The top drive's motor and gear as the linearization's network top. The DC motor's voltage R/K u_PI + K Omega_ref is
+// a PI in volts (gains R/K kp, R/K ki) plus a constant; its constant, referred here (n K), goes back to the motor's
+// own K, which the network refers again.
+void DescribeTopDrive(const Model& md, analysis::AxialTorsionalString& string) {
+  string.gear = md.gear;
+  if (md.motor.on) {
+    string.top_drive = waves::Drive::kDcMotorSpeed;
+    string.dc_motor = {md.motor.k / md.gear.ratio, md.motor.resistance, md.motor.inductance, 0};
+    string.kp = md.motor.resistance / md.motor.k * md.kp;
+    string.ki = md.motor.resistance / md.motor.k * md.ki;
+  } else if (md.induction_on) {
+    string.top_drive = waves::Drive::kInductionMotorSpeed;
+    string.induction_motor = md.induction;
+  }
+}
+
+// What the top drive supplies in steady drilling at omega: the bit's torque and every node's damping and Coulomb
+// friction (as InitializeWaves balances the top section).
+double SteadyTopTorque(const Channel& torsion, double bit_torque, double omega) {
+  double torque = bit_torque;
+  for (std::size_t j = 0; j < torsion.damping.size(); ++j)
+    torque += torsion.damping[j] * omega - torsion.load[j] + (j > 0 ? torsion.coulomb[j] : 0.0);
+  return torque;
 }
 
 std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
@@ -1010,10 +1032,12 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   if (md_.axial_coupling) at.weight_on_bit = balance.WeightOnBit(md_, omega, md_.hook_force.knots().back().second);
   if (!(omega > 0) || !(at.weight_on_bit > md_.ContactForce())) return {};  // no steady drilling
   const Steady s = SteadyDrilling(at, omega);
-  analysis::AxialTorsionalString string{LinearChannel(md_.torsion, md_.TopInertia(), md_.bit_inertia),
+  analysis::AxialTorsionalString string{LinearChannel(md_.torsion, md_.top_inertia, md_.bit_inertia),
                                         LinearChannel(md_.axial, md_.hoist_mass, md_.bit_mass),
                                         md_.kp, md_.ki, md_.CutWeightPerDepth(), md_.CutTorquePerDepth(),
                                         md_.blades, md_.axial_coupling};
+  DescribeTopDrive(md_, string);
+  const double top_torque = SteadyTopTorque(md_.torsion, s.tob, omega);
   // Stribeck: d mu / dw = -(mu_s - mu) / w_s e^{-w / w_s} while turning forward.
   const double mu_slope = md_.stribeck_speed > 0 ? -(md_.static_mu - md_.mu) / md_.stribeck_speed *
                                                        std::exp(-omega / md_.stribeck_speed)
@@ -1021,7 +1045,9 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   const double friction_slope = 0.5 * md_.a * md_.gamma * mu_slope * md_.ContactForce();
   analysis::NetworkLinearization lin;
   try {
-    lin = analysis::LinearizeAxialTorsional(string, {omega, s.rop, friction_slope});
+    lin = analysis::LinearizeAxialTorsional(string, {omega, s.rop, friction_slope, top_torque});
+  } catch (const std::domain_error&) {  // the induction motor cannot carry the steady torque (beyond pull-out)
+    return {};
   } catch (const std::invalid_argument& e) {  // parameters out of the linearization's range (e.g. mutated to 1e-300)
     throw InputError("/model", std::string("no linearization for this model: ") + e.what());
   }
@@ -1031,6 +1057,7 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
             {"depth_of_cut_m", s.depth},
             {"rop_m_h", 3600 * s.rop},
             {"bit_torque_Nm", s.tob},
+            {"top_torque_Nm", top_torque},
             {"bit_torque_slope_Nms_per_rad", friction_slope},
             {"cut_delay_s", 2 * kPi / (md_.blades * omega)},
             {"axial_coupling", md_.axial_coupling}},
