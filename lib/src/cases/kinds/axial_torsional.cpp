@@ -38,6 +38,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <optional>
 
 #include "drillwave/analysis/axial_torsional_linearization.hpp"
 #include "drillwave/bitrock/rgd.hpp"
@@ -52,6 +53,7 @@
 #include "drillwave/model/schedule.hpp"
 #include "top_components.hpp"
 
+#include "string_components.hpp"
 namespace drillwave::cases {
 namespace {
 
@@ -90,19 +92,6 @@ struct DcMotor {
   }
 };
 
-// Lateral (Jeffcott) rotor of the BHA at the bit: mass M, stiffness k, damping c, unbalance m at radius e.
-struct LateralBha {
-  bool on = false;
-  double mass = 0, stiffness = 0, damping = 0, unbalance_mass = 0, eccentricity = 0;
-  double TotalMass() const { return mass + unbalance_mass; }  // M + m
-  double Moment() const { return unbalance_mass * eccentricity; }  // m e
-  double NaturalFrequency() const { return std::sqrt(stiffness / TotalMass()); }
-  // Steady whirl radius at a constant bit speed w: m e w^2 / sqrt((k - (M + m) w^2)^2 + (c w)^2).
-  double WhirlAmplitude(double w) const {
-    return Moment() * w * w / std::hypot(stiffness - TotalMass() * w * w, damping * w);
-  }
-};
-
 // The bit-rock law's parameters and forces are bitrock::RgdLaw's (a, zeta, eps, sigma_l, mu, gamma, blades, Stribeck).
 struct Model : bitrock::RgdLaw {
   int m = 20;
@@ -124,14 +113,14 @@ struct Model : bitrock::RgdLaw {
   double SupplyFrequency(double u_pi, double drive_speed) const {
     return induction.SupplyForTorque(u_pi / gear.ratio, gear.ratio * drive_speed);
   }
-  LateralBha unbalance;   // Jeffcott rotor at the bit when unbalance.on
+  std::optional<model::JeffcottBha> unbalance;  // the BHA's lateral motion at the bit (absent: none)
 
   // The bit's inertia against its angular acceleration when the BHA moves laterally with it: eliminating x'' and
   // y'' from seed eq. 23 leaves J_b + m e^2 - (m e)^2 / (M + m) (J_b itself without an unbalance).
   double EffectiveBitInertia() const {
-    if (!unbalance.on) return bit_inertia;
-    const double me = unbalance.Moment();
-    return bit_inertia + me * unbalance.eccentricity - me * me / unbalance.TotalMass();
+    if (!unbalance) return bit_inertia;
+    const double me = unbalance->Moment();
+    return bit_inertia + me * unbalance->eccentricity - me * me / unbalance->TotalMass();
   }
 };
 
@@ -177,7 +166,7 @@ class Process {
   // --- Simulator interface --------------------------------------------------------------------------------
   int Dimension() const {
     if (md_.induction_on || md_.gear.compliant()) return kTopDim;
-    return md_.unbalance.on ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
+    return md_.unbalance.has_value() ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
   }
   double MaxStep() const {
     double shortest = kInf;
@@ -241,7 +230,7 @@ class Process {
       dx[kU] = steady_.depth / (2 * kPi) * std::max(BitSpeed(x), 0.0);
       dx[kVtop] = dx[kVbit] = 0;
     }
-    if (md_.unbalance.on) LateralRates(x, dx[kWbit], dx);
+    if (md_.unbalance.has_value()) LateralRates(x, dx[kWbit], dx);
   }
 
   // The waves leaving every node over the piece, and the error of the quartic the history stores for them (ends,
@@ -334,7 +323,7 @@ class Process {
     s.top_current = md_.motor.on ? x[kCurrent] : md_.induction_on ? md_.induction.StatorCurrentRms(Fluxes(x)) : 0.0;
     s.motor_speed = md_.gear.compliant() ? md_.gear.ratio * x[kMotorSpeed] : 0.0;
     s.gear_torque = md_.gear.compliant() ? GearTorque(x) : 0.0;
-    s.lateral_displacement = md_.unbalance.on ? std::hypot(x[kX], x[kY]) : 0.0;
+    s.lateral_displacement = md_.unbalance.has_value() ? std::hypot(x[kX], x[kY]) : 0.0;
     return s;
   }
   const std::vector<StuckInterval>& stuck_intervals() const { return stuck_; }
@@ -410,7 +399,7 @@ class Process {
     const double w = rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
     f.drive_torque = ends.bit[0];
     f.drive_force = ends.bit[1];
-    if (md_.unbalance.on) f.drive_torque += LateralReaction(x);
+    if (md_.unbalance.has_value()) f.drive_torque += LateralReaction(x);
     f.depth = DepthOfCut(x, t, side, &f.tn);
     if (!md_.axial_coupling) f.depth = steady_.depth;
     if (!rg_.contact) return f;
@@ -441,27 +430,13 @@ class Process {
   }
   double BitSpeed(const State& x) const { return rg_.turn == Turn::kStuck ? 0.0 : x[kWbit]; }
 
-  // Forces on the BHA's lateral motion other than its inertia and the unbalance's angular acceleration term
-  // (seed eqs. 21-22 with Phi'' = 0): m e Phi'^2 (cos Phi, sin Phi) - c (x', y') - k (x, y).
-  std::array<double, 2> LateralForces(const State& x) const {
-    const LateralBha& b = md_.unbalance;
-    const double w = BitSpeed(x), centrifugal = b.Moment() * w * w;
-    return {centrifugal * std::cos(x[kPhi]) - b.damping * x[kXd] - b.stiffness * x[kX],
-            centrifugal * std::sin(x[kPhi]) - b.damping * x[kYd] - b.stiffness * x[kY]};
-  }
-  // Torque of the lateral motion on the bit at zero angular acceleration, m e (x'' sin Phi - y'' cos Phi) of seed eq.
-  // 23; the part that goes with Phi'' is in EffectiveBitInertia. (The centrifugal force is radial: no torque.)
-  double LateralReaction(const State& x) const {
-    const auto [fx, fy] = LateralForces(x);
-    return md_.unbalance.Moment() / md_.unbalance.TotalMass() * (fx * std::sin(x[kPhi]) - fy * std::cos(x[kPhi]));
-  }
-  // x'', y'' (seed eqs. 21-22) given the bit's angular acceleration phi_dd.
+  // The Jeffcott rotor's torque on the bit at zero angular acceleration (the rest is in EffectiveBitInertia), and
+  // its rates given the bit's angular acceleration phi_dd (model::JeffcottBha).
+  static model::JeffcottBha::Lateral Lateral(const State& x) { return {x[kX], x[kY], x[kXd], x[kYd]}; }
+  double LateralReaction(const State& x) const { return md_.unbalance->Reaction(x[kPhi], BitSpeed(x), Lateral(x)); }
   void LateralRates(const State& x, double phi_dd, State& dx) const {
-    const auto [fx, fy] = LateralForces(x);
-    const double me = md_.unbalance.Moment(), mass = md_.unbalance.TotalMass();
-    dx[kX] = x[kXd], dx[kY] = x[kYd];
-    dx[kXd] = (fx + me * std::sin(x[kPhi]) * phi_dd) / mass;
-    dx[kYd] = (fy - me * std::cos(x[kPhi]) * phi_dd) / mass;
+    const auto rates = md_.unbalance->Rates(x[kPhi], BitSpeed(x), phi_dd, Lateral(x));
+    std::copy(rates.begin(), rates.end(), dx.begin() + kX);
   }
 
   // Sum of Z (2 w_in) over the two pieces at an internal node (as 2 Z (a + b) for equal impedances: a uniform
@@ -628,7 +603,7 @@ class AxialTorsionalModel : public PreparedModel {
       d.tn.push_back(v.tn), d.stuck.push_back(v.stuck), d.off.push_back(v.off_bottom), d.angle.push_back(s[kPhi]);
       if (md_.motor.on || md_.induction_on) current.push_back(v.top_current);
       if (md_.gear.compliant()) motor_rpm.push_back(v.motor_speed * 30 / kPi), gear_torque.push_back(v.gear_torque);
-      if (md_.unbalance.on) lateral.push_back(v.lateral_displacement);
+      if (md_.unbalance.has_value()) lateral.push_back(v.lateral_displacement);
     };
     sample(0.0, x);
     const auto observer = integration::SampleEvery(settings.output_interval_s, sample);
@@ -642,7 +617,7 @@ class AxialTorsionalModel : public PreparedModel {
 
     double lateral_sum = 0, lateral_max = 0;
     int n = 0;
-    if (md_.unbalance.on)
+    if (md_.unbalance.has_value())
       for (std::size_t i = 0; i < d.time.size(); ++i)
         if (d.time[i] >= settings.window_begin_s && d.time[i] <= settings.window_end_s)
           lateral_sum += lateral[i], lateral_max = std::max(lateral_max, lateral[i]), ++n;
@@ -651,11 +626,11 @@ class AxialTorsionalModel : public PreparedModel {
     SummarizeDrillingRun(d, std::move(hook), process.stuck_intervals(), settings, {s.depth, s.rop, s.tob},
                          sim.stats(), result);
     result.summary["hook_force_N"] = md_.hook_force.Value(0.0);
-    if (md_.unbalance.on) {  // whirl radius over the window, and the closed form at the steady bit speed
+    if (md_.unbalance.has_value()) {  // whirl radius over the window, and the closed form at the steady bit speed
       result.summary["whirl_amplitude_mean_m"] = n ? lateral_sum / n : 0.0;
       result.summary["whirl_amplitude_max_m"] = lateral_max;
-      result.summary["steady_whirl_amplitude_m"] = md_.unbalance.WhirlAmplitude(s.omega);
-      result.summary["lateral_natural_frequency_rad_s"] = md_.unbalance.NaturalFrequency();
+      result.summary["steady_whirl_amplitude_m"] = md_.unbalance->WhirlAmplitude(s.omega);
+      result.summary["lateral_natural_frequency_rad_s"] = md_.unbalance->NaturalFrequency();
     }
     if (md_.motor.on || md_.induction_on) {  // DC: armature current; induction: stator rms
       result.channels.push_back({"top_current_A", std::move(current)});
@@ -667,7 +642,7 @@ class AxialTorsionalModel : public PreparedModel {
       result.channels.push_back({"gear_torque_Nm", std::move(gear_torque)});
       result.plot_panels.push_back({"gear_torque_Nm", "top_torque_Nm"});
     }
-    if (md_.unbalance.on) {
+    if (md_.unbalance.has_value()) {
       result.channels.push_back({"lateral_displacement_m", std::move(lateral)});
       result.plot_panels.push_back({"lateral_displacement_m"});
     }
@@ -728,7 +703,7 @@ StringSpec ReadString(const JsonReader& s) {
   if (sp.rho_mud >= sp.rho) throw InputError(s.PathOf("mud_density_kg_m3"), "expected a value below density_kg_m3");
   pipe.c_t = s.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative());
   pipe.c_a = s.Number("axial_damping_Ns_per_m2", Range::NonNegative());
-  sp.eta_t = s.Number("kelvin_voigt_s", Range::NonNegative(), 0.0);
+  sp.eta_t = ReadKelvinVoigt(s);
   sp.eta_a = s.Number("axial_kelvin_voigt_s", Range::NonNegative(), 0.0);
   if (s.Has("side_friction")) {
     const JsonReader f = s.Object("side_friction");
@@ -831,7 +806,7 @@ void RequireLinearizable(const Model& md) {
                       : md.motor.on             ? "/model/top/motor"
                       : md.induction_on         ? "/model/top/induction_motor"
                       : md.gear.compliant()     ? "/model/top/gear/stiffness_Nm_per_rad"
-                      : md.unbalance.on         ? "/model/bit/unbalance"
+                      : md.unbalance.has_value() ? "/model/bit/unbalance"
                                                 : nullptr;
   if (field) throw InputError(field, "the coupled model's stability analysis has no linearization of this component yet");
 }
@@ -900,8 +875,6 @@ class AxialTorsionalKind : public ModelKind {
             {"string/axial_damping_Ns_per_m2", "c_a >= 0, viscous, per metre"},
             {"string/subsections", "integer in [2, 400], default 20: the pipe's pieces (damping and weight lumped at "
                                    "their nodes)"},
-            {"string/kelvin_voigt_s", "eta >= 0, default 0: Kelvin-Voigt torsion T += -eta G J dw/ds (a dashpot "
-                                      "eta G J / piece length across every piece); not with side_friction"},
             {"string/axial_kelvin_voigt_s", "eta_a >= 0, default 0: axial N += eta_a E A dv/ds"},
             {"string/bha/length_m", "> 0, < string/length_m: drill collars of the same steel between the pipe and "
                                     "the bit (string/length_m stays top drive to bit)"},
@@ -916,12 +889,6 @@ class AxialTorsionalKind : public ModelKind {
             {"string/side_friction/to_m", "> from_m, default: the bit"},
             {"bit/inertia_kgm2", "J_b > 0 (bit, and the BHA unless string/bha distributes it)"},
             {"bit/mass_kg", "M_b > 0"},
-            {"bit/unbalance/lateral_mass_kg", "M > 0: BHA lateral (Jeffcott) mass; optional object, absent: no "
-                                              "lateral motion"},
-            {"bit/unbalance/lateral_stiffness_N_per_m", "k > 0"},
-            {"bit/unbalance/lateral_damping_Ns_per_m", "c >= 0"},
-            {"bit/unbalance/unbalance_mass_kg", "m >= 0, turning with the bit (adds m e^2 to J_b)"},
-            {"bit/unbalance/eccentricity_m", "e >= 0"},
             {"axial_coupling", "boolean, default true; false: no axial dynamics, weight on bit held at W0 and depth "
                                "of cut at its steady value"},
             {"top/type", "top_drive (a PI speed controller, the only top of this kind; optional)"},
@@ -957,16 +924,7 @@ class AxialTorsionalKind : public ModelKind {
     md.bit_inertia = b.Number("inertia_kgm2", Range::Positive());
     md.bit_mass = b.Number("mass_kg", Range::Positive());
     bitrock::ReadRgdBit(b, md);
-    if (b.Has("unbalance")) {
-      const JsonReader u = b.Object("unbalance");
-      md.unbalance.on = true;
-      md.unbalance.mass = u.Number("lateral_mass_kg", Range::Positive());
-      md.unbalance.stiffness = u.Number("lateral_stiffness_N_per_m", Range::Positive());
-      md.unbalance.damping = u.Number("lateral_damping_Ns_per_m", Range::NonNegative());
-      md.unbalance.unbalance_mass = u.Number("unbalance_mass_kg", Range::NonNegative());
-      md.unbalance.eccentricity = u.Number("eccentricity_m", Range::NonNegative());
-      u.Finish();
-    }
+    md.unbalance = ReadUnbalance(b);
     b.Finish();
     bitrock::ReadRgdRock(r.Object("rock"), md);
     r.RefuseRenamed("top_drive", "/model/top");
@@ -991,6 +949,8 @@ class AxialTorsionalKind : public ModelKind {
     const JsonReader h = r.Object("hoist");
     md.hoist_mass = h.Number("mass_kg", Range::Positive());
     const bool hook_given = h.Has("hook_force_N");
+    fields.update(StringComponentFields("string", "bit"));
+    fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() + "; not with side_friction";
     if (hook_given == h.Has("weight_on_bit_N"))
       throw InputError(h.path(), "expected either weight_on_bit_N (the hook force is set for it) or hook_force_N (a "
                                  "schedule), " + std::string(hook_given ? "not both" : "got neither"));
