@@ -9,7 +9,8 @@
 // feels sum Z (2 w_in - v) from its pieces (DESIGN.md §1). Kelvin-Voigt damping (chapter eqs. 2.20, 2.24) is a
 // dashpot eta K / length across each piece, which ties the massless nodes into a tridiagonal system.
 // Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by the hook force H: constant,
-// set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)).
+// set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)); or, with
+// hoist/rig, hanging from the two-mass hoisting rig of eq. 2.22 (model::HoistRig: rigid hook, constant pay-out).
 // Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
 //   t_n: Phi(t) - Phi(t - t_n) = 2 pi / n,  d = n (U(t) - U(t - t_n))   (from the stored bit angle and position;
 //        after a bounce, against the deepest of the last four blade passes at that angle)
@@ -37,8 +38,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 #include <optional>
+#include <stdexcept>
 
 #include "drillwave/analysis/axial_torsional_linearization.hpp"
 #include "drillwave/bitrock/rgd.hpp"
@@ -49,11 +50,12 @@
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/model/gear.hpp"
+#include "drillwave/model/hoist_rig.hpp"
 #include "drillwave/model/induction_motor.hpp"
 #include "drillwave/model/schedule.hpp"
+#include "string_components.hpp"
 #include "top_components.hpp"
 
-#include "string_components.hpp"
 namespace drillwave::cases {
 namespace {
 
@@ -114,6 +116,7 @@ struct Model : bitrock::RgdLaw {
     return induction.SupplyForTorque(u_pi / gear.ratio, gear.ratio * drive_speed);
   }
   std::optional<model::JeffcottBha> unbalance;  // the BHA's lateral motion at the bit (absent: none)
+  std::optional<model::HoistRig> rig;           // the hoisting rig above the top drive (absent: the hook force H)
 
   // The bit's inertia against its angular acceleration when the BHA moves laterally with it: eliminating x'' and
   // y'' from seed eq. 23 leaves J_b + m e^2 - (m e)^2 / (M + m) (J_b itself without an unbalance).
@@ -144,10 +147,11 @@ Steady SteadyDrilling(const Model& md, double omega) {
 // State: 0 bit angle, 1 bit position, 2 top speed, 3 bit speed, 4 hoist speed, 5 bit axial speed, 6 PI integral;
 // with a motor 7 its current; with an unbalance 8-11 the BHA's lateral x, y, x', y' (and 7 unused, held at 0); with
 // an induction motor or a compliant gear 12-15 the motor's fluxes and 16-17 the motor's speed (referred to the top
-// drive) and the gear's twist (the unused ones held at 0).
+// drive) and the gear's twist; with a hoisting rig 18-20 its derrick displacement and speed and the cable's stretch
+// (the unused ones held at 0).
 enum Index {
   kPhi = 0, kU, kWtop, kWbit, kVtop, kVbit, kZ, kDim, kCurrent = kDim, kX, kY, kXd, kYd, kFullDim,
-  kFlux = kFullDim, kMotorSpeed = kFlux + 4, kTwist, kTopDim
+  kFlux = kFullDim, kMotorSpeed = kFlux + 4, kTwist, kTopDim, kRig = kTopDim, kRigDim = kRig + 3
 };
 
 class Process {
@@ -165,6 +169,7 @@ class Process {
 
   // --- Simulator interface --------------------------------------------------------------------------------
   int Dimension() const {
+    if (md_.rig) return kRigDim;
     if (md_.induction_on || md_.gear.compliant()) return kTopDim;
     return md_.unbalance.has_value() ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
   }
@@ -205,7 +210,7 @@ class Process {
     dx[kPhi] = rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
     dx[kU] = rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : x[kVbit];
     // Top drive (with its motor and gear) and hoist. States a component does not use stay at 0.
-    if (Dimension() == kTopDim) std::fill(dx.begin() + kDim, dx.end(), 0.0);
+    if (Dimension() >= kTopDim) std::fill(dx.begin() + kDim, dx.end(), 0.0);
     const double vd = DriveSpeed(x), u = TopTorque(x, omega_ref);
     if (md_.motor.on)
       dx[kCurrent] = md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), vd, x[kCurrent]);
@@ -221,7 +226,15 @@ class Process {
       dx[kTwist] = vd - x[kWtop];
     }
     dx[kWtop] = (ends.top[0] + into_top) / md_.TopInertia();
-    dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first) / md_.hoist_mass;
+    if (md_.rig) {  // the top drive hangs from the rig's travelling block
+      const model::HoistRig::State rig = RigState(x);
+      dx[kVtop] = md_.rig->TopAcceleration(rig, ends.top[1], x[kVtop], steady_.rop, md_.hook_force.Value(0.0),
+                                           md_.hoist_mass);
+      const auto rates = md_.rig->Rates(rig, x[kVtop], steady_.rop, t, t > step_start_);
+      std::copy(rates.begin(), rates.end(), dx.begin() + kRig);
+    } else {
+      dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first) / md_.hoist_mass;
+    }
     dx[kZ] = omega_ref - vd;
     // Bit.
     dx[kWbit] = rg_.turn == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
@@ -292,7 +305,8 @@ class Process {
   }
 
   double NextBreakpoint() const {
-    return std::min(md_.top_speed.NextKnotAfter(passed_), md_.hook_force.NextKnotAfter(passed_));
+    const double rig = md_.rig ? md_.rig->tension_change.NextKnotAfter(passed_) : kInf;
+    return std::min({md_.top_speed.NextKnotAfter(passed_), md_.hook_force.NextKnotAfter(passed_), rig});
   }
   void OnBreakpoint(double t) {
     passed_ = t;
@@ -315,6 +329,10 @@ class Process {
     s.bit_torque = rg_.turn == Turn::kStuck ? f.drive_torque : f.torque;
     s.wob = f.weight;
     s.hookload = md_.hook_force.Value(t) + md_.hoist_mass * dx[kVtop];
+    // With the rig the string's pull on the top drive, as without it: the cable's pull plus (M2 + M_td) v'.
+    if (md_.rig)
+      s.hookload = md_.rig->CablePull(RigState(x), x[kVtop], steady_.rop, md_.hook_force.Value(0.0)) +
+                   (md_.rig->block_mass + md_.hoist_mass) * dx[kVtop];
     s.depth = rg_.contact ? f.depth : std::min(f.depth, 0.0);
     s.bit_axial_speed = !md_.axial_coupling ? dx[kU] : rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : x[kVbit];
     s.tn = f.tn;
@@ -429,6 +447,7 @@ class Process {
     return {x[kFlux], x[kFlux + 1], x[kFlux + 2], x[kFlux + 3]};
   }
   double BitSpeed(const State& x) const { return rg_.turn == Turn::kStuck ? 0.0 : x[kWbit]; }
+  static model::HoistRig::State RigState(const State& x) { return {x[kRig], x[kRig + 1], x[kRig + 2]}; }
 
   // The Jeffcott rotor's torque on the bit at zero angular acceleration (the rest is in EffectiveBitInertia), and
   // its rates given the bit's angular acceleration phi_dd (model::JeffcottBha).
@@ -568,6 +587,21 @@ class Process {
   mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // Outgoing's and StringEnds' scratch
 };
 
+// hoist/rig: the two-mass hoisting rig (model::HoistRig).
+model::HoistRig ReadHoistRig(const JsonReader& r) {
+  model::HoistRig rig;
+  rig.derrick_mass = r.Number("derrick_mass_kg", Range::Positive());
+  rig.block_mass = r.Number("block_mass_kg", Range::Positive());
+  rig.derrick_damping = r.Number("derrick_damping_Ns_per_m", Range::NonNegative());
+  rig.block_damping = r.Number("block_damping_Ns_per_m", Range::NonNegative());
+  rig.ground_stiffness = r.Number("ground_stiffness_N_per_m", Range::Positive());
+  rig.cable_stiffness = r.Number("cable_stiffness_N_per_m", Range::Positive());
+  if (r.Has("cable_tension_change_N"))
+    rig.tension_change = model::Schedule::FromJson(r.Raw("cable_tension_change_N"), r.PathOf("cable_tension_change_N"));
+  r.Finish();
+  return rig;
+}
+
 // The induction motor and the gear of the top drive block (the DC motor is read beside them).
 void ReadTopMotorAndGear(const JsonReader& top, Model& md) {
   if (top.Has("induction_motor")) {
@@ -626,6 +660,10 @@ class AxialTorsionalModel : public PreparedModel {
     SummarizeDrillingRun(d, std::move(hook), process.stuck_intervals(), settings, {s.depth, s.rop, s.tob},
                          sim.stats(), result);
     result.summary["hook_force_N"] = md_.hook_force.Value(0.0);
+    if (md_.rig) {  // the rig's undamped modes with the top drive on the block, string removed (model::HoistRig)
+      const auto w = md_.rig->NaturalFrequencies(md_.hoist_mass);
+      result.summary["rig_natural_frequencies_rad_s"] = {w[0], w[1]};
+    }
     if (md_.unbalance.has_value()) {  // whirl radius over the window, and the closed form at the steady bit speed
       result.summary["whirl_amplitude_mean_m"] = n ? lateral_sum / n : 0.0;
       result.summary["whirl_amplitude_max_m"] = lateral_max;
@@ -807,6 +845,7 @@ void RequireLinearizable(const Model& md) {
                       : md.induction_on         ? "/model/top/induction_motor"
                       : md.gear.compliant()     ? "/model/top/gear/stiffness_Nm_per_rad"
                       : md.unbalance.has_value() ? "/model/bit/unbalance"
+                      : md.rig.has_value()       ? "/model/hoist/rig"
                                                 : nullptr;
   if (field) throw InputError(field, "the coupled model's stability analysis has no linearization of this component yet");
 }
@@ -861,7 +900,7 @@ class AxialTorsionalKind : public ModelKind {
     return "coupled axial-torsional waves in a pipe with a lumped bit and the Richard-Germay-Detournay bit-rock law "
            "(state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); PI top drive, hoist "
            "under constant hook force; optional BHA section, Kelvin-Voigt damping, Stribeck bit friction, DC motor, "
-           "BHA mass unbalance (Jeffcott rotor at the bit), axial coupling off";
+           "BHA mass unbalance (Jeffcott rotor at the bit), two-mass hoisting rig, axial coupling off";
   }
   nlohmann::json FieldSchema() const override {
     nlohmann::json fields = {{"string/length_m", "> 0, top drive to bit"},
@@ -906,8 +945,21 @@ class AxialTorsionalKind : public ModelKind {
                                    "(1 + kappa), kappa = c_a L Omega0 / (2 pi a zeta eps), which must exceed a sigma l"},
             {"hoist/weight_on_bit_N", "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
                                       "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
+            {"hoist/rig/derrick_mass_kg", "M_rg1 > 0: optional two-mass hoisting rig (chapter eq. 2.22), absent: the "
+                                          "hook force; the top drive hangs from the travelling block on a rigid hook, "
+                                          "the drawworks pays out line at the steady rate of penetration; needs "
+                                          "weight_on_bit_N, not with axial_coupling false"},
+            {"hoist/rig/block_mass_kg", "M_rg2 > 0: cables, crown and travelling blocks"},
+            {"hoist/rig/derrick_damping_Ns_per_m", "gamma_rg1 >= 0"},
+            {"hoist/rig/block_damping_Ns_per_m", "gamma_rg2 >= 0"},
+            {"hoist/rig/ground_stiffness_N_per_m", "k_rg01 > 0: derrick to ground"},
+            {"hoist/rig/cable_stiffness_N_per_m", "k_rg12 > 0: derrick to travelling block"},
+            {"hoist/rig/cable_tension_change_N", "u_F(t) - u_F0 [N], up on the derrick: a number or {\"knots\": "
+                                                 "[[t, v], ...]}, default 0 (u_F0: the tension of steady drilling)"},
             {"gravity_m_s2", "> 0, default 9.81"}};
     fields.update(TopComponentFields("top"));
+    fields.update(StringComponentFields("string", "bit"));
+    fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() + "; not with side_friction";
     fields.update(bitrock::RgdFieldSchema());
     fields["top/induction_motor/pole_pairs"] =
         "p, integer in [1, 64]: optional induction motor (absent: the PI output is the torque) on a V/f supply with "
@@ -949,17 +1001,23 @@ class AxialTorsionalKind : public ModelKind {
     const JsonReader h = r.Object("hoist");
     md.hoist_mass = h.Number("mass_kg", Range::Positive());
     const bool hook_given = h.Has("hook_force_N");
-    fields.update(StringComponentFields("string", "bit"));
-    fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() + "; not with side_friction";
     if (hook_given == h.Has("weight_on_bit_N"))
       throw InputError(h.path(), "expected either weight_on_bit_N (the hook force is set for it) or hook_force_N (a "
                                  "schedule), " + std::string(hook_given ? "not both" : "got neither"));
     if (hook_given) md.hook_force = model::Schedule::FromJson(h.Raw("hook_force_N"), h.PathOf("hook_force_N"));
     else md.weight_on_bit = h.Number("weight_on_bit_N", Range::Positive());
+    if (h.Has("rig")) {
+      if (hook_given)
+        throw InputError(h.PathOf("rig"), "the rig carries the top drive itself: expected weight_on_bit_N (the steady "
+                                          "state it keeps) instead of hook_force_N");
+      md.rig = ReadHoistRig(h.Object("rig"));
+    }
     h.Finish();
     const double g = r.Number("gravity_m_s2", Range::Positive(), 9.81);
     md.axial_coupling = r.Boolean("axial_coupling", true);
     r.Finish();
+    if (md.rig && !md.axial_coupling)
+      throw InputError(h.PathOf("rig"), "expected no rig with axial_coupling false (no axial dynamics to hang it on)");
     if (!hook_given && !(md.weight_on_bit > md.ContactForce()))
       throw InputError(h.PathOf("weight_on_bit_N"), "expected more than the wear-flat contact force a sigma l = " +
                                                         ReadableNumber(md.ContactForce()) + " N (no cutting otherwise; "
