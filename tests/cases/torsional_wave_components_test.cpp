@@ -65,6 +65,8 @@ TEST(TorsionalWaveComponents, BadInputNamesTheField) {
   nlohmann::json doc = Load("saldivar-stickslip");
   doc["model"]["string"]["kelvin_voigt_s"] = -0.1;
   EXPECT_EQ(RefusedPath(doc), "/model/string/kelvin_voigt_s");
+  doc["model"]["string"]["kelvin_voigt_s"] = 1e305;
+  EXPECT_EQ(RefusedPath(doc), "/model/string/kelvin_voigt_s");
   // A massless bit with (smooth) friction between dashpots would solve a nonlinear system: refused.
   doc = Load("saldivar-stickslip");
   doc["model"]["string"]["kelvin_voigt_s"] = 0.02;

@@ -351,6 +351,11 @@ class TorsionalWaveKind : public ModelKind {
     waves::Network net;
     net.nodes.push_back(ReadTop(model.Object("top")));
     AddSectionsWithDamping(sections, gamma, eta, subsections, net);
+    for (const waves::Section& part : net.sections)  // extremes overflow: say which field
+      if (!std::isfinite(part.dashpot))
+        throw InputError(string.PathOf("kelvin_voigt_s"), "the dashpot eta Z / tau of a part is " +
+                                                              ReadableNumber(part.dashpot) + " N m s: expected a "
+                                                              "smaller retardation time or fewer damping_subsections");
 
     const JsonReader bit_reader = model.Object("bit");
     waves::Node bit;
