@@ -288,7 +288,8 @@ class TorsionalWaveKind : public ModelKind {
  public:
   std::string name() const override { return "torsional_wave"; }
   std::string description() const override {
-    return "torsional d'Alembert wave network: sections, top boundary, bit with friction (DESIGN.md §1–3)";
+    return "torsional d'Alembert wave network: sections, top boundary, bit with friction (DESIGN.md §1–3); optional "
+           "viscous and Kelvin-Voigt damping, BHA mass unbalance (Jeffcott rotor at the bit)";
   }
   nlohmann::json FieldSchema() const override {
     nlohmann::json fields = {
