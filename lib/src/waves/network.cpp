@@ -17,7 +17,17 @@ void Network::Validate() const {
   for (const Section& s : sections)
     if (!(s.travel_time_s > 0) || !(s.impedance > 0) || !std::isfinite(s.travel_time_s) || !std::isfinite(s.impedance))
       throw std::invalid_argument("sections need positive finite travel time and impedance");
+  for (const Section& s : sections)
+    if (!(s.dashpot >= 0) || !std::isfinite(s.dashpot))
+      throw std::invalid_argument("a section's Kelvin-Voigt dashpot must be >= 0 and finite");
   for (const Node& n : nodes) {
+    // A massless node with friction between dashpots would make the node speeds a nonlinear system.
+    if (HasKelvinVoigt() && n.massless() && n.friction)
+      throw std::invalid_argument("node '" + n.name + "': friction at a massless node is not combined with "
+                                  "Kelvin-Voigt damping (give the node an inertia)");
+    if (n.lateral && (n.massless() || &n != &nodes.back()))
+      throw std::invalid_argument("node '" + n.name + "': a lateral BHA (unbalance) sits at the bit, with an inertia "
+                                  "> 0");
     if (n.has_set_valued_friction() && n.massless())
       throw std::invalid_argument("node '" + n.name + "': set-valued friction needs an inertia > 0");
     if (n.drive == Drive::kPiSpeedController && n.massless())
@@ -64,6 +74,10 @@ double Network::SmallestTravelTime() const {
   double m = sections.front().travel_time_s;
   for (const Section& s : sections) m = std::min(m, s.travel_time_s);
   return m;
+}
+
+bool Network::HasKelvinVoigt() const {
+  return std::any_of(sections.begin(), sections.end(), [](const Section& s) { return s.dashpot > 0; });
 }
 
 double Network::LargestTravelTime() const {

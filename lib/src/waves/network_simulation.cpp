@@ -1,8 +1,10 @@
 #include "drillwave/waves/network_simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include <boost/math/tools/roots.hpp>
@@ -18,6 +20,8 @@ using State = std::vector<double>;
 
 constexpr int kNone = -1;
 constexpr int kBitAngle = 0;
+// Kelvin-Voigt dashpots pass a discontinuity on to the neighbouring nodes at once up to this order (Echo).
+constexpr int kMaxSpreadOrder = 2;
 
 struct Arrivals {
   double above = 0, below = 0;
@@ -28,9 +32,10 @@ constexpr double kTinySpeed = 1e-300;
 
 // The mutable side of a run: committed wave buffers, friction regimes, pending breakpoints.
 // State layout: the bit angle (for statistics and, later, the cut-depth delay), then the speeds of nodes with
-// inertia, then PI integrals, DC motor currents, induction motor fluxes (4 each), and for a node behind a compliant
-// gear its motor's speed (referred to the node) and the gear's twist. Other angles are not integrated: nothing reads
-// them and they would only add work.
+// inertia, then PI integrals, DC motor currents, induction motor fluxes (4 each), for a node behind a compliant
+// gear its motor's speed (referred to the node) and the gear's twist, the bit's lateral BHA (x, y, x', y'), and with
+// Kelvin-Voigt damping and record_energy the energy the dashpots have dissipated. Other angles are not integrated:
+// nothing reads them and they would only add work.
 class NetworkProcess {
  public:
   NetworkProcess(const Network& net, const NetworkRunOptions& options)
@@ -58,10 +63,14 @@ class NetworkProcess {
       if (net.nodes[i].has_induction_motor()) flux_index_[i] = next, next += 4;
     for (int i = 0; i < num_nodes_; ++i)
       if (net.nodes[i].has_compliant_gear()) motor_speed_index_[i] = next, next += 2;  // motor speed, then twist
+    if (net.bit().lateral) lateral_index_ = next, next += 4;  // x, y, x', y'
+    kelvin_voigt_ = net.HasKelvinVoigt();
+    if (kelvin_voigt_ && options.record_energy) dissipated_index_ = next++;
     dimension_ = next;
     for (int i = 0; i < num_nodes_; ++i)
       if (net.nodes[i].has_set_valued_friction()) frictional_nodes_.push_back(i);
     max_travel_time_ = net.LargestTravelTime();
+    if (kelvin_voigt_) FactorNodeSystem();
     InitializeWaves();
   }
 
@@ -122,6 +131,10 @@ class NetworkProcess {
 
   void Derivatives(const State& x, State& dxdt, double t) const {
     const Side side = SideAt(t);
+    if (kelvin_voigt_) {  // every node's speed at once: the dashpots couple them
+      SolveNodeSpeeds(x, t, side, speeds_);
+      if (dissipated_index_ != kNone) dxdt[dissipated_index_] = DashpotPower(speeds_);
+    }
     dxdt[kBitAngle] = Speed(num_nodes_ - 1, x, t, side);
     for (int i = 0; i < num_nodes_; ++i) {
       const Node& node = net_.nodes[i];
@@ -149,8 +162,15 @@ class NetworkProcess {
         continue;
       }
       double torque = StringTorqueOnNode(i, v, t, side) - node.ground_damping * v + TorqueIntoNode(i, x, v, t, side);
+      if (kelvin_voigt_) torque += DashpotTorque(i, speeds_);
+      if (node.lateral) torque += node.lateral->Reaction(x[kBitAngle], v, Lateral(x));
       if (node.friction) torque -= SlipFriction(i, v);
       a = torque / node.LumpedInertia();
+    }
+    if (lateral_index_ != kNone) {  // the bit's lateral BHA, driven by the bit's angular acceleration
+      const int bit = num_nodes_ - 1;
+      const auto rates = net_.bit().lateral->Rates(x[kBitAngle], Speed(bit, x, t, side), dxdt[speed_index_[bit]], Lateral(x));
+      std::copy(rates.begin(), rates.end(), dxdt.begin() + lateral_index_);
     }
   }
 
@@ -225,7 +245,9 @@ class NetworkProcess {
   double NextBreakpoint() const { return breakpoints_.NextTime(); }
   void OnBreakpoint(double t) {
     start_is_last_end_ = false;
-    for (const auto& b : breakpoints_.PopAt(t, 1e-12 * std::max(1.0, std::abs(t)))) Echo(b);
+    std::vector<integration::Breakpoint> due = breakpoints_.PopAt(t, 1e-12 * std::max(1.0, std::abs(t)));
+    if (kelvin_voigt_) EchoArrivalsThroughDashpots(t, due);  // takes the arrivals at massless nodes out of `due`
+    for (const auto& b : due) Echo(b);
   }
 
   // Sources of breakpoints: every knot of every input schedule (a repeated knot time is a jump) and the start,
@@ -254,7 +276,12 @@ class NetworkProcess {
     out.time_s.push_back(t);
     out.top_speed_rad_s.push_back(v_top);
     out.bit_speed_rad_s.push_back(v_bit);
-    out.top_torque_nm.push_back(-StringTorqueOnNode(top, v_top, t, side));
+    double top_torque = -StringTorqueOnNode(top, v_top, t, side);
+    if (kelvin_voigt_) {
+      SolveNodeSpeeds(x, t, side, speeds_);
+      top_torque -= DashpotTorque(top, speeds_);
+    }
+    out.top_torque_nm.push_back(top_torque);
     out.bit_torque_nm.push_back(BitTorque(bit, x, t, side));
     out.bit_angle_rad.push_back(x[kBitAngle]);
     out.bit_stuck.push_back(regime_[bit] == Regime::kStuck && net_.nodes[bit].has_set_valued_friction() ? 1.0 : 0.0);
@@ -266,6 +293,8 @@ class NetworkProcess {
       out.gear_torque_nm.push_back(GearTorque(top, x, v_top));
     }
     if (options_.record_energy) out.energy_j.push_back(StoredEnergy(t, x));
+    if (dissipated_index_ != kNone) out.dissipated_j.push_back(x[dissipated_index_]);
+    if (lateral_index_ != kNone) out.lateral_displacement_m.push_back(std::hypot(x[lateral_index_], x[lateral_index_ + 1]));
   }
 
   const std::vector<RegimeChange>& changes() const { return changes_; }
@@ -279,6 +308,15 @@ class NetworkProcess {
         const double v = Speed(i, x, t, Side::kLeft);
         e += 0.5 * net_.nodes[i].LumpedInertia() * v * v;
       }
+    if (lateral_index_ != kNone) {  // the bit's lateral BHA: the kinetic energy of eqs. 21-23 beyond J_eff w^2 / 2
+      const model::JeffcottBha& b = *net_.bit().lateral;
+      const auto s = Lateral(x);
+      const double w = Speed(num_nodes_ - 1, x, t, Side::kLeft), phi = x[kBitAngle];
+      const double me_w = b.Moment() * w, along = -s[2] * std::sin(phi) + s[3] * std::cos(phi);
+      // 1/2 (M + m) |r' + (m e w / (M + m)) (-sin, cos)|^2 = 1/2 (M + m)|r'|^2 + m e w along + (m e w)^2 / 2 (M + m)
+      e += 0.5 * b.TotalMass() * (s[2] * s[2] + s[3] * s[3]) + me_w * along + 0.5 * me_w * me_w / b.TotalMass() +
+           0.5 * b.stiffness * (s[0] * s[0] + s[1] * s[1]);
+    }
     for (int i = 0; i < num_nodes_; ++i)
       if (motor_speed_index_[i] != kNone) {
         const model::Gear& g = net_.nodes[i].gear;
@@ -399,9 +437,16 @@ class NetworkProcess {
   }
 
   // Everything but friction acting on node i held at rest: what the friction must balance to keep it stuck.
+  // (The callers set the node's regime to stuck first, so that its neighbours' speeds are solved with it at rest.)
   double DrivingTorqueAtRest(int i, double t, const State& x) const {
     const Side side = SideAt(t);
-    return TwiceIncoming(i, t, side) + TorqueIntoNode(i, x, 0.0, t, side);
+    double torque = TwiceIncoming(i, t, side) + TorqueIntoNode(i, x, 0.0, t, side);
+    if (net_.nodes[i].lateral) torque += net_.nodes[i].lateral->Reaction(x[kBitAngle], 0.0, Lateral(x));
+    if (kelvin_voigt_) {
+      SolveNodeSpeeds(x, t, side, speeds_);
+      torque += DashpotTorque(i, speeds_);
+    }
+    return torque;
   }
 
   Regime RegimeForDrivingTorque(int i, double drive) const {
@@ -415,6 +460,10 @@ class NetworkProcess {
   // waves and the external torques, DESIGN.md §1).
   double Speed(int i, const State& x, double t, Side side) const {
     if (speed_index_[i] != kNone) return regime_[i] == Regime::kStuck ? 0.0 : x[speed_index_[i]];
+    if (kelvin_voigt_) {
+      SolveNodeSpeeds(x, t, side, speeds_);
+      return speeds_[i];
+    }
     return MasslessSpeed(i, Arriving(i, t, side), t, side);
   }
 
@@ -442,29 +491,32 @@ class NetworkProcess {
   // Linear part of a massless node's balance: a - b v = sum Z(2 w_in - v) - c v + drive torque.
   std::pair<double, double> MasslessBalance(int i, double twice_incoming, double t, Side side) const {
     const Node& node = net_.nodes[i];
-    double a = twice_incoming, b = ImpedanceSum(i) + node.ground_damping;
-    if (node.drive == Drive::kSpeedDashpot) {
-      a += node.drive_damping * Setpoint(node, t, side);
-      b += node.drive_damping;
-    } else if (node.drive == Drive::kTorque) {
-      a += Setpoint(node, t, side);
-    }
-    return {a, b};
+    double a = twice_incoming;
+    if (node.drive == Drive::kSpeedDashpot) a += node.drive_damping * Setpoint(node, t, side);
+    else if (node.drive == Drive::kTorque) a += Setpoint(node, t, side);
+    return {a, MasslessConductance(i)};
+  }
+  // b of that balance: the sections' impedances, the node's damper and a dissipative top's beta.
+  double MasslessConductance(int i) const {
+    const Node& node = net_.nodes[i];
+    return ImpedanceSum(i) + node.ground_damping + (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0.0);
   }
 
   // Rate of change of a massless node's speed (implicit derivative of its balance), for the wave buffers.
   double MasslessSpeedRate(int i, double v, const Arrivals& rate, double t, Side side) const {
     const Node& node = net_.nodes[i];
     if (node.drive == Drive::kPrescribedSpeed) return SetpointRate(node, t, side);
-    double da = TwiceIncoming(i, rate), b = ImpedanceSum(i) + node.ground_damping;
-    if (node.drive == Drive::kSpeedDashpot) {
-      da += node.drive_damping * SetpointRate(node, t, side);
-      b += node.drive_damping;
-    } else if (node.drive == Drive::kTorque) {
-      da += SetpointRate(node, t, side);
-    }
+    double b = MasslessConductance(i);
     if (node.friction) b += node.friction->SlipTorqueDerivative(v);
-    return da / b;
+    return MasslessBalanceRate(i, rate, t, side) / b;
+  }
+  // Rate of the constant part a of a massless node's balance a - b v.
+  double MasslessBalanceRate(int i, const Arrivals& rate, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    double da = TwiceIncoming(i, rate);
+    if (node.drive == Drive::kSpeedDashpot) da += node.drive_damping * SetpointRate(node, t, side);
+    else if (node.drive == Drive::kTorque) da += SetpointRate(node, t, side);
+    return da;
   }
 
   double BitTorque(int i, const State& x, double t, Side side) const {
@@ -475,18 +527,87 @@ class NetworkProcess {
     return SlipFriction(i, v);
   }
 
+  // --- Kelvin-Voigt: the node system ---------------------------------------------------------------------------
+  // With dashpots kv_k across the sections, a massless node i balances
+  //   (sum Z + c + beta + kv_{i-1} + kv_i) v_i - kv_{i-1} v_{i-1} - kv_i v_{i+1} = sum 2 Z w_in + drive terms,
+  // and a node of known speed (inertial, or imposed) holds it: one tridiagonal system over the chain, whose matrix
+  // does not change during a run (a stuck node is a known speed of 0). Factored once (Thomas algorithm; diagonally
+  // dominant, so stable without pivoting); the speeds' rates solve the same matrix with the rates on the right.
+  model::JeffcottBha::Lateral Lateral(const State& x) const {
+    return {x[lateral_index_], x[lateral_index_ + 1], x[lateral_index_ + 2], x[lateral_index_ + 3]};
+  }
+
+  bool KnownSpeed(int i) const { return speed_index_[i] != kNone || net_.nodes[i].drive == Drive::kPrescribedSpeed; }
+  double DashpotAbove(int i) const { return HasAbove(i) ? net_.sections[i - 1].dashpot : 0.0; }
+  double DashpotBelow(int i) const { return HasBelow(i) ? net_.sections[i].dashpot : 0.0; }
+
+  void FactorNodeSystem() {
+    lower_.assign(num_nodes_, 0.0), ratio_.assign(num_nodes_, 0.0), inv_pivot_.assign(num_nodes_, 0.0);
+    for (int i = 0; i < num_nodes_; ++i) {
+      double diagonal = 1, upper = 0;
+      if (!KnownSpeed(i)) {
+        diagonal = MasslessConductance(i) + DashpotAbove(i) + DashpotBelow(i);
+        lower_[i] = -DashpotAbove(i), upper = -DashpotBelow(i);
+      }
+      inv_pivot_[i] = 1 / (diagonal - (i > 0 ? lower_[i] * ratio_[i - 1] : 0.0));
+      ratio_[i] = upper * inv_pivot_[i];
+    }
+  }
+  // Solves the node system in place: v holds the right-hand side on entry, the speeds on return.
+  void SolveNodeSystem(double* v) const {
+    for (int i = 0; i < num_nodes_; ++i) v[i] = (v[i] - (i > 0 ? lower_[i] * v[i - 1] : 0.0)) * inv_pivot_[i];
+    for (int i = num_nodes_ - 2; i >= 0; --i) v[i] -= ratio_[i] * v[i + 1];
+  }
+  void SolveNodeSpeeds(const State& x, double t, Side side, std::vector<double>& v) const {
+    v.resize(num_nodes_);
+    for (int i = 0; i < num_nodes_; ++i) {
+      const Node& node = net_.nodes[i];
+      if (speed_index_[i] != kNone) v[i] = regime_[i] == Regime::kStuck ? 0.0 : x[speed_index_[i]];
+      else if (node.drive == Drive::kPrescribedSpeed) v[i] = Setpoint(node, t, side);
+      else v[i] = MasslessBalance(i, TwiceIncoming(i, t, side), t, side).first;
+    }
+    SolveNodeSystem(v.data());
+  }
+  void SolveNodeSpeedRates(const State& f, double t, Side side, std::vector<double>& dv) const {
+    dv.resize(num_nodes_);
+    for (int i = 0; i < num_nodes_; ++i) {
+      const Node& node = net_.nodes[i];
+      if (speed_index_[i] != kNone) dv[i] = regime_[i] == Regime::kStuck ? 0.0 : f[speed_index_[i]];
+      else if (node.drive == Drive::kPrescribedSpeed) dv[i] = SetpointRate(node, t, side);
+      else dv[i] = MasslessBalanceRate(i, ArrivingRate(i, t, side), t, side);
+    }
+    SolveNodeSystem(dv.data());
+  }
+  // Torque of the dashpots of node i's sections on it, and the power all of them dissipate, at node speeds v.
+  double DashpotTorque(int i, const std::vector<double>& v) const {
+    return (HasAbove(i) ? DashpotAbove(i) * (v[i - 1] - v[i]) : 0.0) +
+           (HasBelow(i) ? DashpotBelow(i) * (v[i + 1] - v[i]) : 0.0);
+  }
+  double DashpotPower(const std::vector<double>& v) const {
+    double power = 0;
+    for (int k = 0; k + 1 < num_nodes_; ++k) power += net_.sections[k].dashpot * (v[k + 1] - v[k]) * (v[k + 1] - v[k]);
+    return power;
+  }
+
   // Waves leaving every node at time t: w_out = v - w_in on each of its sections, with their rates if asked.
   void OutgoingWaves(double t, const State& x, const State& f, Side side, double* out, double* rate) const {
+    if (kelvin_voigt_) {
+      SolveNodeSpeeds(x, t, side, speeds_);
+      if (rate) SolveNodeSpeedRates(f, t, side, speed_rates_);
+    }
     for (int i = 0; i < num_nodes_; ++i) {
       const Arrivals in = Arriving(i, t, side);
       const bool inertial = speed_index_[i] != kNone;
-      const double v = inertial ? (regime_[i] == Regime::kStuck ? 0.0 : x[speed_index_[i]]) : MasslessSpeed(i, in, t, side);
+      const double v = inertial ? (regime_[i] == Regime::kStuck ? 0.0 : x[speed_index_[i]])
+                       : kelvin_voigt_ ? speeds_[i]
+                                       : MasslessSpeed(i, in, t, side);
       if (HasAbove(i)) out[2 * (i - 1) + 1] = v - in.above;  // up-going wave at the bottom of section i-1
       if (HasBelow(i)) out[2 * i] = v - in.below;            // down-going wave at the top of section i
       if (!rate) continue;
       const Arrivals in_rate = ArrivingRate(i, t, side);
       const double dv = inertial ? (regime_[i] == Regime::kStuck ? 0.0 : f[speed_index_[i]])
-                                 : MasslessSpeedRate(i, v, in_rate, t, side);
+                        : kelvin_voigt_ ? speed_rates_[i]
+                                        : MasslessSpeedRate(i, v, in_rate, t, side);
       if (HasAbove(i)) rate[2 * (i - 1) + 1] = dv - in_rate.above;
       if (HasBelow(i)) rate[2 * i] = dv - in_rate.below;
     }
@@ -517,10 +638,24 @@ class NetworkProcess {
   // an inertial node (or an imposed speed) reflects a jump as a jump of opposite sign but passes it on to its other
   // sections smoothed by one order. Echoes arriving together are merged (BreakpointQueue), so that the signed sum of
   // all paths decides, as the waves themselves do, and an echo is dropped once it falls below its threshold.
+  //
+  // Kelvin-Voigt dashpots couple a node's speed to its neighbours' at the same instant. A discontinuity arriving at a
+  // massless node then changes every massless node of its run (the nodes between two nodes of known speed) at once,
+  // by the column of the inverse of the node system (EchoThroughDashpots): each sends its change into both its
+  // sections, and the node it arrived at also passes on the arriving part (w_out = v - w_in). A known speed that
+  // jumps or kinks (an imposed speed's knot, an inertial node's kink) enters its neighbours' balances through the
+  // dashpot, kv dv, and spreads over their runs the same way. A jump at a massless node next to an inertial node
+  // jumps the dashpot torque on it: the inertial node's speed kinks (weight kv dv / 2 Z, as an arriving wave's
+  // 2 Z w). Spreading stops there: kinks that the dashpots pass on further, and kinks of order above 2, are left to
+  // the step-size control (they cost rejected steps, not accuracy).
   void Echo(const integration::Breakpoint& b) {
     const int i = b.site;
     const Node& node = net_.nodes[i];
-    const double sum = ImpedanceSum(i) + node.ground_damping + (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0);
+    if (kelvin_voigt_ && !KnownSpeed(i)) {
+      EchoThroughDashpots(b);
+      return;
+    }
+    const double sum = MasslessConductance(i);
     const bool scatters = node.massless() && node.drive != Drive::kPrescribedSpeed && b.via != kNone;
     for (int k : {i - 1, i}) {
       if (k < 0 || k >= static_cast<int>(net_.sections.size())) continue;
@@ -534,15 +669,94 @@ class NetworkProcess {
       } else if (!node.massless()) {
         order = std::max(order + (b.via == kNone ? 0 : 1), 1);  // the node's speed is continuous
       }
-      if (std::abs(w) < (order == 0 ? jump_threshold_ : kink_threshold_)) continue;
-      const int far = k == i - 1 ? i - 1 : i + 1;
-      const double arrival = b.time + net_.sections[k].travel_time_s;
-      if (arrival >= t_end_) continue;
-      const integration::Breakpoint echo{arrival, far, w, order, k, b.generation + 1};
-      // Past the cap a kink may still join one that is pending, but not add to their number.
-      if (order > 0 && breakpoints_.size() >= options_.max_pending_kinks) breakpoints_.Merge(echo, MergeWindow(arrival));
-      else breakpoints_.Push(echo, MergeWindow(arrival));
+      PushEcho(b.time, i, k, w, order, b.generation + 1);
     }
+    if (!kelvin_voigt_) return;
+    // The known speed's own change: an imposed speed's knot as it is; an inertial node's speed one order smoother.
+    const bool imposed = node.drive == Drive::kPrescribedSpeed;
+    if (imposed && b.via != kNone) return;  // an arriving wave does not change an imposed speed
+    const int order = imposed ? b.order : std::max(b.order + (b.via == kNone ? 0 : 1), 1);
+    if (order > kMaxSpreadOrder) return;
+    for (int k : {i - 1, i}) {
+      if (k < 0 || k >= static_cast<int>(net_.sections.size()) || net_.sections[k].dashpot == 0) continue;
+      const int neighbour = k == i - 1 ? i - 1 : i + 1;
+      if (!KnownSpeed(neighbour)) SpreadOverRun(neighbour, net_.sections[k].dashpot * b.weight, b.time, order, b, false);
+    }
+  }
+
+  // A breakpoint arriving at (or starting from) a massless node of a Kelvin-Voigt run.
+  void EchoThroughDashpots(const integration::Breakpoint& b) {
+    const int i = b.site;
+    // An arriving wave adds 2 Z w to the node's balance; a source is a unit change of the node's own speed.
+    const double balance_change = b.via != kNone ? 2 * net_.sections[b.via].impedance * b.weight : 0.0;
+    SpreadOverRun(i, balance_change, b.time, b.order, b, b.via == kNone);
+  }
+
+  // The speeds of the run through node i change by A^-1 e_i times `balance_change` (or, for a source at i, so that
+  // node i's own changes by the breakpoint's weight): each changed node sends its change into its sections.
+  void SpreadOverRun(int i, double balance_change, double t, int order, const integration::Breakpoint& b,
+                     bool unit_at_node) {
+    std::vector<double> dv(num_nodes_, 0.0);
+    dv[i] = 1;
+    SolveNodeSystem(dv.data());
+    const double scale = unit_at_node ? b.weight / dv[i] : balance_change;
+    for (double& v : dv) v *= scale;
+    std::vector<std::array<double, 2>> arrived(num_nodes_, {0.0, 0.0});
+    if (b.site == i && b.via != kNone) arrived[i][b.via == i - 1 ? 0 : 1] = b.weight;
+    EmitFromRuns(dv, arrived, t, order, b.generation + 1);
+  }
+
+  // All the breakpoints of one order that arrive at massless nodes at time t at once: the node system is linear, so
+  // their balance changes add and one solve spreads them all (followed one by one, each would spread over its run and
+  // the echoes would be merged afterwards: the same result, at the cost of one solve and 2 n pushes per arrival).
+  void EchoArrivalsThroughDashpots(double t, std::vector<integration::Breakpoint>& due) {
+    std::map<int, std::pair<std::vector<double>, std::vector<std::array<double, 2>>>> by_order;
+    int generation = 0;
+    auto arrival_here = [&](const integration::Breakpoint& b) { return b.via != kNone && !KnownSpeed(b.site); };
+    for (const integration::Breakpoint& b : due) {
+      if (!arrival_here(b)) continue;
+      auto& [rhs, arrived] = by_order[b.order];
+      if (rhs.empty()) rhs.assign(num_nodes_, 0.0), arrived.assign(num_nodes_, {0.0, 0.0});
+      rhs[b.site] += 2 * net_.sections[b.via].impedance * b.weight;
+      arrived[b.site][b.via == b.site - 1 ? 0 : 1] += b.weight;
+      generation = std::max(generation, b.generation);
+    }
+    due.erase(std::remove_if(due.begin(), due.end(), arrival_here), due.end());
+    for (auto& [order, change] : by_order) {
+      SolveNodeSystem(change.first.data());
+      EmitFromRuns(change.first, change.second, t, order, generation + 1);
+    }
+  }
+
+  // Massless nodes whose speeds change by dv at time t send dv into both their sections, less the part `arrived`
+  // through each (w_out = v - w_in; [0] from above, [1] from below).
+  void EmitFromRuns(const std::vector<double>& dv, const std::vector<std::array<double, 2>>& arrived, double t,
+                    int order, int generation) {
+    for (int j = 0; j < num_nodes_; ++j) {
+      if (dv[j] == 0 && arrived[j][0] == 0 && arrived[j][1] == 0) continue;
+      for (int k : {j - 1, j}) {
+        if (k < 0 || k >= static_cast<int>(net_.sections.size())) continue;
+        PushEcho(t, j, k, dv[j] - arrived[j][k == j - 1 ? 0 : 1], order, generation);
+        // A jump next to an inertial node kinks it through the dashpot between them.
+        const int neighbour = k == j - 1 ? j - 1 : j + 1;
+        if (order == 0 && speed_index_[neighbour] != kNone && net_.sections[k].dashpot > 0) {
+          const double w = net_.sections[k].dashpot * dv[j] / (2 * net_.sections[k].impedance);
+          if (std::abs(w) >= kink_threshold_) Echo({t, neighbour, w, 1, kNone, generation});
+        }
+      }
+    }
+  }
+
+  // An echo of weight w leaving node i at time t into section k, unless it is below its threshold or past the end.
+  void PushEcho(double t, int i, int k, double w, int order, int generation) {
+    if (std::abs(w) < (order == 0 ? jump_threshold_ : kink_threshold_)) return;
+    const int far = k == i - 1 ? i - 1 : i + 1;
+    const double arrival = t + net_.sections[k].travel_time_s;
+    if (arrival >= t_end_) return;
+    const integration::Breakpoint echo{arrival, far, w, order, k, generation};
+    // Past the cap a kink may still join one that is pending, but not add to their number.
+    if (order > 0 && breakpoints_.size() >= options_.max_pending_kinks) breakpoints_.Merge(echo, MergeWindow(arrival));
+    else breakpoints_.Push(echo, MergeWindow(arrival));
   }
   static double MergeWindow(double t) { return 1e-10 * std::max(1.0, std::abs(t)); }
   // A new discontinuity at node i: a regime change (kink, order 1) or an input knot (jump if the schedule jumps).
@@ -568,6 +782,12 @@ class NetworkProcess {
   double steady_torque_ = 0;
   double t_end_ = std::numeric_limits<double>::infinity();
   std::vector<double> out0_, out1_, outm_, d0_, d1_, outq_, state_quarter_;  // the prepared piece's waves (ends, midpoint, rates)
+  int lateral_index_ = kNone;  // the bit's lateral BHA
+  // Kelvin-Voigt: the node system's factors (FactorNodeSystem), the dissipated energy's state, scratch.
+  bool kelvin_voigt_ = false;
+  int dissipated_index_ = kNone;
+  std::vector<double> lower_, ratio_, inv_pivot_;
+  mutable std::vector<double> speeds_, speed_rates_;
   bool start_is_last_end_ = false;
   double last_end_time_ = 0;
 };

@@ -10,6 +10,7 @@
 #include "drillwave/bitrock/friction.hpp"
 #include "drillwave/model/gear.hpp"
 #include "drillwave/model/induction_motor.hpp"
+#include "drillwave/model/jeffcott_bha.hpp"
 #include "drillwave/model/schedule.hpp"
 
 namespace drillwave::waves {
@@ -19,6 +20,9 @@ struct Section {
   double length_m = 0;
   double travel_time_s = 0;  // tau = L / c
   double impedance = 0;      // Z = K / c = sqrt(K rho X): N·m·s/rad for torsion
+  // Kelvin-Voigt damping (chapter eq. 2.20, T += eta K dw/ds) lumped as a dashpot eta K / length across the section,
+  // between its end nodes [N·m·s/rad]; 0: none. It ties neighbouring massless nodes into one linear system.
+  double dashpot = 0;
 
   // Torsion of a section of polar moment J [m^4], shear modulus G [Pa], density rho [kg/m^3].
   static Section Torsional(double length_m, double shear_modulus_pa, double density_kg_m3, double polar_moment_m4);
@@ -68,6 +72,9 @@ struct Node {
   // the node's side; a DC motor's constant and an induction motor's shaft speed are the motor's own.
   model::Gear gear;
   std::optional<bitrock::FrictionLaw> friction;  // contact torque (bit–rock); set-valued laws need inertia > 0
+  // The BHA's lateral motion with a mass unbalance turning with the node (the bit only: it turns with the bit angle,
+  // the one angle the network integrates). Needs inertia > 0.
+  std::optional<model::JeffcottBha> lateral;
 
   bool massless() const { return inertia == 0; }
   bool has_dc_motor() const { return drive == Drive::kDcMotorVoltage || drive == Drive::kDcMotorSpeed; }
@@ -77,8 +84,11 @@ struct Node {
   }
   bool has_set_valued_friction() const { return friction && friction->IsSetValued(); }
   bool has_compliant_gear() const { return gear.compliant(); }
-  // The inertia the node's own speed carries: with a rigid gear the motor's too.
-  double LumpedInertia() const { return inertia + gear.InertiaAddedToNode(); }
+  // The inertia the node's own speed carries: with a rigid gear the motor's too, with a lateral BHA the unbalance's
+  // share (model::JeffcottBha::AddedInertia).
+  double LumpedInertia() const {
+    return inertia + gear.InertiaAddedToNode() + (lateral ? lateral->AddedInertia() : 0.0);
+  }
   // Torque that turning steadily at v costs the node: its dampers and its friction.
   double SteadyLoad(double v) const { return ground_damping * v + (friction && v != 0 ? friction->SlipTorque(v) : 0.0); }
 };
@@ -101,6 +111,7 @@ struct Network {
   // Torque the top feeds in while everything turns rigidly at the initial speed.
   double SteadyTopTorque() const;
   double LargestTravelTime() const;
+  bool HasKelvinVoigt() const;
 };
 
 }  // namespace drillwave::waves

@@ -43,6 +43,8 @@ struct NetworkTrajectory {
   std::vector<double> top_current_a;  // DC motor top: armature current; induction motor: stator rms (empty otherwise)
   std::vector<double> motor_speed_rad_s, gear_torque_nm;  // top behind a compliant gear: motor shaft, gear (else empty)
   std::vector<double> energy_j;   // kinetic energy of the nodes + energy of the waves in flight (record_energy)
+  std::vector<double> lateral_displacement_m;  // bit with a lateral BHA: whirl radius sqrt(x^2 + y^2)
+  std::vector<double> dissipated_j;  // energy the Kelvin-Voigt dashpots have dissipated since t = 0 (record_energy)
 };
 
 struct NetworkRun {

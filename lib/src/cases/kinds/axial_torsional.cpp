@@ -9,7 +9,8 @@
 // feels sum Z (2 w_in - v) from its pieces (DESIGN.md §1). Kelvin-Voigt damping (chapter eqs. 2.20, 2.24) is a
 // dashpot eta K / length across each piece, which ties the massless nodes into a tridiagonal system.
 // Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by the hook force H: constant,
-// set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)).
+// set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)); or, with
+// hoist/rig, hanging from the two-mass hoisting rig of eq. 2.22 (model::HoistRig: rigid hook, constant pay-out).
 // Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
 //   t_n: Phi(t) - Phi(t - t_n) = 2 pi / n,  d = n (U(t) - U(t - t_n))   (from the stored bit angle and position;
 //        after a bounce, against the deepest of the last four blade passes at that angle)
@@ -38,6 +39,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <stdexcept>
 
@@ -50,8 +52,10 @@
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/model/gear.hpp"
+#include "drillwave/model/hoist_rig.hpp"
 #include "drillwave/model/induction_motor.hpp"
 #include "drillwave/model/schedule.hpp"
+#include "string_components.hpp"
 #include "top_components.hpp"
 
 namespace drillwave::cases {
@@ -92,19 +96,6 @@ struct DcMotor {
   }
 };
 
-// Lateral (Jeffcott) rotor of the BHA at the bit: mass M, stiffness k, damping c, unbalance m at radius e.
-struct LateralBha {
-  bool on = false;
-  double mass = 0, stiffness = 0, damping = 0, unbalance_mass = 0, eccentricity = 0;
-  double TotalMass() const { return mass + unbalance_mass; }  // M + m
-  double Moment() const { return unbalance_mass * eccentricity; }  // m e
-  double NaturalFrequency() const { return std::sqrt(stiffness / TotalMass()); }
-  // Steady whirl radius at a constant bit speed w: m e w^2 / sqrt((k - (M + m) w^2)^2 + (c w)^2).
-  double WhirlAmplitude(double w) const {
-    return Moment() * w * w / std::hypot(stiffness - TotalMass() * w * w, damping * w);
-  }
-};
-
 // The bit-rock law's parameters and forces are bitrock::RgdLaw's (a, zeta, eps, sigma_l, mu, gamma, blades, Stribeck).
 struct Model : bitrock::RgdLaw {
   int m = 20;
@@ -126,14 +117,15 @@ struct Model : bitrock::RgdLaw {
   double SupplyFrequency(double u_pi, double drive_speed) const {
     return induction.SupplyForTorque(u_pi / gear.ratio, gear.ratio * drive_speed);
   }
-  LateralBha unbalance;   // Jeffcott rotor at the bit when unbalance.on
+  std::optional<model::JeffcottBha> unbalance;  // the BHA's lateral motion at the bit (absent: none)
+  std::optional<model::HoistRig> rig;           // the hoisting rig above the top drive (absent: the hook force H)
 
   // The bit's inertia against its angular acceleration when the BHA moves laterally with it: eliminating x'' and
   // y'' from seed eq. 23 leaves J_b + m e^2 - (m e)^2 / (M + m) (J_b itself without an unbalance).
   double EffectiveBitInertia() const {
-    if (!unbalance.on) return bit_inertia;
-    const double me = unbalance.Moment();
-    return bit_inertia + me * unbalance.eccentricity - me * me / unbalance.TotalMass();
+    if (!unbalance) return bit_inertia;
+    const double me = unbalance->Moment();
+    return bit_inertia + me * unbalance->eccentricity - me * me / unbalance->TotalMass();
   }
 };
 
@@ -157,10 +149,11 @@ Steady SteadyDrilling(const Model& md, double omega) {
 // State: 0 bit angle, 1 bit position, 2 top speed, 3 bit speed, 4 hoist speed, 5 bit axial speed, 6 PI integral;
 // with a motor 7 its current; with an unbalance 8-11 the BHA's lateral x, y, x', y' (and 7 unused, held at 0); with
 // an induction motor or a compliant gear 12-15 the motor's fluxes and 16-17 the motor's speed (referred to the top
-// drive) and the gear's twist (the unused ones held at 0).
+// drive) and the gear's twist; with a hoisting rig 18-20 its derrick displacement and speed and the cable's stretch
+// (the unused ones held at 0).
 enum Index {
   kPhi = 0, kU, kWtop, kWbit, kVtop, kVbit, kZ, kDim, kCurrent = kDim, kX, kY, kXd, kYd, kFullDim,
-  kFlux = kFullDim, kMotorSpeed = kFlux + 4, kTwist, kTopDim
+  kFlux = kFullDim, kMotorSpeed = kFlux + 4, kTwist, kTopDim, kRig = kTopDim, kRigDim = kRig + 3
 };
 
 class Process {
@@ -178,8 +171,9 @@ class Process {
 
   // --- Simulator interface --------------------------------------------------------------------------------
   int Dimension() const {
+    if (md_.rig) return kRigDim;
     if (md_.induction_on || md_.gear.compliant()) return kTopDim;
-    return md_.unbalance.on ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
+    return md_.unbalance.has_value() ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
   }
   double MaxPieceTravelTime() const {
     double longest = 0;
@@ -225,7 +219,7 @@ class Process {
     dx[kPhi] = rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
     dx[kU] = rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : x[kVbit];
     // Top drive (with its motor and gear) and hoist. States a component does not use stay at 0.
-    if (Dimension() == kTopDim) std::fill(dx.begin() + kDim, dx.end(), 0.0);
+    if (Dimension() >= kTopDim) std::fill(dx.begin() + kDim, dx.end(), 0.0);
     const double vd = DriveSpeed(x), u = TopTorque(x, omega_ref);
     if (md_.motor.on)
       dx[kCurrent] = md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), vd, x[kCurrent]);
@@ -241,7 +235,15 @@ class Process {
       dx[kTwist] = vd - x[kWtop];
     }
     dx[kWtop] = (ends.top[0] + into_top) / md_.TopInertia();
-    dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first) / md_.hoist_mass;
+    if (md_.rig) {  // the top drive hangs from the rig's travelling block
+      const model::HoistRig::State rig = RigState(x);
+      dx[kVtop] = md_.rig->TopAcceleration(rig, ends.top[1], x[kVtop], steady_.rop, md_.hook_force.Value(0.0),
+                                           md_.hoist_mass);
+      const auto rates = md_.rig->Rates(rig, x[kVtop], steady_.rop, t, t > step_start_);
+      std::copy(rates.begin(), rates.end(), dx.begin() + kRig);
+    } else {
+      dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first) / md_.hoist_mass;
+    }
     dx[kZ] = omega_ref - vd;
     // Bit.
     dx[kWbit] = rg_.turn == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
@@ -250,7 +252,7 @@ class Process {
       dx[kU] = steady_.depth / (2 * kPi) * std::max(BitSpeed(x), 0.0);
       dx[kVtop] = dx[kVbit] = 0;
     }
-    if (md_.unbalance.on) LateralRates(x, dx[kWbit], dx);
+    if (md_.unbalance.has_value()) LateralRates(x, dx[kWbit], dx);
   }
 
   // The waves leaving every node over the piece, and the error of the quartic the history stores for them (ends,
@@ -356,7 +358,8 @@ class Process {
   }
 
   double NextBreakpoint() const {
-    const double input = std::min(md_.top_speed.NextKnotAfter(passed_), md_.hook_force.NextKnotAfter(passed_));
+    const double rig = md_.rig ? md_.rig->tension_change.NextKnotAfter(passed_) : kInf;
+    const double input = std::min({md_.top_speed.NextKnotAfter(passed_), md_.hook_force.NextKnotAfter(passed_), rig});
     return end_kinks_.empty() ? input : std::min(input, end_kinks_.top());
   }
   void OnBreakpoint(double t) {
@@ -381,6 +384,10 @@ class Process {
     s.bit_torque = rg_.turn == Turn::kStuck ? f.drive_torque : f.torque;
     s.wob = f.weight;
     s.hookload = md_.hook_force.Value(t) + md_.hoist_mass * dx[kVtop];
+    // With the rig the string's pull on the top drive, as without it: the cable's pull plus (M2 + M_td) v'.
+    if (md_.rig)
+      s.hookload = md_.rig->CablePull(RigState(x), x[kVtop], steady_.rop, md_.hook_force.Value(0.0)) +
+                   (md_.rig->block_mass + md_.hoist_mass) * dx[kVtop];
     s.depth = rg_.contact ? f.depth : std::min(f.depth, 0.0);
     s.bit_axial_speed = !md_.axial_coupling ? dx[kU] : rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : x[kVbit];
     s.tn = f.tn;
@@ -389,7 +396,7 @@ class Process {
     s.top_current = md_.motor.on ? x[kCurrent] : md_.induction_on ? md_.induction.StatorCurrentRms(Fluxes(x)) : 0.0;
     s.motor_speed = md_.gear.compliant() ? md_.gear.ratio * x[kMotorSpeed] : 0.0;
     s.gear_torque = md_.gear.compliant() ? GearTorque(x) : 0.0;
-    s.lateral_displacement = md_.unbalance.on ? std::hypot(x[kX], x[kY]) : 0.0;
+    s.lateral_displacement = md_.unbalance.has_value() ? std::hypot(x[kX], x[kY]) : 0.0;
     return s;
   }
   const std::vector<StuckInterval>& stuck_intervals() const { return stuck_; }
@@ -571,7 +578,7 @@ class Process {
     const double w = rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
     f.drive_torque = ends.bit[0];
     f.drive_force = ends.bit[1];
-    if (md_.unbalance.on) f.drive_torque += LateralReaction(x);
+    if (md_.unbalance.has_value()) f.drive_torque += LateralReaction(x);
     f.depth = DepthOfCut(x, t, side, &f.tn);
     if (!md_.axial_coupling) f.depth = steady_.depth;
     if (!rg_.contact) return f;
@@ -601,28 +608,15 @@ class Process {
     return {x[kFlux], x[kFlux + 1], x[kFlux + 2], x[kFlux + 3]};
   }
   double BitSpeed(const State& x) const { return rg_.turn == Turn::kStuck ? 0.0 : x[kWbit]; }
+  static model::HoistRig::State RigState(const State& x) { return {x[kRig], x[kRig + 1], x[kRig + 2]}; }
 
-  // Forces on the BHA's lateral motion other than its inertia and the unbalance's angular acceleration term
-  // (seed eqs. 21-22 with Phi'' = 0): m e Phi'^2 (cos Phi, sin Phi) - c (x', y') - k (x, y).
-  std::array<double, 2> LateralForces(const State& x) const {
-    const LateralBha& b = md_.unbalance;
-    const double w = BitSpeed(x), centrifugal = b.Moment() * w * w;
-    return {centrifugal * std::cos(x[kPhi]) - b.damping * x[kXd] - b.stiffness * x[kX],
-            centrifugal * std::sin(x[kPhi]) - b.damping * x[kYd] - b.stiffness * x[kY]};
-  }
-  // Torque of the lateral motion on the bit at zero angular acceleration, m e (x'' sin Phi - y'' cos Phi) of seed eq.
-  // 23; the part that goes with Phi'' is in EffectiveBitInertia. (The centrifugal force is radial: no torque.)
-  double LateralReaction(const State& x) const {
-    const auto [fx, fy] = LateralForces(x);
-    return md_.unbalance.Moment() / md_.unbalance.TotalMass() * (fx * std::sin(x[kPhi]) - fy * std::cos(x[kPhi]));
-  }
-  // x'', y'' (seed eqs. 21-22) given the bit's angular acceleration phi_dd.
+  // The Jeffcott rotor's torque on the bit at zero angular acceleration (the rest is in EffectiveBitInertia), and
+  // its rates given the bit's angular acceleration phi_dd (model::JeffcottBha).
+  static model::JeffcottBha::Lateral Lateral(const State& x) { return {x[kX], x[kY], x[kXd], x[kYd]}; }
+  double LateralReaction(const State& x) const { return md_.unbalance->Reaction(x[kPhi], BitSpeed(x), Lateral(x)); }
   void LateralRates(const State& x, double phi_dd, State& dx) const {
-    const auto [fx, fy] = LateralForces(x);
-    const double me = md_.unbalance.Moment(), mass = md_.unbalance.TotalMass();
-    dx[kX] = x[kXd], dx[kY] = x[kYd];
-    dx[kXd] = (fx + me * std::sin(x[kPhi]) * phi_dd) / mass;
-    dx[kYd] = (fy - me * std::cos(x[kPhi]) * phi_dd) / mass;
+    const auto rates = md_.unbalance->Rates(x[kPhi], BitSpeed(x), phi_dd, Lateral(x));
+    std::copy(rates.begin(), rates.end(), dx.begin() + kX);
   }
 
   // Sum of Z (2 w_in) over the two pieces at an internal node (as 2 Z (a + b) for equal impedances: a uniform
@@ -754,6 +748,21 @@ class Process {
   mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // Outgoing's and StringEnds' scratch
 };
 
+// hoist/rig: the two-mass hoisting rig (model::HoistRig).
+model::HoistRig ReadHoistRig(const JsonReader& r) {
+  model::HoistRig rig;
+  rig.derrick_mass = r.Number("derrick_mass_kg", Range::Positive());
+  rig.block_mass = r.Number("block_mass_kg", Range::Positive());
+  rig.derrick_damping = r.Number("derrick_damping_Ns_per_m", Range::NonNegative());
+  rig.block_damping = r.Number("block_damping_Ns_per_m", Range::NonNegative());
+  rig.ground_stiffness = r.Number("ground_stiffness_N_per_m", Range::Positive());
+  rig.cable_stiffness = r.Number("cable_stiffness_N_per_m", Range::Positive());
+  if (r.Has("cable_tension_change_N"))
+    rig.tension_change = model::Schedule::FromJson(r.Raw("cable_tension_change_N"), r.PathOf("cable_tension_change_N"));
+  r.Finish();
+  return rig;
+}
+
 // The induction motor and the gear of the top drive block (the DC motor is read beside them).
 void ReadTopMotorAndGear(const JsonReader& top, Model& md) {
   if (top.Has("induction_motor")) {
@@ -789,7 +798,7 @@ class AxialTorsionalModel : public PreparedModel {
       d.tn.push_back(v.tn), d.stuck.push_back(v.stuck), d.off.push_back(v.off_bottom), d.angle.push_back(s[kPhi]);
       if (md_.motor.on || md_.induction_on) current.push_back(v.top_current);
       if (md_.gear.compliant()) motor_rpm.push_back(v.motor_speed * 30 / kPi), gear_torque.push_back(v.gear_torque);
-      if (md_.unbalance.on) lateral.push_back(v.lateral_displacement);
+      if (md_.unbalance.has_value()) lateral.push_back(v.lateral_displacement);
     };
     sample(0.0, x);
     const auto observer = integration::SampleEvery(settings.output_interval_s, sample);
@@ -801,7 +810,7 @@ class AxialTorsionalModel : public PreparedModel {
 
     double lateral_sum = 0, lateral_max = 0;
     int n = 0;
-    if (md_.unbalance.on)
+    if (md_.unbalance.has_value())
       for (std::size_t i = 0; i < d.time.size(); ++i)
         if (d.time[i] >= settings.window_begin_s && d.time[i] <= settings.window_end_s)
           lateral_sum += lateral[i], lateral_max = std::max(lateral_max, lateral[i]), ++n;
@@ -810,11 +819,15 @@ class AxialTorsionalModel : public PreparedModel {
     SummarizeDrillingRun(d, std::move(hook), process.stuck_intervals(), settings, {s.depth, s.rop, s.tob},
                          sim.stats(), result);
     result.summary["hook_force_N"] = md_.hook_force.Value(0.0);
-    if (md_.unbalance.on) {  // whirl radius over the window, and the closed form at the steady bit speed
+    if (md_.rig) {  // the rig's undamped modes with the top drive on the block, string removed (model::HoistRig)
+      const auto w = md_.rig->NaturalFrequencies(md_.hoist_mass);
+      result.summary["rig_natural_frequencies_rad_s"] = {w[0], w[1]};
+    }
+    if (md_.unbalance.has_value()) {  // whirl radius over the window, and the closed form at the steady bit speed
       result.summary["whirl_amplitude_mean_m"] = n ? lateral_sum / n : 0.0;
       result.summary["whirl_amplitude_max_m"] = lateral_max;
-      result.summary["steady_whirl_amplitude_m"] = md_.unbalance.WhirlAmplitude(s.omega);
-      result.summary["lateral_natural_frequency_rad_s"] = md_.unbalance.NaturalFrequency();
+      result.summary["steady_whirl_amplitude_m"] = md_.unbalance->WhirlAmplitude(s.omega);
+      result.summary["lateral_natural_frequency_rad_s"] = md_.unbalance->NaturalFrequency();
     }
     if (md_.motor.on || md_.induction_on) {  // DC: armature current; induction: stator rms
       result.channels.push_back({"top_current_A", std::move(current)});
@@ -826,7 +839,7 @@ class AxialTorsionalModel : public PreparedModel {
       result.channels.push_back({"gear_torque_Nm", std::move(gear_torque)});
       result.plot_panels.push_back({"gear_torque_Nm", "top_torque_Nm"});
     }
-    if (md_.unbalance.on) {
+    if (md_.unbalance.has_value()) {
       result.channels.push_back({"lateral_displacement_m", std::move(lateral)});
       result.plot_panels.push_back({"lateral_displacement_m"});
     }
@@ -887,7 +900,7 @@ StringSpec ReadString(const JsonReader& s) {
   if (sp.rho_mud >= sp.rho) throw InputError(s.PathOf("mud_density_kg_m3"), "expected a value below density_kg_m3");
   pipe.c_t = s.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative());
   pipe.c_a = s.Number("axial_damping_Ns_per_m2", Range::NonNegative());
-  sp.eta_t = s.Number("kelvin_voigt_s", Range::NonNegative(), 0.0);
+  sp.eta_t = ReadKelvinVoigt(s);
   sp.eta_a = s.Number("axial_kelvin_voigt_s", Range::NonNegative(), 0.0);
   if (s.Has("side_friction")) {
     const JsonReader f = s.Object("side_friction");
@@ -987,7 +1000,8 @@ HoistBalance Balance(const Model& md, const StringSpec& string) {
 void RequireLinearizable(const Model& md) {
   const char* field = md.torsion.kelvin_voigt() ? "/model/string/kelvin_voigt_s"
                       : md.axial.kelvin_voigt() ? "/model/string/axial_kelvin_voigt_s"
-                      : md.unbalance.on         ? "/model/bit/unbalance"
+                      : md.unbalance.has_value() ? "/model/bit/unbalance"
+                      : md.rig.has_value()       ? "/model/hoist/rig"
                                                 : nullptr;
   if (field) throw InputError(field, "the coupled model's stability analysis has no linearization of this component yet");
 }
@@ -1072,7 +1086,7 @@ class AxialTorsionalKind : public ModelKind {
     return "coupled axial-torsional waves in a pipe with a lumped bit and the Richard-Germay-Detournay bit-rock law "
            "(state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); PI top drive, hoist "
            "under constant hook force; optional BHA section, Kelvin-Voigt damping, Stribeck bit friction, DC motor, "
-           "BHA mass unbalance (Jeffcott rotor at the bit), axial coupling off";
+           "BHA mass unbalance (Jeffcott rotor at the bit), two-mass hoisting rig, axial coupling off";
   }
   nlohmann::json FieldSchema() const override {
     nlohmann::json fields = {{"string/length_m", "> 0, top drive to bit"},
@@ -1086,8 +1100,6 @@ class AxialTorsionalKind : public ModelKind {
             {"string/axial_damping_Ns_per_m2", "c_a >= 0, viscous, per metre"},
             {"string/subsections", "integer in [2, 400], default 20: the pipe's pieces (damping and weight lumped at "
                                    "their nodes)"},
-            {"string/kelvin_voigt_s", "eta >= 0, default 0: Kelvin-Voigt torsion T += -eta G J dw/ds (a dashpot "
-                                      "eta G J / piece length across every piece); not with side_friction"},
             {"string/axial_kelvin_voigt_s", "eta_a >= 0, default 0: axial N += eta_a E A dv/ds"},
             {"string/bha/length_m", "> 0, < string/length_m: drill collars of the same steel between the pipe and "
                                     "the bit (string/length_m stays top drive to bit)"},
@@ -1102,12 +1114,6 @@ class AxialTorsionalKind : public ModelKind {
             {"string/side_friction/to_m", "> from_m, default: the bit"},
             {"bit/inertia_kgm2", "J_b > 0 (bit, and the BHA unless string/bha distributes it)"},
             {"bit/mass_kg", "M_b > 0"},
-            {"bit/unbalance/lateral_mass_kg", "M > 0: BHA lateral (Jeffcott) mass; optional object, absent: no "
-                                              "lateral motion"},
-            {"bit/unbalance/lateral_stiffness_N_per_m", "k > 0"},
-            {"bit/unbalance/lateral_damping_Ns_per_m", "c >= 0"},
-            {"bit/unbalance/unbalance_mass_kg", "m >= 0, turning with the bit (adds m e^2 to J_b)"},
-            {"bit/unbalance/eccentricity_m", "e >= 0"},
             {"axial_coupling", "boolean, default true; false: no axial dynamics, weight on bit held at W0 and depth "
                                "of cut at its steady value"},
             {"top/type", "top_drive (a PI speed controller, the only top of this kind; optional)"},
@@ -1125,8 +1131,21 @@ class AxialTorsionalKind : public ModelKind {
                                    "(1 + kappa), kappa = c_a L Omega0 / (2 pi a zeta eps), which must exceed a sigma l"},
             {"hoist/weight_on_bit_N", "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
                                       "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
+            {"hoist/rig/derrick_mass_kg", "M_rg1 > 0: optional two-mass hoisting rig (chapter eq. 2.22), absent: the "
+                                          "hook force; the top drive hangs from the travelling block on a rigid hook, "
+                                          "the drawworks pays out line at the steady rate of penetration; needs "
+                                          "weight_on_bit_N, not with axial_coupling false"},
+            {"hoist/rig/block_mass_kg", "M_rg2 > 0: cables, crown and travelling blocks"},
+            {"hoist/rig/derrick_damping_Ns_per_m", "gamma_rg1 >= 0"},
+            {"hoist/rig/block_damping_Ns_per_m", "gamma_rg2 >= 0"},
+            {"hoist/rig/ground_stiffness_N_per_m", "k_rg01 > 0: derrick to ground"},
+            {"hoist/rig/cable_stiffness_N_per_m", "k_rg12 > 0: derrick to travelling block"},
+            {"hoist/rig/cable_tension_change_N", "u_F(t) - u_F0 [N], up on the derrick: a number or {\"knots\": "
+                                                 "[[t, v], ...]}, default 0 (u_F0: the tension of steady drilling)"},
             {"gravity_m_s2", "> 0, default 9.81"}};
     fields.update(TopComponentFields("top"));
+    fields.update(StringComponentFields("string", "bit"));
+    fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() + "; not with side_friction";
     fields.update(bitrock::RgdFieldSchema());
     fields["top/induction_motor/pole_pairs"] =
         "p, integer in [1, 64]: optional induction motor (absent: the PI output is the torque) on a V/f supply with "
@@ -1143,16 +1162,7 @@ class AxialTorsionalKind : public ModelKind {
     md.bit_inertia = b.Number("inertia_kgm2", Range::Positive());
     md.bit_mass = b.Number("mass_kg", Range::Positive());
     bitrock::ReadRgdBit(b, md);
-    if (b.Has("unbalance")) {
-      const JsonReader u = b.Object("unbalance");
-      md.unbalance.on = true;
-      md.unbalance.mass = u.Number("lateral_mass_kg", Range::Positive());
-      md.unbalance.stiffness = u.Number("lateral_stiffness_N_per_m", Range::Positive());
-      md.unbalance.damping = u.Number("lateral_damping_Ns_per_m", Range::NonNegative());
-      md.unbalance.unbalance_mass = u.Number("unbalance_mass_kg", Range::NonNegative());
-      md.unbalance.eccentricity = u.Number("eccentricity_m", Range::NonNegative());
-      u.Finish();
-    }
+    md.unbalance = ReadUnbalance(b);
     b.Finish();
     bitrock::ReadRgdRock(r.Object("rock"), md);
     r.RefuseRenamed("top_drive", "/model/top");
@@ -1182,10 +1192,18 @@ class AxialTorsionalKind : public ModelKind {
                                  "schedule), " + std::string(hook_given ? "not both" : "got neither"));
     if (hook_given) md.hook_force = model::Schedule::FromJson(h.Raw("hook_force_N"), h.PathOf("hook_force_N"));
     else md.weight_on_bit = h.Number("weight_on_bit_N", Range::Positive());
+    if (h.Has("rig")) {
+      if (hook_given)
+        throw InputError(h.PathOf("rig"), "the rig carries the top drive itself: expected weight_on_bit_N (the steady "
+                                          "state it keeps) instead of hook_force_N");
+      md.rig = ReadHoistRig(h.Object("rig"));
+    }
     h.Finish();
     const double g = r.Number("gravity_m_s2", Range::Positive(), 9.81);
     md.axial_coupling = r.Boolean("axial_coupling", true);
     r.Finish();
+    if (md.rig && !md.axial_coupling)
+      throw InputError(h.PathOf("rig"), "expected no rig with axial_coupling false (no axial dynamics to hang it on)");
     if (!hook_given && !(md.weight_on_bit > md.ContactForce()))
       throw InputError(h.PathOf("weight_on_bit_N"), "expected more than the wear-flat contact force a sigma l = " +
                                                         ReadableNumber(md.ContactForce()) + " N (no cutting otherwise; "

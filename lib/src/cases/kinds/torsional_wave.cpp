@@ -1,6 +1,9 @@
 // Model kind "torsional_wave": a drill string of uniform sections (pipe, collars) as a d'Alembert wave network,
 // with a top boundary from the seeds (imposed speed, dissipative top, top drive with PI control, torque) and a bit
-// with any friction law. Distributed viscous damping is lumped into dashpots at internal massless nodes.
+// with any friction law. Distributed viscous damping is lumped into dashpots at internal massless nodes, Kelvin-Voigt
+// damping into dashpots across the sub-sections (waves::Section::dashpot). Optional bit/unbalance: the BHA's lateral
+// motion as the Jeffcott rotor of the failure seed (eqs. 21-23) at the bit node.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -10,6 +13,7 @@
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/waves/network_simulation.hpp"
+#include "string_components.hpp"
 #include "top_components.hpp"
 
 namespace drillwave::cases {
@@ -44,13 +48,16 @@ waves::Section ReadSection(const JsonReader& r) {
 
 // Splits each section into m equal parts and puts a dashpot gamma * length / m to ground at each internal node:
 // the distributed viscous damping of eqs. 2.20/2.24 (gamma per unit length) lumped so the reduction stays exact.
-void AddSectionsWithDamping(const std::vector<waves::Section>& sections, double gamma_per_m, int subsections,
-                            waves::Network& net) {
+// Kelvin-Voigt damping (T += eta G J dw/ds) is a dashpot eta G J / part length = eta Z / part travel time across
+// each part.
+void AddSectionsWithDamping(const std::vector<waves::Section>& sections, double gamma_per_m, double kelvin_voigt_s,
+                            int subsections, waves::Network& net) {
   for (std::size_t k = 0; k < sections.size(); ++k) {
     const waves::Section& s = sections[k];
-    const int m = gamma_per_m > 0 ? subsections : 1;
+    const int m = gamma_per_m > 0 || kelvin_voigt_s > 0 ? subsections : 1;
     for (int part = 0; part < m; ++part) {
-      net.sections.push_back({s.length_m / m, s.travel_time_s / m, s.impedance});
+      const double tau = s.travel_time_s / m;
+      net.sections.push_back({s.length_m / m, tau, s.impedance, kelvin_voigt_s * s.impedance / tau});
       const bool last = k + 1 == sections.size() && part + 1 == m;
       if (last) break;
       waves::Node node;
@@ -188,6 +195,21 @@ class TorsionalWaveModel : public PreparedModel {
       result.channels.push_back({"gear_torque_Nm", std::move(tr.gear_torque_nm)});
       result.plot_panels.push_back({"gear_torque_Nm", "top_torque_Nm"});
     }
+    if (const auto& lateral = net_.bit().lateral) {
+      // Whirl radius over the window, and the closed form at the window's mean bit speed.
+      double sum = 0, largest = 0;
+      int n = 0;
+      for (std::size_t i = 0; i < tr.time_s.size(); ++i)
+        if (tr.time_s[i] >= settings.window_begin_s && tr.time_s[i] <= settings.window_end_s)
+          sum += tr.lateral_displacement_m[i], largest = std::max(largest, tr.lateral_displacement_m[i]), ++n;
+      result.summary["whirl_amplitude_mean_m"] = n ? sum / n : 0.0;
+      result.summary["whirl_amplitude_max_m"] = largest;
+      result.summary["steady_whirl_amplitude_m"] =
+          lateral->WhirlAmplitude(result.summary["bit_speed_mean_rad_s"].get<double>());
+      result.summary["lateral_natural_frequency_rad_s"] = lateral->NaturalFrequency();
+      result.channels.push_back({"lateral_displacement_m", std::move(tr.lateral_displacement_m)});
+      result.plot_panels.push_back({"lateral_displacement_m"});
+    }
     result.time_s = std::move(tr.time_s);
     return result;
   }
@@ -196,6 +218,9 @@ class TorsionalWaveModel : public PreparedModel {
   // the chapter's scalar neutral DDE (DESIGN.md §1); every other string the wave network's linearization
   // (analysis/network_linearization.hpp), whose roots are the same where both apply.
   std::vector<LinearizedOperatingPoint> Linearize() const override {
+    if (net_.HasKelvinVoigt() || net_.bit().lateral)
+      throw InputError(net_.HasKelvinVoigt() ? "/model/string/kelvin_voigt_s" : "/model/bit/unbalance",
+                       "the wave network's stability analysis has no linearization of this component yet");
     bool scalar_form = true;
     try {
       analysis::CheckLinearizable(net_);
@@ -263,7 +288,8 @@ class TorsionalWaveKind : public ModelKind {
  public:
   std::string name() const override { return "torsional_wave"; }
   std::string description() const override {
-    return "torsional d'Alembert wave network: sections, top boundary, bit with friction (DESIGN.md §1–3)";
+    return "torsional d'Alembert wave network: sections, top boundary, bit with friction (DESIGN.md §1–3); optional "
+           "viscous and Kelvin-Voigt damping, BHA mass unbalance (Jeffcott rotor at the bit)";
   }
   nlohmann::json FieldSchema() const override {
     nlohmann::json fields = {
@@ -273,7 +299,8 @@ class TorsionalWaveKind : public ModelKind {
         {"string/sections/*/polar_moment_m4", "J [m^4], > 0 (or outer_radius_m and inner_radius_m)"},
         {"string/sections/*/name", "optional label"},
         {"string/torsional_damping_Nms_per_rad_m", "distributed viscous damping gamma [N·m·s/rad per m], >= 0, default 0"},
-        {"string/damping_subsections", "dashpot nodes per section for the damping, 1..1000, default 20"},
+        {"string/damping_subsections", "parts per section for the viscous and Kelvin-Voigt damping, 1..1000, "
+                                       "default 20"},
         {"top/type", "prescribed_speed | dissipative | top_drive | torque | dc_motor | induction_motor"},
         {"top/motor/motor_constant_Nm_per_A", "dc_motor (chapter eq. 2.15): k_T = k_e [N·m/A], > 0"},
         {"top/motor/resistance_ohm", "dc_motor: armature resistance R [ohm], > 0"},
@@ -300,6 +327,12 @@ class TorsionalWaveKind : public ModelKind {
         {"friction laws", bitrock::FrictionLaw::Schema()},
     };
     fields.update(TopComponentFields("top"));
+    fields.update(StringComponentFields("string", "bit"));
+    fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() +
+                                      " (string/damping_subsections parts per section); not with a massless bit with "
+                                      "friction";
+    fields["bit/unbalance/lateral_mass_kg"] = fields["bit/unbalance/lateral_mass_kg"].get<std::string>() +
+                                              "; needs bit/inertia_kgm2 > 0";
     fields["top/supply_frequency_Hz"] = "induction_motor, open loop: supply frequency schedule [Hz] (instead of "
                                         "speed_rad_s); V/f: line voltage volts_per_hertz f, up to voltage_limit_V";
     return fields;
@@ -312,12 +345,18 @@ class TorsionalWaveKind : public ModelKind {
     if (sections.empty()) throw InputError(string.PathOf("sections"), "expected at least one section");
     string.RefuseRenamed("viscous_damping_Nms_per_rad_m", string.PathOf("torsional_damping_Nms_per_rad_m"));
     const double gamma = string.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative(), 0.0);
+    const double eta = ReadKelvinVoigt(string);
     const int subsections = string.Integer("damping_subsections", 1, 1000, 20);
     string.Finish();
 
     waves::Network net;
     net.nodes.push_back(ReadTop(model.Object("top")));
-    AddSectionsWithDamping(sections, gamma, subsections, net);
+    AddSectionsWithDamping(sections, gamma, eta, subsections, net);
+    for (const waves::Section& part : net.sections)  // extremes overflow: say which field
+      if (!std::isfinite(part.dashpot))
+        throw InputError(string.PathOf("kelvin_voigt_s"), "the dashpot eta Z / tau of a part is " +
+                                                              ReadableNumber(part.dashpot) + " N m s: expected a "
+                                                              "smaller retardation time or fewer damping_subsections");
 
     const JsonReader bit_reader = model.Object("bit");
     waves::Node bit;
@@ -328,6 +367,13 @@ class TorsionalWaveKind : public ModelKind {
       bit.friction = bitrock::FrictionLaw::FromJson(bit_reader.Raw("friction"), bit_reader.PathOf("friction"));
     if (bit.has_set_valued_friction() && bit.massless())
       throw InputError(bit_reader.PathOf("inertia_kgm2"), "a set-valued friction law needs a bit inertia > 0");
+    bit.lateral = ReadUnbalance(bit_reader);
+    if (bit.lateral && bit.massless())
+      throw InputError(bit_reader.PathOf("inertia_kgm2"), "a BHA unbalance (bit/unbalance) needs a bit inertia > 0");
+    if (eta > 0 && bit.massless() && bit.friction)
+      throw InputError(string.PathOf("kelvin_voigt_s"), "expected 0 with a massless bit with friction (its speed "
+                                                        "would solve a nonlinear system with the dashpots): give "
+                                                        "/model/bit/inertia_kgm2 > 0");
     bit_reader.Finish();
     net.nodes.push_back(bit);
     // Half a damping part at each end of the string, so the total equals gamma * length.
