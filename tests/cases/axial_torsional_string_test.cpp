@@ -114,6 +114,50 @@ TEST(AxialTorsionalString, BhaSteadyDrillingAndHookForceAreTheClosedForm) {
   }
 }
 
+// string/bha as an array of sections (heavy-weight pipe, then collars): the steady state holds the three sections'
+// buoyant weight in closed form, and collars given as two sections of one size are the one section they make up.
+TEST(AxialTorsionalString, SeveralBhaSectionsHoldTheirWeightAndJoinSeamlessly) {
+  constexpr double kHwOd = 0.127, kHwId = 0.0762;  // 5 in heavy-weight pipe, 3 in bore
+  const double w = 80 * M_PI / 30, w0 = 90000, a = 0.10795, sigma_l = 450000, eps = 5e7, zeta = 0.6;
+  const double d0 = (w0 - a * sigma_l) / (a * zeta * eps), v0 = d0 * w / (2 * M_PI);
+  const double buoyant = (kRho - kRhoMud) * kGravity * (Area(kPipeOd, kPipeId) * (2600 - 280 - 189.4) +
+                                                       Area(kHwOd, kHwId) * 280 + Area(kCollarOd, kCollarId) * 189.4) +
+                         800 * kGravity * (1 - kRhoMud / kRho);
+  const double hook = buoyant - w0 - 50 * 2600 * v0;
+  nlohmann::json three = WithBha(80);
+  three["model"]["string"]["bha"] = nlohmann::json::array(
+      {{{"length_m", 280}, {"outer_diameter_m", kHwOd}, {"inner_diameter_m", kHwId}},
+       {{"length_m", 189.4}, {"outer_diameter_m", kCollarOd}, {"inner_diameter_m", kCollarId}}});
+  three["simulation"]["duration_s"] = 2;
+  three["simulation"]["abs_tol"] = three["simulation"]["rel_tol"] = 1e-9;
+  three["statistics"]["window_s"] = {0, 2};
+  const auto steady = RunCase(ParseCase(three)).summary;
+  std::printf("[ measured ] pipe + heavy-weight + collars: hook force %.4f N (closed form %.4f), bit speed "
+              "%.12f..%.12f rad/s\n", steady["hook_force_N"].get<double>(), hook,
+              steady["bit_speed_min_rad_s"].get<double>(), steady["bit_speed_max_rad_s"].get<double>());
+  EXPECT_NEAR(steady["hook_force_N"].get<double>(), hook, 1e-9 * hook);
+  EXPECT_NEAR(steady["bit_speed_min_rad_s"].get<double>(), w, 1e-7);
+  EXPECT_NEAR(steady["bit_speed_max_rad_s"].get<double>(), w, 1e-7);
+  EXPECT_EQ(steady["events"].get<int>(), 0);
+
+  nlohmann::json one = WithBha(60);
+  one["model"]["string"]["bha"]["subsections"] = 4;
+  one["simulation"]["duration_s"] = 20;
+  one["statistics"]["window_s"] = {5, 20};
+  nlohmann::json two = one;
+  two["model"]["string"]["bha"] = nlohmann::json::array(
+      {{{"length_m", 94.7}, {"outer_diameter_m", kCollarOd}, {"inner_diameter_m", kCollarId}, {"subsections", 2}},
+       {{"length_m", 94.7}, {"outer_diameter_m", kCollarOd}, {"inner_diameter_m", kCollarId}, {"subsections", 2}}});
+  const auto a1 = RunCase(ParseCase(one)).summary, a2 = RunCase(ParseCase(two)).summary;
+  std::printf("[ measured ] collars as one section: %d stick onsets, bit speed max %.9f; as two: %d, %.9f\n",
+              a1["stick_onsets"].get<int>(), a1["bit_speed_max_rad_s"].get<double>(), a2["stick_onsets"].get<int>(),
+              a2["bit_speed_max_rad_s"].get<double>());
+  EXPECT_NEAR(a1["hook_force_N"].get<double>(), a2["hook_force_N"].get<double>(), 1e-6);
+  EXPECT_EQ(a1["stick_onsets"].get<int>(), a2["stick_onsets"].get<int>());
+  EXPECT_NEAR(a1["bit_speed_max_rad_s"].get<double>(), a2["bit_speed_max_rad_s"].get<double>(), 1e-6);
+  EXPECT_NEAR(a1["stick_fraction"].get<double>(), a2["stick_fraction"].get<double>(), 1e-6);
+}
+
 // A BHA of the pipe's own diameters whose one piece is as long as the pipe's pieces is no junction at all: the run is
 // the uniform string's (to the rounding of the hook force's drag sum).
 TEST(AxialTorsionalString, BhaOfPipeSizeIsTheUniformString) {
@@ -274,6 +318,19 @@ TEST(AxialTorsionalString, BadBhaAndKelvinVoigtInputNameTheirPath) {
   doc = WithBha(80);
   doc["model"]["string"]["bha"]["lenght_m"] = 1;
   EXPECT_NE(error_of(doc).find("/model/string/bha/lenght_m"), std::string::npos) << error_of(doc);
+  doc = WithBha(80);  // several sections: too long together, a misspelt field, none
+  doc["model"]["string"]["bha"] = nlohmann::json::array({{{"length_m", 2000}, {"outer_diameter_m", kCollarOd},
+                                                          {"inner_diameter_m", kCollarId}},
+                                                         {{"length_m", 700}, {"outer_diameter_m", kCollarOd},
+                                                          {"inner_diameter_m", kCollarId}}});
+  EXPECT_NE(error_of(doc).find("/model/string/bha: expected sections shorter together (2700 m)"), std::string::npos)
+      << error_of(doc);
+  doc["model"]["string"]["bha"][0]["length_m"] = 200;
+  doc["model"]["string"]["bha"][1]["lenght_m"] = 1;
+  EXPECT_NE(error_of(doc).find("/model/string/bha/1/lenght_m"), std::string::npos) << error_of(doc);
+  doc["model"]["string"]["bha"] = nlohmann::json::array();
+  EXPECT_NE(error_of(doc).find("/model/string/bha: expected at least one section"), std::string::npos)
+      << error_of(doc);
   doc = WithBha(80);
   doc["model"]["string"]["kelvin_voigt_s"] = -0.1;
   EXPECT_NE(error_of(doc).find("/model/string/kelvin_voigt_s"), std::string::npos) << error_of(doc);

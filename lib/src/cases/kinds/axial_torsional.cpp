@@ -1,4 +1,4 @@
-// Model kind "axial_torsional": coupled axial and torsional waves in a pipe and an optional BHA section, a lumped bit,
+// Model kind "axial_torsional": coupled axial and torsional waves in a pipe and optional BHA sections, a lumped bit,
 // and the Richard-Germay-Detournay bit-rock law with the state-dependent cut delay t_n (DESIGN.md §1-3, chapter seed
 // 2.28-2.33; the baseline model of shared/recordings/synthetic/BASELINE.md).
 //
@@ -865,6 +865,7 @@ struct StringSpec {
   double side_torque_per_m = 0, side_from = 0, side_to = 0;
 };
 
+// One section below the pipe (the BHA, or a part of it: heavy-weight pipe, collars, ...).
 Section ReadBha(const JsonReader& c, const Section& pipe, double string_length) {
   Section bha;
   bha.length = c.Number("length_m", Range::Positive());
@@ -878,7 +879,7 @@ Section ReadBha(const JsonReader& c, const Section& pipe, double string_length) 
   bha.c_a = c.Number("axial_damping_Ns_per_m2", Range::NonNegative(), pipe.c_a);
   // By default pieces about as long as the pipe's, so that the travel times are near each other (the step is capped
   // at the shortest).
-  const double pipe_piece = (string_length - bha.length) / pipe.pieces;
+  const double pipe_piece = pipe.length / pipe.pieces;
   const int pieces = std::clamp(static_cast<int>(std::lround(bha.length / pipe_piece)), 1, 400);
   bha.pieces = c.Integer("subsections", 1, 400, pieces);
   c.Finish();
@@ -916,9 +917,17 @@ StringSpec ReadString(const JsonReader& s) {
   pipe.pieces = s.Integer("subsections", 2, 400, 20);
   pipe.length = sp.length;
   sp.sections = {pipe};
-  if (s.Has("bha")) {
-    sp.sections.push_back(ReadBha(s.Object("bha"), pipe, sp.length));
-    sp.sections[0].length = sp.length - sp.sections[1].length;
+  if (s.Has("bha")) {  // one section, or several top to bottom (heavy-weight pipe, collars, ...)
+    const bool several = s.Raw("bha").is_array();
+    const std::vector<JsonReader> parts = several ? s.ObjectArray("bha") : std::vector<JsonReader>{s.Object("bha")};
+    if (parts.empty()) throw InputError(s.PathOf("bha"), "expected at least one section");
+    double below_pipe = 0;
+    for (const JsonReader& part : parts) below_pipe += part.Number("length_m", Range::Positive());
+    if (below_pipe >= sp.length && several)
+      throw InputError(s.PathOf("bha"), "expected sections shorter together (" + ReadableNumber(below_pipe) +
+                                            " m) than the string's length_m = " + ReadableNumber(sp.length) + " m");
+    sp.sections[0].length = std::max(sp.length - below_pipe, 0.0);  // (a single section too long: ReadBha says so)
+    for (const JsonReader& part : parts) sp.sections.push_back(ReadBha(part, sp.sections[0], sp.length));
   }
   s.Finish();
   return sp;
@@ -1102,7 +1111,8 @@ class AxialTorsionalKind : public ModelKind {
                                    "their nodes)"},
             {"string/axial_kelvin_voigt_s", "eta_a >= 0, default 0: axial N += eta_a E A dv/ds"},
             {"string/bha/length_m", "> 0, < string/length_m: drill collars of the same steel between the pipe and "
-                                    "the bit (string/length_m stays top drive to bit)"},
+                                    "the bit (string/length_m stays top drive to bit). string/bha may also be an "
+                                    "array of such sections, top to bottom (heavy-weight pipe, collars, ...)"},
             {"string/bha/outer_diameter_m", "> 0"},
             {"string/bha/inner_diameter_m", ">= 0, < outer"},
             {"string/bha/subsections", "integer in [1, 400], default: pieces about as long as the pipe's"},
