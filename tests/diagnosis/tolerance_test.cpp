@@ -1,10 +1,16 @@
 // The diagnosis compares statistics of the motion (features.hpp), so its objective must not move with the
 // integrator's tolerance even where the trajectory does (stick-slip is chaotic: runs at two tolerances part within a
 // few periods). This is what lets the fits run at a looser tolerance than the case's (LoopOptions::fit_tolerance):
-// for synthetic recordings with and without an effect, the baseline's held-out errors at tolerances 1e-6, 1e-5 and
-// 1e-4 (the default fit tolerance) scatter by less than chance moves that error (sqrt(2 / K) over K features): a
-// change of tolerance acts as another draw of the same physics. At 1e-3 that no longer holds for rec10 (measured:
-// 0.856, 0.944, 0.605 at 1e-6, 1e-5, 1e-4, and 2.52 at 1e-3), which is why fits do not run looser than 1e-4.
+// the baseline's held-out errors at tolerances 1e-6, 1e-5 and 1e-4 (the default fit tolerance) scatter by less than
+// chance moves that error (sqrt(2 / K) over K features): a change of tolerance acts as another draw of the same
+// physics. Measured on rec03 (no effect): 0.2535 / 0.2537 / 0.2516, and within 0.004 over eight tolerances from 1e-6
+// to 1e-4.
+// Where the physics draws from two patterns the claim does not hold, and the recording is not tested here: rec10
+// (Kelvin-Voigt concealed) is bimodal, held-out error about 0.65 or about 2.0 whatever the tolerance. With the engine
+// of f3fb4fb: 0.72, 0.65, 2.21, 0.70, 0.61, 0.56, 2.37, 0.67 at 1e-6, 2e-6, 5e-6, 1e-5, 2e-5, 5e-5, 7e-5, 1e-4 (this
+// test passed on the three it sampled); since kinks are followed through the sub-sections: 0.68, 0.73, 2.05, 1.12,
+// 2.14, 2.04, 0.63, 1.98. rec12 (DC motor) scatters from 0.9 to 66. An objective that is one draw of such physics is
+// issue 13's open item (statistics over several draws, or over the patterns).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -61,9 +67,8 @@ TEST_P(ToleranceIndependence, TheHeldOutErrorDoesNotMoveWithTheTolerance) {
   EXPECT_LT(std::sqrt(variance), chance);
 }
 
-// rec03 has no concealed effect; rec10 has Kelvin-Voigt damping, which the baseline lacks (as the KEY says; only
-// the test's choice of recordings knows it).
-INSTANTIATE_TEST_SUITE_P(Recordings, ToleranceIndependence, ::testing::Values("rec03", "rec10"),
+// rec03 has no concealed effect (as the KEY says; only the test's choice of recordings knows it).
+INSTANTIATE_TEST_SUITE_P(Recordings, ToleranceIndependence, ::testing::Values("rec03"),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
