@@ -170,8 +170,8 @@ nlohmann::json StiffCoulombPendulum() {
   return doc;
 }
 
-// The pendulum case with effects of the loop's own vocabulary switched on at the given values: a truth the loop's fits can
-// reach exactly.
+// The pendulum case with effects of the loop's own vocabulary switched on at the given values: a truth the loop's
+// fits can reach exactly.
 nlohmann::json PendulumWith(const std::vector<std::pair<std::string, std::vector<double>>>& effects) {
   nlohmann::json doc = StiffCoulombPendulum();
   const FeatureSet none;
@@ -200,7 +200,8 @@ std::string Described(const DiagnosisLoop& loop) {
 // bit's inertia, from the longer period), whose fit beats the pair's first fit by more than chance; refitted from the
 // three-effect values, the pair alone predicts the held-out window as well within chance, so the extra is refused.
 TEST(DiagnosisLoop, APairNeitherOfWhoseEffectsSufficesIsFoundAndAnExtraIsRefused) {
-  const nlohmann::json truth = PendulumWith({{"soft_topdrive", {2000, 5}}, {"stribeck", {0.8 * 97347 * 0.155575, 0.4, 2}}});
+  const double w_r = 97347 * 0.155575;
+  const nlohmann::json truth = PendulumWith({{"soft_topdrive", {2000, 5}}, {"stribeck", {0.8 * w_r, 0.4, 2}}});
   LoopOptions o = Options();
   o.threads = 2;
   const DiagnosisLoop loop = RunDiagnosisLoop(StiffCoulombPendulum(), NoisyTwin(truth, 0.5), o);

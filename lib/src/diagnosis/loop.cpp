@@ -351,7 +351,8 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
         best = static_cast<int>(i);
     return best;
   };
-  auto fit_all = [&](const std::vector<std::vector<int>>& sets, const std::function<std::vector<double>(std::size_t)>& start) {
+  auto fit_all = [&](const std::vector<std::vector<int>>& sets,
+                     const std::function<std::vector<double>(std::size_t)>& start) {
     for (Candidate& c : ParallelMap(sets.size(), std::max(1, o.threads),
                                     [&](std::size_t i) { return fit_candidate(sets[i], start(i)); }))
       loop.candidates.push_back(std::move(c));
