@@ -139,8 +139,10 @@ std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, c
                                        {"mu_s", mu_s},      {"mu_c", v[1] * mu_s}, {"gamma_b", 1.0},
                                        {"nu_f_rad_s", v[2]}, {"c_b_Nms_per_rad", viscous}};
     };
+    // (A recording without a torque channel leaves that term out; NaN would void the evidence of the others.)
+    const double torque_z = Z(m, r, "tob_Nm mean");
     const double z = -std::min(Z(m, r, "stick_fraction") - 1, 0.0) - std::min(Z(m, r, "bit_rpm std"), 0.0) +
-                     std::max(Z(m, r, "tob_Nm mean"), 0.0);
+                     (torque_z > 0 ? torque_z : 0.0);
     if (z > kWeakEvidence) e.strength = z, e.evidence = "the disc sticks or swings more, at less torque, than with Coulomb "
                                             "friction: " + Describe(m, r, "stick_fraction") + "; " +
                                             Describe(m, r, "bit_rpm std") + "; " + Describe(m, r, "tob_Nm mean");

@@ -204,8 +204,8 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   say("baseline: error " + Significant(loop.baseline_fit_error, 3) + " on the fit window, " +
       Significant(loop.baseline_held_out_error, 3) + " held out");
 
-  // 3. Proposals, strongest first. Those the case can model are fitted alone; the best single that qualifies is
-  //    then paired with each of the others (forward selection: a second effect must earn its place too).
+  // 3. Proposals, strongest first. Those the case can model are fitted alone, then in pairs and larger sets (below:
+  //    every effect of a set must earn its place).
   loop.proposals = ProposeEffects(base, loop.baseline_fit, loop.recording_fit);
   std::stable_sort(loop.proposals.begin(), loop.proposals.end(),
                    [](const Effect& a, const Effect& b) { return a.strength > b.strength; });
@@ -276,6 +276,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
         ++k;
       }
     c.unit_values = best.best;
+    c.start_values = start;
     try {
       const Recording m = run(document_at(set, best.best), full_duration);
       c.fit_error = FeatureDistance(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, o.features), target);
@@ -303,118 +304,164 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     return c.failure.empty() && c.held_out_error < (1 - o.margin) * reference_error &&
            reference_error - c.held_out_error > loop.error_chance && c.aic < reference_aic;
   };
-  auto best_of = [&](std::size_t from, double reference_error, double reference_aic) {
-    int best = -1;
-    for (std::size_t i = from; i < loop.candidates.size(); ++i)
-      if (qualifies(loop.candidates[i], reference_error, reference_aic) &&
-          (best < 0 || loop.candidates[i].held_out_error < loop.candidates[best].held_out_error))
-        best = static_cast<int>(i);
-    return best;
-  };
 
-  std::vector<int> singles(modelable.begin(), modelable.begin() + std::min<std::size_t>(modelable.size(), o.max_singles));
-  say(std::to_string(singles.size()) + " effect(s) to fit alone");
-  std::size_t first = loop.candidates.size();
-  for (Candidate& c : ParallelMap(singles.size(), std::max(1, o.threads),
-                                  [&](std::size_t i) { return fit_candidate({singles[i]}, start_of({singles[i]})); }))
-    loop.candidates.push_back(std::move(c));
-  loop.kept = best_of(first, loop.baseline_held_out_error, loop.baseline_aic);
-  // Forward selection: the single with the lowest held-out error, kept or not (another missing effect may hide
-  // what it explains), is extended by each other effect; the best extension that beats the baseline and its lead
-  // becomes the next lead, until none does or max_effects is reached.
-  int lead = -1;
-  for (std::size_t i = first; i < loop.candidates.size(); ++i)
-    if (loop.candidates[i].failure.empty() &&
-        (lead < 0 || loop.candidates[i].held_out_error < loop.candidates[lead].held_out_error))
-      lead = static_cast<int>(i);
-  auto own_fit = [&](int effect) {  // an effect's fit alone where it has one (else its first value)
-    std::vector<double> u = start_of({effect});
-    for (const Candidate& c : loop.candidates)
-      if (c.effects.size() == 1 && c.effects[0] == loop.proposals[effect].name && c.failure.empty() &&
-          c.unit_values.size() == u.size())
-        u = c.unit_values;
-    return u;
-  };
-  while (lead >= 0 && static_cast<int>(loop.candidates[lead].effects.size()) < o.max_effects) {
-    const Candidate base_candidate = loop.candidates[lead];
-    std::vector<int> lead_set;
-    for (const std::string& name : base_candidate.effects)
-      for (int i : modelable)
-        if (loop.proposals[i].name == name) lead_set.push_back(i);
-    std::vector<int> partners;
-    for (int i : modelable)
-      if (std::find(lead_set.begin(), lead_set.end(), i) == lead_set.end() &&
-          static_cast<int>(partners.size()) < o.max_singles)
-        partners.push_back(i);
-    if (partners.empty()) break;
-    say(Joined(base_candidate.effects) + " leads; " + std::to_string(partners.size()) + " extension(s) to fit");
-    first = loop.candidates.size();
-    for (Candidate& c : ParallelMap(partners.size(), std::max(1, o.threads), [&](std::size_t i) {
-           std::vector<int> set = lead_set;
-           set.push_back(partners[i]);
-           std::vector<double> start = base_candidate.unit_values, partner = own_fit(partners[i]);
-           start.insert(start.end(), partner.begin(), partner.end());
-           return fit_candidate(set, start);
-         }))
-      loop.candidates.push_back(std::move(c));
-    const double reference_error = std::min(base_candidate.held_out_error, loop.baseline_held_out_error);
-    const double reference_aic = std::min(base_candidate.aic, loop.baseline_aic);
-    lead = best_of(first, reference_error, reference_aic);
-    if (lead >= 0) loop.kept = lead;
-  }
-  // Backward elimination: forward selection may have started from an effect that only stood in for others. Each
-  // effect of the kept set must earn its place against the set without it (fitted from the kept values); while one
-  // does not, the smaller set stands.
   auto indices_of = [&](const Candidate& c) {
     std::vector<int> set;
     for (const std::string& name : c.effects)
       for (int i : modelable)
         if (loop.proposals[i].name == name) set.push_back(i);
+    std::sort(set.begin(), set.end());
     return set;
   };
-  bool shrunk = true;
-  while (shrunk && loop.kept >= 0 && loop.candidates[loop.kept].effects.size() >= 2) {
-    shrunk = false;
-    const Candidate full = loop.candidates[loop.kept];
-    const std::vector<int> set = indices_of(full);
-    std::vector<std::vector<int>> subsets;
-    for (std::size_t drop = 0; drop < set.size(); ++drop) {
-      std::vector<int> subset;
-      for (std::size_t k = 0; k < set.size(); ++k)
-        if (k != drop) subset.push_back(set[k]);
-      subsets.push_back(subset);
+  // A set of effects may have been fitted more than once (from different starts): the fit with the lower error on
+  // the fit window stands for it — the fit's own objective decides, not the held-out window.
+  auto representative = [&](const std::vector<int>& set) {
+    int best = -1;
+    for (std::size_t i = 0; i < loop.candidates.size(); ++i) {
+      const Candidate& c = loop.candidates[i];
+      if (c.failure.empty() && indices_of(c) == set && c.effects.size() == set.size() &&
+          (best < 0 || c.fit_error < loop.candidates[best].fit_error))
+        best = static_cast<int>(i);
     }
-    auto fitted_already = [&](const std::vector<int>& subset) {
-      for (std::size_t i = 0; i < loop.candidates.size(); ++i)
-        if (indices_of(loop.candidates[i]) == subset && loop.candidates[i].failure.empty()) return static_cast<int>(i);
-      return -1;
-    };
-    std::vector<std::vector<int>> to_fit;
-    for (const auto& subset : subsets)
-      if (fitted_already(subset) < 0) to_fit.push_back(subset);
-    if (!to_fit.empty()) say("checking each effect of " + Joined(full.effects) + " against the set without it");
-    for (Candidate& c : ParallelMap(to_fit.size(), std::max(1, o.threads), [&](std::size_t i) {
-           std::vector<double> start;  // the kept fit's values of the effects that remain
-           std::size_t k = 0;
-           for (int effect : set) {
-             const std::size_t n = loop.proposals[effect].parameters.size();
-             if (std::find(to_fit[i].begin(), to_fit[i].end(), effect) != to_fit[i].end())
-               start.insert(start.end(), full.unit_values.begin() + k, full.unit_values.begin() + k + n);
-             k += n;
-           }
-           return fit_candidate(to_fit[i], start);
-         }))
+    return best;
+  };
+  // Each effect of a set must earn its place: the set qualifies against the baseline and against the fit standing
+  // for every smaller set of its effects that was fitted (a pair against each of its singles, a triple against its
+  // pairs and singles).
+  auto qualifies_against_subsets = [&](int index) {
+    const Candidate& c = loop.candidates[index];
+    if (representative(indices_of(c)) != index) return false;
+    double reference_error = loop.baseline_held_out_error, reference_aic = loop.baseline_aic;
+    const std::vector<int> set = indices_of(c);
+    for (std::size_t i = 0; i < loop.candidates.size(); ++i) {
+      const std::vector<int> other = indices_of(loop.candidates[i]);
+      if (other.size() >= set.size() || representative(other) != static_cast<int>(i) ||
+          !std::includes(set.begin(), set.end(), other.begin(), other.end()))
+        continue;
+      reference_error = std::min(reference_error, loop.candidates[i].held_out_error);
+      reference_aic = std::min(reference_aic, loop.candidates[i].aic);
+    }
+    return qualifies(c, reference_error, reference_aic);
+  };
+  auto best_qualifying = [&] {
+    int best = -1;
+    for (std::size_t i = 0; i < loop.candidates.size(); ++i)
+      if (qualifies_against_subsets(static_cast<int>(i)) &&
+          (best < 0 || loop.candidates[i].held_out_error < loop.candidates[best].held_out_error))
+        best = static_cast<int>(i);
+    return best;
+  };
+  auto fit_all = [&](const std::vector<std::vector<int>>& sets,
+                     const std::function<std::vector<double>(std::size_t)>& start) {
+    for (Candidate& c : ParallelMap(sets.size(), std::max(1, o.threads),
+                                    [&](std::size_t i) { return fit_candidate(sets[i], start(i)); }))
       loop.candidates.push_back(std::move(c));
-    for (const auto& subset : subsets) {
-      const int smaller = fitted_already(subset);
-      if (smaller >= 0 && !qualifies(full, loop.candidates[smaller].held_out_error, loop.candidates[smaller].aic) &&
-          qualifies(loop.candidates[smaller], loop.baseline_held_out_error, loop.baseline_aic)) {
-        say(Joined(full.effects) + " does not beat " + Joined(loop.candidates[smaller].effects) + " by the margin");
-        loop.kept = smaller;
-        shrunk = true;
-        break;
-      }
+  };
+
+  // Singles: the strongest proposals, each fitted alone from its first value.
+  const std::vector<int> singles(modelable.begin(),
+                                 modelable.begin() + std::min<std::size_t>(modelable.size(), o.max_singles));
+  say(std::to_string(singles.size()) + " effect(s) to fit alone");
+  std::vector<std::vector<int>> sets;
+  for (int i : singles) sets.push_back({i});
+  fit_all(sets, [&](std::size_t i) { return start_of(sets[i]); });
+  // Pairs, since one missing effect may hide what another explains — neither alone need lower the error (side
+  // friction without the soft drive that lets the top move). Bounded: every pair of the three singles that predict
+  // the held-out window best, and the best with the fourth (4 fits where all 6 pairs of 4 would cost half again).
+  // Each starts from its effects' own fits, where a fit moved the fit-window error by more than chance (a fit that
+  // did not found no value for its effect: then from the effect's first value).
+  auto own_fit = [&](int effect) {
+    const int single = representative({effect});
+    if (single >= 0 && loop.baseline_fit_error - loop.candidates[single].fit_error > loop.error_chance &&
+        loop.candidates[single].unit_values.size() == loop.proposals[effect].parameters.size())
+      return loop.candidates[single].unit_values;
+    return start_of({effect});
+  };
+  std::vector<int> ranked;  // the singles that could be fitted, best held-out error first
+  for (int i : singles)
+    if (representative({i}) >= 0) ranked.push_back(i);
+  std::stable_sort(ranked.begin(), ranked.end(), [&](int a, int b) {
+    return loop.candidates[representative({a})].held_out_error < loop.candidates[representative({b})].held_out_error;
+  });
+  const std::vector<int> paired(ranked.begin(), ranked.begin() + std::min<std::ptrdiff_t>(ranked.size(), 3));
+  sets.clear();
+  for (std::size_t a = 0; a < paired.size(); ++a)
+    for (std::size_t b = a + 1; b < paired.size(); ++b)
+      sets.push_back({std::min(paired[a], paired[b]), std::max(paired[a], paired[b])});
+  for (std::size_t b = paired.size(); b < ranked.size(); ++b)
+    sets.push_back({std::min(ranked[0], ranked[b]), std::max(ranked[0], ranked[b])});
+  if (!sets.empty()) say(std::to_string(sets.size()) + " pair(s) of them to fit");
+  fit_all(sets, [&](std::size_t i) {
+    std::vector<double> start = own_fit(sets[i][0]), second = own_fit(sets[i][1]);
+    start.insert(start.end(), second.begin(), second.end());
+    return start;
+  });
+  loop.kept = best_qualifying();
+  // A kept set's fit had more runs than its parts' and started from their best values, so it may beat them only
+  // because the parameters they share were fitted better. So before a set of two or more effects stands, each set
+  // without one of its effects is fitted again from the kept values (that fit then stands for its set when it is
+  // better on the fit window) and the decision is made again (backward elimination). A set that survives its check
+  // is extended by each other fitted single, from its own values (forward selection, up to max_effects), and the
+  // decision made again; until the kept set has survived its check and no extension of it qualifies.
+  auto values_of = [&](const Candidate& from, const std::vector<int>& set) {  // from's values of the set's effects
+    std::vector<double> u;
+    std::size_t k = 0;
+    for (int effect : indices_of(from)) {
+      const std::size_t n = loop.proposals[effect].parameters.size();
+      if (std::binary_search(set.begin(), set.end(), effect))
+        u.insert(u.end(), from.unit_values.begin() + static_cast<std::ptrdiff_t>(k),
+                 from.unit_values.begin() + static_cast<std::ptrdiff_t>(k + n));
+      k += n;
     }
+    return u;
+  };
+  // A fit of the set started or ended at u (a refit from there would repeat it or start from its optimum).
+  auto fitted_at = [&](const std::vector<int>& set, const std::vector<double>& u) {
+    return std::any_of(loop.candidates.begin(), loop.candidates.end(), [&](const Candidate& c) {
+      return c.failure.empty() && indices_of(c) == set && c.effects.size() == set.size() &&
+             (c.unit_values == u || c.start_values == u);
+    });
+  };
+  std::vector<std::vector<int>> checked;
+  while (loop.kept >= 0 && loop.candidates[loop.kept].effects.size() >= 2) {
+    const Candidate kept = loop.candidates[loop.kept];
+    const std::vector<int> set = indices_of(kept);
+    sets.clear();
+    if (std::find(checked.begin(), checked.end(), set) == checked.end()) {
+      checked.push_back(set);
+      for (std::size_t drop = 0; drop < set.size(); ++drop) {
+        std::vector<int> subset = set;
+        subset.erase(subset.begin() + static_cast<std::ptrdiff_t>(drop));
+        if (!fitted_at(subset, values_of(kept, subset))) sets.push_back(subset);  // else the refit is that fit
+      }
+      say("checking each effect of " + Joined(kept.effects) + " against the set without it, refitted from its values");
+      fit_all(sets, [&](std::size_t i) { return values_of(kept, sets[i]); });
+      loop.kept = best_qualifying();
+      if (loop.kept >= 0 && indices_of(loop.candidates[loop.kept]) != set)
+        say(Joined(kept.effects) + " does not beat the sets without one of its effects by the margin");
+      continue;
+    }
+    if (static_cast<int>(set.size()) >= o.max_effects) break;
+    for (int i : paired)
+      if (!std::binary_search(set.begin(), set.end(), i)) {
+        std::vector<int> larger = set;
+        larger.insert(std::upper_bound(larger.begin(), larger.end(), i), i);
+        if (representative(larger) < 0) sets.push_back(larger);
+      }
+    if (!sets.empty()) say(Joined(kept.effects) + " leads; " + std::to_string(sets.size()) + " extension(s) to fit");
+    fit_all(sets, [&](std::size_t i) {
+      std::vector<double> start;  // the lead's values, the new effect's own
+      for (int effect : sets[i]) {
+        const std::vector<double> own = std::binary_search(set.begin(), set.end(), effect)
+                                            ? values_of(kept, {effect})
+                                            : own_fit(effect);
+        start.insert(start.end(), own.begin(), own.end());
+      }
+      return start;
+    });
+    const int next = best_qualifying();
+    if (next == loop.kept) break;
+    loop.kept = next;
   }
   if (loop.kept >= 0) loop.candidates[loop.kept].kept = true;
   for (const Candidate& c : loop.candidates) loop.model_runs += c.evaluations + (c.failure.empty() ? 1 : 0);

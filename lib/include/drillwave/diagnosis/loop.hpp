@@ -8,13 +8,16 @@
 //   2. The usable recording is split into a fit window and a later held-out window. The baseline's error on each is
 //      the feature distance (features.hpp): differences counted in each feature's own variability.
 //   3. Rules read the baseline's differences as graded evidence for effects (effects.hpp); the strongest the case
-//      can model are fitted alone on the fit window (NLopt, bounded); then forward selection: the best so far is
-//      extended by each other effect in turn while an extension qualifies; then backward elimination: an effect
-//      the kept set does not need (the set without it, refitted, is not beaten by the margin) is dropped.
+//      can model are fitted alone on the fit window (NLopt, bounded); then pairs (every pair of the three singles
+//      that predict the held-out window best, and the best with the fourth), since one missing effect may hide what
+//      another explains. A kept set of two or more is checked by backward elimination — each set without one of its
+//      effects refitted from the kept values — and, once it survives, extended by each other of the three singles
+//      (forward selection, up to max_effects).
 //   4. A candidate is kept only when its held-out error falls below (1 - margin) of the baseline's, by more than
-//      chance moves the error (sqrt(2 / K) over K features: see loop.cpp), and an
-//      information criterion on the fit window (AIC over the features) agrees; an extension only when it beats what
-//      it extends the same way. The fitted parameters get uncertainties from the objective's curvature.
+//      chance moves the error (sqrt(2 / K) over K features: see loop.cpp), and an information criterion on the fit
+//      window (AIC over the features) agrees; a set of effects only when it beats every fitted smaller set of its
+//      effects the same way (each effect earns its place). The fitted parameters get uncertainties from the
+//      objective's curvature.
 #include <functional>
 #include <string>
 #include <vector>
@@ -36,7 +39,7 @@ struct LoopOptions {
   double held_out_begin_s = 0, held_out_end_s = 0;  // recording time, after the fit window
   double margin = 0.2;            // a kept effect lowers the held-out error by at least this fraction
   int evaluations_per_parameter = 10;  // fit budget of a candidate: this times its parameters, plus 2
-  int max_singles = 4;            // the strongest proposals tried alone, and partners tried with the best one
+  int max_singles = 4;            // the strongest proposals tried alone; pairs and extensions come from these
   int max_effects = 3;            // forward selection stops at this many effects
   // The fits' runs use at most this tolerance's accuracy (rel and abs; 0: the case's); candidates are judged by runs
   // at the case's own tolerance. The features do not move with the tolerance up to 1e-4; at 1e-3 they did for
@@ -63,7 +66,8 @@ struct Candidate {
   int failed_runs = 0;        // evaluations whose run the case rejected or that failed numerically
   std::string first_failure;  // the first of their messages
   bool kept = false;
-  std::vector<double> unit_values;  // the fitted parameters in the fit's unit cube
+  std::vector<double> unit_values;   // the fitted parameters in the fit's unit cube
+  std::vector<double> start_values;  // where the fit started, in the same cube
   std::string failure;  // why it could not be fitted (a run failed, the component is missing), empty otherwise
 };
 
