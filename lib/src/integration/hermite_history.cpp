@@ -208,9 +208,16 @@ double HermiteHistory::IntegrateSquare(int i, double a, double b) const {
 
 void HermiteHistory::KinksIn(double a, double b, int i, std::vector<Kink>& out) const {
   if (empty() || kinked_.empty() || t_begin_[kinked_.back()] < a) return;  // the usual case: no kink that late
-  auto starts_before = [this](std::size_t piece, double t) { return t_begin_[piece] < t; };
-  for (auto it = std::lower_bound(kinked_.begin(), kinked_.end(), a, starts_before);
-       it != kinked_.end() && t_begin_[*it] < b; ++it) {
+  // The first kink at or after a: queries advance with time, so from the last answer, a step or two on.
+  std::size_t k = std::min(kink_hint_, kinked_.size() - 1);
+  if (k > 0 && t_begin_[kinked_[k - 1]] >= a) {
+    auto starts_before = [this](std::size_t piece, double t) { return t_begin_[piece] < t; };
+    k = static_cast<std::size_t>(std::lower_bound(kinked_.begin(), kinked_.end(), a, starts_before) - kinked_.begin());
+  } else {
+    while (k < kinked_.size() && t_begin_[kinked_[k]] < a) ++k;
+  }
+  kink_hint_ = k;
+  for (auto it = kinked_.begin() + static_cast<std::ptrdiff_t>(k); it != kinked_.end() && t_begin_[*it] < b; ++it) {
     if (*it <= first_) continue;  // the oldest piece kept: its predecessor is gone
     const double jump = PieceData(*it)[2 * dimension_ + i] - PieceData(*it - 1)[3 * dimension_ + i];
     if (jump != 0) out.push_back({t_begin_[*it], jump});
@@ -227,6 +234,7 @@ void HermiteHistory::DiscardBefore(double t) {
     data_.erase(data_.begin(), data_.begin() + n * kPerPiece * dimension_);
     kinked_.erase(kinked_.begin(), std::lower_bound(kinked_.begin(), kinked_.end(), first_));
     for (std::size_t& piece : kinked_) piece -= first_;
+    kink_hint_ = 0;
     first_ = 0;
     hint_ = 0;
   }

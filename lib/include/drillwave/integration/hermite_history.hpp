@@ -77,6 +77,7 @@ class HermiteHistory {
   std::vector<double> t_end_;
   std::vector<double> data_;    // per piece: x0[dim], x1[dim], d0[dim], d1[dim], bubble[dim]
   std::vector<std::size_t> kinked_;  // pieces (indices as above, ascending) whose start slope differs from the last end's
+  mutable std::size_t kink_hint_ = 0;  // index into kinked_ of the last KinksIn answer (a cache, like hint_)
   mutable std::vector<double> scratch_value_, scratch_deriv_;
   mutable std::size_t hint_ = 0;  // piece of the last look-up (a cache; makes a history unsafe to share across threads)
 };
