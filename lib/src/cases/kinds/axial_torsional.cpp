@@ -78,6 +78,8 @@ struct Channel {
   // Kelvin-Voigt: the massless nodes 1..m-1 solve a constant tridiagonal system (Thomas algorithm, factored once).
   std::vector<double> kv_ratio, kv_inv_pivot;  // per node: c'_j and 1 / (b_j - a_j c'_{j-1})
   bool kelvin_voigt() const { return !kv.empty(); }
+  double ShortestPiece() const { return *std::min_element(tau.begin(), tau.end()); }
+  double LongestPiece() const { return *std::max_element(tau.begin(), tau.end()); }
   double travel_time() const {
     double total = 0;
     for (double t : tau) total += t;
@@ -175,18 +177,7 @@ class Process {
     if (md_.induction_on || md_.gear.compliant()) return kTopDim;
     return md_.unbalance.has_value() ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
   }
-  double MaxPieceTravelTime() const {
-    double longest = 0;
-    for (const Channel* ch : {&md_.torsion, &md_.axial})
-      for (double tau : ch->tau) longest = std::max(longest, tau);
-    return longest;
-  }
-  double MaxStep() const {
-    double shortest = kInf;
-    for (const Channel* ch : {&md_.torsion, &md_.axial})
-      for (double tau : ch->tau) shortest = std::min(shortest, tau);
-    return shortest;
-  }
+  double MaxStep() const { return std::min(md_.torsion.ShortestPiece(), md_.axial.ShortestPiece()); }
   void BeginStep(double t0) { step_start_ = t0; }
 
   State InitialState() const {
@@ -321,7 +312,8 @@ class Process {
     last_commit_end_ = p.t1;
     // A node's waves are read one piece's travel time later, never earlier: keeping two of the longest makes the
     // histories a few dozen pieces each, which stay in cache.
-    for (auto& w : node_waves_) w.DiscardBefore(p.t1 - 2 * MaxPieceTravelTime());
+    const double read_back = 2 * std::max(md_.torsion.LongestPiece(), md_.axial.LongestPiece());
+    for (auto& w : node_waves_) w.DiscardBefore(p.t1 - read_back);
     const double keep = 2 * std::max(md_.torsion.travel_time(), md_.axial.travel_time()) + 1.0;
     cut_.Commit(p, kPhi, kU, rg_.contact, rg_.last_contact_change, keep);
     // The kinks just stored next to the top and the bit reach them one piece later: the steps stop there, as at a
@@ -549,7 +541,7 @@ class Process {
   Ends StringEnds(const State& x, double t, Side side) const {
     Ends e;
     for (int c = 0; c < 2; ++c) {
-      const Channel& ch = c == 0 ? md_.torsion : md_.axial;
+      const Channel& ch = Chan(c);
       const double top = EndSpeed(c, false, x), bit = EndSpeed(c, true, x);
       double in_top, in_bit, pull_top = 0, pull_bit = 0;  // pull: the Kelvin-Voigt dashpots of the end pieces
       if (ch.kelvin_voigt()) {  // the dashpots tie the end nodes to the massless nodes next to them: solve them all
@@ -678,7 +670,7 @@ class Process {
   void Outgoing(double t, const State& x, const State& dx, Side side, double* out, double* rate) const {
     arriving_.resize(2 * m_), arriving_rate_.resize(2 * m_), speeds_.resize(m_ + 1), speed_rates_.resize(m_ + 1);
     for (int c = 0; c < 2; ++c) {
-      const Channel& ch = c == 0 ? md_.torsion : md_.axial;
+      const Channel& ch = Chan(c);
       Arrivals(c, t, side, arriving_.data(), rate ? arriving_rate_.data() : nullptr);
       NodeSpeeds(ch, arriving_.data(), EndSpeed(c, false, x), EndSpeed(c, true, x), speeds_.data());
       for (int j = 0; j <= m_; ++j) {
@@ -702,7 +694,7 @@ class Process {
   void InitializeWaves() {
     std::vector<double> initial(4 * (m_ + 1), 0.0);  // by node, as Outgoing lays the waves out
     for (int c = 0; c < 2; ++c) {
-      const Channel& ch = c == 0 ? md_.torsion : md_.axial;
+      const Channel& ch = Chan(c);
       const double v = c == 0 ? steady_.omega : steady_.rop;
       // Steady forward rotation: the Coulomb friction of the nodes acts as a constant torque against it.
       double s = (c == 0 ? steady_.tob : steady_.wob) + ch.damping[m_] * v - ch.load[m_] + ch.coulomb[m_];
