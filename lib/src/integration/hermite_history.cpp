@@ -10,6 +10,9 @@ namespace {
 // Query times computed as (t + tau) - tau miss a stored boundary by a few ulps; closer than this they are on it.
 double SnapTolerance(double t) { return 1e-12 * std::max(1.0, std::abs(t)); }
 
+// Pieces Locate walks from its last answer before it searches.
+constexpr int kWalk = 4;
+
 // Cubic Hermite basis on [0, 1] for a piece of length h, plus b * s^2 (1 - s)^2.
 inline double QuarticValue(double s, double h, double x0, double x1, double d0, double d1, double b) {
   const double s2 = s * s, s3 = s2 * s, r = 1 - s;
@@ -71,34 +74,36 @@ void HermiteHistory::Append(double t0, const double* x0, const double* d0, doubl
   }
   t_begin_.push_back(t0);
   t_end_.push_back(t1);
-  // Element by element: for the small dimensions of wave histories, cheaper than a range insert per array.
-  for (const double* part : {x0, x1, d0, d1})
-    for (int i = 0; i < dimension_; ++i) data_.push_back(part[i]);
+  const std::size_t at = data_.size();
+  const int n = dimension_;
+  data_.resize(at + kPerPiece * n);
+  double* piece = data_.data() + at;
   const double h = t1 - t0;
-  for (int i = 0; i < dimension_; ++i) {
+  for (int i = 0; i < n; ++i) {
+    piece[i] = x0[i], piece[n + i] = x1[i], piece[2 * n + i] = d0[i], piece[3 * n + i] = d1[i];
     const double cubic_mid = 0.5 * (x0[i] + x1[i]) + 0.125 * h * (d0[i] - d1[i]);
-    data_.push_back(16.0 * (x_mid[i] - cubic_mid));  // bubble weight: s^2 (1-s)^2 = 1/16 at s = 1/2
+    piece[4 * n + i] = 16.0 * (x_mid[i] - cubic_mid);  // bubble weight: s^2 (1-s)^2 = 1/16 at s = 1/2
   }
 }
 
 HermiteHistory::Location HermiteHistory::Locate(double t, Side side) const {
   if (empty()) return {kPrehistory, 0.0};
   const double eps = SnapTolerance(t);
-  // Look-ups come in runs at slowly advancing times: try the piece found last time and its successor first.
-  std::size_t piece;
+  // Look-ups come in runs at nearby times (a step's stages, a node's waves at the quarter, middle and end of a piece):
+  // walk a few pieces from the one found last time, and search only when the time is further away.
   const std::size_t n = t_begin_.size();
-  if (hint_ >= first_ && hint_ < n && t_begin_[hint_] <= t + eps && (hint_ + 1 == n || t + eps < t_begin_[hint_ + 1])) {
-    piece = hint_;
-  } else if (hint_ + 1 >= first_ && hint_ + 1 < n && t_begin_[hint_ + 1] <= t + eps &&
-             (hint_ + 2 == n || t + eps < t_begin_[hint_ + 2])) {
-    piece = hint_ + 1;
-  } else {
+  std::size_t piece = std::min(std::max(hint_, first_), n - 1);
+  int walked = 0;
+  while (walked < kWalk && piece + 1 < n && t_begin_[piece + 1] <= t + eps) ++piece, ++walked;
+  while (walked < kWalk && piece > first_ && t_begin_[piece] > t + eps) --piece, ++walked;
+  if (walked == kWalk) {
     // Last piece starting at or before t + eps: t lies on its start boundary (within eps) or inside it.
     const auto begin = t_begin_.begin() + static_cast<std::ptrdiff_t>(first_);
-    auto it = std::upper_bound(begin, t_begin_.end(), t + eps);
-    if (it == begin) return {kPrehistory, 0.0};  // before the history (or on its start, see below)
+    const auto it = std::upper_bound(begin, t_begin_.end(), t + eps);
+    if (it == begin) return {kPrehistory, 0.0};
     piece = static_cast<std::size_t>(it - t_begin_.begin()) - 1;
   }
+  if (t_begin_[piece] > t + eps) return {kPrehistory, 0.0};  // before the history (piece == first_)
   hint_ = piece;
   if (std::abs(t - t_begin_[piece]) <= eps) {
     // On a boundary: the left limit lives in the previous piece (or the prehistory).
@@ -227,7 +232,7 @@ void HermiteHistory::KinksIn(double a, double b, int i, std::vector<Kink>& out) 
 void HermiteHistory::DiscardBefore(double t) {
   while (first_ + 1 < t_begin_.size() && t_end_[first_] < t) ++first_;
   // Compact when more than half of the storage is dead, so appends stay amortized O(1).
-  if (first_ > 256 && first_ * 2 > t_begin_.size()) {
+  if (first_ > 32 && first_ * 2 > t_begin_.size()) {
     const auto n = static_cast<std::ptrdiff_t>(first_);
     t_begin_.erase(t_begin_.begin(), t_begin_.begin() + n);
     t_end_.erase(t_end_.begin(), t_end_.begin() + n);

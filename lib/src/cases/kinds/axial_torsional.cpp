@@ -260,12 +260,13 @@ class Process {
     out0_.resize(k), out1_.resize(k), outm_.resize(k), outq_.resize(k), d0_.resize(k), d1_.resize(k);
     // Without an event or breakpoint in between, the start of this piece is the end of the last one.
     if (!(start_is_last_end_ && p.t0 == last_commit_end_)) Outgoing(p.t0, p.x0, p.f0, Side::kRight, out0_.data(), d0_.data());
-    Outgoing(p.t1, p.x1, p.f1, Side::kLeft, out1_.data(), d1_.data());
-    Outgoing(0.5 * (p.t0 + p.t1), p.x_mid, p.f1, Side::kLeft, outm_.data(), nullptr);
+    // In time order, so that each history's look-ups walk forward from the last one.
     const double h = p.t1 - p.t0, tq = p.t0 + 0.25 * h;
     state_quarter_.resize(p.x0.size());
     integration::InterpolatePiece(p, tq, state_quarter_);
     Outgoing(tq, state_quarter_, p.f1, Side::kLeft, outq_.data(), nullptr);
+    Outgoing(0.5 * (p.t0 + p.t1), p.x_mid, p.f1, Side::kLeft, outm_.data(), nullptr);
+    Outgoing(p.t1, p.x1, p.f1, Side::kLeft, out1_.data(), d1_.data());
     num_splits_ = 0;
     double worst = 0;
     for (int c = 0; c < 2; ++c) {
