@@ -61,7 +61,11 @@ TEST(AxialTorsional, StickSlipAt60RpmSmoothDrillingAt150Rpm) {
 // the bit cannot drift upwards while bouncing: over the window it drills at about the steady rate, with the mean
 // weight on bit the hook force was set for.
 TEST(AxialTorsional, BouncingBitKeepsDrilling) {
+  // From steady drilling (unstable here, as everywhere in the RGD model): the motion grows into bit bouncing. (A
+  // 5 % speed bump at 1-2 s, as Baseline() adds, lands it on the stick-slip attractor in some runs: off bottom 0.000
+  // or 0.050 in [30, 50] s with root finders for t_n that agree to 1e-9.)
   nlohmann::json doc = Baseline(60);
+  doc["model"]["top"]["speed_rad_s"] = 60 * M_PI / 30;
   doc["model"]["string"]["length_m"] = 3000;
   doc["model"]["hoist"]["weight_on_bit_N"] = 150000;
   doc["simulation"]["duration_s"] = 50;
@@ -72,8 +76,9 @@ TEST(AxialTorsional, BouncingBitKeepsDrilling) {
               s["rop_mean_m_h"].get<double>(), s["steady_rop_m_h"].get<double>(), 1e-3 * s["wob_mean_N"].get<double>(),
               s["stick_onsets"].get<int>());
   // How long the bit is off bottom is not a converged quantity here: the motion switches between bouncing and stick-
-  // slip, and the share of each in the window scatters with the tolerance (0.078 / 0.188 / 0.200 at tol 1e-4 / 1e-5 /
-  // 1e-6 with the history error measured against the midpoint; 0.172 / 0.035 / 0.141 against the quarter point).
+  // slip, and the share of each in the window scatters with the tolerance and with rounding (from steady drilling
+  // 0.193 / 0.178 / 0.163 at tol 1e-4 / 1e-5 / 1e-6 with t_n bracketed by TOMS 748, 0.304 / 0.056 / 0.239 with t_n by
+  // Newton).
   // That the bit does leave the rock, and drills at the steady rate all the same, is what holds.
   EXPECT_GT(s["off_bottom_fraction"].get<double>(), 0.02);
   EXPECT_NEAR(s["rop_mean_m_h"].get<double>(), s["steady_rop_m_h"].get<double>(), 0.35 * s["steady_rop_m_h"].get<double>());

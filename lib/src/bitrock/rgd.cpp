@@ -74,12 +74,23 @@ CutProfile::CutProfile(int blades, double omega0, double rop0)
 // take a handful of look-ups where bisection took sixty.
 double CutProfile::TimeAngleBehind(double phi, double t, integration::Side side, double back, double guess) const {
   const double target = phi - back;
+  const double width = 1e-12 * (1 + std::abs(t));
+  // Newton from the guess (the last committed t_n: a step earlier, so usually two or three iterations), while the
+  // bit turned forward where it looks; the bracketing search below when it did not or Newton wanders.
+  double s = t - guess;
+  for (int i = 0; i < 6 && s < t && s > t - 4 * guess; ++i) {
+    double angle[2], rate[2];
+    history_.ValuesAndDerivatives(s, angle, rate, side);
+    if (!(rate[0] > 0)) break;
+    const double step = (angle[0] - target) / rate[0];
+    s -= step;
+    if (std::abs(step) <= width && s < t) return s;
+  }
   auto behind = [&](double s) { return (s >= t ? phi : history_.Value(s, 0, side)) - target; };
   double lo = t - guess, hi = t;
   double g_lo = behind(lo), g_hi = back;
   for (int i = 0; i < 60 && g_lo > 0; ++i) hi = lo, g_hi = g_lo, lo = t - (t - lo) * 2, g_lo = behind(lo);
   if (g_lo >= 0) return lo;  // on the root, or the history holds no such angle (then the oldest time looked at)
-  const double width = 1e-12 * (1 + std::abs(t));
   std::uintmax_t iterations = 60;
   const auto [a, b] = boost::math::tools::toms748_solve(
       behind, lo, hi, g_lo, g_hi, [width](double l, double h) { return h - l <= width; }, iterations);
