@@ -2,12 +2,10 @@
 // and the Richard-Germay-Detournay bit-rock law with the state-dependent cut delay t_n (DESIGN.md §1-3, chapter seed
 // 2.28-2.33; the baseline model of shared/recordings/synthetic/BASELINE.md).
 //
-// Each channel (torsion: angular speed and torque; axial: speed, down positive, and force) is a chain of m
-// sub-sections (pieces: the pipe's, then the BHA's, each with its own impedance and travel time) joined by massless
-// nodes; the distributed viscous damping and the buoyant weight of each piece are lumped at its nodes (half at each
-// end), so the d'Alembert reduction stays exact. A piece carries the force S = Z (D - U) onto its lower node; a node
-// feels sum Z (2 w_in - v) from its pieces (DESIGN.md §1). Kelvin-Voigt damping (chapter eqs. 2.20, 2.24) is a
-// dashpot eta K / length across each piece, which ties the massless nodes into a tridiagonal system.
+// Each channel (torsion: angular speed and torque; axial: speed, down positive, and force) is a waves::WaveChain of m
+// sub-sections (the pipe's, then the BHA's) joined by massless nodes, with viscous damping, buoyant weight, side
+// friction and Kelvin-Voigt damping as that chain carries them; this kind assembles the two chains with the top, the
+// hoist and the bit.
 // Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by the hook force H: constant,
 // set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)); or, with
 // hoist/rig, hanging from the two-mass hoisting rig of eq. 2.22 (model::HoistRig: rigid hook, constant pay-out).
@@ -35,7 +33,6 @@
 // U = V t). Disturb it through the inputs (a set-point schedule), which keeps the waves free of jumps: a jump in a
 // node speed would travel through every sub-section, and only inputs are tracked as breakpoints here.
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -55,6 +52,7 @@
 #include "drillwave/model/hoist_rig.hpp"
 #include "drillwave/model/induction_motor.hpp"
 #include "drillwave/model/schedule.hpp"
+#include "drillwave/waves/wave_chain.hpp"
 #include "string_components.hpp"
 #include "top_components.hpp"
 
@@ -67,25 +65,8 @@ using Range = io::Range;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// One wave channel: pieces (sub-sections) k = 0..m-1, piece k between nodes k and k+1 (node 0 the top, node m the
-// bit). Pieces differ in impedance and travel time where the BHA follows the pipe.
-struct Channel {
-  std::vector<double> z, tau;   // per piece
-  std::vector<double> kv;       // per piece: Kelvin-Voigt dashpot eta K / length across it (empty: none)
-  std::vector<double> damping;  // per node (ground dashpot)
-  std::vector<double> load;     // per node (constant force: buoyant weight, axial only)
-  std::vector<double> coulomb;  // per node (Coulomb friction level against the borehole, torsion only)
-  // Kelvin-Voigt: the massless nodes 1..m-1 solve a constant tridiagonal system (Thomas algorithm, factored once).
-  std::vector<double> kv_ratio, kv_inv_pivot;  // per node: c'_j and 1 / (b_j - a_j c'_{j-1})
-  bool kelvin_voigt() const { return !kv.empty(); }
-  double ShortestPiece() const { return *std::min_element(tau.begin(), tau.end()); }
-  double LongestPiece() const { return *std::max_element(tau.begin(), tau.end()); }
-  double travel_time() const {
-    double total = 0;
-    for (double t : tau) total += t;
-    return total;
-  }
-};
+// One wave channel: the pipe's and the BHA's sub-sections as a chain (waves::WaveChain).
+using Channel = waves::ChainSpec;
 
 // DC motor of the top drive (the torsional_wave kind's dc_motor top): torque constant K = back-emf constant.
 struct DcMotor {
@@ -162,7 +143,7 @@ class Process {
  public:
   using State = std::vector<double>;
   explicit Process(const Model& md)
-      : md_(md), m_(md.m), steady_(SteadyDrilling(md, md.top_speed.Value(0.0))),
+      : md_(md), steady_(SteadyDrilling(md, md.top_speed.Value(0.0))),
         cut_(md.blades, steady_.omega, steady_.rop) {
     InitializeWaves();
     // Throws std::domain_error when the motor cannot carry the steady torque (below its pull-out torque).
@@ -246,85 +227,34 @@ class Process {
     if (md_.unbalance.has_value()) LateralRates(x, dx[kWbit], dx);
   }
 
-  // The waves leaving every node over the piece, and the error of the quartic the history stores for them (ends,
-  // end rates, midpoint) against their exact value at a quarter of the piece (the state there from the piece's own
-  // interpolant): a wave buffer is history too, and its interpolation error is invisible to the stepper. (As the
-  // torsional network engine measures it; the cubic against the midpoint, measured before, is the error of an
-  // interpolant one order lower than the one stored, and asked for steps about half as long.)
-  // A kink that arrives at an internal node within the piece (an event's, passed on from node to node) would fail
-  // that check for any piece across it, and cost rejected steps at every node it passes. The node's waves are
-  // algebraic in the waves arriving at it, so they are stored in parts split at the kink, each part exact to the
-  // check (SplitNodeWaves).
+  // The waves leaving every node over the piece, checked and prepared by each channel's chain
+  // (waves::WaveChain::Prepare); the end speeds from the piece's states, in the regime that holds over it.
   double PrepareCommit(const integration::Piece& p, double abs_tol, double rel_tol) {
-    const int k = 4 * (m_ + 1);
-    out0_.resize(k), out1_.resize(k), outm_.resize(k), outq_.resize(k), d0_.resize(k), d1_.resize(k);
-    // Without an event or breakpoint in between, the start of this piece is the end of the last one.
-    if (!(start_is_last_end_ && p.t0 == last_commit_end_)) Outgoing(p.t0, p.x0, p.f0, Side::kRight, out0_.data(), d0_.data());
-    // In time order, so that each history's look-ups walk forward from the last one.
     const double h = p.t1 - p.t0, tq = p.t0 + 0.25 * h;
     state_quarter_.resize(p.x0.size());
     integration::InterpolatePiece(p, tq, state_quarter_);
-    Outgoing(tq, state_quarter_, p.f1, Side::kLeft, outq_.data(), nullptr);
-    Outgoing(0.5 * (p.t0 + p.t1), p.x_mid, p.f1, Side::kLeft, outm_.data(), nullptr);
-    Outgoing(p.t1, p.x1, p.f1, Side::kLeft, out1_.data(), d1_.data());
-    num_splits_ = 0;
     double worst = 0;
     for (int c = 0; c < 2; ++c) {
-      // Kelvin-Voigt dashpots tie every node to its neighbours: its nodes' waves are not split (a kink then costs
-      // rejected steps as before).
-      const bool splits = !Chan(c).kelvin_voigt();
-      for (int j = 0; j <= m_; ++j) {
-        const int b = NodeBlock(c, j);
-        if (splits && j > 0 && j < m_) {
-          const double scale = WaveScale(b, abs_tol, rel_tol);
-          split_times_.clear();
-          ArrivingKinks(c, j, p.t0, p.t1, scale, split_times_);
-          if (!split_times_.empty()) {
-            worst = std::max(worst, SplitNodeWaves(c, j, p, abs_tol, rel_tol));
-            continue;
-          }
-        }
-        worst = std::max(worst, integration::QuarterPointError(2, h, &out0_[b], &out1_[b], &d0_[b], &d1_[b],
-                                                               &outm_[b], &outq_[b], abs_tol, rel_tol));
-      }
+      const waves::WaveChain::StepEnds step{p.t0, p.t1, EndSpeeds(c, p.x0), EndRates(c, p.f0),
+                                            EndSpeeds(c, state_quarter_), EndSpeeds(c, p.x_mid),
+                                            EndSpeeds(c, p.x1), EndRates(c, p.f1)};
+      worst = std::max(worst, chains_[c].Prepare(step, abs_tol, rel_tol));
     }
-    prepared_scale_ = {abs_tol, rel_tol};
     return worst;
   }
 
   void Commit(const integration::Piece& p) {
-    std::size_t split = 0;
-    for (int c = 0; c < 2; ++c)
-      for (int j = 0; j <= m_; ++j) {
-        integration::HermiteHistory& history = NodeHistory(c, j);
-        if (split < num_splits_ && splits_[split].channel == c && splits_[split].node == j) {
-          const SplitWaves& s = splits_[split++];
-          for (std::size_t q = 0; q + 1 < s.time.size(); ++q)
-            history.Append(s.time[q], &s.value[2 * q], &s.rate_right[2 * q], s.time[q + 1], &s.value[2 * q + 2],
-                           &s.rate_left[2 * q + 2], &s.mid[2 * q]);
-        } else {
-          const int b = NodeBlock(c, j);
-          history.Append(p.t0, &out0_[b], &d0_[b], p.t1, &out1_[b], &d1_[b], &outm_[b]);
-        }
-      }
-    out0_.swap(out1_);
-    d0_.swap(d1_);
-    start_is_last_end_ = true;
-    last_commit_end_ = p.t1;
     // A node's waves are read one piece's travel time later, never earlier: keeping two of the longest makes the
     // histories a few dozen pieces each, which stay in cache.
     const double read_back = 2 * std::max(md_.torsion.LongestPiece(), md_.axial.LongestPiece());
-    for (auto& w : node_waves_) w.DiscardBefore(p.t1 - read_back);
-    const double keep = 2 * std::max(md_.torsion.travel_time(), md_.axial.travel_time()) + 1.0;
-    cut_.Commit(p, kPhi, kU, rg_.contact, rg_.last_contact_change, keep);
     // The kinks just stored next to the top and the bit reach them one piece later: the steps stop there, as at a
     // breakpoint (the state's own dense output is then smooth within each step, and the end waves too).
     while (!end_kinks_.empty() && end_kinks_.top() < p.t1) end_kinks_.pop();
-    for (int c = 0; c < 2; ++c) {
-      const std::vector<double>& tau = Chan(c).tau;
-      ScheduleEndKinks(NodeHistory(c, 1), 0, tau[0], p, NodeBlock(c, 1));                // up-going, to the top
-      ScheduleEndKinks(NodeHistory(c, m_ - 1), 1, tau[m_ - 1], p, NodeBlock(c, m_ - 1) + 1);  // down, to the bit
-    }
+    arriving_kinks_.clear();
+    for (waves::WaveChain& chain : chains_) chain.Commit(p.t0, p.t1, read_back, arriving_kinks_);
+    for (double t : arriving_kinks_) end_kinks_.push(t);
+    const double keep = 2 * std::max(md_.torsion.travel_time(), md_.axial.travel_time()) + 1.0;
+    cut_.Commit(p, kPhi, kU, rg_.contact, rg_.last_contact_change, keep);
   }
 
   // Witnesses: bitrock::RgdRegimes's (0, 1 rotation; 2, 3 axial; 4 contact).
@@ -339,7 +269,7 @@ class Process {
 
   bool OnEvent(int k, double t, State& x) {
     const Side side = Side::kLeft;
-    start_is_last_end_ = false;  // the regime (and with it the waves leaving the bit) may change here
+    for (waves::WaveChain& chain : chains_) chain.ForgetStart();  // the regime (and the bit's waves) may change here
     const Turn turn_before = rg_.turn;
     const bool changed =
         rg_.OnEvent(k, t, x[kWbit], x[kVbit], md_.ContactForce(), [&] { return Forces(x, t, side); });
@@ -357,7 +287,7 @@ class Process {
   }
   void OnBreakpoint(double t) {
     passed_ = t;
-    start_is_last_end_ = false;  // an input may jump here, or a kink arrive at an end
+    for (waves::WaveChain& chain : chains_) chain.ForgetStart();  // an input may jump here, or a kink arrive at an end
     while (!end_kinks_.empty() && end_kinks_.top() <= t + 1e-12 * std::max(1.0, std::abs(t))) end_kinks_.pop();
   }
 
@@ -399,140 +329,12 @@ class Process {
  private:
   using BitForces = bitrock::RgdForces;
 
-  // A node's waves over a piece, stored in parts split where kinks arrive: part q spans time[q]..time[q + 1]; per
-  // boundary the two waves' values and their left and right rates, per part the midpoint.
-  struct SplitWaves {
-    int channel = 0, node = 0;
-    std::vector<double> time, value, rate_left, rate_right, mid;
-  };
   // Force of the string on the top node and on the bit node of each channel (0 torsion, 1 axial) at the state's end
   // speeds, with the end nodes' own share of damping and weight.
   struct Ends {
     double top[2], bit[2];
   };
 
-  // Arrival at node j of channel c (0 torsion, 1 axial) from above (from_above) or below, at time t.
-  // Each node j keeps the history of the two waves it sends: component 0 up-going into piece j - 1 (U_{j-1}),
-  // component 1 down-going into piece j (D_j); the top's first and the bit's second are unused (zero). The prepared
-  // waves are laid out the same way, node after node, channel after channel.
-  const Channel& Chan(int c) const { return c == 0 ? md_.torsion : md_.axial; }
-  integration::HermiteHistory& NodeHistory(int c, int j) { return node_waves_[c * (m_ + 1) + j]; }
-  const integration::HermiteHistory& NodeHistory(int c, int j) const { return node_waves_[c * (m_ + 1) + j]; }
-  int NodeBlock(int c, int j) const { return 2 * ((m_ + 1) * c + j); }
-
-  // Arrival at node j of channel c (0 torsion, 1 axial) from above (from_above) or below, at time t.
-  double Arrival(int c, int j, double t, Side side, bool from_above) const {
-    const std::vector<double>& tau = Chan(c).tau;
-    return from_above ? NodeHistory(c, j - 1).Value(t - tau[j - 1], 1, side)  // D_{j-1}, sent by node j - 1
-                      : NodeHistory(c, j + 1).Value(t - tau[j], 0, side);     // U_j, sent by node j + 1
-  }
-  // All waves arriving in channel c at time t (component 2k down-going at the bottom of piece k, 2k + 1 up-going at
-  // its top), and their rates when rate != nullptr.
-  void Arrivals(int c, double t, Side side, double* in, double* rate) const {
-    const std::vector<double>& tau = Chan(c).tau;
-    for (int j = 0; j <= m_; ++j) {  // node j's U_{j-1} arrives as in[2j - 1], its D_j as in[2j]
-      const integration::HermiteHistory& sent = NodeHistory(c, j);
-      if (j > 0 && j < m_ && tau[j - 1] == tau[j]) {  // both sent at the same time: one look-up
-        double two[2], two_rates[2];
-        if (rate) {
-          sent.ValuesAndDerivatives(t - tau[j], two, two_rates, side);
-          rate[2 * j - 1] = two_rates[0], rate[2 * j] = two_rates[1];
-        } else {
-          sent.Values(t - tau[j], two, side);
-        }
-        in[2 * j - 1] = two[0], in[2 * j] = two[1];
-        continue;
-      }
-      if (j > 0) {
-        in[2 * j - 1] = sent.Value(t - tau[j - 1], 0, side);
-        if (rate) rate[2 * j - 1] = sent.Derivative(t - tau[j - 1], 0, side);
-      }
-      if (j < m_) {
-        in[2 * j] = sent.Value(t - tau[j], 1, side);
-        if (rate) rate[2 * j] = sent.Derivative(t - tau[j], 1, side);
-      }
-    }
-  }
-  // The tolerance unit of the waves of the prepared node block b.
-  double WaveScale(int b, double abs_tol, double rel_tol) const {
-    return abs_tol + rel_tol * std::max({std::abs(out0_[b]), std::abs(out0_[b + 1]), std::abs(out1_[b]),
-                                         std::abs(out1_[b + 1])});
-  }
-  // A kink matters to a piece of length h when the quartic across it would miss by more than the tolerance unit: by
-  // up to 0.077 |slope jump| h (a kink at 0.4 h). Smaller ones (the weak reflections at the damped nodes) are left
-  // to the pieces.
-  static bool Matters(double slope_jump, double h, double scale) { return 0.08 * std::abs(slope_jump) * h > scale; }
-  // Times within (t0, t1) at which kinks that matter arrive at internal node j of channel c, sorted, without repeats.
-  void ArrivingKinks(int c, int j, double t0, double t1, double scale, std::vector<double>& times) const {
-    const std::vector<double>& tau = Chan(c).tau;
-    kinks_.clear();
-    NodeHistory(c, j - 1).KinksIn(t0 - tau[j - 1], t1 - tau[j - 1], 1, kinks_);
-    for (auto& k : kinks_) k.time_s += tau[j - 1];
-    const std::size_t from_above = kinks_.size();
-    NodeHistory(c, j + 1).KinksIn(t0 - tau[j], t1 - tau[j], 0, kinks_);
-    for (std::size_t i = from_above; i < kinks_.size(); ++i) kinks_[i].time_s += tau[j];
-    const double h = t1 - t0, margin = 1e-9 * h;
-    for (const auto& k : kinks_)
-      if (k.time_s > t0 + margin && k.time_s < t1 - margin && Matters(k.slope_jump, h, scale))
-        times.push_back(k.time_s);
-    std::sort(times.begin(), times.end());
-    times.erase(std::unique(times.begin(), times.end(), [&](double a, double b) { return b - a <= margin; }),
-                times.end());
-  }
-  // The two waves internal node j of channel c sends at time t (and their rates): algebraic in the waves arriving.
-  void NodeWaves(int c, int j, double t, Side side, double* out, double* rate) const {
-    const Channel& ch = Chan(c);
-    const double sent_above = t - ch.tau[j - 1], sent_below = t - ch.tau[j];
-    const double a = NodeHistory(c, j - 1).Value(sent_above, 1, side), b = NodeHistory(c, j + 1).Value(sent_below, 0, side);
-    const double v = InternalNodeSpeed(ch, j, a, b);
-    out[0] = v - a, out[1] = v - b;
-    if (!rate) return;
-    const double ra = NodeHistory(c, j - 1).Derivative(sent_above, 1, side);
-    const double rb = NodeHistory(c, j + 1).Derivative(sent_below, 0, side);
-    const double dv = InternalNodeRate(ch, j, ra, rb, v);
-    rate[0] = dv - ra, rate[1] = dv - rb;
-  }
-  // Node j's waves over the prepared piece in parts split at split_times_ (splits_ keeps them for Commit), and the
-  // largest quarter-point error of the parts.
-  double SplitNodeWaves(int c, int j, const integration::Piece& p, double abs_tol, double rel_tol) {
-    const int b = NodeBlock(c, j);
-    if (num_splits_ == splits_.size()) splits_.emplace_back();
-    SplitWaves& s = splits_[num_splits_++];  // reused, with its storage
-    s.channel = c, s.node = j;
-    s.time.assign(1, p.t0);
-    s.time.insert(s.time.end(), split_times_.begin(), split_times_.end());
-    s.time.push_back(p.t1);
-    const std::size_t parts = s.time.size() - 1;
-    s.value.resize(2 * (parts + 1)), s.rate_left.resize(2 * (parts + 1)), s.rate_right.resize(2 * (parts + 1));
-    s.mid.resize(2 * parts);
-    std::copy_n(&out0_[b], 2, &s.value[0]), std::copy_n(&d0_[b], 2, &s.rate_right[0]);
-    std::copy_n(&out1_[b], 2, &s.value[2 * parts]), std::copy_n(&d1_[b], 2, &s.rate_left[2 * parts]);
-    double unused[2];
-    for (std::size_t q = 1; q < parts; ++q) {
-      NodeWaves(c, j, s.time[q], Side::kLeft, &s.value[2 * q], &s.rate_left[2 * q]);
-      NodeWaves(c, j, s.time[q], Side::kRight, unused, &s.rate_right[2 * q]);
-    }
-    double worst = 0, quarter[2];
-    for (std::size_t q = 0; q < parts; ++q) {
-      const double t0 = s.time[q], h = s.time[q + 1] - t0;
-      NodeWaves(c, j, t0 + 0.5 * h, Side::kLeft, &s.mid[2 * q], nullptr);
-      NodeWaves(c, j, t0 + 0.25 * h, Side::kLeft, quarter, nullptr);
-      worst = std::max(worst, integration::QuarterPointError(2, h, &s.value[2 * q], &s.value[2 * q + 2],
-                                                             &s.rate_right[2 * q], &s.rate_left[2 * q + 2],
-                                                             &s.mid[2 * q], quarter, abs_tol, rel_tol));
-    }
-    return worst;
-  }
-  // Kinks of component comp of an end's neighbour stored with this piece (the knot at its start included) reach the
-  // end tau later: they become breakpoints. b: the component's place in the prepared waves (for its scale).
-  void ScheduleEndKinks(const integration::HermiteHistory& sender, int comp, double tau, const integration::Piece& p,
-                        int b) {
-    kinks_.clear();
-    sender.KinksIn(p.t0, p.t1, comp, kinks_);
-    const double scale = prepared_scale_[0] + prepared_scale_[1] * std::abs(out0_[b]);  // out0_: now this piece's end
-    for (const auto& k : kinks_)
-      if (Matters(k.slope_jump, p.t1 - p.t0, scale)) end_kinks_.push(k.time_s + tau);
-  }
   double EndSpeed(int c, bool bit, const State& x) const {
     if (!bit) return c == 0 ? x[kWtop] : x[kVtop];
     if (c == 0) return rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
@@ -542,22 +344,15 @@ class Process {
   Ends StringEnds(const State& x, double t, Side side) const {
     Ends e;
     for (int c = 0; c < 2; ++c) {
-      const Channel& ch = Chan(c);
-      const double top = EndSpeed(c, false, x), bit = EndSpeed(c, true, x);
-      double in_top, in_bit, pull_top = 0, pull_bit = 0;  // pull: the Kelvin-Voigt dashpots of the end pieces
-      if (ch.kelvin_voigt()) {  // the dashpots tie the end nodes to the massless nodes next to them: solve them all
-        arriving_.resize(2 * m_), speeds_.resize(m_ + 1);
-        Arrivals(c, t, side, arriving_.data(), nullptr);
-        NodeSpeeds(ch, arriving_.data(), top, bit, speeds_.data());
-        in_top = arriving_[1], in_bit = arriving_[2 * (m_ - 1)];
-        pull_top = ch.kv[0] * (speeds_[1] - top), pull_bit = ch.kv[m_ - 1] * (speeds_[m_ - 1] - bit);
-      } else {
-        in_top = Arrival(c, 0, t, side, false), in_bit = Arrival(c, m_, t, side, true);
-      }
-      e.top[c] = ch.z[0] * (2 * in_top - top) - ch.damping[0] * top + ch.load[0] + pull_top;
-      e.bit[c] = ch.z[m_ - 1] * (2 * in_bit - bit) - ch.damping[m_] * bit + ch.load[m_] + pull_bit;
+      const waves::ChainEnds f = chains_[c].EndForces(t, side, EndSpeeds(c, x));
+      e.top[c] = f.top, e.bit[c] = f.bit;
     }
     return e;
+  }
+  waves::ChainEnds EndSpeeds(int c, const State& x) const { return {EndSpeed(c, false, x), EndSpeed(c, true, x)}; }
+  // The end nodes' accelerations (dx of the state).
+  static waves::ChainEnds EndRates(int c, const State& dx) {
+    return c == 0 ? waves::ChainEnds{dx[kWtop], dx[kWbit]} : waves::ChainEnds{dx[kVtop], dx[kVbit]};
   }
 
   // The depth of cut against the rock surface under the blades, and the cut delay t_n through tn (bitrock::CutProfile).
@@ -612,114 +407,18 @@ class Process {
     std::copy(rates.begin(), rates.end(), dx.begin() + kX);
   }
 
-  // Sum of Z (2 w_in) over the two pieces at an internal node (as 2 Z (a + b) for equal impedances: a uniform
-  // string keeps the rounding it had before pieces could differ).
-  static double Incoming(double z_above, double above, double z_below, double below) {
-    return z_above == z_below ? 2 * z_above * (above + below) : 2 * (z_above * above + z_below * below);
-  }
-
-  // Speeds v[0..m] of the nodes of a channel: the ends given, the massless nodes between algebraic in the waves `in`
-  // arriving at them (as Arrivals lays them out).
-  void NodeSpeeds(const Channel& ch, const double* in, double top, double bit, double* v) const {
-    v[0] = top, v[m_] = bit;
-    if (ch.kelvin_voigt()) {
-      SolveKelvinVoigtNodes(ch, in, top, bit, true, v);
-      return;
-    }
-    for (int j = 1; j < m_; ++j) v[j] = InternalNodeSpeed(ch, j, in[2 * (j - 1)], in[2 * j + 1]);
-  }
-  // A massless node j with Coulomb friction T_f, wave a arriving from above and b from below: 0 in
-  // (Z_a + Z_b + c) v - q + T_f sign(v), q = 2 Z_a a + 2 Z_b b + load, solved in closed form: the node stands still
-  // while |q| <= T_f and slides with the excess otherwise.
-  static double InternalNodeSpeed(const Channel& ch, int j, double a, double b) {
-    const double q = Incoming(ch.z[j - 1], a, ch.z[j], b) + ch.load[j];
-    const double excess = std::max(std::abs(q) - ch.coulomb[j], 0.0);
-    return std::copysign(excess, q) / (ch.z[j - 1] + ch.z[j] + ch.damping[j]);
-  }
-  // Its rate from the arriving waves' rates (a node held by Coulomb friction stays).
-  static double InternalNodeRate(const Channel& ch, int j, double rate_a, double rate_b, double v) {
-    return v != 0 || ch.coulomb[j] == 0
-               ? Incoming(ch.z[j - 1], rate_a, ch.z[j], rate_b) / (ch.z[j - 1] + ch.z[j] + ch.damping[j])
-               : 0.0;
-  }
-  // Their rates from the arriving waves' rates and the end accelerations (a node held by Coulomb friction stays).
-  void NodeRates(const Channel& ch, const double* in_rate, const double* v, double top, double bit, double* dv) const {
-    dv[0] = top, dv[m_] = bit;
-    if (ch.kelvin_voigt()) {
-      SolveKelvinVoigtNodes(ch, in_rate, top, bit, false, dv);
-      return;
-    }
-    for (int j = 1; j < m_; ++j) dv[j] = InternalNodeRate(ch, j, in_rate[2 * (j - 1)], in_rate[2 * j + 1], v[j]);
-  }
-  // With Kelvin-Voigt dashpots kv_k across the pieces, node j (1..m-1) balances
-  //   (Z_{j-1} + Z_j + c_j + kv_{j-1} + kv_j) v_j - kv_{j-1} v_{j-1} - kv_j v_{j+1} = 2 Z_{j-1} a + 2 Z_j b + load_j,
-  // a tridiagonal system in the internal speeds (its rates: the same matrix, without the loads). The Thomas algorithm
-  // with the pivots factored once in Prepare (no Coulomb friction here: Prepare refuses the combination).
-  void SolveKelvinVoigtNodes(const Channel& ch, const double* in, double top, double bit, bool with_loads,
-                             double* v) const {
-    double previous = 0;
-    for (int j = 1; j < m_; ++j) {
-      double rhs = Incoming(ch.z[j - 1], in[2 * (j - 1)], ch.z[j], in[2 * j + 1]) + (with_loads ? ch.load[j] : 0.0);
-      if (j == 1) rhs += ch.kv[0] * top;
-      if (j == m_ - 1) rhs += ch.kv[m_ - 1] * bit;
-      v[j] = previous = (rhs + ch.kv[j - 1] * (j > 1 ? previous : 0.0)) * ch.kv_inv_pivot[j];
-    }
-    for (int j = m_ - 2; j >= 1; --j) v[j] += ch.kv_ratio[j] * v[j + 1];
-  }
-
-  // Waves leaving every node at time t (and their rates when rate != nullptr), laid out by node (NodeBlock).
-  void Outgoing(double t, const State& x, const State& dx, Side side, double* out, double* rate) const {
-    arriving_.resize(2 * m_), arriving_rate_.resize(2 * m_), speeds_.resize(m_ + 1), speed_rates_.resize(m_ + 1);
-    for (int c = 0; c < 2; ++c) {
-      const Channel& ch = Chan(c);
-      Arrivals(c, t, side, arriving_.data(), rate ? arriving_rate_.data() : nullptr);
-      NodeSpeeds(ch, arriving_.data(), EndSpeed(c, false, x), EndSpeed(c, true, x), speeds_.data());
-      for (int j = 0; j <= m_; ++j) {
-        const int b = NodeBlock(c, j);
-        out[b] = j > 0 ? speeds_[j] - arriving_[2 * (j - 1)] : 0.0;      // up-going into piece j-1
-        out[b + 1] = j < m_ ? speeds_[j] - arriving_[2 * j + 1] : 0.0;   // down-going into piece j
-      }
-      if (!rate) continue;
-      NodeRates(ch, arriving_rate_.data(), speeds_.data(), c == 0 ? dx[kWtop] : dx[kVtop],
-                c == 0 ? dx[kWbit] : dx[kVbit], speed_rates_.data());
-      for (int j = 0; j <= m_; ++j) {
-        const int b = NodeBlock(c, j);
-        rate[b] = j > 0 ? speed_rates_[j] - arriving_rate_[2 * (j - 1)] : 0.0;
-        rate[b + 1] = j < m_ ? speed_rates_[j] - arriving_rate_[2 * j + 1] : 0.0;
-      }
-    }
-  }
-
-  // Steady drilling: every node of a channel at the same speed; each section carries the force that balances the
-  // nodes below it (S_{j-1} = S_j + c_j v - load_j, bit: S_{m-1} = reaction + c_m v - load_m).
+  // Steady drilling: every node of a channel at the same speed, the bit's reaction carried up the chain; the top
+  // drive balances the top section.
   void InitializeWaves() {
-    std::vector<double> initial(4 * (m_ + 1), 0.0);  // by node, as Outgoing lays the waves out
-    for (int c = 0; c < 2; ++c) {
-      const Channel& ch = Chan(c);
-      const double v = c == 0 ? steady_.omega : steady_.rop;
-      // Steady forward rotation: the Coulomb friction of the nodes acts as a constant torque against it.
-      double s = (c == 0 ? steady_.tob : steady_.wob) + ch.damping[m_] * v - ch.load[m_] + ch.coulomb[m_];
-      for (int j = m_ - 1; j >= 0; --j) {
-        initial[NodeBlock(c, j) + 1] = 0.5 * (v + s / ch.z[j]);  // D_j: D - U = S / Z, D + U = v
-        initial[NodeBlock(c, j + 1)] = 0.5 * (v - s / ch.z[j]);  // U_j
-        if (j > 0) s += ch.damping[j] * v - ch.load[j] + ch.coulomb[j];
-      }
-      if (c == 0) top_torque0_ = s + ch.damping[0] * v - ch.load[0];  // the top drive balances the top section
-    }
-    for (int c = 0; c < 2; ++c)
-      for (int j = 0; j <= m_; ++j) {
-        const double up = initial[NodeBlock(c, j)], down = initial[NodeBlock(c, j) + 1];
-        node_waves_.emplace_back(2, [up, down](double, double* value, double* rate) {
-          value[0] = up, value[1] = down;
-          rate[0] = rate[1] = 0.0;
-        });
-      }
+    chains_.reserve(2);
+    chains_.emplace_back(md_.torsion, steady_.omega, steady_.tob);
+    chains_.emplace_back(md_.axial, steady_.rop, steady_.wob);
+    top_torque0_ = chains_[0].steady_top_force();
   }
 
   const Model& md_;
-  int m_;
   Steady steady_;
-  std::vector<integration::HermiteHistory> node_waves_;  // per channel and node: the two waves it sends (NodeHistory)
+  std::vector<waves::WaveChain> chains_;  // torsion, axial
   bitrock::CutProfile cut_;
   double top_torque0_ = 0;
   double steady_supply_hz_ = 0;  // induction motor: the supply frequency of steady drilling
@@ -727,18 +426,10 @@ class Process {
   double step_start_ = 0, passed_ = 0;
   int stick_onsets_ = 0;
   std::vector<StuckInterval> stuck_;
-  std::vector<double> out0_, out1_, outm_, outq_, d0_, d1_;  // the prepared piece's waves (ends, midpoint, quarter, rates)
   State state_quarter_;
-  std::vector<SplitWaves> splits_;  // the prepared piece's nodes stored in parts, by channel and node (the first
-  std::size_t num_splits_ = 0;      // num_splits_ are this piece's)
-  std::vector<double> split_times_;
-  std::array<double, 2> prepared_scale_{};  // abs_tol, rel_tol of the last PrepareCommit
   // Times at which kinks reach the top or the bit (breakpoints), earliest first.
   std::priority_queue<double, std::vector<double>, std::greater<double>> end_kinks_;
-  mutable std::vector<integration::HermiteHistory::Kink> kinks_;
-  bool start_is_last_end_ = false;  // out0_ and d0_ hold the waves at the end of the last committed piece
-  double last_commit_end_ = 0;
-  mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // Outgoing's and StringEnds' scratch
+  std::vector<double> arriving_kinks_;  // Commit's scratch
 };
 
 // hoist/rig: the two-mass hoisting rig (model::HoistRig).
@@ -926,19 +617,6 @@ StringSpec ReadString(const JsonReader& s) {
   return sp;
 }
 
-// The Thomas algorithm's pivots for the internal nodes' tridiagonal system (NodeSpeeds): diagonally dominant, so
-// stable without pivoting.
-void FactorKelvinVoigt(Channel& ch) {
-  if (!ch.kelvin_voigt()) return;
-  const int m = static_cast<int>(ch.z.size());
-  ch.kv_ratio.assign(m + 1, 0.0), ch.kv_inv_pivot.assign(m + 1, 0.0);
-  for (int j = 1; j < m; ++j) {
-    const double diagonal = ch.z[j - 1] + ch.z[j] + ch.damping[j] + ch.kv[j - 1] + ch.kv[j];
-    ch.kv_inv_pivot[j] = 1 / (diagonal - (j > 1 ? ch.kv[j - 1] * ch.kv_ratio[j - 1] : 0.0));
-    ch.kv_ratio[j] = ch.kv[j] * ch.kv_inv_pivot[j];
-  }
-}
-
 // Channels of sub-sections, pipe then BHA: damping and buoyant weight of each piece lumped at its two nodes (half at
 // each), which keeps the d'Alembert reduction exact inside every piece.
 void BuildChannels(const StringSpec& sp, double g, Model& md) {
@@ -974,7 +652,7 @@ void BuildChannels(const StringSpec& sp, double g, Model& md) {
       }
     }
   }
-  for (Channel* ch : {&md.torsion, &md.axial}) FactorKelvinVoigt(*ch);
+  for (Channel* ch : {&md.torsion, &md.axial}) ch->FactorKelvinVoigt();
 }
 
 // The axial balance of steady drilling (chapter eq. 2.23 at rest in the moving frame): H = W_b - W0 - C V0, with the

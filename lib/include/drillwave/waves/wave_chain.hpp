@@ -1,0 +1,122 @@
+#pragma once
+// One wave channel of a string as a chain of pieces (DESIGN.md §1), for kinds whose ends carry inertia and whose
+// waves are stored as history rather than followed as breakpoints (the coupled axial-torsional kind: its torsional
+// channel, angular speed and torque, and its axial channel, speed down positive and force).
+//
+// Pieces k = 0..m-1 lie between nodes k and k+1: node 0 is the top, node m the bit; pieces differ in impedance and
+// travel time where sections change (pipe, BHA). The internal nodes are massless: the distributed viscous damping and
+// the buoyant weight of each piece are lumped at its nodes (half at each end), so the d'Alembert reduction stays exact
+// inside every piece. A piece carries the force S = Z (D - U) onto its lower node; a node feels sum Z (2 w_in - v)
+// from its pieces. Options on the internal nodes: Coulomb friction against the borehole (side friction, set-valued at
+// rest), and Kelvin-Voigt damping (chapter eqs. 2.20, 2.24) as a dashpot eta K / length across each piece, which ties
+// the massless nodes into a tridiagonal system.
+//
+// Each node keeps the history of the two waves it sends (U_{j-1} up into piece j-1, D_j down into piece j). An
+// internal node's waves are algebraic in the waves arriving at it; where a kink arrives within a step (an event's,
+// passed on from node to node) they are stored in parts split at the kink, so that every stored quartic passes the
+// error check. Kinks that reach the top or the bit are reported, for the caller to stop its steps there.
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "drillwave/integration/hermite_history.hpp"
+
+namespace drillwave::waves {
+
+// The chain's constant data: per piece impedance, travel time and Kelvin-Voigt dashpot; per node the ground dashpot,
+// the constant load (buoyant weight, axial) and the Coulomb friction level (torsion).
+struct ChainSpec {
+  std::vector<double> z, tau;   // per piece
+  std::vector<double> kv;       // per piece: Kelvin-Voigt dashpot eta K / length across it (empty: none)
+  std::vector<double> damping;  // per node (ground dashpot)
+  std::vector<double> load;     // per node (constant force: buoyant weight, axial only)
+  std::vector<double> coulomb;  // per node (Coulomb friction level against the borehole, torsion only)
+  // Kelvin-Voigt: the massless nodes 1..m-1 solve a constant tridiagonal system (Thomas algorithm, FactorKelvinVoigt).
+  std::vector<double> kv_ratio, kv_inv_pivot;  // per node: c'_j and 1 / (b_j - a_j c'_{j-1})
+
+  int pieces() const { return static_cast<int>(z.size()); }
+  bool kelvin_voigt() const { return !kv.empty(); }
+  double ShortestPiece() const;
+  double LongestPiece() const;
+  double travel_time() const;
+  // The Thomas algorithm's pivots for the internal nodes' tridiagonal system: diagonally dominant, so stable
+  // without pivoting. Call once the pieces and nodes are set.
+  void FactorKelvinVoigt();
+};
+
+// The speeds of the chain's two end nodes (or their accelerations) at one instant.
+struct ChainEnds {
+  double top, bit;
+};
+
+class WaveChain {
+ public:
+  using Side = integration::Side;
+  // Steady motion: every node at speed v, the bit node loaded by bit_force (torque on bit, or weight on bit); each
+  // piece carries the force that balances the nodes below it.
+  WaveChain(const ChainSpec& spec, double v, double bit_force);
+
+  const ChainSpec& spec() const { return spec_; }
+  // What the top node supplies in that steady motion (the force on the top piece plus the top node's damping, less
+  // its load).
+  double steady_top_force() const { return steady_top_force_; }
+
+  // Forces of the string on the top node and on the bit node at the given end speeds, with the end nodes' own share
+  // of damping and load.
+  ChainEnds EndForces(double t, Side side, ChainEnds speeds) const;
+
+  // The waves every node sends over the step [t0, t1] (end speeds at t0, a quarter, the middle and t1; end
+  // accelerations at t0 and t1), prepared for Commit; returns the largest scaled error of the stored quartics at the
+  // quarter point (> 1: the step must be shorter).
+  struct StepEnds {
+    double t0, t1;
+    ChainEnds speed0, rate0, speed_quarter, speed_mid, speed1, rate1;
+  };
+  double Prepare(const StepEnds& step, double abs_tol, double rel_tol);
+  // Appends the prepared step to the node histories, forgets what lies further back than read_back, and adds to
+  // end_kinks the times at which the kinks just stored next to the top and the bit reach them.
+  void Commit(double t0, double t1, double read_back, std::vector<double>& end_kinks);
+  // The step's start is not the last committed end (an event or a breakpoint lies between): Prepare computes it.
+  void ForgetStart() { start_is_last_end_ = false; }
+
+ private:
+  struct SplitWaves {  // a node's waves over a step in parts: part q spans time[q]..time[q + 1]
+    int node = 0;
+    std::vector<double> time, value, rate_left, rate_right, mid;
+  };
+
+  integration::HermiteHistory& NodeHistory(int j) { return node_waves_[j]; }
+  const integration::HermiteHistory& NodeHistory(int j) const { return node_waves_[j]; }
+  static int NodeBlock(int j) { return 2 * j; }
+
+  double Arrival(int j, double t, Side side, bool from_above) const;
+  void Arrivals(double t, Side side, double* in, double* rate) const;
+  void NodeSpeeds(const double* in, double top, double bit, double* v) const;
+  double InternalNodeSpeed(int j, double a, double b) const;
+  double InternalNodeRate(int j, double rate_a, double rate_b, double v) const;
+  void NodeRates(const double* in_rate, const double* v, double top, double bit, double* dv) const;
+  void SolveKelvinVoigtNodes(const double* in, double top, double bit, bool with_loads, double* v) const;
+  void Outgoing(double t, ChainEnds speeds, const ChainEnds* rates, Side side, double* out, double* rate) const;
+  double WaveScale(int b, double abs_tol, double rel_tol) const;
+  void ArrivingKinks(int j, double t0, double t1, double scale, std::vector<double>& times) const;
+  void NodeWaves(int j, double t, Side side, double* out, double* rate) const;
+  double SplitNodeWaves(int j, double t0, double t1, double abs_tol, double rel_tol);
+  void EndKinks(const integration::HermiteHistory& sender, int comp, double tau, double t0, double t1, int b,
+                std::vector<double>& end_kinks);
+
+  ChainSpec spec_;
+  int m_;
+  double steady_top_force_ = 0;
+  std::vector<integration::HermiteHistory> node_waves_;  // per node: the two waves it sends
+  std::vector<double> out0_, out1_, outm_, outq_, d0_, d1_;  // the prepared step's waves (ends, middle, quarter, rates)
+  std::vector<SplitWaves> splits_;  // the prepared step's nodes stored in parts (the first num_splits_)
+  std::size_t num_splits_ = 0;
+  std::vector<double> split_times_;
+  std::array<double, 2> prepared_scale_{};  // abs_tol, rel_tol of the last Prepare
+  bool start_is_last_end_ = false;          // out0_ and d0_ hold the waves at the end of the last committed step
+  double last_commit_end_ = 0;
+  mutable std::vector<integration::HermiteHistory::Kink> kinks_;
+  mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // scratch
+};
+
+}  // namespace drillwave::waves
