@@ -256,8 +256,9 @@ double ModeGrowthRate(const RunResult& run, const std::string& channel, double o
 // A set-point blip of 1e-6 rad/s for 0.1 s at w [rad/s] sets every mode going; while the bit's axial speed stays far
 // from zero (the wear flats' contact force is constant only while the bit advances) the run is linear, and the
 // rightmost root's mode grows at its real part in the bit's axial speed (and, if asked, in its angular speed).
+// Held to `tolerance`, by default 3 % + 3e-3 1/s.
 void ExpectRightmostRootGrowsAsSimulated(nlohmann::json doc, double w, double t0, double t1, bool in_bit_speed,
-                                         const std::string& what) {
+                                         const std::string& what, double tolerance = -1) {
   doc["model"]["string"]["subsections"] = 5;
   doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {0.05, w + 1e-6}, {0.1, w}}}};
   doc["simulation"] = {{"duration_s", t1}, {"output_interval_s", 2e-3}, {"abs_tol", 1e-12}, {"rel_tol", 1e-10}};
@@ -275,13 +276,14 @@ void ExpectRightmostRootGrowsAsSimulated(nlohmann::json doc, double w, double t0
   for (std::size_t i = 0; i < v.size(); ++i) largest = std::max(largest, std::abs(v[i] - v.front()));
   const double axial = ModeGrowthRate(run.result, "bit_axial_speed_m_s", r.s.imag(), t0, t1);
   const double torsional = ModeGrowthRate(run.result, "bit_rpm", r.s.imag(), t0, t1);
-  std::printf("[ measured ] %s, 5 pieces: rightmost root %.6f%+.6fi; simulated growth at its frequency over [%.0f, "
-              "%.0f] s: %.6f 1/s (axial speed), %.6f 1/s (bit speed); largest axial speed deviation %.2e m/s (V0 = "
+  std::printf("[ measured ] %s, 5 pieces: rightmost root %.6f%+.6fi; simulated growth at its frequency over [%.1f, "
+              "%.1f] s: %.6f 1/s (axial speed), %.6f 1/s (bit speed); largest axial speed deviation %.2e m/s (V0 = "
               "%.2e)\n", what.c_str(), r.s.real(), r.s.imag(), t0, t1, axial, torsional, largest, v.front());
   EXPECT_LT(largest, 0.1 * v.front()) << what << ": the run left the linear range";
-  EXPECT_NEAR(axial, r.s.real(), 0.03 * std::abs(r.s.real()) + 3e-3) << what;
+  if (tolerance < 0) tolerance = 0.03 * std::abs(r.s.real()) + 3e-3;
+  EXPECT_NEAR(axial, r.s.real(), tolerance) << what;
   if (in_bit_speed) {
-    EXPECT_NEAR(torsional, r.s.real(), 0.03 * std::abs(r.s.real()) + 3e-3) << what;
+    EXPECT_NEAR(torsional, r.s.real(), tolerance) << what;
   }
 }
 
@@ -294,14 +296,15 @@ TEST(AxialTorsionalStability, RightmostRootIsTheGrowthRateOfTheSimulatedCoupledM
 }
 
 // Kelvin-Voigt dashpots across the pieces of both channels, and the top drive hanging from the hoisting rig: the
-// rightmost root still grows as the simulation does.
+// rightmost root grows as the simulation does, to 1e-3 1/s over [2.5, 5] s (over [1, 4] s the decaying modes still
+// leak through the window: 3.3709 and 3.3343 against 3.3594 with the dashpots).
 TEST(AxialTorsionalStability, KelvinVoigtAndRigRightmostRootIsTheGrowthRateOfTheSimulation) {
   nlohmann::json kv = Baseline();
   kv["model"]["string"]["kelvin_voigt_s"] = 0.024;
   kv["model"]["string"]["axial_kelvin_voigt_s"] = 0.002;
-  ExpectRightmostRootGrowsAsSimulated(kv, 2 * M_PI, 1, 4, true, "Kelvin-Voigt, 60 rpm");
+  ExpectRightmostRootGrowsAsSimulated(kv, 2 * M_PI, 2.5, 5, true, "Kelvin-Voigt, 60 rpm", 1e-3);
   const nlohmann::json rig = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/hoist-rig.json");
-  ExpectRightmostRootGrowsAsSimulated(rig, 2 * M_PI, 1, 4, true, "hoisting rig, 60 rpm");
+  ExpectRightmostRootGrowsAsSimulated(rig, 2 * M_PI, 2.5, 5, true, "hoisting rig, 60 rpm", 1e-3);
 }
 
 // The induction motor on the slip-compensated V/f supply behind the rig's compliant gear
