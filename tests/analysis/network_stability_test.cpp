@@ -171,16 +171,15 @@ Complex NewtonRoot(const std::function<Complex(Complex)>& f, Complex s) {
   return {NAN, NAN};
 }
 
-// Every root the spectrum finds is a zero of the closed form (Newton on it moves the root by < 1e-8), and every zero
+// Every root the spectrum finds is a zero of the closed form f (Newton on it moves the root by < 1e-8), and every zero
 // of the closed form in the box, found by Newton from a grid of starts, is among the spectrum's roots.
-void ExpectRootsOfClosedForm(const waves::Network& net, double bit_damping, const char* what) {
+void ExpectRootsAreZerosOf(const waves::Network& net, const std::function<Complex(Complex)>& f, const char* what) {
   const auto points = NetworkSteadyStates(net);
   ASSERT_EQ(points.size(), 1u) << what;
   SpectrumOptions o;
   o.im_max = 60;
   o.re_min = -5;
   const Spectrum sp = ComputeSpectrum(LinearizeNetwork(net, points[0]).system, o);
-  const auto f = ClosedForm(net, bit_damping);
   ASSERT_GE(sp.roots.size(), 5u) << what;
   double worst = 0;
   for (const auto& r : sp.roots) {
@@ -202,6 +201,10 @@ void ExpectRootsOfClosedForm(const waves::Network& net, double bit_damping, cons
               what, sp.roots.size(), worst, zeros, missing, sp.roots[0].s.real(), sp.roots[0].s.imag(),
               sp.essential_abscissa, VerdictName(sp.verdict));
   EXPECT_LT(worst, 1e-8) << what;
+}
+
+void ExpectRootsOfClosedForm(const waves::Network& net, double bit_damping, const char* what) {
+  ExpectRootsAreZerosOf(net, ClosedForm(net, bit_damping), what);
 }
 
 TEST(NetworkStability, RootsAreTheZerosOfTheTransferMatrixClosedForm) {
@@ -271,6 +274,161 @@ TEST(NetworkStability, InertialTopPutsTheEssentialSpectrumOnTheImaginaryAxis) {
   EXPECT_EQ(sl.verdict, Spectrum::Verdict::kMarginal);
 }
 
+// Sections split into `parts` equal pieces joined by massless nodes, with the Kelvin-Voigt dashpot eta Z / tau_piece
+// across each piece (as the torsional_wave kind builds them).
+waves::Network WithKelvinVoigt(const waves::Network& net, int parts, double eta) {
+  waves::Network split;
+  split.nodes.push_back(net.top());
+  for (std::size_t k = 0; k < net.sections.size(); ++k) {
+    const waves::Section& s = net.sections[k];
+    for (int part = 0; part < parts; ++part) {
+      const double tau = s.travel_time_s / parts;
+      split.sections.push_back({s.length_m / parts, tau, s.impedance, eta * s.impedance / tau});
+      if (part + 1 < parts) {
+        waves::Node damper;
+        damper.name = "damper";
+        split.nodes.push_back(damper);
+      }
+    }
+    split.nodes.push_back(net.nodes[k + 1]);
+  }
+  return split;
+}
+
+// The discretized Kelvin-Voigt string in closed form: an imposed top speed (fixed end), `parts` equal pieces of
+// impedance Z and travel time tau_p, each with a dashpot d = eta Z / tau_p across it, and a massless free bit. A piece
+// with its dashpot is a symmetric two-port: the torque on a node from it is -a v_near + b v_far, a = Z coth x + d,
+// b = Z csch x + d (x = s tau_p). Node speeds sinh(j gamma), cosh gamma = a / b, meet the fixed top; the free bit
+// asks cosh(parts gamma) = 0, i.e. a = c_k b with c_k = cos(pi (2k + 1) / (2 parts)), k = 0..parts - 1. With
+// r = eta / tau_p and A = r (1 - c_k) that is quadratic in y = e^{s tau_p}: (1 + A) y^2 - 2 c_k y + (1 - A) = 0, and
+// each of its two roots gives the chain s = (ln y + 2 pi i j) / tau_p. (In the continuum limit, parts -> infinity,
+// s^2 + eta w_k^2 s + w_k^2 = 0 with w_k = (2k + 1) pi / (2 tau): the decay rates -eta w_k^2 / 2.)
+std::vector<Complex> KelvinVoigtClosedFormRoots(double tau, int parts, double eta, double im_max, double re_min) {
+  const double tau_p = tau / parts, r = eta / tau_p;
+  std::vector<Complex> roots;
+  for (int k = 0; k < parts; ++k) {
+    const double c = std::cos(M_PI * (2 * k + 1) / (2 * parts)), a = r * (1 - c);
+    const Complex root = std::sqrt(Complex(c * c - (1 + a) * (1 - a)));
+    for (const Complex y : {(c + root) / (1 + a), (c - root) / (1 + a)}) {
+      const Complex base = std::log(y) / tau_p;
+      if (base.real() < re_min) continue;
+      for (int j = -100; j <= 100; ++j) {
+        const Complex s = base + Complex(0, 2 * M_PI * j / tau_p);
+        if (s.imag() >= -1e-12 && s.imag() <= im_max) roots.push_back(s);
+      }
+    }
+  }
+  return roots;
+}
+
+// Every root the linearization finds in the box is a root of the closed form above, and every closed-form root is
+// found; the lowest mode's decay tends to the continuum's -eta w_0^2 / 2 as the pieces shorten.
+TEST(NetworkStability, KelvinVoigtStringRootsAreTheDiscreteClosedForm) {
+  waves::Node free_bit;
+  free_bit.name = "bit";
+  const double eta = 0.002, im_max = 60, re_min = -5, tau = kPipe.travel_time_s;
+  for (int parts : {1, 4, 10}) {
+    const waves::Network net = WithKelvinVoigt(Chain(ImposedTop(10), {kPipe}, free_bit), parts, eta);
+    const auto points = NetworkSteadyStates(net);
+    ASSERT_EQ(points.size(), 1u);
+    SpectrumOptions o;
+    o.im_max = im_max;
+    o.re_min = re_min;
+    const Spectrum sp = ComputeSpectrum(LinearizeNetwork(net, points[0]).system, o);
+    const std::vector<Complex> closed = KelvinVoigtClosedFormRoots(tau, parts, eta, im_max, re_min);
+    auto distance = [](const std::vector<Complex>& set, Complex s) {
+      double d = INFINITY;
+      for (const Complex& z : set) d = std::min(d, std::abs(z - s) / (1 + std::abs(s)));
+      return d;
+    };
+    double worst = 0;
+    for (const CharacteristicRoot& r : sp.roots) {
+      if (r.s.imag() > im_max - 1 || r.s.real() < re_min + 0.1) continue;  // the box's edges
+      worst = std::max(worst, distance(closed, r.s));
+    }
+    std::vector<Complex> found;
+    for (const CharacteristicRoot& r : sp.roots) found.push_back(r.s);
+    int missing = 0;
+    for (const Complex& z : closed)
+      if (z.imag() < im_max - 1 && z.real() > re_min + 0.1 && distance(found, z) > 1e-8) {
+        ++missing;
+        ADD_FAILURE() << parts << " parts: closed-form root " << z << " not found";
+      }
+    const double w0 = M_PI / (2 * tau);
+    const double lowest = std::max_element(closed.begin(), closed.end(), [](Complex a, Complex b) {
+                            return a.real() < b.real();
+                          })->real();
+    std::printf("[ measured ] Kelvin-Voigt string, eta %.3g s, %d parts: %zu roots, largest distance to the closed "
+                "form %.2e (relative), %zu closed-form roots, %d missed; lowest mode %.6f%+.6fi (continuum decay "
+                "%.6f), essential %.4e, %s\n", eta, parts, sp.roots.size(), worst, closed.size(), missing,
+                sp.roots[0].s.real(), sp.roots[0].s.imag(), -eta * w0 * w0 / 2, sp.essential_abscissa,
+                VerdictName(sp.verdict));
+    EXPECT_LT(worst, 1e-9) << parts << " parts";
+    EXPECT_NEAR(sp.roots[0].s.real(), lowest, 1e-9);
+    if (parts == 10) {
+      EXPECT_NEAR(lowest, -eta * w0 * w0 / 2, 0.01 * eta * w0 * w0 / 2);
+    }
+  }
+}
+
+// The unbalanced BHA of json-cases/saldivar-whirl.json (5000 kg on 1.246 MN/m, 7900 N s/m; 50 kg at 5 cm).
+model::JeffcottBha WhirlingBha() { return {5000, 1.246e6, 7900, 50, 0.05}; }
+
+// The whirl in closed form, from the complex equations in the frame turning with the bit
+// (analysis/bha_whirl_linearization.hpp), with the perturbation eps of zeta and its conjugate as unknowns beside the
+// bit speed's omega (an independent route to the real mass-matrix form of the code): an imposed top speed, one section
+// (torque on the bit -Z coth(s tau) omega), a bit of inertia J and damping c_b. With zeta0 = m e w0^2 / (k - M_t w0^2
+// + i c w0), P(s) = M_t s^2 + (c + 2 i M_t w0) s + k - M_t w0^2 + i c w0 and
+// Q(s) = i (m e + M_t zeta0) s - (2 m e w0 + 2 M_t w0 zeta0 - i c zeta0):
+//   P eps + Q omega = 0,  conj-coefficient P eps~ + Q~ omega = 0,
+//   [(J + m e^2) s + c_b + Z coth(s tau)] omega
+//       + m e / 2i [(s^2 + 2 i w0 s - w0^2) eps - (s^2 - 2 i w0 s - w0^2) eps~ + (2 i s Re zeta0 - 4 i w0 Im zeta0) omega]
+//   = 0;
+// the determinant, times sinh(s tau), is entire.
+std::function<Complex(Complex)> WhirlClosedForm(const waves::Network& net, double bit_damping, double w0) {
+  return [&net, bit_damping, w0](Complex s) {
+    const model::JeffcottBha& b = *net.bit().lateral;
+    const double mt = b.TotalMass(), me = b.Moment(), c = b.damping, k = b.stiffness;
+    const Complex i(0, 1), zeta0 = me * w0 * w0 / Complex(k - mt * w0 * w0, c * w0), zeta0c = std::conj(zeta0);
+    const Complex p = mt * s * s + (c + 2.0 * i * mt * w0) * s + k - mt * w0 * w0 + i * c * w0;
+    const Complex pc = mt * s * s + (c - 2.0 * i * mt * w0) * s + k - mt * w0 * w0 - i * c * w0;
+    const Complex q = i * (me + mt * zeta0) * s - (2 * me * w0 + 2 * mt * w0 * zeta0 - i * c * zeta0);
+    const Complex qc = -i * (me + mt * zeta0c) * s - (2 * me * w0 + 2 * mt * w0 * zeta0c + i * c * zeta0c);
+    const double z = net.sections[0].impedance, tau = net.sections[0].travel_time_s;
+    const Complex sh = std::sinh(s * tau), ch = std::cosh(s * tau), half = me / (2.0 * i);
+    // Rows (eps, eps~, omega); the bit's row times sinh(s tau).
+    const Complex r_eps = half * (s * s + 2.0 * i * w0 * s - w0 * w0) * sh;
+    const Complex r_epsc = -half * (s * s - 2.0 * i * w0 * s - w0 * w0) * sh;
+    const Complex r_w = ((net.bit().inertia + me * b.eccentricity) * s + bit_damping) * sh + z * ch +
+                        half * (2.0 * i * s * zeta0.real() - 4.0 * i * w0 * zeta0.imag()) * sh;
+    // det [[p, 0, q], [0, pc, qc], [r_eps, r_epsc, r_w]]
+    return p * (pc * r_w - qc * r_epsc) + q * (0.0 - pc * r_eps);
+  };
+}
+
+TEST(NetworkStability, BhaWhirlRootsAreTheZerosOfTheRotatingFrameClosedForm) {
+  waves::Node bit = DampedBit(50);
+  bit.lateral = WhirlingBha();
+  const waves::Network net = Chain(ImposedTop(10), {kPipe}, bit);
+  ExpectRootsAreZerosOf(net, WhirlClosedForm(net, 50, 10), "imposed top, one section, unbalanced BHA at 10 rad/s");
+  // Decoupled (a vanishing unbalance): the lateral roots are the fixed frame's, M_t s^2 + c s + k = 0, shifted by the
+  // frame's turning, s - i w0 (and their conjugates).
+  waves::Node small = DampedBit(50);
+  small.lateral = WhirlingBha();
+  small.lateral->unbalance_mass = 1e-9;
+  const waves::Network decoupled = Chain(ImposedTop(10), {kPipe}, small);
+  const Spectrum sp = ComputeSpectrum(LinearizeNetwork(decoupled, NetworkSteadyStates(decoupled)[0]).system);
+  const model::JeffcottBha& b = *small.lateral;
+  const Complex fixed = (-b.damping + std::sqrt(Complex(b.damping * b.damping - 4 * b.TotalMass() * b.stiffness))) /
+                        (2 * b.TotalMass());
+  for (const Complex expected : {fixed - Complex(0, 10), fixed + Complex(0, 10)}) {
+    const Complex upper = expected.imag() < 0 ? std::conj(expected) : expected;
+    double nearest = INFINITY;
+    for (const CharacteristicRoot& r : sp.roots) nearest = std::min(nearest, std::abs(r.s - upper));
+    EXPECT_LT(nearest, 1e-8) << upper;
+  }
+}
+
 // The bit speed after a rigid-rotation kick off the steady state.
 waves::NetworkTrajectory KickedRun(waves::Network net, double w0, double kick, double t1) {
   net.initial.speed_rad_s = w0 + kick;
@@ -284,16 +442,17 @@ waves::NetworkTrajectory KickedRun(waves::Network net, double w0, double kick, d
 // Growth rate of the simulated bit speed's component at angular frequency omega: its Hann-windowed Fourier amplitude
 // over windows of four periods (at least 10 s) centred every 0.5 s in [t0, t1], least-squares slope of the logs. A mode
 // e^{(sigma + i omega) t} gives exactly sigma; modes at other frequencies leak little through the window.
-double ModeGrowthRate(const waves::NetworkTrajectory& tr, double w0, double omega, double t0, double t1) {
+double ModeGrowthRate(const std::vector<double>& time, const std::vector<double>& signal, double steady, double omega,
+                      double t0, double t1) {
   const double window = std::min(std::max(8 * M_PI / omega, 10.0), 0.5 * (t1 - t0));
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int n = 0;
   for (double centre = t0 + 0.5 * window; centre <= t1 - 0.5 * window; centre += 0.5) {
     Complex sum = 0;
-    for (std::size_t i = 0; i < tr.time_s.size(); ++i) {
-      const double x = (tr.time_s[i] - centre) / window;
+    for (std::size_t i = 0; i < time.size(); ++i) {
+      const double x = (time[i] - centre) / window;
       if (std::abs(x) > 0.5) continue;
-      sum += (tr.bit_speed_rad_s[i] - w0) * std::pow(std::cos(M_PI * x), 2) * std::polar(1.0, -omega * tr.time_s[i]);
+      sum += (signal[i] - steady) * std::pow(std::cos(M_PI * x), 2) * std::polar(1.0, -omega * time[i]);
     }
     const double y = std::log(std::abs(sum));
     sx += centre, sy += y, sxx += centre * centre, sxy += centre * y;
@@ -301,6 +460,9 @@ double ModeGrowthRate(const waves::NetworkTrajectory& tr, double w0, double omeg
   }
   EXPECT_GE(n, 10);
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+double ModeGrowthRate(const waves::NetworkTrajectory& tr, double w0, double omega, double t0, double t1) {
+  return ModeGrowthRate(tr.time_s, tr.bit_speed_rad_s, w0, omega, t0, t1);
 }
 
 // The oscillating roots below 30 rad/s are modes of the simulation: the growth rate of the simulated bit speed at such
@@ -337,6 +499,15 @@ TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedMultiSectionString) {
                                 "pipe + collars at 7 rad/s");
   ExpectGrowthRatesOfSimulation(Chain(DissipativeTop(10), {kPipe, kCollars}, StribeckBit()), 1e-3, 5, 40,
                                 "pipe + collars at 10 rad/s");
+}
+
+// Kelvin-Voigt dashpots across 10 pieces of each section: they damp the string's harmonics (eta w^2 / 2), so the
+// velocity-weakening bit's stick-slip mode stays and the higher ones decay faster.
+TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedKelvinVoigtString) {
+  ExpectGrowthRatesOfSimulation(WithKelvinVoigt(Chain(DissipativeTop(7), {kPipe, kCollars}, StribeckBit()), 10, 0.01),
+                                1e-6, 5, 30, "Kelvin-Voigt pipe + collars at 7 rad/s");
+  ExpectGrowthRatesOfSimulation(WithKelvinVoigt(Chain(PiTop(12, 500, 1000, 300), {kPipe}, StribeckBit()), 10, 0.01),
+                                1e-3, 2, 20, "Kelvin-Voigt string under a PI top at 12 rad/s");
 }
 
 TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedPiTopDrive) {
@@ -429,6 +600,47 @@ TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedCompliantGearTop) {
   slip_control.induction = InductionTop(0).induction;
   ExpectGrowthRatesOfSimulation(Chain(slip_control, {kPipe}, StribeckBit()), 1e-3, 5, 40,
                                 "slip-controlled induction motor behind a compliant gear at 12 rad/s");
+}
+
+// The unbalanced BHA on the velocity-weakening bit, started turning at the steady speed with the BHA at rest in the
+// middle (the steady whirl's radius zeta0 away: a perturbation that the lateral equations, linear in zeta at a given
+// bit speed, carry linearly): the bit speed's stick-slip mode and the whirl radius's modes (in the frame turning with
+// the bit, the lateral frequency minus and plus the bit speed) decay at the real parts of their roots.
+TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedWhirlingBha) {
+  waves::Node bit = StribeckBit();
+  bit.lateral = WhirlingBha();
+  const waves::Network net = Chain(DissipativeTop(10), {kPipe}, bit);
+  const auto points = NetworkSteadyStates(net);
+  ASSERT_EQ(points.size(), 1u);
+  const double w0 = points[0].speed_rad_s;
+  const Spectrum sp = ComputeSpectrum(LinearizeNetwork(net, points[0]).system);
+  const waves::NetworkTrajectory tr = KickedRun(net, w0, 0, 20);
+  const double radius = bit.lateral->WhirlAmplitude(w0);
+  std::printf("[ measured ] whirling BHA at %.6f rad/s (whirl radius %.4e m, drag %.3f N m): rightmost %.5f%+.5fi, "
+              "essential %.3e (%s)\n", w0, radius, bit.lateral->SteadyDragTorque(w0), sp.roots[0].s.real(),
+              sp.roots[0].s.imag(), sp.essential_abscissa, VerdictName(sp.verdict));
+  // The modes nearest to: the stick-slip mode, and the fixed frame's lateral roots -c / 2 M_t + i w_d shifted by -i w0
+  // and +i w0.
+  const model::JeffcottBha& b = *bit.lateral;
+  const double decay = -b.damping / (2 * b.TotalMass()), wd = std::sqrt(b.stiffness / b.TotalMass() - decay * decay);
+  struct Mode {
+    Complex near;
+    bool lateral;  // measured in the whirl radius, else in the bit speed
+    double t0, t1;
+  };
+  for (const Mode& m : {Mode{{-0.2, 1.9}, false, 5, 20}, Mode{{decay, wd - w0}, true, 0.5, 10.5},
+                        Mode{{decay, wd + w0}, true, 0.5, 10.5}}) {
+    const auto r = std::min_element(sp.roots.begin(), sp.roots.end(), [&](const auto& x, const auto& y) {
+      return std::abs(x.s - m.near) < std::abs(y.s - m.near);
+    });
+    ASSERT_LT(std::abs(r->s - m.near), 1.0) << m.near;
+    const double measured = m.lateral
+                                ? ModeGrowthRate(tr.time_s, tr.lateral_displacement_m, radius, r->s.imag(), m.t0, m.t1)
+                                : ModeGrowthRate(tr, w0, r->s.imag(), m.t0, m.t1);
+    std::printf("             root %.5f%+.5fi: simulated growth rate at its frequency (%s) %.5f 1/s\n", r->s.real(),
+                r->s.imag(), m.lateral ? "whirl radius" : "bit speed", measured);
+    EXPECT_NEAR(measured, r->s.real(), 0.03 * std::abs(r->s.real()) + 3e-3) << r->s;
+  }
 }
 
 }  // namespace

@@ -24,7 +24,7 @@ LinearDelaySystem CoupledString(double speed_rad_s, double weight_on_bit_N) {
   const double piece = 2000.0 / pieces;
   auto channel = [&](double impedance, double wave_speed, double damping_per_m, double top, double bit) {
     WaveChannel ch{std::vector<double>(pieces, impedance), std::vector<double>(pieces, piece / wave_speed),
-                   std::vector<double>(pieces + 1, damping_per_m * piece), top, bit};
+                   std::vector<double>(pieces + 1, damping_per_m * piece), top, bit, {}};
     ch.node_damping.front() *= 0.5, ch.node_damping.back() *= 0.5;
     return ch;
   };

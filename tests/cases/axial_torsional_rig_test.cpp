@@ -93,7 +93,7 @@ TEST(AxialTorsionalRig, BadInputNamesTheField) {
   doc = RigCase();
   doc["model"]["axial_coupling"] = false;
   EXPECT_EQ(RefusedPath(doc), "/model/hoist/rig");
-  EXPECT_EQ(RefusedPath(RigCase(), true), "/model/hoist/rig");
+  EXPECT_EQ(RefusedPath(RigCase(), true), "");  // the stability analysis linearizes the rig
 }
 
 }  // namespace

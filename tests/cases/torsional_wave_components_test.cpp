@@ -84,12 +84,6 @@ TEST(TorsionalWaveComponents, BadInputNamesTheField) {
   doc["model"]["bit"]["inertia_kgm2"] = 0;
   EXPECT_EQ(RefusedPath(doc), "/model/bit/inertia_kgm2");
 
-  // No linearization of either component yet: the stability analysis says which.
-  doc = Load("saldivar-whirl");
-  EXPECT_EQ(RefusedPath(doc, true), "/model/bit/unbalance");
-  doc = Load("saldivar-stickslip");
-  doc["model"]["string"]["kelvin_voigt_s"] = 0.02;
-  EXPECT_EQ(RefusedPath(doc, true), "/model/string/kelvin_voigt_s");
 }
 
 // The kind's whirl: the mean radius over the window against m e w^2 / sqrt((k - (M + m) w^2)^2 + (c w)^2) at the

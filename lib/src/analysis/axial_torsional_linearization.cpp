@@ -1,5 +1,7 @@
 #include "drillwave/analysis/axial_torsional_linearization.hpp"
 
+#include "drillwave/analysis/bha_whirl_linearization.hpp"
+
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -12,8 +14,10 @@ namespace {
 waves::Network ChannelNetwork(const WaveChannel& ch, const AxialTorsionalString* top_drive, double speed) {
   const bool torsion = top_drive != nullptr;
   const std::size_t pieces = ch.impedance.size();
-  if (pieces == 0 || ch.travel_time_s.size() != pieces || ch.node_damping.size() != pieces + 1)
-    throw std::invalid_argument("a channel needs impedances and travel times per piece and a damping per node");
+  if (pieces == 0 || ch.travel_time_s.size() != pieces || ch.node_damping.size() != pieces + 1 ||
+      !(ch.dashpot.empty() || ch.dashpot.size() == pieces))
+    throw std::invalid_argument("a channel needs impedances and travel times per piece (and dashpots, if any) and a "
+                                "damping per node");
   if (!(ch.top_inertia > 0) || !(ch.bit_inertia > 0))
     throw std::invalid_argument("the coupled model's top and bit need inertias (masses) > 0");
   waves::Network net;
@@ -21,6 +25,7 @@ waves::Network ChannelNetwork(const WaveChannel& ch, const AxialTorsionalString*
     waves::Section s;
     s.travel_time_s = ch.travel_time_s[k];
     s.impedance = ch.impedance[k];
+    if (!ch.dashpot.empty()) s.dashpot = ch.dashpot[k];
     net.sections.push_back(s);
   }
   net.nodes.resize(pieces + 1);
@@ -76,16 +81,27 @@ NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string,
   const int tb = IndexOf(torsion.state_names, "bit_speed_rad_s");
   // Friction of the wear flats: only a Stribeck law's slope moves it.
   torsion.system.a0(tb, tb) -= point.friction_slope_Nms_per_rad / bit_inertia;
-  if (!string.axial_coupling) return torsion;  // the depth of cut is held: the bit torque moves with friction alone
+  if (!string.axial_coupling) {  // the depth of cut is held: the bit torque moves with friction alone
+    if (string.unbalance) AddBhaWhirl(torsion, tb, bit_inertia, bit_inertia, *string.unbalance, w0);
+    return torsion;
+  }
   if (!(v0 > 0)) throw std::invalid_argument("steady drilling needs a rate of penetration > 0");
 
-  const NetworkLinearization axial = LinearizeChannel(string.axial, nullptr, v0, 0);
+  // A rig: the block rides with the hoist (rigid hook), its damper on the hoist's speed.
+  WaveChannel axial_channel = string.axial;
+  if (string.rig) {
+    axial_channel.top_inertia += string.rig->block_mass;
+    axial_channel.node_damping.front() += string.rig->block_damping;
+  }
+  const NetworkLinearization axial = LinearizeChannel(axial_channel, nullptr, v0, 0);
   const LinearDelaySystem& ts = torsion.system;
   const LinearDelaySystem& as = axial.system;
   const int t_waves = ts.derivative_only_states, a_waves = as.derivative_only_states;
   const int t_nodes = ts.dimension() - t_waves, a_nodes = as.dimension() - a_waves;
-  // Node states of both channels, then the derivative-only tail: bit angle, bit position, torsional and axial waves.
-  const int phi = t_nodes + a_nodes, u = phi + 1, n = u + 1 + t_waves + a_waves;
+  const int rig = t_nodes + a_nodes, rig_states = string.rig ? 3 : 0;
+  // Node states of both channels, the rig's, then the derivative-only tail: bit angle, bit position, torsional and
+  // axial waves.
+  const int phi = rig + rig_states, u = phi + 1, n = u + 1 + t_waves + a_waves;
   auto map_t = [&](int i) { return i < t_nodes ? i : u + 1 + (i - t_nodes); };
   auto map_a = [&](int i) { return i < a_nodes ? t_nodes + i : u + 1 + t_waves + (i - a_nodes); };
 
@@ -93,6 +109,11 @@ NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string,
   out.state_names.resize(n);
   for (int i = 0; i < ts.dimension(); ++i) out.state_names[map_t(i)] = "torsion_" + torsion.state_names[i];
   for (int i = 0; i < as.dimension(); ++i) out.state_names[map_a(i)] = "axial_" + AxialName(axial.state_names[i]);
+  if (string.rig) {
+    out.state_names[rig] = "rig_derrick_displacement_m";
+    out.state_names[rig + 1] = "rig_derrick_speed_m_s";
+    out.state_names[rig + 2] = "rig_cable_stretch_m";
+  }
   out.state_names[phi] = "bit_angle_rad";
   out.state_names[u] = "bit_position_m";
 
@@ -118,6 +139,17 @@ NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string,
   };
   for (const DelayTerm& d : ts.delays) add_neutral(d.tau, scatter(d.neutral, map_t));
   for (const DelayTerm& d : as.delays) add_neutral(d.tau, scatter(d.neutral, map_a));
+  if (string.rig) {
+    const model::HoistRig& r = *string.rig;
+    const int y1 = rig, y1d = rig + 1, stretch = rig + 2, hoist = map_a(IndexOf(axial.state_names, "top_speed_rad_s"));
+    sys.a0(y1, y1d) = 1;
+    sys.a0(y1d, y1d) = -r.derrick_damping / r.derrick_mass;
+    sys.a0(y1d, y1) = -r.ground_stiffness / r.derrick_mass;
+    sys.a0(y1d, stretch) = r.cable_stiffness / r.derrick_mass;
+    sys.a0(stretch, hoist) = 1;
+    sys.a0(stretch, y1d) = -1;
+    sys.a0(hoist, stretch) -= r.cable_stiffness / axial_channel.top_inertia;
+  }
 
   // The cut: delta d = n (u - u(t - t_n0)) - (n V0 / Omega0) (phi - phi(t - t_n0)), t_n0 = 2 pi / (n Omega0).
   const double pi = 3.14159265358979323846;
@@ -135,6 +167,7 @@ NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string,
     sys.a0(row, phi) -= k * per_phi, cut.retarded(row, phi) += k * per_phi;
   }
   sys.delays.push_back(std::move(cut));
+  if (string.unbalance) AddBhaWhirl(out, wb, bit_inertia, bit_inertia, *string.unbalance, w0);
   return out;
 }
 

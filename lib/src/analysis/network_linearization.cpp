@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "drillwave/analysis/bha_whirl_linearization.hpp"
+
 namespace drillwave::analysis {
 namespace {
 
@@ -13,17 +15,20 @@ using waves::Node;
 
 double Clamp(double u, double limit) { return limit > 0 ? std::clamp(u, -limit, limit) : u; }
 
-// Torque the nodes take from the string in steady rotation at w: ground damping everywhere plus friction.
+// Torque a node takes from the string in steady rotation at w: ground damping, friction, and the steady whirl of a
+// lateral BHA.
+double NodeTorque(const Node& n, double w) {
+  return n.ground_damping * w + (n.friction ? n.friction->SlipTorque(w) : 0.0) +
+         (n.lateral ? n.lateral->SteadyDragTorque(w) : 0.0);
+}
+
 double Load(const Network& net, double w) {
   double load = 0;
-  for (const Node& n : net.nodes) load += n.ground_damping * w + (n.friction ? n.friction->SlipTorque(w) : 0.0);
+  for (const Node& n : net.nodes) load += NodeTorque(n, w);
   return load;
 }
 
-double NodeTorque(const Node& n, double w) {
-  return n.ground_damping * w + (n.friction ? n.friction->SlipTorque(w) : 0.0);
-}
-
+// Its slope without the whirl's (AddBhaWhirl linearizes the whirl with its own states).
 double NodeTorqueSlope(const Node& n, double w) {
   return n.ground_damping + (n.friction ? n.friction->SlipTorqueDerivative(w) : 0.0);
 }
@@ -274,21 +279,61 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
     for (const Arrival& a : arrivals(i)) z += a.impedance;
     return z;
   };
-  // factor * (speed of node i) into row `row`: a state, nothing (imposed), or the massless balance of the arrivals
-  // (whose damping is the ground's, the friction slope and a dissipative top's beta).
-  auto add_speed = [&](int row, int i, double factor) {
-    const Node& node = net.nodes[i];
-    if (speed[i] >= 0) {
-      sys.a0(row, speed[i]) += factor;
-    } else if (node.drive != Drive::kPrescribedSpeed) {
-      const double damping =
-          NodeTorqueSlope(node, w0) + (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0.0);
-      const double denominator = impedance_sum(i) + damping;
-      if (!(std::abs(denominator) > 1e-12 * impedance_sum(i)))
+  // Every node's speed perturbation as a linear form: coefficients of the states (into A_0) and of the arriving waves'
+  // derivatives (into the neutral term of the wave's section, one travel time late). An inertial node's speed is its
+  // state, an imposed one's nothing; the massless nodes balance the arrivals against their damping (the ground's, the
+  // friction slope and a dissipative top's beta) and, with Kelvin-Voigt dashpots kv across the sections, against their
+  // neighbours' speeds, as the simulation's node system:
+  //   (sum Z + damping + kv_above + kv_below) v_i - kv_above v_{i-1} - kv_below v_{i+1} = sum 2 Z w_in,
+  // with the known speeds of inertial neighbours moved to the right. One linear system over the massless nodes
+  // (diagonal without dashpots).
+  struct SpeedForm {
+    Eigen::RowVectorXd state, wave;  // wave: by the arriving wave's column
+  };
+  std::vector<SpeedForm> speed_form(nodes, {Eigen::RowVectorXd::Zero(n), Eigen::RowVectorXd::Zero(n)});
+  std::vector<int> unknown(nodes, -1);  // massless nodes of free speed, numbered
+  int unknowns = 0;
+  for (int i = 0; i < nodes; ++i) {
+    if (speed[i] >= 0) speed_form[i].state(speed[i]) = 1;
+    else if (net.nodes[i].drive != Drive::kPrescribedSpeed) unknown[i] = unknowns++;
+  }
+  auto section_of = [&](int column) { return (column - first_wave) / 2; };
+  if (unknowns > 0) {
+    Eigen::MatrixXd balance = Eigen::MatrixXd::Zero(unknowns, unknowns), rhs = Eigen::MatrixXd::Zero(unknowns, 2 * n);
+    for (int i = 0; i < nodes; ++i) {
+      const int u = unknown[i];
+      if (u < 0) continue;
+      const Node& node = net.nodes[i];
+      balance(u, u) = impedance_sum(i) + NodeTorqueSlope(node, w0) +
+                      (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0.0);
+      for (const Arrival& a : arrivals(i)) {
+        rhs(u, n + a.column) += 2 * a.impedance;
+        const double kv = net.sections[a.section].dashpot;
+        if (kv == 0) continue;
+        const int neighbour = a.section == i ? i + 1 : i - 1;
+        balance(u, u) += kv;
+        if (unknown[neighbour] >= 0) balance(u, unknown[neighbour]) -= kv;
+        else rhs.block(u, 0, 1, n) += kv * speed_form[neighbour].state;  // imposed: no perturbation
+      }
+      if (!(std::abs(balance(u, u)) > 1e-12 * impedance_sum(i)))
         throw std::invalid_argument("node '" + node.name + "' is massless and its torque slope cancels the string's "
                                     "impedance: the linearization is singular");
-      for (const Arrival& a : arrivals(i)) sys.delays[a.section].neutral(row, a.column) += factor * 2 * a.impedance / denominator;
     }
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(balance);
+    if (!(lu.rcond() > 1e-12))
+      throw std::invalid_argument("the massless nodes' balance with the Kelvin-Voigt dashpots is singular");
+    const Eigen::MatrixXd solved = lu.solve(rhs);
+    for (int i = 0; i < nodes; ++i)
+      if (unknown[i] >= 0) {
+        speed_form[i].state = solved.block(unknown[i], 0, 1, n);
+        speed_form[i].wave = solved.block(unknown[i], n, 1, n);
+      }
+  }
+  // factor * (speed of node i) into row `row`.
+  auto add_speed = [&](int row, int i, double factor) {
+    sys.a0.row(row) += factor * speed_form[i].state;
+    for (int c = first_wave; c < n; ++c)
+      if (speed_form[i].wave(c) != 0) sys.delays[section_of(c)].neutral(row, c) += factor * speed_form[i].wave(c);
   };
 
   for (int i = 0; i < nodes; ++i) {
@@ -330,7 +375,13 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
     };
 
     const double inertia = node.LumpedInertia();
-    for (const Arrival& a : arrivals(i)) sys.delays[a.section].neutral(v, a.column) += 2 * a.impedance / inertia;
+    for (const Arrival& a : arrivals(i)) {
+      sys.delays[a.section].neutral(v, a.column) += 2 * a.impedance / inertia;
+      const double kv = net.sections[a.section].dashpot;  // Kelvin-Voigt: kv (v_neighbour - v)
+      if (kv == 0) continue;
+      add_speed(v, a.section == i ? i + 1 : i - 1, kv / inertia);
+      sys.a0(v, v) -= kv / inertia;
+    }
     sys.a0(v, v) -= (impedance_sum(i) + NodeTorqueSlope(node, w0)) / inertia;
     if (motor[i] >= 0) {  // the gear passes k twist + c (w_m - w) to the node
       const model::Gear& g = node.gear;
@@ -373,6 +424,10 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
       }
     }
   }
+  const Node& bit = net.bit();
+  if (bit.lateral)
+    AddBhaWhirl(out, speed[nodes - 1], bit.LumpedInertia(), bit.LumpedInertia() - bit.lateral->AddedInertia(),
+                *bit.lateral, w0);
   return out;
 }
 

@@ -26,6 +26,8 @@ void CheckLinearizable(const waves::Network& net) {
     throw std::invalid_argument("the linearization covers a massless dissipative top (type \"dissipative\")");
   if (!(top.drive_damping > 0)) throw std::invalid_argument("the top's beta must be > 0");
   if (net.bit().massless()) throw std::invalid_argument("the linearization needs a bit inertia > 0");
+  if (net.HasKelvinVoigt()) throw std::invalid_argument("the scalar form has no Kelvin-Voigt dashpot");
+  if (net.bit().lateral) throw std::invalid_argument("the scalar form has no lateral BHA");
 }
 
 std::vector<TorsionalOperatingPoint> SteadySlidingStates(const waves::Network& net, double top_speed_rad_s) {

@@ -3,10 +3,11 @@
 // small perturbations about it: the stability of the Richard-Germay-Detournay model with distributed strings
 // (DESIGN.md §3-4).
 //
-// Each channel is a chain of wave pieces between massless nodes (network_linearization.hpp builds its equations): the
-// torsional one between a top drive under a PI speed controller (its output the torque, a DC motor's voltage or an
-// induction motor's torque demand, through a rigid or compliant gear) and the bit's inertia, the axial one between the
-// hoist's mass (under a constant hook force: no linear term) and the bit's mass. The bit-rock law couples them
+// Each channel is a chain of wave pieces between massless nodes (network_linearization.hpp builds its equations, with
+// the Kelvin-Voigt dashpots across the pieces): the torsional one between a top drive under a PI speed controller (its
+// output the torque, a DC motor's voltage or an induction motor's torque demand, through a rigid or compliant gear)
+// and the bit's inertia, the axial one between the hoist's mass (under a constant hook force: no linear term; or
+// hanging from the hoisting rig) and the bit's mass. The bit-rock law couples them
 // through the depth of cut d = n (U(t) - U(t - t_n)), t_n solving Phi(t) - Phi(t - t_n) = 2 pi / n. About steady
 // drilling (Phi = Omega0 t, U = V0 t, t_n0 = 2 pi / (n Omega0)) the cut delay moves by
 //   delta t_n = -(phi(t) - phi(t - t_n0)) / Omega0     (the bit ahead of its steady angle reaches the last cut sooner)
@@ -17,9 +18,12 @@
 // Stribeck slope. The bit angle phi and position u enter only through these differences: they are derivative-only
 // states of the LinearDelaySystem (its characteristic function is divided by s for each), so a shift of the bit's
 // angle or depth, which changes nothing, is no root.
+#include <optional>
 #include <vector>
 
 #include "drillwave/analysis/network_linearization.hpp"
+#include "drillwave/model/hoist_rig.hpp"
+#include "drillwave/model/jeffcott_bha.hpp"
 
 namespace drillwave::analysis {
 
@@ -29,6 +33,7 @@ struct WaveChannel {
   std::vector<double> node_damping;              // per node (pieces + 1), >= 0
   double top_inertia = 0;                        // J_td [kg m^2] or the hoist's mass [kg], > 0
   double bit_inertia = 0;                        // J_b or M_b, > 0
+  std::vector<double> dashpot;                   // per piece: Kelvin-Voigt eta K / length across it (empty: none)
 };
 
 struct AxialTorsionalString {
@@ -46,6 +51,14 @@ struct AxialTorsionalString {
   waves::DcMotor dc_motor{};
   model::InductionMotor induction_motor{};
   model::Gear gear{};
+  // The two-mass hoisting rig above the hoist (model::HoistRig, chapter eq. 2.22; absent: a constant hook force). The
+  // hoist's mass then carries the block's too, the block's damper acts on the hoist's speed, and the derrick's
+  // displacement and speed and the cable's stretch join the states: about steady drilling (constant pay-out)
+  //   y1' = y1d,  M1 y1d' = -gamma1 y1d - k01 y1 + k12 delta,  delta' = v_hoist - y1d,
+  //   (M2 + M_td) v_hoist' = (the string's pull) - gamma2 v_hoist - k12 delta.
+  std::optional<model::HoistRig> rig{};
+  // The BHA's lateral motion with a mass unbalance at the bit (bha_whirl_linearization.hpp); absent: none.
+  std::optional<model::JeffcottBha> unbalance{};
 };
 
 struct SteadyDrilling {
@@ -56,7 +69,8 @@ struct SteadyDrilling {
 };
 
 // States: the top drive's speed, the bit's speed, the PI's integral, the motor's current, fluxes or speed and gear
-// twist (network_linearization.hpp), the hoist's speed, the bit's axial speed, then
+// twist (network_linearization.hpp), the hoist's speed, the bit's axial speed, with a rig its three states, with an
+// unbalance the whirl's four, then
 // the derivative-only states: bit angle, bit position, the torsional waves, the axial waves (without axial coupling:
 // the torsional network alone). Throws std::invalid_argument for inconsistent sizes or non-positive inertias.
 NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string, const SteadyDrilling& point);

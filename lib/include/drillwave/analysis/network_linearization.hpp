@@ -10,7 +10,10 @@
 // current, induction motors their four fluxes (about the fluxes that hold still in the simulation's own equations),
 // and a motor behind a compliant gear its speed (referred to the node) and the gear's twist. A rigid gear adds
 // n^2 J_m to the node's inertia; the drives' constants are referred to the node's side as the simulation refers them.
-// A massless node's speed is algebraic in the arriving waves and is substituted.
+// A massless node's speed is algebraic in the arriving waves and is substituted; Kelvin-Voigt dashpots across the
+// sections (waves::Section::dashpot) tie it to its neighbours' speeds, and the massless nodes' speeds then solve one
+// linear system (as in the simulation), substituted likewise; an inertial node feels kv (v_neighbour - v). A lateral
+// BHA at the bit adds its whirl in the frame turning with the bit (bha_whirl_linearization.hpp).
 //
 // At high frequency an inertial node reflects like a fixed end (-1), as does an imposed speed: between two such ends
 // a lossless string has its essential spectrum on the imaginary axis (Spectrum::Verdict::kMarginal).
@@ -26,8 +29,8 @@ struct NetworkOperatingPoint {
   double top_setpoint = 0;     // the top's final set-point (speed, torque or voltage, by drive)
   double speed_rad_s = 0;      // w0: every node turns at it
   double top_torque_Nm = 0;    // what the top supplies: the whole load (fixes a slip-controlled motor's supply)
-  double bit_torque_Nm = 0;    // friction plus ground damping of the bit
-  double bit_torque_slope_Nms_per_rad = 0;  // d/dw of that (negative: velocity weakening)
+  double bit_torque_Nm = 0;    // friction plus ground damping of the bit, plus a lateral BHA's steady whirl drag
+  double bit_torque_slope_Nms_per_rad = 0;  // d/dw of friction plus damping (negative: velocity weakening)
 };
 
 // Every steady rotation w0 > 0 at the final set-point, ascending. Imposed-speed, PI, DC and induction speed-controlled

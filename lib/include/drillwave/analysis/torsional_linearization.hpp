@@ -23,7 +23,7 @@ struct TorsionalOperatingPoint {
 };
 
 // Throws std::invalid_argument unless the network is one section, a massless top of kind kSpeedDashpot, and a bit
-// with inertia > 0 (the form the reduction holds for).
+// with inertia > 0, without Kelvin-Voigt dashpots or a lateral BHA (the form the reduction holds for).
 void CheckLinearizable(const waves::Network& net);
 
 // Every steady sliding speed w0 > 0 for the top set-point Omega, ascending (found on a fine grid of (0, Omega']

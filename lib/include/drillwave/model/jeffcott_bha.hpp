@@ -27,6 +27,11 @@ struct JeffcottBha {
   double WhirlAmplitude(double w) const {
     return Moment() * w * w / std::hypot(stiffness - TotalMass() * w * w, damping * w);
   }
+  // Torque the steady whirl at bit speed w takes from the bit: the lateral damper's power c w^2 r^2 over w.
+  double SteadyDragTorque(double w) const {
+    const double r = WhirlAmplitude(w);
+    return damping * w * r * r;
+  }
   // What the bit's inertia gains against its angular acceleration when x'' and y'' are eliminated from eq. 23:
   // m e^2 - (m e)^2 / (M + m).
   double AddedInertia() const { return Moment() * eccentricity - Moment() * Moment() / TotalMass(); }

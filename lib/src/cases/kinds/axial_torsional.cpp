@@ -676,18 +676,8 @@ HoistBalance Balance(const Model& md, const StringSpec& string) {
   return b;
 }
 
-// Components without linear equations yet are refused by their field.
-void RequireLinearizable(const Model& md) {
-  const char* field = md.torsion.kelvin_voigt() ? "/model/string/kelvin_voigt_s"
-                      : md.axial.kelvin_voigt() ? "/model/string/axial_kelvin_voigt_s"
-                      : md.unbalance.has_value() ? "/model/bit/unbalance"
-                      : md.rig.has_value()       ? "/model/hoist/rig"
-                                                : nullptr;
-  if (field) throw InputError(field, "the coupled model's stability analysis has no linearization of this component yet");
-}
-
 analysis::WaveChannel LinearChannel(const Channel& ch, double top_inertia, double bit_inertia) {
-  return {ch.z, ch.tau, ch.damping, top_inertia, bit_inertia};
+  return {ch.z, ch.tau, ch.damping, top_inertia, bit_inertia, ch.kv};
 }
 
 // The top drive's motor and gear as the linearization's network top. The DC motor's voltage R/K u_PI + K Omega_ref is
@@ -716,14 +706,20 @@ double SteadyTopTorque(const Channel& torsion, double bit_torque, double omega) 
 }
 
 std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
-  RequireLinearizable(md_);
   // Steady drilling at the final set-points: the hook force leaves W0 on the bit by the axial balance.
   const double omega = md_.top_speed.knots().back().second;
   HoistBalance balance;
   for (double l : md_.axial.load) balance.buoyant_weight += l;
   for (double c : md_.axial.damping) balance.drag_per_speed += c;  // sum of c_a times piece length
   Model at = md_;
-  if (md_.axial_coupling) at.weight_on_bit = balance.WeightOnBit(md_, omega, md_.hook_force.knots().back().second);
+  if (md_.rig) {
+    // The drawworks pays out at the rate of penetration of the start: steady drilling at omega keeps that rate, and
+    // the weight on bit cuts its depth per revolution.
+    const double rop = SteadyDrilling(md_, md_.top_speed.Value(0.0)).rop;
+    at.weight_on_bit = md_.ContactForce() + md_.CutWeightPerDepth() * 2 * kPi * rop / omega;
+  } else if (md_.axial_coupling) {
+    at.weight_on_bit = balance.WeightOnBit(md_, omega, md_.hook_force.knots().back().second);
+  }
   if (!(omega > 0) || !(at.weight_on_bit > md_.ContactForce())) return {};  // no steady drilling
   const Steady s = SteadyDrilling(at, omega);
   analysis::AxialTorsionalString string{LinearChannel(md_.torsion, md_.top_inertia, md_.bit_inertia),
@@ -731,7 +727,11 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
                                         md_.kp, md_.ki, md_.CutWeightPerDepth(), md_.CutTorquePerDepth(),
                                         md_.blades, md_.axial_coupling};
   DescribeTopDrive(md_, string);
-  const double top_torque = SteadyTopTorque(md_.torsion, s.tob, omega);
+  string.rig = md_.rig;
+  string.unbalance = md_.unbalance;
+  // The steady whirl of an unbalanced BHA costs the bit a torque too.
+  const double whirl_drag = md_.unbalance ? md_.unbalance->SteadyDragTorque(omega) : 0.0;
+  const double top_torque = SteadyTopTorque(md_.torsion, s.tob + whirl_drag, omega);
   // Stribeck: d mu / dw = -(mu_s - mu) / w_s e^{-w / w_s} while turning forward.
   const double mu_slope = md_.stribeck_speed > 0 ? -(md_.static_mu - md_.mu) / md_.stribeck_speed *
                                                        std::exp(-omega / md_.stribeck_speed)
@@ -745,18 +745,21 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   } catch (const std::invalid_argument& e) {  // parameters out of the linearization's range (e.g. mutated to 1e-300)
     throw InputError("/model", std::string("no linearization for this model: ") + e.what());
   }
-  return {{{{"bit_speed_rad_s", omega},
-            {"weight_on_bit_N", s.wob},
-            {"hook_force_N", md_.hook_force.knots().back().second},
-            {"depth_of_cut_m", s.depth},
-            {"rop_m_h", 3600 * s.rop},
-            {"bit_torque_Nm", s.tob},
-            {"top_torque_Nm", top_torque},
-            {"bit_torque_slope_Nms_per_rad", friction_slope},
-            {"cut_delay_s", 2 * kPi / (md_.blades * omega)},
-            {"axial_coupling", md_.axial_coupling}},
-           std::move(lin.state_names),
-           std::move(lin.system)}};
+  nlohmann::json point = {{"bit_speed_rad_s", omega},
+                          {"weight_on_bit_N", s.wob},
+                          {"hook_force_N", md_.hook_force.knots().back().second},
+                          {"depth_of_cut_m", s.depth},
+                          {"rop_m_h", 3600 * s.rop},
+                          {"bit_torque_Nm", s.tob},
+                          {"top_torque_Nm", top_torque},
+                          {"bit_torque_slope_Nms_per_rad", friction_slope},
+                          {"cut_delay_s", 2 * kPi / (md_.blades * omega)},
+                          {"axial_coupling", md_.axial_coupling}};
+  if (md_.unbalance) {
+    point["steady_whirl_radius_m"] = md_.unbalance->WhirlAmplitude(omega);
+    point["whirl_drag_torque_Nm"] = whirl_drag;
+  }
+  return {{std::move(point), std::move(lin.state_names), std::move(lin.system)}};
 }
 
 class AxialTorsionalKind : public ModelKind {

@@ -218,9 +218,6 @@ class TorsionalWaveModel : public PreparedModel {
   // the chapter's scalar neutral DDE (DESIGN.md §1); every other string the wave network's linearization
   // (analysis/network_linearization.hpp), whose roots are the same where both apply.
   std::vector<LinearizedOperatingPoint> Linearize() const override {
-    if (net_.HasKelvinVoigt() || net_.bit().lateral)
-      throw InputError(net_.HasKelvinVoigt() ? "/model/string/kelvin_voigt_s" : "/model/bit/unbalance",
-                       "the wave network's stability analysis has no linearization of this component yet");
     bool scalar_form = true;
     try {
       analysis::CheckLinearizable(net_);
@@ -263,20 +260,23 @@ class TorsionalWaveModel : public PreparedModel {
       throw InputError("/model", std::string("no linearization for this string: ") + e.what());
     }
     for (const analysis::NetworkOperatingPoint& p : steady) {
+      nlohmann::json values = {{"top_setpoint", p.top_setpoint},
+                               {"bit_speed_rad_s", p.speed_rad_s},
+                               {"top_torque_Nm", p.top_torque_Nm},
+                               {"bit_torque_Nm", p.bit_torque_Nm},
+                               {"bit_torque_slope_Nms_per_rad", p.bit_torque_slope_Nms_per_rad},
+                               {"sections", net_.sections.size()}};
+      if (const auto& lateral = net_.bit().lateral) {
+        values["steady_whirl_radius_m"] = lateral->WhirlAmplitude(p.speed_rad_s);
+        values["whirl_drag_torque_Nm"] = lateral->SteadyDragTorque(p.speed_rad_s);
+      }
       analysis::NetworkLinearization lin;
       try {
         lin = analysis::LinearizeNetwork(net_, p);
       } catch (const std::invalid_argument& e) {
         throw InputError("/model", std::string("no linearization for this string: ") + e.what());
       }
-      points.push_back({{{"top_setpoint", p.top_setpoint},
-                         {"bit_speed_rad_s", p.speed_rad_s},
-                         {"top_torque_Nm", p.top_torque_Nm},
-                         {"bit_torque_Nm", p.bit_torque_Nm},
-                         {"bit_torque_slope_Nms_per_rad", p.bit_torque_slope_Nms_per_rad},
-                         {"sections", net_.sections.size()}},
-                        std::move(lin.state_names),
-                        std::move(lin.system)});
+      points.push_back({std::move(values), std::move(lin.state_names), std::move(lin.system)});
     }
     return points;
   }
