@@ -3,7 +3,9 @@
 // values — read here, by the test, never by the tool — is compared with the recording feature by feature, as the
 // diagnosis loop compares (noise carried into the measured channels, each difference in the feature's own spread,
 // on the held-out half of the usable recording, as `diagnose` takes it). With the true effects on, the model must come closer to the recording than the
-// baseline does, and within a few spreads of it; where it cannot, the reason is physics the test names.
+// baseline does, and within a few spreads of it; where it cannot, the reason is physics the test names, and
+// KeyConsistencyAtTheKeysRock shows it: the recording's own rock (the KEY's nuisance eps and sigma l) and a start
+// as quiet as the simulator's bring the model to it.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -92,17 +94,34 @@ double ClosestDrawError(const nlohmann::json& doc, const Recording& recording) {
   return closest;
 }
 
+// The KEY's entry of a recording (effects, nuisance, config, stats).
+nlohmann::json KeyRecord(const std::string& name) {
+  const nlohmann::json key = nlohmann::json::parse(std::ifstream(kSynthetic / "KEY.json"));
+  for (const auto& r : key.at("recordings"))
+    if (r.at("file") == name + ".csv") return r;
+  ADD_FAILURE() << name << " is not in the KEY";
+  return {{"effects", nlohmann::json::object()}};
+}
+
+// The baseline case at the recording's operating point, as `diagnose` builds it from the sidecar.
+nlohmann::json SidecarCase(const std::string& name) {
+  return CaseFromSidecar(io::LoadJsonFile((kSynthetic / (name + ".json")).string()),
+                         io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json"),
+                         kSidecarWarmupS);
+}
+
 // Where the components at the KEY's values do not come within the spreads, and why (the README says so too).
 const std::map<std::string, std::string> kExplained = {
+    {"rec01", "a transient: the soft drive's 4-s oscillation grows through the whole recording (top rpm std 1.4 in "
+              "its first 10 s, 7.7 in its last), pumped by the axial chatter; where it stands at the held-out "
+              "window depends on the rock (the KEY's eps is 0.857 of nominal) and on the start (the sidecar's 5 % "
+              "set-point bump against the simulator's steady start): 1.9-10.3 over start bumps of 0-10 %, 0.05-0.16 "
+              "with the KEY's rock and bumps up to 1 % (KeyConsistencyAtTheKeysRock)"},
     {"rec04", "the recording switches from stick-slip to bit bouncing at 16 s, one of the baseline's coexisting "
               "attractors (BASELINE.md); drillwave's model stays in stick-slip from the same operating point"},
-    {"rec11", "the BHA string sits at a stability boundary: with the KEY's collars drillwave's model is smooth at "
-              "170 and 182 m of collars and oscillates (period 4.5 s) at 189.4 and 200 m, where the recording is "
-              "smooth at 189.4 m; a 4 % shift of the boundary between the two simulators"},
-};
-// Closer than the baseline but not within the spreads, not yet explained.
-const std::map<std::string, std::string> kNotYetExplained = {
-    {"rec01", "side friction and a soft drive together: each alone agrees (rec07, rec05), the pair does not"},
+    {"rec11", "the BHA string sits at a stability boundary, which the rock moves: at the nominal rock drillwave's "
+              "model oscillates with the KEY's collars where the recording is smooth; at the KEY's rock (eps 1.126 "
+              "of nominal) it is smooth and agrees (KeyConsistencyAtTheKeysRock)"},
 };
 
 class KeyConsistency : public ::testing::TestWithParam<std::string> {};
@@ -110,15 +129,9 @@ class KeyConsistency : public ::testing::TestWithParam<std::string> {};
 TEST_P(KeyConsistency, TheConcealedEffectsAtTheirKeyValuesBringTheModelToTheRecording) {
   const std::string name = GetParam();
   if (!fs::exists(kSynthetic / "KEY.json")) GTEST_SKIP() << "the synthetic recordings are not at " << kSynthetic;
-  const nlohmann::json key = nlohmann::json::parse(std::ifstream(kSynthetic / "KEY.json"));
-  nlohmann::json effects;
-  for (const auto& r : key.at("recordings"))
-    if (r.at("file") == name + ".csv") effects = r.at("effects");
+  const nlohmann::json effects = KeyRecord(name).at("effects");
   const Recording recording = LoadRecording((kSynthetic / (name + ".csv")).string());
-  const nlohmann::json baseline =
-      CaseFromSidecar(io::LoadJsonFile((kSynthetic / (name + ".json")).string()),
-                      io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json"),
-                      kSidecarWarmupS);
+  const nlohmann::json baseline = SidecarCase(name);
   nlohmann::json with_key = baseline;
   std::string list;
   for (const auto& [effect, parameters] : effects.items()) SwitchOn(effect, parameters, with_key), list += effect + " ";
@@ -130,9 +143,46 @@ TEST_P(KeyConsistency, TheConcealedEffectsAtTheirKeyValuesBringTheModelToTheReco
   if (!effects.empty()) {
     EXPECT_LT(after, before) << name << ": the true effects do not bring the model closer";
   }
-  if (kNotYetExplained.count(name)) GTEST_SKIP() << name << ": error " << after << ": " << kNotYetExplained.at(name);
   EXPECT_LT(after, 5.0) << name << ": more than about two spreads off with the true effects on";
 }
+
+// The explained recordings as the simulator made them: the KEY's effects on the recording's own rock (its nuisance
+// eps and sigma l, drawn per recording: BASELINE.md), started from steady drilling with a set-point bump of
+// `start_bump` instead of the sidecar's 5 % (the simulator starts from the steady state plus a tiny roughness). The
+// tool never knows the rock's draw; this shows that the components, not the physics between them, agree.
+struct QuietStart {
+  std::string recording;
+  double start_bump;
+};
+
+class KeyConsistencyAtTheKeysRock : public ::testing::TestWithParam<QuietStart> {};
+
+TEST_P(KeyConsistencyAtTheKeysRock, TheExplainedRecordingsAgreeOnTheirOwnRock) {
+  const auto& [name, bump] = GetParam();
+  if (!fs::exists(kSynthetic / "KEY.json")) GTEST_SKIP() << "the synthetic recordings are not at " << kSynthetic;
+  const nlohmann::json entry = KeyRecord(name);
+  nlohmann::json doc = SidecarCase(name);
+  for (const auto& [effect, parameters] : entry.at("effects").items()) SwitchOn(effect, parameters, doc);
+  doc["model"]["rock"]["intrinsic_specific_energy_Pa"] = entry.at("nuisance").at("eps_Pa");
+  doc["model"]["rock"]["sigma_l_N_per_m"] = entry.at("nuisance").at("sigma_l_N_m");
+  nlohmann::json& bump_knot = doc["model"]["top"]["speed_rad_s"]["knots"][1];  // CaseFromSidecar's [1 s, 1.05 w0]
+  const double w0 = doc["model"]["top"]["speed_rad_s"]["knots"][0][1].get<double>();
+  ASSERT_DOUBLE_EQ(bump_knot[0].get<double>(), 1.0);
+  ASSERT_NEAR(bump_knot[1].get<double>(), 1.05 * w0, 1e-12 * w0);
+  bump_knot[1] = (1 + bump) * w0;
+  const double error = HeldOutError(doc, LoadRecording((kSynthetic / (name + ".csv")).string()));
+  std::printf("[ measured ] %s at the KEY's rock, start bump %g: held-out error %.3g\n", name.c_str(), bump, error);
+  EXPECT_LT(error, 1.0) << name << ": not within the spreads even on the recording's own rock";
+}
+
+INSTANTIATE_TEST_SUITE_P(Recordings, KeyConsistencyAtTheKeysRock,
+                         ::testing::Values(QuietStart{"rec01", 0.001}, QuietStart{"rec01", 0.005},
+                                           QuietStart{"rec11", 0.001}, QuietStart{"rec11", 0.05}),
+                         [](const ::testing::TestParamInfo<QuietStart>& info) {
+                           return info.param.recording + "_bump" +
+                                  std::to_string(static_cast<int>(std::lround(info.param.start_bump * 1000))) +
+                                  "permille";
+                         });
 
 INSTANTIATE_TEST_SUITE_P(Recordings, KeyConsistency,
                          ::testing::Values("rec01", "rec02", "rec03", "rec04", "rec05", "rec06", "rec07", "rec08",
