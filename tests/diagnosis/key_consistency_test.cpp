@@ -118,7 +118,7 @@ const std::map<std::string, std::string> kExplained = {
     {"rec01", "a transient: the soft drive's 4-s oscillation grows through the whole recording (top rpm std 1.4 in "
               "its first 10 s, 7.7 in its last), pumped by the axial chatter; where it stands at the held-out "
               "window depends on the rock (the KEY's eps is 0.857 of nominal) and on the start (the sidecar's 5 % "
-              "set-point bump against the simulator's steady start): 1.9-10.3 over start bumps of 0-10 %, 0.05-0.16 "
+              "set-point bump against the simulator's steady start): 2.0-8.9 over start bumps of 0-10 %, 0.04-0.16 "
               "with the KEY's rock and bumps up to 1 % (KeyConsistencyAtTheKeysRock)"},
     {"rec04", "the recording switches from stick-slip to bit bouncing at 16 s, one of the baseline's coexisting "
               "attractors (BASELINE.md); drillwave's model stays in stick-slip from the same operating point"},
