@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "drillwave/integration/quartic.hpp"
+
 namespace drillwave::integration {
 namespace {
 
@@ -13,27 +15,13 @@ double SnapTolerance(double t) { return 1e-12 * std::max(1.0, std::abs(t)); }
 // Pieces Locate walks from its last answer before it searches.
 constexpr int kWalk = 4;
 
-// Cubic Hermite basis on [0, 1] for a piece of length h, plus b * s^2 (1 - s)^2.
-inline double QuarticValue(double s, double h, double x0, double x1, double d0, double d1, double b) {
-  const double s2 = s * s, s3 = s2 * s, r = 1 - s;
-  return (2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * h * d0 + (-2 * s3 + 3 * s2) * x1 + (s3 - s2) * h * d1 +
-         b * s2 * r * r;
-}
-
-inline double QuarticDerivative(double s, double h, double x0, double x1, double d0, double d1, double b) {
-  const double s2 = s * s;
-  return ((6 * s2 - 6 * s) * x0 + (-6 * s2 + 6 * s) * x1 + b * 2 * s * (1 - s) * (1 - 2 * s)) / h +
-         (3 * s2 - 4 * s + 1) * d0 + (3 * s2 - 2 * s) * d1;
-}
-
 }  // namespace
 
 double QuarterPointError(int n, double h, const double* x0, const double* x1, const double* d0, const double* d1,
                          const double* x_mid, const double* x_quarter, double abs_tol, double rel_tol) {
   double worst = 0;
   for (int i = 0; i < n; ++i) {
-    const double cubic_mid = 0.5 * (x0[i] + x1[i]) + 0.125 * h * (d0[i] - d1[i]);
-    const double stored = QuarticValue(0.25, h, x0[i], x1[i], d0[i], d1[i], 16.0 * (x_mid[i] - cubic_mid));
+    const double stored = QuarticValue(0.25, h, x0[i], x1[i], d0[i], d1[i], BubbleWeight(h, x0[i], x1[i], d0[i], d1[i], x_mid[i]));
     const double scale = abs_tol + rel_tol * std::max(std::abs(x0[i]), std::abs(x1[i]));
     worst = std::max(worst, std::abs(x_quarter[i] - stored) / scale);
   }
@@ -81,8 +69,7 @@ void HermiteHistory::Append(double t0, const double* x0, const double* d0, doubl
   const double h = t1 - t0;
   for (int i = 0; i < n; ++i) {
     piece[i] = x0[i], piece[n + i] = x1[i], piece[2 * n + i] = d0[i], piece[3 * n + i] = d1[i];
-    const double cubic_mid = 0.5 * (x0[i] + x1[i]) + 0.125 * h * (d0[i] - d1[i]);
-    piece[4 * n + i] = 16.0 * (x_mid[i] - cubic_mid);  // bubble weight: s^2 (1-s)^2 = 1/16 at s = 1/2
+    piece[4 * n + i] = BubbleWeight(h, x0[i], x1[i], d0[i], d1[i], x_mid[i]);
   }
 }
 

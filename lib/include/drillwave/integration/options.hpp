@@ -6,6 +6,8 @@
 #include <limits>
 #include <vector>
 
+#include "drillwave/integration/quartic.hpp"
+
 namespace drillwave::integration {
 
 struct IntegratorOptions {
@@ -45,12 +47,10 @@ struct Piece {
 
 // The piece's quartic at time t in [t0, t1]: the interpolant the history stores, for sampling outputs.
 inline void InterpolatePiece(const Piece& p, double t, std::vector<double>& x) {
-  const double h = p.t1 - p.t0, s = (t - p.t0) / h, s2 = s * s, s3 = s2 * s, r = 1 - s;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double cubic_mid = 0.5 * (p.x0[i] + p.x1[i]) + 0.125 * h * (p.f0[i] - p.f1[i]);
-    x[i] = (2 * s3 - 3 * s2 + 1) * p.x0[i] + (s3 - 2 * s2 + s) * h * p.f0[i] + (-2 * s3 + 3 * s2) * p.x1[i] +
-           (s3 - s2) * h * p.f1[i] + 16.0 * (p.x_mid[i] - cubic_mid) * s2 * r * r;
-  }
+  const double h = p.t1 - p.t0, s = (t - p.t0) / h;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    x[i] = QuarticValue(s, h, p.x0[i], p.x1[i], p.f0[i], p.f1[i],
+                        BubbleWeight(h, p.x0[i], p.x1[i], p.f0[i], p.f1[i], p.x_mid[i]));
 }
 
 struct IntegrationStats {

@@ -385,9 +385,8 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
       const double h = t1 - t;
       double worst = 0;
       for (std::size_t i = 0; i < n; ++i) {
-        const double cubic_mid = 0.5 * (x[i] + x1[i]) + 0.125 * h * (f0[i] - f1[i]);
         const double scale = options_.abs_tol + options_.rel_tol * std::max(std::abs(x[i]), std::abs(x1[i]));
-        worst = std::max(worst, std::abs(x_mid[i] - cubic_mid) / scale);
+        worst = std::max(worst, std::abs(CubicMidpointMiss(h, x[i], x1[i], f0[i], f1[i], x_mid[i])) / scale);
       }
       const bool state_passed = worst <= 1.0;
       if (state_passed)  // the stored signals need checking only if the state passed

@@ -109,9 +109,9 @@ class Process {
     const double h = p.t1 - p.t0;
     double worst = 0;
     for (int i : {kPhi, kU}) {
-      const double cubic = 0.5 * (p.x0[i] + p.x1[i]) + 0.125 * h * (p.f0[i] - p.f1[i]);
+      const double miss = integration::CubicMidpointMiss(h, p.x0[i], p.x1[i], p.f0[i], p.f1[i], p.x_mid[i]);
       const double scale = abs_tol + rel_tol * std::max(std::abs(p.x0[i]), std::abs(p.x1[i]));
-      worst = std::max(worst, std::abs(p.x_mid[i] - cubic) / scale);
+      worst = std::max(worst, std::abs(miss) / scale);
     }
     return worst;
   }
