@@ -8,6 +8,8 @@
 #include <type_traits>
 #include <utility>
 
+#include <nlohmann/json.hpp>
+
 #include "drillwave/core/error.hpp"
 
 namespace drillwave::bitrock {

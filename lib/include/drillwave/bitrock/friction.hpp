@@ -9,7 +9,7 @@
 #include <string>
 #include <variant>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>  // the JSON type only named here
 
 namespace drillwave::bitrock {
 
