@@ -3,6 +3,8 @@
 // signal.
 #include <cmath>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -14,14 +16,20 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// 100 Hz, `seconds` long: a bit speed oscillating with `period` about 60 rpm, a surface torque leading it by
-// `lag`, white noise of `noise` std on both.
-Recording Oscillation(double seconds, double period, double lag, double noise, unsigned seed, double amplitude = 30) {
+// An empty 100-Hz recording of these channels.
+Recording Empty(const std::vector<std::string>& names) {
   Recording r;
   r.source = "synthetic";
   r.sample_interval_s = 0.01;
-  r.names = {"bit_rpm", "top_torque_kNm"};
-  r.channels.resize(2);
+  r.names = names;
+  r.channels.resize(names.size());
+  return r;
+}
+
+// 100 Hz, `seconds` long: a bit speed oscillating with `period` about 60 rpm, a surface torque leading it by
+// `lag`, white noise of `noise` std on both.
+Recording Oscillation(double seconds, double period, double lag, double noise, unsigned seed, double amplitude = 30) {
+  Recording r = Empty({"bit_rpm", "top_torque_kNm"});
   std::mt19937 rng(seed);
   std::normal_distribution<double> n(0.0, noise);
   for (int i = 0; i < static_cast<int>(seconds * 100); ++i) {
@@ -89,6 +97,53 @@ TEST(Features, TwinsAreAboutOneScaleApartAndAChangeIsFar) {
   const FeatureSet damped = MeasureFeatures(Oscillation(120, 3.2, 0.7, 0.5, 12, 20), 10, 110);  // a third less swing
   EXPECT_LT(scales_off(damped, "bit_rpm std"), -3.0);
   EXPECT_GT(FeatureDistance(damped, fa), twins + 9.0 / fa.features.size());
+}
+
+// A bouncing bit: the weight on bit swings with a 0.25-s bounce (a lag modulo that period says nothing about a
+// delay of seconds) plus broadband forcing; the hook load answers -wob after the axial travel time, and the recorded
+// weight on bit arrives `delay` late (telemetry). Noise of 1 % on each.
+Recording Bouncing(double seconds, double travel, double delay, unsigned seed, double coupling = 0.3) {
+  Recording r = Empty({"hookload_kN", "wob_kN"});
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const int count = static_cast<int>(seconds * 100), back = static_cast<int>(std::lround((travel + delay) * 100));
+  std::vector<double> wob(count + back);
+  double broadband = 0;  // AR(1) forcing with a 0.1-s memory
+  for (std::size_t i = 0; i < wob.size(); ++i) {
+    broadband = 0.9 * broadband + 10 * n(rng);
+    wob[i] = 150 + 100 * std::sin(2 * kPi * 0.01 * i / 0.25) + broadband;
+  }
+  const int travel_samples = static_cast<int>(std::lround(travel * 100));
+  for (int i = 0; i < count; ++i) {
+    r.time_s.push_back(0.01 * i);
+    // wob[j] is the weight on bit at time 0.01 (j - back): now is j = i + back.
+    r.channels[0].push_back(700 - coupling * (wob[i + back - travel_samples] - 150) + 7 * n(rng));
+    r.channels[1].push_back(wob[i + back - static_cast<int>(std::lround(delay * 100))] + 1.5 * n(rng));
+  }
+  return r;
+}
+
+TEST(Features, TheWeightOnBitsLagBehindTheHookLoadShowsADelayLongerThanTheBouncePeriod) {
+  const double travel = 0.58;  // 3000 m of pipe at 5172 m/s
+  for (double delay : {0.0, 2.1, 3.5}) {
+    const FeatureSet f = MeasureFeatures(Bouncing(60, travel, delay, 7), 5, 57);
+    EXPECT_NEAR(f.Value("hook_to_wob_lag_s"), delay - travel, 0.015) << delay;
+    EXPECT_LE(f.Find("hook_to_wob_lag_s")->scale, 0.1) << delay;  // every part of the window agrees
+  }
+  // A hook load that does not answer the weight on bit (noise only): no lag.
+  EXPECT_TRUE(std::isnan(MeasureFeatures(Bouncing(60, travel, 2.1, 8, 0.0), 5, 57).Value("hook_to_wob_lag_s")));
+}
+
+TEST(Features, AnAxialLagOnAnotherPeakCountsAsThreeScales) {
+  FeatureSet recording;
+  recording.features = {{"hook_to_wob_lag_s", 1.5, 0.1}, {"wob_kN std", 100, 10}};
+  FeatureSet model = recording;
+  model.features[0].value = 1.7;  // 2 scales
+  EXPECT_NEAR(FeatureDistance(model, recording), 4.0 / 2, 1e-12);
+  model.features[0].value = 5.0;  // 35 scales: another peak, counted as 3
+  EXPECT_NEAR(FeatureDistance(model, recording), 9.0 / 2, 1e-12);
+  model.features[1].value = 150;  // 5 scales of a level: counted in full
+  EXPECT_NEAR(FeatureDistance(model, recording), (9.0 + 25.0) / 2, 1e-12);
 }
 
 TEST(Features, AWindowWithoutEnoughSamplesIsRefused) {

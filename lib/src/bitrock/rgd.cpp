@@ -40,6 +40,7 @@ void ReadRgdRock(const io::JsonReader& k, RgdLaw& law) {
   law.sigma_l = k.Number("sigma_l_N_per_m", Range::NonNegative());
   law.mu = k.Number("mu", Range::NonNegative());
   law.gamma = k.Number("gamma", Range::NonNegative());
+  law.surface_passes = k.Integer("surface_passes", 1, 16, 4);
   law.static_mu = law.mu;
   if (k.Has("stribeck")) {
     const io::JsonReader st = k.Object("stribeck");
@@ -58,13 +59,16 @@ nlohmann::json RgdFieldSchema() {
           {"rock/sigma_l_N_per_m", "sigma l >= 0, wear-flat contact strength times length"},
           {"rock/mu", ">= 0, wear-flat friction coefficient"},
           {"rock/gamma", ">= 0, friction distribution factor"},
+          {"rock/surface_passes", "integer in [1, 16], default 4: the rock under a blade is the deepest position of "
+                                  "the last this many blade passes (1: d = n (U(t) - U(t - t_n)) literally, against "
+                                  "the previous pass even if the bit was in the air)"},
           {"rock/stribeck/static_mu", ">= mu: optional object (absent: Coulomb); mu(w) = mu + (static_mu - mu) "
                                       "exp(-|w| / velocity_rad_s), a stuck bit holds with static_mu"},
           {"rock/stribeck/velocity_rad_s", "> 0, Stribeck speed"}};
 }
 
-CutProfile::CutProfile(int blades, double omega0, double rop0)
-    : blades_(blades), omega0_(omega0), history_(2, [omega0, rop0](double t, double* v, double* d) {
+CutProfile::CutProfile(int blades, double omega0, double rop0, int surface_passes)
+    : blades_(blades), surface_passes_(surface_passes), omega0_(omega0), history_(2, [omega0, rop0](double t, double* v, double* d) {
         v[0] = omega0 * t, v[1] = rop0 * t;
         d[0] = omega0, d[1] = rop0;
       }) {}
@@ -99,11 +103,10 @@ double CutProfile::TimeAngleBehind(double phi, double t, integration::Side side,
 
 double CutProfile::DepthOfCut(double phi, double u, double t, integration::Side side, bool contact,
                               double last_contact_change, double* tn) const {
-  constexpr int kProfilePasses = 4;
   const double pitch = 2 * kPi / blades_;
   double guess = tn_committed_ > 0 ? tn_committed_ : pitch / std::max(omega0_, 1e-3);
   double surface = -kInf;
-  for (int k = 1; k <= kProfilePasses; ++k) {
+  for (int k = 1; k <= surface_passes_; ++k) {
     const double s = TimeAngleBehind(phi, t, side, k * pitch, k * guess);
     if (k == 1) guess = t - s;
     if (k == 1 && tn) *tn = t - s;

@@ -310,22 +310,31 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
                                                           Describe(m, r, "bit_rpm std");
     effects.push_back(e);
   }
-  // sensor_delay: the bit speed follows the surface torque later than in the model: the downhole channels arrive
-  // through telemetry.
+  // sensor_delay: the downhole channels arrive through telemetry, later than the surface's. Seen whole in the weight
+  // on bit's lag behind the hook load (broadband: the model's is the axial travel time, the recording's adds the
+  // delay), and modulo the bit's period in the bit speed's lag behind the surface torque.
   {
     const double period = r.Value("period_s");
     double shift = r.Value("torque_to_bit_lag_s") - m.Value("torque_to_bit_lag_s");
     if (std::isfinite(shift) && std::isfinite(period) && shift < 0) shift += period;  // lags are modulo a period
+    const double axial_shift = r.Value("hook_to_wob_lag_s") - m.Value("hook_to_wob_lag_s");
+    const double axial_z = -Z(m, r, "hook_to_wob_lag_s");  // > 0: the recorded weight on bit comes later
+    const double torsional_z = std::abs(Z(m, r, "torque_to_bit_lag_s"));
+    const bool axial = axial_z > kWeakEvidence && !(torsional_z > axial_z);
+    const double first = axial ? axial_shift : std::isfinite(shift) ? shift : 1.0;
     Effect e{"sensor_delay", "telemetry delay of the downhole channels (bit speed, weight on bit)", {}, nullptr, 0, ""};
-    e.parameters = {{"delay_s", "s", 0.0, 8.0, false, std::isfinite(shift) ? shift : 1.0}};
+    e.parameters = {{"delay_s", "s", 0.0, 8.0, false, std::clamp(first, 0.0, 8.0)}};
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
       if (!d.contains("sensors")) return;
       for (auto& [channel, sensor] : d["sensors"]["channels"].items())
         if (Downhole(channel)) sensor["delay_s"] = v[0];
     };
-    const double z = std::abs(Z(m, r, "torque_to_bit_lag_s"));
-    if (z > kWeakEvidence) e.strength = z, e.evidence = "the bit speed follows the surface torque " + Fixed(shift, 2) +
-                                            " s later than in the model: " + Describe(m, r, "torque_to_bit_lag_s");
+    if (axial)
+      e.strength = axial_z, e.evidence = "the weight on bit follows the hook load " + Fixed(axial_shift, 2) +
+                                         " s later than in the model: " + Describe(m, r, "hook_to_wob_lag_s");
+    else if (torsional_z > kWeakEvidence)
+      e.strength = torsional_z, e.evidence = "the bit speed follows the surface torque " + Fixed(shift, 2) +
+                                             " s later than in the model: " + Describe(m, r, "torque_to_bit_lag_s");
     effects.push_back(e);
   }
   return effects;

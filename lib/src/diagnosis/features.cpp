@@ -87,13 +87,32 @@ double Lag(const std::vector<double>& torque, const std::vector<double>& bit, do
   return best_lag;
 }
 
+// The lag in [min_lag, max_lag] at which the weight on bit follows the hook load's fast part most closely, as the
+// peak of their negative correlation: a rising weight on bit sends a compression wave up the string that lowers the
+// hook load L / c_a later, so without telemetry the weight on bit leads by the axial travel time; a delay of the
+// downhole channels adds itself to the lag. Broadband content (the fast part: the slow stick-slip cycle would
+// repeat the peak a period later), and lags up to a third of the window (the overlap stays two thirds of it). NaN
+// where the peak correlation stays below min_correlation.
+double AxialLag(const std::vector<double>& hook_fast, const std::vector<double>& wob_fast, double dt, double min_lag,
+                double max_lag, double min_correlation) {
+  const std::vector<double> a = Demeaned(hook_fast), b = Demeaned(wob_fast);
+  const long n = static_cast<long>(a.size());
+  const long lo = static_cast<long>(std::ceil(min_lag / dt)), hi = std::min(static_cast<long>(max_lag / dt), n / 3);
+  double best = -2, best_lag = kNaN;
+  for (long k = std::max(lo, -n / 3); k <= hi; ++k) {
+    const double c = -LaggedCorrelation(a, b, k);
+    if (c > best) best = c, best_lag = k * dt;
+  }
+  return best >= min_correlation ? best_lag : kNaN;
+}
+
 std::map<std::string, double> Measure(const Recording& r, std::size_t first, std::size_t last,
                                       const FeatureOptions& o) {
   std::map<std::string, double> f;
   const double dt = r.sample_interval_s;
   const int smooth_half = static_cast<int>(std::lround(0.5 * o.smoothing_s / dt));
   const int fast_half = static_cast<int>(std::lround(0.5 * o.fast_window_s / dt));
-  std::vector<double> bit, torque;
+  std::vector<double> bit, torque, hook_fast, wob_fast;
   std::vector<std::vector<double>> smoothed;
   for (std::size_t j = 0; j < r.names.size(); ++j) {
     const std::vector<double> raw(r.channels[j].begin() + first, r.channels[j].begin() + last);
@@ -106,8 +125,12 @@ std::map<std::string, double> Measure(const Recording& r, std::size_t first, std
     f[r.names[j] + " fast_std"] = Std(fast);
     if (r.names[j] == o.bit_speed) bit = x;
     if (r.names[j] == o.top_torque) torque = x;
+    if (r.names[j] == o.hook_load) hook_fast = fast;
+    if (r.names[j] == o.weight_on_bit) wob_fast = fast;
     smoothed.push_back(x);
   }
+  if (!hook_fast.empty() && !wob_fast.empty())
+    f["hook_to_wob_lag_s"] = AxialLag(hook_fast, wob_fast, dt, o.min_axial_lag_s, o.max_axial_lag_s, o.min_axial_correlation);
   if (!bit.empty()) {
     double mean_abs = 0;
     for (double v : bit) mean_abs += std::abs(v) / bit.size();
@@ -132,6 +155,7 @@ double Floor(const std::string& name, double value, const std::map<std::string, 
   };
   if (name == "stick_fraction") return 0.03;
   if (name == "period_s") return std::max(0.05 * std::abs(value), 0.05);
+  if (name == "hook_to_wob_lag_s") return 0.1;  // as the torque-to-bit lag's: ten samples
   if (name == "torque_to_bit_lag_s") {
     const auto p = whole.find("period_s");
     return std::max(0.1, p != whole.end() && std::isfinite(p->second) ? 0.05 * p->second : 0.0);
@@ -194,7 +218,9 @@ double FeatureDistance(const FeatureSet& model, const FeatureSet& recording) {
     const bool rf = std::isfinite(r.value), mf = std::isfinite(m);
     if (!rf && !mf) continue;
     const double z = rf && mf ? (m - r.value) / r.scale : 3.0;
-    sum += z * z;
+    // The axial lag is the highest of the correlation's peaks over seconds of lags: a model more than three scales
+    // off has picked another peak (a regime of its own), and how far that peak lies says nothing more.
+    sum += r.name == "hook_to_wob_lag_s" ? std::min(z * z, 9.0) : z * z;
     ++count;
   }
   return count ? sum / count : 0.0;

@@ -181,8 +181,12 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     }
     cases::RunResult measured = *simulated;
     cases::ApplySensors(sensors, measured);
-    return ModelRecording(measured, o.maps, rec, o.model_time_offset_s, o.fit_begin_s,
-                          std::min(o.held_out_end_s, duration - o.model_time_offset_s));
+    // The model's channels pass the artefact filter the recording passed: what it takes for an artefact in a motion
+    // (a bouncing bit's weight-on-bit impacts are as short as a glitch) is then masked on both sides alike.
+    std::vector<std::pair<std::string, int>> masked_in_model;
+    return MaskArtefacts(ModelRecording(measured, o.maps, rec, o.model_time_offset_s, o.fit_begin_s,
+                                        std::min(o.held_out_end_s, duration - o.model_time_offset_s)),
+                         masked_in_model);
   };
 
   // 2. The baseline on both windows.

@@ -2,7 +2,8 @@
 // The Richard-Germay-Detournay bit-rock law with the state-dependent cut delay t_n (DESIGN.md §3, chapter seed
 // 2.28-2.33), shared by the kinds whose bit drills: axial_torsional (wave strings) and lumped_axial_torsional.
 //   t_n: Phi(t) - Phi(t - t_n) = 2 pi / n,  d = n (U(t) - U(t - t_n))   (from the stored bit angle and position;
-//        after a bounce, against the deepest of the last four blade passes at that angle)
+//        after a bounce, against the deepest of the last four blade passes at that angle, or, with
+//        rock/surface_passes = 1, literally against the previous blade pass even if it passed in the air)
 //   cutting (d > 0, not turning backwards): W_c = a zeta eps d, T_c = a^2 eps d / 2
 //   wear-flat contact (d > 0): W_f = a sigma l advancing, in [0, a sigma l] held axially, 0 lifting
 //   friction: T_f = a gamma mu W_f / 2 sign(w), set-valued at w = 0 (stuck while the torque stays within T_c + T_f)
@@ -37,6 +38,10 @@ struct RgdForces {
 struct RgdLaw {
   double a = 0, zeta = 0, eps = 0, sigma_l = 0, mu = 0, gamma = 0;
   int blades = 4;
+  // The rock surface under a blade is the deepest position of the last surface_passes blade passes at that angle.
+  // 4 (default): after a bounce the rock is where a blade last cut. 1: RGD's d = n (U(t) - U(t - t_n)) taken
+  // literally, the previous blade's position even if it passed in the air (a bouncing bit then drifts upwards).
+  int surface_passes = 4;
   double static_mu = 0, stribeck_speed = 0;  // Stribeck friction (stribeck_speed 0: Coulomb, static_mu = mu)
 
   double ContactForce() const { return a * sigma_l; }  // a sigma l
@@ -73,9 +78,9 @@ nlohmann::json RgdFieldSchema();
 // against the rock surface under the blades.
 class CutProfile {
  public:
-  CutProfile(int blades, double omega0, double rop0);
-  // The depth of cut against the rock surface under the blades: the deepest position any of the last four blades
-  // reached at the present angle phi. After a bounce the previous blade may have passed in the air; the rock is where
+  CutProfile(int blades, double omega0, double rop0, int surface_passes = 4);
+  // The depth of cut against the rock surface under the blades: the deepest position any of the last surface_passes
+  // blades reached at the present angle phi. After a bounce the previous blade may have passed in the air; the rock is where
   // a blade last cut, not where the previous one happened to be (with continuous contact since the previous blade
   // passed, it is the deepest, and d = n (U(t) - U(t - t_n)) as in RGD). The cut delay t_n is returned through tn.
   // The search starts from the t_n of the last committed step end, so that no evaluation depends on the ones before
@@ -94,7 +99,7 @@ class CutProfile {
  private:
   double TimeAngleBehind(double phi, double t, integration::Side side, double back, double guess) const;
 
-  int blades_;
+  int blades_, surface_passes_;
   double omega0_;
   integration::HermiteHistory history_;
   double phi_max_ = 0, phi_max_before_ = 0, last_end_ = 0;

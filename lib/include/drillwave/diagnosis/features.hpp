@@ -2,7 +2,8 @@
 // What a model can be asked to reproduce of a recording (DESIGN.md §5, issue 13 item 3). Stick-slip is chaotic: two
 // runs that differ by a rounding error drift out of phase within a few periods, so a point-by-point error cannot be
 // fitted. Statistics over a window are reproducible: levels, spreads, the fast (> ~2 Hz) part of each channel, the
-// time the bit spends stuck, the oscillation period and the lag between the surface torque and the bit speed. Each
+// time the bit spends stuck, the oscillation period, the lag between the surface torque and the bit speed (modulo the
+// period) and the lag of the weight on bit behind the hook load (broadband: a telemetry delay shows whole). Each
 // feature carries a scale — how much it varies between the window's parts, with a floor — and a model's difference
 // is counted in those scales, so that a model which is the recording's twin scores about 1 whatever the regime.
 #include <string>
@@ -30,6 +31,12 @@ struct FeatureSet {
 struct FeatureOptions {
   std::string bit_speed = "bit_rpm";     // the channel read for sticking, period and lag (skipped if absent)
   std::string top_torque = "top_torque_kNm";
+  std::string hook_load = "hookload_kN";  // with weight_on_bit: the axial lag (skipped if either is absent)
+  std::string weight_on_bit = "wob_kN";
+  double min_axial_lag_s = -3, max_axial_lag_s = 8;  // the lags looked at (at most a third of the window)
+  // Below this peak correlation the hook load and weight on bit share too little (a bit drilling smoothly, axial
+  // coupling off) for the peak to stand out of the chance correlations of ~10^3 lags: no lag (NaN).
+  double min_axial_correlation = 0.15;
   int parts = 4;                         // the window's parts whose spread sets each feature's scale
   double smoothing_s = 0.05;             // centred moving average before levels and spreads are read
   double fast_window_s = 0.5;            // "fast" = what a moving average over this window removes
@@ -43,7 +50,8 @@ struct FeatureOptions {
 FeatureSet MeasureFeatures(const Recording& recording, double begin_s, double end_s, const FeatureOptions& options = {});
 
 // Mean over the recording's defined features of ((model - recording) / scale)^2; a feature the recording defines
-// and the model does not (no oscillation at all) counts as 9, three scales off.
+// and the model does not (no oscillation at all) counts as 9, three scales off, and so does an axial lag more than
+// three scales off (another peak of the correlation).
 double FeatureDistance(const FeatureSet& model, const FeatureSet& recording);
 
 // The white measurement noise of a sampled channel, from its second differences (robust: 1.4826 MAD / sqrt 6), so

@@ -2,7 +2,9 @@
 // The diagnosis loop (DESIGN.md §5, issue 13 item 2): name the physics a model leaves out, model it, refit, and
 // prove on data the fit did not see that the model got better.
 //
-//   1. The recording's artefacts (spikes, dropouts) are masked, not modelled (Hampel filter, as the inspection).
+//   1. The recording's artefacts (spikes, dropouts) are masked, not modelled (Hampel filter, as the inspection); the
+//      model's channels pass the same filter, so that physics as short as a glitch (a bouncing bit's impacts) is
+//      masked on both sides alike.
 //      Its sensor noise is estimated per channel and carried into the model's measured channels (a
 //      sensors block), so that model and recording are compared as the recording was made.
 //   2. The usable recording is split into a fit window and a later held-out window. The baseline's error on each is

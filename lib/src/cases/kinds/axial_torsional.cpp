@@ -144,7 +144,7 @@ class Process {
   using State = std::vector<double>;
   explicit Process(const Model& md)
       : md_(md), steady_(SteadyDrilling(md, md.top_speed.Value(0.0))),
-        cut_(md.blades, steady_.omega, steady_.rop) {
+        cut_(md.blades, steady_.omega, steady_.rop, md.surface_passes) {
     InitializeWaves();
     // Throws std::domain_error when the motor cannot carry the steady torque (below its pull-out torque).
     if (md.induction_on)
