@@ -61,18 +61,23 @@ TEST(AxialTorsional, StickSlipAt60RpmSmoothDrillingAt150Rpm) {
 // four blade passes: where a blade last cut) the bit cannot drift upwards while bouncing: over the window it drills
 // at about the steady rate, with the mean weight on bit the hook force was set for. (baseline-60rpm itself sets
 // BASELINE.md's literal law, surface_passes 1, under which a bouncing bit drifts upwards: checked below.)
-TEST(AxialTorsional, BouncingBitKeepsDrilling) {
-  // From steady drilling (unstable here, as everywhere in the RGD model): the motion grows into bit bouncing. (A
-  // 5 % speed bump at 1-2 s, as Baseline() adds, lands it on the stick-slip attractor in some runs: off bottom 0.000
-  // or 0.050 in [30, 50] s with root finders for t_n that agree to 1e-9.)
+// 3000 m, 150 kN, 60 rpm for 50 s (statistics over [30, 50] s), the depth of cut against `surface_passes` blade
+// passes. From steady drilling (unstable here, as everywhere in the RGD model): the motion grows into bit bouncing. (A
+// 5 % speed bump at 1-2 s, as Baseline() adds, lands it on the stick-slip attractor in some runs: off bottom 0.000
+// or 0.050 in [30, 50] s with root finders for t_n that agree to 1e-9.)
+nlohmann::json BouncingBit(int surface_passes) {
   nlohmann::json doc = Baseline(60);
   doc["model"]["top"]["speed_rad_s"] = 60 * M_PI / 30;
-  doc["model"]["rock"]["surface_passes"] = 4;
+  doc["model"]["rock"]["surface_passes"] = surface_passes;
   doc["model"]["string"]["length_m"] = 3000;
   doc["model"]["hoist"]["weight_on_bit_N"] = 150000;
   doc["simulation"]["duration_s"] = 50;
   doc["statistics"]["window_s"] = {30, 50};
-  const auto s = RunCase(ParseCase(doc)).summary;
+  return doc;
+}
+
+TEST(AxialTorsional, BouncingBitKeepsDrilling) {
+  const auto s = RunCase(ParseCase(BouncingBit(4))).summary;
   std::printf("[ measured ] 3000 m, 150 kN, 60 rpm: off bottom %.3f of the time, mean ROP %.1f m/h (steady %.1f), "
               "mean WOB %.1f kN, %d stick onsets\n", s["off_bottom_fraction"].get<double>(),
               s["rop_mean_m_h"].get<double>(), s["steady_rop_m_h"].get<double>(), 1e-3 * s["wob_mean_N"].get<double>(),
@@ -93,14 +98,7 @@ TEST(AxialTorsional, BouncingBitKeepsDrilling) {
 TEST(AxialTorsional, BouncingBitDriftsUpwardsAgainstThePreviousPass) {
   // From steady drilling, as above (with the 5 % bump it stayed in stick-slip: off bottom 0.000, +107 m/h; from
   // steady drilling 0.575 / 0.575 / 0.576 and -176 m/h at tol 1e-4 / 1e-5 / 1e-6).
-  nlohmann::json doc = Baseline(60);
-  doc["model"]["top"]["speed_rad_s"] = 60 * M_PI / 30;
-  doc["model"]["string"]["length_m"] = 3000;
-  doc["model"]["hoist"]["weight_on_bit_N"] = 150000;
-  doc["model"]["rock"]["surface_passes"] = 1;
-  doc["simulation"]["duration_s"] = 50;
-  doc["statistics"]["window_s"] = {30, 50};
-  const auto s = RunCase(ParseCase(doc)).summary;
+  const auto s = RunCase(ParseCase(BouncingBit(1))).summary;
   std::printf("[ measured ] 3000 m, 150 kN, 60 rpm, previous pass: off bottom %.3f, mean ROP %.1f m/h\n",
               s["off_bottom_fraction"].get<double>(), s["rop_mean_m_h"].get<double>());
   EXPECT_GT(s["off_bottom_fraction"].get<double>(), 0.2);
