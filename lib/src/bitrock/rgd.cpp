@@ -68,14 +68,17 @@ nlohmann::json RgdFieldSchema() {
 }
 
 CutProfile::CutProfile(int blades, double omega0, double rop0, int surface_passes)
-    : blades_(blades), surface_passes_(surface_passes), omega0_(omega0), history_(2, [omega0, rop0](double t, double* v, double* d) {
+    : blades_(blades),
+      surface_passes_(surface_passes),
+      omega0_(omega0),
+      history_(2, [omega0, rop0](double t, double* v, double* d) {
         v[0] = omega0 * t, v[1] = rop0 * t;
         d[0] = omega0, d[1] = rop0;
       }) {}
 
 // When the bit angle last stood `back` radians behind phi, from the stored angle. The root lies near t - guess (t_n
-// changes little from one evaluation to the next): a bracket around it, widened if needed, and TOMS 748 inside it
-// take a handful of look-ups where bisection took sixty.
+// changes little from one evaluation to the next): Newton from there takes two or three look-ups; where it cannot (the
+// bit stood still or turned back there), a bracket around it, widened if needed, and TOMS 748 inside it.
 double CutProfile::TimeAngleBehind(double phi, double t, integration::Side side, double back, double guess) const {
   const double target = phi - back;
   const double width = 1e-12 * (1 + std::abs(t));
@@ -90,7 +93,7 @@ double CutProfile::TimeAngleBehind(double phi, double t, integration::Side side,
     s -= step;
     if (std::abs(step) <= width && s < t) return s;
   }
-  auto behind = [&](double s) { return (s >= t ? phi : history_.Value(s, 0, side)) - target; };
+  auto behind = [&](double time) { return (time >= t ? phi : history_.Value(time, 0, side)) - target; };
   double lo = t - guess, hi = t;
   double g_lo = behind(lo), g_hi = back;
   for (int i = 0; i < 60 && g_lo > 0; ++i) hi = lo, g_hi = g_lo, lo = t - (t - lo) * 2, g_lo = behind(lo);
