@@ -54,9 +54,9 @@ cases::StickSlipStatistics EngineStatistics(const NetworkRun& run, double begin,
   const auto& tr = run.trajectory;
   if (!tr.bit_stuck.empty() && tr.bit_stuck.front() > 0) stuck.push_back({0.0, std::numeric_limits<double>::infinity()});
   for (const RegimeChange& c : run.regime_changes) {
-    if (c.to == Regime::kStuck && c.from != Regime::kStuck)
+    if (c.to == bitrock::Turn::kStuck && c.from != bitrock::Turn::kStuck)
       stuck.push_back({c.time_s, std::numeric_limits<double>::infinity()});
-    else if (c.from == Regime::kStuck && c.to != Regime::kStuck && !stuck.empty())
+    else if (c.from == bitrock::Turn::kStuck && c.to != bitrock::Turn::kStuck && !stuck.empty())
       stuck.back().end_s = c.time_s;
   }
   return cases::ComputeStickSlipStatistics(stuck, tr.time_s, tr.bit_speed_rad_s, tr.bit_angle_rad, begin, end);

@@ -51,7 +51,7 @@ TEST(WaveVsNeutralDde, StribeckStickSlipStatisticsAgree) {
   const NetworkRun run = SimulateNetwork(net, options);
   std::vector<double> wave_onsets;
   for (const RegimeChange& c : run.regime_changes)
-    if (c.to == Regime::kStuck) wave_onsets.push_back(c.time_s);
+    if (c.to == bitrock::Turn::kStuck) wave_onsets.push_back(c.time_s);
   double wave_max = 0;
   for (std::size_t i = 0; i < run.trajectory.time_s.size(); ++i)
     if (run.trajectory.time_s[i] >= kWindow) wave_max = std::max(wave_max, run.trajectory.bit_speed_rad_s[i]);

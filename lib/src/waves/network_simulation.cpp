@@ -15,6 +15,7 @@
 namespace drillwave::waves {
 namespace {
 
+using bitrock::Turn;
 using integration::Side;
 using State = std::vector<double>;
 
@@ -52,7 +53,7 @@ class NetworkProcess {
     current_index_.assign(num_nodes_, kNone);
     flux_index_.assign(num_nodes_, kNone);
     motor_speed_index_.assign(num_nodes_, kNone);
-    regime_.assign(num_nodes_, Regime::kSlipPositive);
+    regime_.assign(num_nodes_, Turn::kForward);
     for (int i = 0; i < num_nodes_; ++i)
       if (!net.nodes[i].massless()) speed_index_[i] = next++;
     for (int i = 0; i < num_nodes_; ++i)
@@ -119,12 +120,12 @@ class NetworkProcess {
     step_start_ = t0;
     for (int i : frictional_nodes_) {
       const double v = net_.initial.speed_rad_s;
-      if (v > 0) regime_[i] = Regime::kSlipPositive;
-      else if (v < 0) regime_[i] = Regime::kSlipNegative;
+      if (v > 0) regime_[i] = Turn::kForward;
+      else if (v < 0) regime_[i] = Turn::kBackward;
       else {
-        regime_[i] = Regime::kStuck;
-        regime_[i] = RegimeForDrivingTorque(i, DrivingTorqueAtRest(i, t0, x));
-        if (regime_[i] == Regime::kStuck) x[speed_index_[i]] = 0;
+        regime_[i] = Turn::kStuck;
+        regime_[i] = bitrock::TurnAtRest(AtRest(i, t0, x));
+        if (regime_[i] == Turn::kStuck) x[speed_index_[i]] = 0;
       }
     }
   }
@@ -157,7 +158,7 @@ class NetworkProcess {
         dxdt[motor_speed_index_[i] + 1] = vd - v;
       }
       double& a = dxdt[speed_index_[i]];
-      if (regime_[i] == Regime::kStuck) {
+      if (regime_[i] == Turn::kStuck) {
         a = 0;
         continue;
       }
@@ -206,36 +207,24 @@ class NetworkProcess {
 
   int NumWitnesses() const { return 2 * static_cast<int>(frictional_nodes_.size()); }
 
-  // Slipping: the first witness is the speed in the slip direction (the bit stops). Stuck: the margins of the
-  // driving torque to the two static limits (the bit breaks free).
+  // Two witnesses per frictional node (bitrock/stick_slip.hpp).
   double Witness(int k, double t, const State& x) const {
     const int i = frictional_nodes_[k / 2];
-    const bool first = k % 2 == 0;
-    switch (regime_[i]) {
-      case Regime::kSlipPositive: return first ? x[speed_index_[i]] : 1.0;
-      case Regime::kSlipNegative: return first ? -x[speed_index_[i]] : 1.0;
-      case Regime::kStuck: {
-        const double drive = DrivingTorqueAtRest(i, t, x);
-        const auto& f = *net_.nodes[i].friction;
-        return first ? f.StaticPositive() - drive : drive + f.StaticNegative();
-      }
-    }
-    return 1.0;
+    return bitrock::TurnWitness(regime_[i], k % 2, x[speed_index_[i]], [&] { return AtRest(i, t, x); });
   }
 
   bool OnEvent(int k, double t, State& x) {
     const int i = frictional_nodes_[k / 2];
-    const Regime before = regime_[i];
-    Regime after;
-    if (before == Regime::kStuck) {
-      after = k % 2 == 0 ? Regime::kSlipPositive : Regime::kSlipNegative;
+    const Turn before = regime_[i];
+    Turn after;
+    if (before == Turn::kStuck) {
+      after = bitrock::TurnBreakingFree(k % 2);
     } else {
-      // The node has come to rest: it stays if the friction can hold the driving torque, else it reverses.
-      regime_[i] = Regime::kStuck;
-      after = RegimeForDrivingTorque(i, DrivingTorqueAtRest(i, t, x));
+      regime_[i] = Turn::kStuck;  // come to rest: AtRest holds it
+      after = bitrock::TurnAtRest(AtRest(i, t, x));
     }
     regime_[i] = after;
-    if (after == Regime::kStuck || before == Regime::kStuck) x[speed_index_[i]] = 0;
+    if (after == Turn::kStuck || before == Turn::kStuck) x[speed_index_[i]] = 0;
     changes_.push_back({t, i, before, after});
     start_is_last_end_ = false;
     Source(i, t, 1);
@@ -284,7 +273,7 @@ class NetworkProcess {
     out.top_torque_nm.push_back(top_torque);
     out.bit_torque_nm.push_back(BitTorque(bit, x, t, side));
     out.bit_angle_rad.push_back(x[kBitAngle]);
-    out.bit_stuck.push_back(regime_[bit] == Regime::kStuck && net_.nodes[bit].has_set_valued_friction() ? 1.0 : 0.0);
+    out.bit_stuck.push_back(regime_[bit] == Turn::kStuck && net_.nodes[bit].has_set_valued_friction() ? 1.0 : 0.0);
     if (current_index_[top] != kNone) out.top_current_a.push_back(x[current_index_[top]]);
     if (flux_index_[top] != kNone)
       out.top_current_a.push_back(net_.nodes[top].induction.StatorCurrentRms(Fluxes(top, x)));
@@ -432,7 +421,7 @@ class NetworkProcess {
   double SlipFriction(int i, double v) const {
     const auto& f = *net_.nodes[i].friction;
     if (!f.IsSetValued()) return f.SlipTorque(v);
-    return regime_[i] == Regime::kSlipPositive ? f.SlipTorque(std::max(v, kTinySpeed))
+    return regime_[i] == Turn::kForward ? f.SlipTorque(std::max(v, kTinySpeed))
                                                : f.SlipTorque(std::min(v, -kTinySpeed));
   }
 
@@ -449,17 +438,16 @@ class NetworkProcess {
     return torque;
   }
 
-  Regime RegimeForDrivingTorque(int i, double drive) const {
+  // The driving torque on node i held at rest and the static range of its friction.
+  bitrock::AtRest AtRest(int i, double t, const State& x) const {
     const auto& f = *net_.nodes[i].friction;
-    if (drive > f.StaticPositive()) return Regime::kSlipPositive;
-    if (drive < -f.StaticNegative()) return Regime::kSlipNegative;
-    return Regime::kStuck;
+    return {DrivingTorqueAtRest(i, t, x), {f.StaticPositive(), f.StaticNegative()}};
   }
 
   // Speed of node i: a state for nodes with inertia, algebraic for massless ones (the balance of the incoming
   // waves and the external torques, DESIGN.md §1).
   double Speed(int i, const State& x, double t, Side side) const {
-    if (speed_index_[i] != kNone) return regime_[i] == Regime::kStuck ? 0.0 : x[speed_index_[i]];
+    if (speed_index_[i] != kNone) return regime_[i] == Turn::kStuck ? 0.0 : x[speed_index_[i]];
     if (kelvin_voigt_) {
       SolveNodeSpeeds(x, t, side, speeds_);
       return speeds_[i];
@@ -523,7 +511,7 @@ class NetworkProcess {
     const Node& node = net_.nodes[i];
     const double v = Speed(i, x, t, side);
     if (!node.friction) return 0;
-    if (regime_[i] == Regime::kStuck) return DrivingTorqueAtRest(i, t, x);
+    if (regime_[i] == Turn::kStuck) return DrivingTorqueAtRest(i, t, x);
     return SlipFriction(i, v);
   }
 
@@ -562,7 +550,7 @@ class NetworkProcess {
     v.resize(num_nodes_);
     for (int i = 0; i < num_nodes_; ++i) {
       const Node& node = net_.nodes[i];
-      if (speed_index_[i] != kNone) v[i] = regime_[i] == Regime::kStuck ? 0.0 : x[speed_index_[i]];
+      if (speed_index_[i] != kNone) v[i] = regime_[i] == Turn::kStuck ? 0.0 : x[speed_index_[i]];
       else if (node.drive == Drive::kPrescribedSpeed) v[i] = Setpoint(node, t, side);
       else v[i] = MasslessBalance(i, TwiceIncoming(i, t, side), t, side).first;
     }
@@ -572,7 +560,7 @@ class NetworkProcess {
     dv.resize(num_nodes_);
     for (int i = 0; i < num_nodes_; ++i) {
       const Node& node = net_.nodes[i];
-      if (speed_index_[i] != kNone) dv[i] = regime_[i] == Regime::kStuck ? 0.0 : f[speed_index_[i]];
+      if (speed_index_[i] != kNone) dv[i] = regime_[i] == Turn::kStuck ? 0.0 : f[speed_index_[i]];
       else if (node.drive == Drive::kPrescribedSpeed) dv[i] = SetpointRate(node, t, side);
       else dv[i] = MasslessBalanceRate(i, ArrivingRate(i, t, side), t, side);
     }
@@ -598,14 +586,14 @@ class NetworkProcess {
     for (int i = 0; i < num_nodes_; ++i) {
       const Arrivals in = Arriving(i, t, side);
       const bool inertial = speed_index_[i] != kNone;
-      const double v = inertial ? (regime_[i] == Regime::kStuck ? 0.0 : x[speed_index_[i]])
+      const double v = inertial ? (regime_[i] == Turn::kStuck ? 0.0 : x[speed_index_[i]])
                        : kelvin_voigt_ ? speeds_[i]
                                        : MasslessSpeed(i, in, t, side);
       if (HasAbove(i)) out[2 * (i - 1) + 1] = v - in.above;  // up-going wave at the bottom of section i-1
       if (HasBelow(i)) out[2 * i] = v - in.below;            // down-going wave at the top of section i
       if (!rate) continue;
       const Arrivals in_rate = ArrivingRate(i, t, side);
-      const double dv = inertial ? (regime_[i] == Regime::kStuck ? 0.0 : f[speed_index_[i]])
+      const double dv = inertial ? (regime_[i] == Turn::kStuck ? 0.0 : f[speed_index_[i]])
                         : kelvin_voigt_ ? speed_rates_[i]
                                         : MasslessSpeedRate(i, v, in_rate, t, side);
       if (HasAbove(i)) rate[2 * (i - 1) + 1] = dv - in_rate.above;
@@ -773,7 +761,7 @@ class NetworkProcess {
   int dimension_ = 0;
   std::vector<int> speed_index_, integral_index_, current_index_, flux_index_, motor_speed_index_;
   std::vector<int> frictional_nodes_;
-  std::vector<Regime> regime_;
+  std::vector<Turn> regime_;
   integration::HermiteHistory waves_;
   integration::BreakpointQueue breakpoints_;
   std::vector<RegimeChange> changes_;

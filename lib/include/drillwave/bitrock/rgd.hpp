@@ -17,13 +17,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/bitrock/stick_slip.hpp"
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/options.hpp"
 #include "drillwave/io/json_reader.hpp"
 
 namespace drillwave::bitrock {
 
-enum class Turn { kForward, kStuck, kBackward };
 enum class Axial { kAdvancing, kHeld, kLifting };
 
 // Forces at the bit for one state: what the string drives it with and what the rock answers.
@@ -33,6 +33,8 @@ struct RgdForces {
   double torque = 0, weight = 0;             // the rock's reaction while moving (slip values)
   double cut_weight = 0;
   double static_forward = 0, static_backward = 0;  // torque the contact can hold at rest
+
+  AtRest RotationAtRest() const { return {drive_torque, {static_forward, static_backward}}; }
 };
 
 struct RgdLaw {
@@ -123,12 +125,8 @@ struct RgdRegimes {
   double Witness(int k, double w, double v, double contact_force, const ForcesAt& forces, const DepthAt& depth) const {
     switch (k) {
       case 0:
-      case 1: {
-        if (turn == Turn::kForward) return k == 0 ? w : 1.0;
-        if (turn == Turn::kBackward) return k == 0 ? -w : 1.0;
-        const RgdForces f = forces();  // stuck: the margins to the static limits
-        return k == 0 ? f.static_forward - f.drive_torque : f.drive_torque + f.static_backward;
-      }
+      case 1:
+        return TurnWitness(turn, k, w, [&] { return forces().RotationAtRest(); });
       case 2:
       case 3: {
         if (!contact) return 1.0;
@@ -167,13 +165,11 @@ struct RgdRegimes {
       }
     } else if (k <= 1) {
       if (turn == Turn::kStuck) {
-        turn = k == 0 ? Turn::kForward : Turn::kBackward;
+        turn = TurnBreakingFree(k);
       } else {
         w = 0;
-        turn = Turn::kStuck;
-        const RgdForces f = forces();
-        if (f.drive_torque > f.static_forward) turn = Turn::kForward;
-        else if (f.drive_torque < -f.static_backward) turn = Turn::kBackward;
+        turn = Turn::kStuck;  // forces() at rest
+        turn = TurnAtRest(forces().RotationAtRest());
       }
       if (turn == Turn::kStuck) w = 0;
     } else {

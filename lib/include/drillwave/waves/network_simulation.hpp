@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "drillwave/bitrock/stick_slip.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/waves/network.hpp"
 
@@ -23,13 +24,11 @@ struct NetworkRunOptions {
   bool record_energy = false;           // sample the mechanical energy (for conservation checks; costs time)
 };
 
-// Friction regime of a node with set-valued friction.
-enum class Regime { kSlipNegative = -1, kStuck = 0, kSlipPositive = 1 };
-
+// A change of the friction regime of a node with set-valued friction.
 struct RegimeChange {
   double time_s;
   int node;
-  Regime from, to;
+  bitrock::Turn from, to;
 };
 
 // Sampled outputs. Torques: top = torque the top feeds into the string, bit = torque on bit (reaction of the rock:

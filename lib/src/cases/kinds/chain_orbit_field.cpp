@@ -1,12 +1,13 @@
 // A lumped chain (lumped_friction_process.hpp) at its inputs' final values as a piecewise-smooth autonomous field,
 // for periodic orbits and their continuation (analysis/periodic_orbits.hpp). State: the twists, the speeds of the
 // inertias that move freely, the PI integral (the layout of LinearizeChain). Mode: the regime of every inertia that
-// can stick (+1 / -1 slipping forwards / backwards, 0 stuck), with the switches of ChainProcess: a slipping inertia
+// can stick (a bitrock::Turn as its integer: +1 / -1 slipping, 0 stuck), with the switches of bitrock/stick_slip.hpp: a slipping inertia
 // stops when its speed in the slip direction reaches 0; a stuck one breaks free when the torque on it leaves its
 // static range. While stuck its speed is held at 0, so a stick-slip cycle's monodromy has a zero multiplier.
 #include <cmath>
 #include <limits>
 
+#include "drillwave/bitrock/stick_slip.hpp"
 #include "lumped_friction_process.hpp"
 
 namespace drillwave::cases::lumped {
@@ -58,7 +59,7 @@ class ChainField : public analysis::PiecewiseSmoothField {
     // At rest: stuck unless the torque already exceeds the static range.
     for (std::size_t k = 0; k < frictional_.size(); ++k)
       if (regimes[k] == 0) {
-        regimes[k] = RegimeAtRest(mode, frictional_[k], x);
+        regimes[k] = static_cast<int>(bitrock::TurnAtRest(AtRest(mode, frictional_[k], x)));
         mode = Encode(regimes);
       }
     return mode;
@@ -68,24 +69,20 @@ class ChainField : public analysis::PiecewiseSmoothField {
 
   double Switch(int mode, int k, const Eigen::VectorXd& x) const override {
     const int i = frictional_[k / 2];
-    const bool first = k % 2 == 0;
-    const int r = Regime(mode, i);
-    if (r != 0) return first ? r * x[speed_index_[i]] : 1.0;
-    const double torque = Unbalanced(mode, i, x, 0.0);
-    const auto& f = *c_.inertias[i].friction;
-    return first ? scale_[i] * f.StaticPositive() - torque : torque + scale_[i] * f.StaticNegative();
+    return bitrock::TurnWitness(static_cast<bitrock::Turn>(Regime(mode, i)), k % 2, x[speed_index_[i]],
+                                [&] { return AtRest(mode, i, x); });
   }
 
   int ModeAfter(int mode, int k, const Eigen::VectorXd& x) const override {
     const int slot = k / 2, i = frictional_[slot];
     std::vector<int> regimes = Decode(mode);
     if (regimes[slot] == 0) {
-      regimes[slot] = k % 2 == 0 ? 1 : -1;
+      regimes[slot] = static_cast<int>(bitrock::TurnBreakingFree(k % 2));
       return Encode(regimes);
     }
     regimes[slot] = 0;
     const int stuck = Encode(regimes);
-    regimes[slot] = RegimeAtRest(stuck, i, x);  // stays, or turns the other way
+    regimes[slot] = static_cast<int>(bitrock::TurnAtRest(AtRest(stuck, i, x)));  // stays, or turns the other way
     return Encode(regimes);
   }
 
@@ -159,12 +156,10 @@ class ChainField : public analysis::PiecewiseSmoothField {
     }
     return torque;
   }
-  int RegimeAtRest(int mode, int i, const Eigen::VectorXd& x) const {
-    const double torque = Unbalanced(mode, i, x, 0.0);
+  // The torque on inertia i held at rest in `mode` and the static range of its (scaled) friction.
+  bitrock::AtRest AtRest(int mode, int i, const Eigen::VectorXd& x) const {
     const auto& f = *c_.inertias[i].friction;
-    if (torque > scale_[i] * f.StaticPositive()) return 1;
-    if (torque < -scale_[i] * f.StaticNegative()) return -1;
-    return 0;
+    return {Unbalanced(mode, i, x, 0.0), {scale_[i] * f.StaticPositive(), scale_[i] * f.StaticNegative()}};
   }
 
   Chain c_;

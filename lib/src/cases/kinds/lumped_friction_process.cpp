@@ -5,21 +5,24 @@
 #include <limits>
 #include <stdexcept>
 
+#include "drillwave/bitrock/stick_slip.hpp"
 #include "drillwave/core/error.hpp"
 
 namespace drillwave::cases::lumped {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+using bitrock::Turn;
+
 constexpr double kTinySpeed = 1e-300;  // evaluates a set-valued law on the side of its slip direction
 
-// The Process of integration::Simulator for a Chain. Regimes: +1 / -1 slipping forwards / backwards, 0 stuck; only
+// The Process of integration::Simulator for a Chain. Regimes: a bitrock::Turn per inertia; only
 // inertias with a set-valued law (and no smoothing) ever stick. Everything that changes during a run lives here.
 class ChainProcess {
  public:
   using State = std::vector<double>;
 
-  explicit ChainProcess(const Chain& c) : c_(c), n_(static_cast<int>(c.inertias.size())), regime_(n_, 1) {
+  explicit ChainProcess(const Chain& c) : c_(c), n_(static_cast<int>(c.inertias.size())), regime_(n_, Turn::kForward) {
     for (int i = 0; i < n_; ++i)
       if (CanStick(i)) frictional_.push_back(i);
     stuck_.resize(n_);
@@ -40,9 +43,9 @@ class ChainProcess {
     step_start_ = t0;
     // An inertia at rest sticks unless the torque on it already exceeds its static range.
     for (int i : frictional_) {
-      regime_[i] = 0;
-      regime_[i] = RegimeForTorqueAtRest(i, DrivingTorqueAtRest(i, x, t0), t0);
-      if (regime_[i] == 0) stuck_[i].push_back({t0, kInf});
+      regime_[i] = Turn::kStuck;
+      regime_[i] = bitrock::TurnAtRest(AtRest(i, x, t0));
+      if (regime_[i] == Turn::kStuck) stuck_[i].push_back({t0, kInf});
     }
     return x;
   }
@@ -64,7 +67,7 @@ class ChainProcess {
       if (i == 0 && Prescribed())
         dx[SpeedIndex(0)] = Setpoint(t).second;
       else
-        dx[SpeedIndex(i)] = regime_[i] == 0 ? 0.0 : (UnbalancedTorque(i, x, t, v) - friction) / Inertia(i).inertia_kgm2;
+        dx[SpeedIndex(i)] = regime_[i] == Turn::kStuck ? 0.0 : (UnbalancedTorque(i, x, t, v) - friction) / Inertia(i).inertia_kgm2;
     }
     for (int j = 0; j + 1 < n_; ++j) {
       const double dv = Speed(j, x, t) - Speed(j + 1, x, t);
@@ -77,32 +80,26 @@ class ChainProcess {
 
   int NumWitnesses() const { return 2 * static_cast<int>(frictional_.size()); }
 
-  // Slipping: the first witness is the speed in the slip direction (the inertia stops). Stuck: the margins of the
-  // torque on it to the two static limits (it breaks free).
+  // Two witnesses per frictional inertia (bitrock/stick_slip.hpp).
   double Witness(int k, double t, const State& x) const {
     const int i = frictional_[k / 2];
-    const bool first = k % 2 == 0;
-    if (regime_[i] != 0) return first ? regime_[i] * x[SpeedIndex(i)] : 1.0;
-    const double drive = DrivingTorqueAtRest(i, x, t), s = Scale(i, t);
-    const auto& f = *Inertia(i).friction;
-    return first ? s * f.StaticPositive() - drive : drive + s * f.StaticNegative();
+    return bitrock::TurnWitness(regime_[i], k % 2, x[SpeedIndex(i)], [&] { return AtRest(i, x, t); });
   }
 
   bool OnEvent(int k, double t, State& x) {
     const int i = frictional_[k / 2];
-    const int before = regime_[i];
-    int after;
-    if (before == 0) {
-      after = k % 2 == 0 ? 1 : -1;
+    const Turn before = regime_[i];
+    Turn after;
+    if (before == Turn::kStuck) {
+      after = bitrock::TurnBreakingFree(k % 2);
     } else {
-      // Come to rest: it stays if the friction can hold the torque on it, else it turns the other way.
-      regime_[i] = 0;
-      after = RegimeForTorqueAtRest(i, DrivingTorqueAtRest(i, x, t), t);
+      regime_[i] = Turn::kStuck;  // come to rest: AtRest holds it
+      after = bitrock::TurnAtRest(AtRest(i, x, t));
     }
     regime_[i] = after;
-    if (after == 0 || before == 0) x[SpeedIndex(i)] = 0;
-    if (after == 0 && before != 0) stuck_[i].push_back({t, kInf});
-    if (after != 0 && before == 0 && !stuck_[i].empty()) stuck_[i].back().end_s = t;
+    if (after == Turn::kStuck || before == Turn::kStuck) x[SpeedIndex(i)] = 0;
+    if (after == Turn::kStuck && before != Turn::kStuck) stuck_[i].push_back({t, kInf});
+    if (after != Turn::kStuck && before == Turn::kStuck && !stuck_[i].empty()) stuck_[i].back().end_s = t;
     return after != before;
   }
 
@@ -116,7 +113,7 @@ class ChainProcess {
   // --- Torques and energies (also used for the outputs) -------------------------------------------------------
   double Speed(int i, const State& x, double t) const {
     if (i == 0 && Prescribed()) return Setpoint(t).first;
-    return regime_[i] == 0 ? 0.0 : x[SpeedIndex(i)];
+    return regime_[i] == Turn::kStuck ? 0.0 : x[SpeedIndex(i)];
   }
   double CouplingTorque(int j, const State& x, double t) const {
     const Coupling& cp = c_.couplings[j];
@@ -134,12 +131,12 @@ class ChainProcess {
   double FrictionTorque(int i, const State& x, double t) const {
     const auto& law = Inertia(i).friction;
     if (!law) return 0;
-    if (regime_[i] == 0) return DrivingTorqueAtRest(i, x, t);
+    if (regime_[i] == Turn::kStuck) return DrivingTorqueAtRest(i, x, t);
     const double v = Speed(i, x, t), s = Scale(i, t);
     if (c_.friction_smoothing_rad_s > 0)
       return v == 0 ? 0.0 : s * law->SlipTorque(v) * std::tanh(std::abs(v) / c_.friction_smoothing_rad_s);
     if (!law->IsSetValued()) return s * law->SlipTorque(v);
-    return s * law->SlipTorque(regime_[i] > 0 ? std::max(v, kTinySpeed) : std::min(v, -kTinySpeed));
+    return s * law->SlipTorque(regime_[i] == Turn::kForward ? std::max(v, kTinySpeed) : std::min(v, -kTinySpeed));
   }
   double StoredEnergy(const State& x, double t) const {
     double e = 0;
@@ -151,7 +148,7 @@ class ChainProcess {
     return e;
   }
 
-  bool Stuck(int i) const { return regime_[i] == 0; }
+  bool Stuck(int i) const { return regime_[i] == Turn::kStuck; }
   const std::vector<std::vector<StuckInterval>>& stuck_intervals() const { return stuck_; }
 
  private:
@@ -192,17 +189,16 @@ class ChainProcess {
   }
   // What the friction must balance to hold inertia i at rest.
   double DrivingTorqueAtRest(int i, const State& x, double t) const { return UnbalancedTorque(i, x, t, 0.0); }
-  int RegimeForTorqueAtRest(int i, double torque, double t) const {
+  // The torque on inertia i held at rest and the static range of its (scaled) friction.
+  bitrock::AtRest AtRest(int i, const State& x, double t) const {
     const auto& f = *Inertia(i).friction;
     const double s = Scale(i, t);
-    if (torque > s * f.StaticPositive()) return 1;
-    if (torque < -s * f.StaticNegative()) return -1;
-    return 0;
+    return {DrivingTorqueAtRest(i, x, t), {s * f.StaticPositive(), s * f.StaticNegative()}};
   }
 
   const Chain& c_;
   int n_;
-  std::vector<int> regime_;
+  std::vector<Turn> regime_;
   std::vector<int> frictional_;
   std::vector<std::vector<StuckInterval>> stuck_;
   double step_start_ = 0;

@@ -161,9 +161,9 @@ class TorsionalWaveModel : public PreparedModel {
     if (!tr.bit_stuck.empty() && tr.bit_stuck.front() > 0) stuck.push_back({0.0, std::numeric_limits<double>::infinity()});
     for (const waves::RegimeChange& c : run.regime_changes) {
       if (c.node != bit) continue;
-      if (c.to == waves::Regime::kStuck && c.from != waves::Regime::kStuck)
+      if (c.to == bitrock::Turn::kStuck && c.from != bitrock::Turn::kStuck)
         stuck.push_back({c.time_s, std::numeric_limits<double>::infinity()});
-      else if (c.from == waves::Regime::kStuck && c.to != waves::Regime::kStuck && !stuck.empty())
+      else if (c.from == bitrock::Turn::kStuck && c.to != bitrock::Turn::kStuck && !stuck.empty())
         stuck.back().end_s = c.time_s;
     }
     RunResult result;
