@@ -370,7 +370,7 @@ class NetworkProcess {
       case Drive::kSpeedDashpot: return node.drive_damping * (Setpoint(node, t, side) - v);
       case Drive::kTorque: return Setpoint(node, t, side);
       case Drive::kPiSpeedController: {
-        const double u = node.kp * (Setpoint(node, t, side) - v) + node.ki * x[integral_index_[i]];
+        const double u = SpeedControllerOutput(i, x, v, t, side);
         return node.torque_limit > 0 ? std::clamp(u, -node.torque_limit, node.torque_limit) : u;
       }
       case Drive::kDcMotorVoltage:
@@ -381,13 +381,20 @@ class NetworkProcess {
     return 0;
   }
 
+  // The PI speed controller of node i at drive speed v: kp (setpoint - v) + ki * integral. A torque for the PI top
+  // drive and the induction motor's demand, a voltage for the DC motor's speed loop.
+  double SpeedControllerOutput(int i, const State& x, double v, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    return node.kp * (Setpoint(node, t, side) - v) + node.ki * x[integral_index_[i]];
+  }
+
   // An induction motor's supply: the setpoint (open loop), or the supply for the PI's torque demand at the drive's
   // speed (slip-frequency control).
   double SupplyFrequency(int i, const State& x, double vd, double t, Side side) const {
     const Node& node = net_.nodes[i];
     if (node.drive == Drive::kInductionMotor) return Setpoint(node, t, side);
     const double n = node.gear.ratio;
-    const double demand = node.kp * (Setpoint(node, t, side) - vd) + node.ki * x[integral_index_[i]];
+    const double demand = SpeedControllerOutput(i, x, vd, t, side);
     return node.induction.SupplyForTorque(demand / n, n * vd);
   }
 
@@ -413,7 +420,7 @@ class NetworkProcess {
     const Node& node = net_.nodes[i];
     const double u = node.drive == Drive::kDcMotorVoltage
                          ? Setpoint(node, t, side)
-                         : node.kp * (Setpoint(node, t, side) - v) + node.ki * x[integral_index_[i]];
+                         : SpeedControllerOutput(i, x, v, t, side);
     const double limit = node.motor.voltage_limit;
     return limit > 0 ? std::clamp(u, -limit, limit) : u;
   }
