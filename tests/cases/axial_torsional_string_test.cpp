@@ -337,6 +337,12 @@ TEST(AxialTorsionalString, BadBhaAndKelvinVoigtInputNameTheirPath) {
   doc["model"]["string"]["kelvin_voigt_s"] = 0.02;
   doc["model"]["string"]["side_friction"]["torque_per_m_Nm"] = 5;
   EXPECT_NE(error_of(doc).find("/model/string/kelvin_voigt_s"), std::string::npos) << error_of(doc);
+  doc = WithBha(80);  // retardation times beyond 10 s: the range is stated
+  doc["model"]["string"]["axial_kelvin_voigt_s"] = 1e300;
+  EXPECT_NE(error_of(doc).find("/model/string/axial_kelvin_voigt_s: expected a number in [0, 10]"), std::string::npos)
+      << error_of(doc);
+  doc["model"]["string"]["axial_kelvin_voigt_s"] = 10;
+  EXPECT_EQ(error_of(doc), "");
 }
 
 }  // namespace

@@ -67,6 +67,10 @@ TEST(TorsionalWaveComponents, BadInputNamesTheField) {
   EXPECT_EQ(RefusedPath(doc), "/model/string/kelvin_voigt_s");
   doc["model"]["string"]["kelvin_voigt_s"] = 1e305;
   EXPECT_EQ(RefusedPath(doc), "/model/string/kelvin_voigt_s");
+  doc["model"]["string"]["kelvin_voigt_s"] = 10.5;  // beyond the stated [0, 10] s (1e17 s gave a spurious root)
+  EXPECT_EQ(RefusedPath(doc), "/model/string/kelvin_voigt_s");
+  doc["model"]["string"]["kelvin_voigt_s"] = 10;
+  EXPECT_EQ(RefusedPath(doc), "");
   // A massless bit with (smooth) friction between dashpots would solve a nonlinear system: refused.
   doc = Load("saldivar-stickslip");
   doc["model"]["string"]["kelvin_voigt_s"] = 0.02;

@@ -586,7 +586,7 @@ StringSpec ReadString(const JsonReader& s) {
   pipe.c_t = s.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative());
   pipe.c_a = s.Number("axial_damping_Ns_per_m2", Range::NonNegative());
   sp.eta_t = ReadKelvinVoigt(s);
-  sp.eta_a = s.Number("axial_kelvin_voigt_s", Range::NonNegative(), 0.0);
+  sp.eta_a = ReadKelvinVoigt(s, "axial_kelvin_voigt_s");
   if (s.Has("side_friction")) {
     const JsonReader f = s.Object("side_friction");
     sp.side_torque_per_m = f.Number("torque_per_m_Nm", Range::NonNegative());
@@ -783,7 +783,7 @@ class AxialTorsionalKind : public ModelKind {
             {"string/axial_damping_Ns_per_m2", "c_a >= 0, viscous, per metre"},
             {"string/subsections", "integer in [2, 400], default 20: the pipe's pieces (damping and weight lumped at "
                                    "their nodes)"},
-            {"string/axial_kelvin_voigt_s", "eta_a >= 0, default 0: axial N += eta_a E A dv/ds"},
+            {"string/axial_kelvin_voigt_s", "eta_a in [0, 10] s, default 0: axial N += eta_a E A dv/ds"},
             {"string/bha/length_m", "> 0, < string/length_m: drill collars of the same steel between the pipe and "
                                     "the bit (string/length_m stays top drive to bit). string/bha may also be an "
                                     "array of such sections, top to bottom (heavy-weight pipe, collars, ...)"},

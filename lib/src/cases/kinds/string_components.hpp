@@ -12,8 +12,9 @@
 
 namespace drillwave::cases {
 
-// string/kelvin_voigt_s: the retardation time eta [s] of T += -eta G J dw/ds, default 0 (none).
-double ReadKelvinVoigt(const io::JsonReader& string);
+// string/kelvin_voigt_s: the retardation time eta in [0, 10] s of T += -eta G J dw/ds, default 0 (none); `key`
+// names the axial one (N += eta_a E A dv/ds) likewise.
+double ReadKelvinVoigt(const io::JsonReader& string, const char* key = "kelvin_voigt_s");
 // bit/unbalance (absent: no lateral motion).
 std::optional<model::JeffcottBha> ReadUnbalance(const io::JsonReader& bit);
 // Field documentation of both, keyed by their paths below the string and bit blocks (e.g. "string", "bit").
