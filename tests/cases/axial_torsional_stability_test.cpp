@@ -51,6 +51,8 @@ struct ClosedForm {
   double zt, taut, za, taua, j_top, kp, ki, j_bit, m_hoist, m_bit, cut_w, cut_t, blades, tn0, ratio;
   double gear_ratio = 1, gear_k = 0, gear_c = 0, j_motor = 0, dc_k = 0, dc_r = 0, dc_l = 0;  // optional top parts
   double rig_m1 = 0, rig_m2 = 0, rig_g1 = 0, rig_g2 = 0, rig_k01 = 0, rig_k12 = 0;            // optional hoisting rig
+  int pieces = 1;
+  double kv_t = 0, kv_a = 0;  // optional Kelvin-Voigt dashpots eta K / piece length across each piece
   explicit ClosedForm(const nlohmann::json& doc) {
     const auto& m = doc["model"];
     const auto& s = m["string"];
@@ -59,6 +61,9 @@ struct ClosedForm {
     const double polar = M_PI / 32 * (std::pow(od, 4) - std::pow(id, 4)), area = M_PI / 4 * (od * od - id * id);
     zt = polar * std::sqrt(g * rho), taut = length / std::sqrt(g / rho);
     za = area * std::sqrt(e * rho), taua = length / std::sqrt(e / rho);
+    pieces = s.value("subsections", 20);
+    kv_t = s.value("kelvin_voigt_s", 0.0) * g * polar / (length / pieces);
+    kv_a = s.value("axial_kelvin_voigt_s", 0.0) * e * area / (length / pieces);
     j_top = m["top"]["inertia_kgm2"], kp = m["top"]["kp_Nms_per_rad"], ki = m["top"]["ki_Nm_per_rad"];
     j_bit = m["bit"]["inertia_kgm2"], m_bit = m["bit"]["mass_kg"], m_hoist = m["hoist"]["mass_kg"];
     const double a = m["bit"]["radius_m"], eps = m["rock"]["intrinsic_specific_energy_Pa"], zeta = m["rock"]["zeta"];
@@ -107,9 +112,22 @@ struct ClosedForm {
     const Complex r = (z - y) / (z + y), e = r * std::exp(-2.0 * s * tau);
     return (1.0 - e) / (1.0 + e);
   }
+  // The impedance seen from the bit into a channel of `pieces` pieces (impedance z, travel time tau / pieces each)
+  // with a dashpot c across each, ending in the load y at the top. A piece with its dashpot is the two-port
+  // T1 = A w1 - B w2, T2 = -B w1 + A w2 with A = z coth(s tau_p) + c, B = z csch(s tau_p) + c, so a load y on its
+  // upper port is seen from its lower port as A - B^2 / (A + y), piece by piece from the top down. With c = 0 this
+  // is z g(s).
+  Complex DampedChannel(Complex s, double z, Complex y, double tau, double c) const {
+    const Complex e = std::exp(-s * tau / double(pieces)), q = e * e;
+    const Complex a = z * (1.0 + q) / (1.0 - q) + c, b = z * 2.0 * e / (1.0 - q) + c;
+    for (int k = 0; k < pieces; ++k) y = a - b * b / (a + y);
+    return y;
+  }
   Complex operator()(Complex s) const {
-    const Complex dt = j_bit * s + zt * G(s, zt, TopImpedance(s), taut);
-    const Complex da = m_bit * s + za * G(s, za, HoistImpedance(s), taua);
+    const Complex dt = j_bit * s + (kv_t > 0 ? DampedChannel(s, zt, TopImpedance(s), taut, kv_t)
+                                             : zt * G(s, zt, TopImpedance(s), taut));
+    const Complex da = m_bit * s + (kv_a > 0 ? DampedChannel(s, za, HoistImpedance(s), taua, kv_a)
+                                             : za * G(s, za, HoistImpedance(s), taua));
     const Complex e = blades * (1.0 - std::exp(-s * tn0)) / s;
     return dt * da + e * (cut_w * dt - cut_t * ratio * da);
   }
@@ -173,6 +191,18 @@ TEST(AxialTorsionalStability, RootsAreTheZerosOfTheClosedFormOfTheUndampedString
 
 // The top drive's motor and gear: the rig's compliant 8:1 gear with the motor's inertia behind it (the PI on the motor
 // speed), and a DC motor through a rigid gear with its inertia.
+// Kelvin-Voigt dashpots across the pieces of both channels (the retardation times of
+// json-cases/baseline-kelvin-voigt.json and a tenth of it axially): the channels are no longer single sections, and
+// the closed form chains the pieces' two-ports.
+TEST(AxialTorsionalStability, KelvinVoigtRootsAreTheZerosOfTheChainedClosedForm) {
+  for (int pieces : {2, 5}) {
+    nlohmann::json doc = Undamped(pieces);
+    doc["model"]["string"]["kelvin_voigt_s"] = 0.024;
+    doc["model"]["string"]["axial_kelvin_voigt_s"] = 0.0024;
+    ExpectRootsAreTheZerosOfTheClosedForm(doc, "Kelvin-Voigt string in " + std::to_string(pieces) + " pieces");
+  }
+}
+
 TEST(AxialTorsionalStability, GearedAndMotorTopsAreTheZerosOfTheClosedForm) {
   nlohmann::json compliant = Undamped(2);
   compliant["model"]["top"]["gear"] = {{"ratio", 8}, {"stiffness_Nm_per_rad", 3e5}, {"damping_Nms_per_rad", 20}};
