@@ -161,7 +161,7 @@ TEST(DiagnosisLoop, ABouncingBitsTwinStaysATwinThoughItsImpactsAreMasked) {
 TEST(DiagnosisLoop, ATwinOfWindowMeansIsATwinWhenTheModelIsReadAsWindowMeans) {
   const nlohmann::json doc = BouncingCase();
   nlohmann::json fine = doc;
-  fine["simulation"]["output_interval_s"] = 0.0005;  // the twin's means from 20 outputs each, the loop's from 10
+  fine["simulation"]["output_interval_s"] = 0.0005;  // the twin's means from 20 outputs each, the loop's from 5
   const Recording twin = BouncingTwin(cases::RunCase(cases::ParseCase(fine)).result, true);
   const DiagnosisLoop means = AgainstTwin(doc, twin, 0.01), points = AgainstTwin(doc, twin, 0);
   std::printf("[ measured ] twin of 10-ms means: fit / held-out error %.3f / %.3f read as means, %.3f / %.3f read as "

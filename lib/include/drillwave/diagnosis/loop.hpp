@@ -52,7 +52,7 @@ struct LoopOptions {
   int threads = 1;
   bool carry_noise = true;        // estimated sensor noise added to the model's measured channels
   // Each recorded sample is the mean over this window ending at it (0: point samples); the model's measured channels
-  // are the same mean, from an output a tenth of the window apart.
+  // are the same mean, from an output a fifth of the window apart.
   double sample_window_s = 0;
   unsigned seed = 1;
   FeatureOptions features;
