@@ -297,6 +297,7 @@ struct DiagnoseArguments {
   double fit_tolerance = 1e-4;
   int threads = 1;
   int evaluations_per_parameter = 10;
+  double sample_window_s = -1;  // < 0: the recording's sample interval
 };
 
 int Diagnose(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
@@ -322,6 +323,12 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
   if (!(a.fit_tolerance == 0 || (a.fit_tolerance >= 1e-14 && a.fit_tolerance <= 1e-2)))
     throw drillwave::InputError("--fit-tolerance", "expected 0 (the case's) or a tolerance in [1e-14, 1e-2], got " +
                                                        drillwave::ReadableNumber(a.fit_tolerance));
+  if (a.sample_window_s != -1) {  // given
+    if (!(a.sample_window_s >= 0 && a.sample_window_s <= 60))
+      throw drillwave::InputError("--sample-window", "expected seconds in [0, 60], got " +
+                                                         drillwave::ReadableNumber(a.sample_window_s));
+    o.sample_window_s = a.sample_window_s;
+  }
   o.margin = a.margin;
   o.fit_tolerance = a.fit_tolerance;
   o.threads = a.threads;
@@ -512,6 +519,9 @@ int main(int argc, char** argv) {
   diagnose->add_option("--fit-tolerance", diagnose_args.fit_tolerance,
                        "the fits' runs use at most this tolerance's accuracy; candidates are judged at the case's "
                        "(default 1e-4; 0: the case's)");
+  diagnose->add_option("--sample-window", diagnose_args.sample_window_s,
+                       "each recorded sample is the mean over this window [s] ending at it; the model's measured "
+                       "channels are read the same way (default: the recording's sample interval; 0: point samples)");
   diagnose->add_option("-j,--jobs", diagnose_args.threads, "candidates fitted in parallel (default 1)");
   diagnose->add_option("--out,-o", diagnose_out, "output folder (written all or nothing)");
   diagnose->add_option("--set", overrides, "override a parameter of the case by JSON pointer");

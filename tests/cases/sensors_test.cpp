@@ -53,6 +53,59 @@ TEST(Sensors, LowPassFollowsTheExactStepResponse) {
   for (std::size_t k = 1; k < s.t.size(); ++k) EXPECT_NEAR(y[k], 1 - std::exp(-(s.t[k]) / 0.1), 1e-12);
 }
 
+// A logger's reading is the mean over the window ending at it: for a sine, the sine damped by sinc(omega w / 2) and
+// late by half the window. The mean is the exact integral of the linear interpolant, the trapezoid rule on a window
+// of whole samples, which scales the sine by (omega h / 2) cot(omega h / 2): with that factor the closed form holds
+// to round-off on any grid, without it to the trapezoid's (omega h)^2 / 12.
+TEST(Sensors, WindowMeanOfASineIsTheSincDampedSineHalfAWindowLate) {
+  const double omega = 1.3, window = 0.8;  // omega * window = 1.04: a sinc factor of 0.956
+  for (const int per_window : {8, 80, 800}) {
+    const double h = window / per_window;
+    const Signal s = Sine(h, 5);
+    SensorModel m;
+    m.window_s = window;
+    const std::vector<double> y = Measure(m, s.t, s.v, 1);
+    const double sinc = std::sin(0.5 * omega * window) / (0.5 * omega * window);
+    const double trapezoid = 0.5 * omega * h / std::tan(0.5 * omega * h);
+    double exact = 0, continuous = 0;
+    for (std::size_t k = per_window; k < s.t.size(); ++k) {
+      const double closed_form = sinc * std::sin(omega * (s.t[k] - 0.5 * window));
+      exact = std::max(exact, std::abs(y[k] - 2 - trapezoid * closed_form));
+      continuous = std::max(continuous, std::abs(y[k] - 2 - closed_form));
+    }
+    EXPECT_LT(exact, 1e-12) << per_window << " samples per window";
+    EXPECT_LT(continuous, std::pow(omega * h, 2) / 12 + 1e-12) << per_window << " samples per window";
+  }
+}
+
+// A step between two samples (0 before t_j, 1 from t_j on: the interpolant climbs over [t_j - h, t_j], centred at
+// t_step = t_j - h / 2) is read as the ramp (t - t_step) / window, from 0 to 1 over exactly one window; a delay
+// shifts that ramp by exactly the delay, also by a delay that is not a whole number of samples.
+TEST(Sensors, WindowMeanOfAStepIsTheLinearRampAndADelayShiftsItExactly) {
+  const double h = 1e-3, window = 0.01, t_j = 0.5, t_step = t_j - 0.5 * h;
+  Signal s;
+  for (int k = 0; k <= 1000; ++k) s.t.push_back(k * h), s.v.push_back(k * h >= t_j - 1e-12 ? 1.0 : 0.0);
+  for (const double delay : {0.0, 0.0123}) {
+    SensorModel m;
+    m.window_s = window;
+    m.delay_s = delay;
+    const std::vector<double> y = Measure(m, s.t, s.v, 1);
+    int on_ramp = 0;
+    for (std::size_t k = 0; k < s.t.size(); ++k) {
+      const double x = s.t[k] - delay;  // when the reading arriving at t[k] was taken
+      if (x <= t_step - 0.5 * h) {
+        EXPECT_NEAR(y[k], 0.0, 1e-12) << "at t = " << s.t[k];
+      } else if (x >= t_step + 0.5 * h && x <= t_step + window - 0.5 * h) {  // the window holds the whole climb
+        EXPECT_NEAR(y[k], (x - t_step) / window, 1e-12) << "at t = " << s.t[k];
+        ++on_ramp;
+      } else if (x >= t_step + window + 0.5 * h) {
+        EXPECT_NEAR(y[k], 1.0, 1e-12) << "at t = " << s.t[k];
+      }
+    }
+    EXPECT_GE(on_ramp, 8) << "delay " << delay;
+  }
+}
+
 TEST(Sensors, NoiseHasItsStandardDeviationAndIsReproducible) {
   const Signal s = Sine(0.001, 20);
   SensorModel m;
@@ -111,6 +164,12 @@ TEST(Sensors, AnUnknownChannelIsBadInputNamingIt) {
     EXPECT_NE(std::string(e.what()).find("bit_rpm"), std::string::npos) << e.what();
   }
   EXPECT_THROW(ParseCase(SaldivarWithSensors({{"channels", {{"bit_rpm", {{"delay_s", -1.0}}}}}})), InputError);
+  try {
+    ParseCase(SaldivarWithSensors({{"channels", {{"bit_rpm", {{"window_s", -0.01}}}}}}));
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/sensors/channels/bit_rpm/window_s"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

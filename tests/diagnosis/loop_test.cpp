@@ -1,6 +1,7 @@
 // The diagnosis loop on recordings whose truth is known: a noisy twin of a case's own run (nothing to find, the
 // noise estimated), a recording of another scale (refused), bad windows (refused before any run), the HTML
-// report opened in Debian's headless Chromium, and a twin with two effects (the pair found, an extra refused).
+// report opened in Debian's headless Chromium, a twin with two effects (the pair found, an extra refused), and a
+// bouncing bit's twin of point samples and of 10-ms means.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -85,35 +86,64 @@ TEST(DiagnosisLoop, ANoisyTwinKeepsTheBaselineAndItsNoiseIsMeasured) {
 // A bouncing bit (BASELINE.md's model at 3000 m, 150 kN, 60 rpm, as in rec04): its weight-on-bit impacts are as
 // short as a glitch, so the artefact filter masks hundreds of samples of the recording. The model's channels pass
 // the same filter, so the model stays the recording's twin (unmasked, its weight on bit was 15 scales off rec04's).
-TEST(DiagnosisLoop, ABouncingBitsTwinStaysATwinThoughItsImpactsAreMasked) {
+// The baseline at rec04's operating point (3000 m, 150 kN, 60 rpm), where the bit bounces: a 30-s warm-up before a
+// 50-s recording.
+nlohmann::json BouncingCase() {
   const nlohmann::json sidecar = {{"recording", "bouncing"},
                                   {"duration_s", 50.0},
                                   {"rpm_setpoint_schedule", {{0.0, 60.0}, {50.0, 60.0}}},
                                   {"wob_target_kN", 150.0},
                                   {"well", {{"measured_depth_m", 3000.0}, {"mud_density_kg_m3", 1200.0}}}};
-  const nlohmann::json doc = CaseFromSidecar(
-      sidecar, io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json"), 30);
-  const cases::RunResult run = cases::RunCase(cases::ParseCase(doc)).result;
-  const std::vector<ChannelMap> maps = {{"hookload_kN", "hookload_N", 1e-3}, {"wob_kN", "wob_N", 1e-3}};
+  return CaseFromSidecar(sidecar,
+                         io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json"), 30);
+}
+const std::vector<ChannelMap> kAxialMaps = {{"hookload_kN", "hookload_N", 1e-3}, {"wob_kN", "wob_N", 1e-3}};
+
+// The run after its warm-up as a 100-Hz recording with 1 % noise: each sample the run's own (window 0: the run's
+// output must be 10 ms apart) or the mean over the 10 ms ending at it (trapezoid rule over the run's finer output).
+Recording BouncingTwin(const cases::RunResult& run, bool window_means) {
+  const double dt = run.time_s[1] - run.time_s[0];
+  const auto per_sample = static_cast<std::size_t>(std::lround(0.01 / dt));
   Recording twin;
   twin.source = "bouncing twin";
-  for (const ChannelMap& map : maps) twin.names.push_back(map.recording);
-  twin.channels.resize(maps.size());
+  for (const ChannelMap& map : kAxialMaps) twin.names.push_back(map.recording);
+  twin.channels.resize(kAxialMaps.size());
   std::mt19937 rng(7);
   std::normal_distribution<double> n(0.0, 1.5);  // kN, 1 % of the weight on bit
-  for (std::size_t i = 0; i < run.time_s.size(); ++i) {
+  for (std::size_t i = per_sample; i < run.time_s.size(); i += per_sample) {
     if (run.time_s[i] < 30) continue;
     twin.time_s.push_back(run.time_s[i] - 30);
-    for (std::size_t j = 0; j < maps.size(); ++j)
-      twin.channels[j].push_back(maps[j].scale * run.channel(maps[j].model).values[i] + n(rng));
+    for (std::size_t j = 0; j < kAxialMaps.size(); ++j) {
+      const std::vector<double>& v = run.channel(kAxialMaps[j].model).values;
+      double value = v[i];
+      if (window_means) {
+        value = 0.5 * (v[i - per_sample] + v[i]);
+        for (std::size_t k = i - per_sample + 1; k < i; ++k) value += v[k];
+        value /= static_cast<double>(per_sample);
+      }
+      twin.channels[j].push_back(kAxialMaps[j].scale * value + n(rng));
+    }
   }
   twin.sample_interval_s = twin.time_s[1] - twin.time_s[0];
+  return twin;
+}
+
+// The baseline's errors (nothing fitted) against a twin, its samples read by the model as means over sample_window_s.
+DiagnosisLoop AgainstTwin(const nlohmann::json& doc, const Recording& twin, double sample_window_s) {
   LoopOptions o;
-  o.maps = maps;
+  o.maps = kAxialMaps;
   o.model_time_offset_s = 30;
   o.fit_begin_s = 5, o.fit_end_s = o.held_out_begin_s = 27.5, o.held_out_end_s = 50;
-  o.max_singles = 0;  // the baseline's errors only
-  const DiagnosisLoop loop = RunDiagnosisLoop(doc, twin, o);
+  o.max_singles = 0;
+  o.sample_window_s = sample_window_s;
+  return RunDiagnosisLoop(doc, twin, o);
+}
+
+// A bouncing bit's weight-on-bit impacts are as short as a glitch; the artefact filter masks them in the model as in
+// the recording, and the twin stays a twin.
+TEST(DiagnosisLoop, ABouncingBitsTwinStaysATwinThoughItsImpactsAreMasked) {
+  const nlohmann::json doc = BouncingCase();
+  const DiagnosisLoop loop = AgainstTwin(doc, BouncingTwin(cases::RunCase(cases::ParseCase(doc)).result, false), 0);
   int masked = 0;
   for (const auto& [channel, count] : loop.masked_samples) masked += channel == "wob_kN" ? count : 0;
   std::printf("[ measured ] bouncing twin: %d weight-on-bit samples masked, fit error %.3f, held-out error %.3f\n",
@@ -123,6 +153,24 @@ TEST(DiagnosisLoop, ABouncingBitsTwinStaysATwinThoughItsImpactsAreMasked) {
             3 * loop.recording_fit.Find("wob_kN mean")->scale);
   EXPECT_LT(loop.baseline_fit_error, 3.0);
   EXPECT_LT(loop.baseline_held_out_error, 3.0);
+}
+
+// A logger's 10-ms means blunt the impacts (BASELINE.md: each sample the mean over its window). The loop reads the
+// model's channels the same way, window means of a finer output, and the twin of means stays a twin; read as point
+// samples, the model's sharper impacts are masked differently, by more than chance moves the error.
+TEST(DiagnosisLoop, ATwinOfWindowMeansIsATwinWhenTheModelIsReadAsWindowMeans) {
+  const nlohmann::json doc = BouncingCase();
+  nlohmann::json fine = doc;
+  fine["simulation"]["output_interval_s"] = 0.0005;  // the twin's means from 20 outputs each, the loop's from 5
+  const Recording twin = BouncingTwin(cases::RunCase(cases::ParseCase(fine)).result, true);
+  const DiagnosisLoop means = AgainstTwin(doc, twin, 0.01), points = AgainstTwin(doc, twin, 0);
+  std::printf("[ measured ] twin of 10-ms means: fit / held-out error %.3f / %.3f read as means, %.3f / %.3f read as "
+              "point samples (chance %.3f)\n",
+              means.baseline_fit_error, means.baseline_held_out_error, points.baseline_fit_error,
+              points.baseline_held_out_error, means.error_chance);
+  EXPECT_LT(means.baseline_fit_error, 3.0);
+  EXPECT_LT(means.baseline_held_out_error, 3.0);
+  EXPECT_GT(points.baseline_held_out_error - means.baseline_held_out_error, means.error_chance);
 }
 
 TEST(DiagnosisLoop, ARecordingOfAnotherScaleIsRefused) {

@@ -12,6 +12,39 @@ namespace drillwave::cases {
 using io::JsonReader;
 using Range = io::Range;
 
+namespace {
+
+// The reading of a channel sampled at times t at any time s: the mean over [s - window, s] of its linear interpolant
+// (held at the end values outside t), or for a window of 0 the interpolant at s. The running integral of the
+// interpolant is kept at every sample, so a reading, delayed or not, costs two binary searches.
+class WindowedReading {
+ public:
+  WindowedReading(const std::vector<double>& t, const std::vector<double>& values, double window_s)
+      : t_(t), values_(values), window_s_(window_s), integral_(t.size(), 0.0) {
+    for (std::size_t k = 1; k < t.size(); ++k)
+      integral_[k] = integral_[k - 1] + 0.5 * (t[k] - t[k - 1]) * (values[k] + values[k - 1]);
+  }
+  double operator()(double s) const {
+    if (window_s_ <= 0) return InterpolateSampled(t_, values_, s);
+    return (Integral(s) - Integral(s - window_s_)) / window_s_;
+  }
+
+ private:
+  double Integral(double s) const {  // from t.front() to s; negative before it
+    if (s <= t_.front()) return (s - t_.front()) * values_.front();
+    if (s >= t_.back()) return integral_.back() + (s - t_.back()) * values_.back();
+    const auto k = static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), s) - t_.begin());
+    const double h = s - t_[k - 1], slope = (values_[k] - values_[k - 1]) / (t_[k] - t_[k - 1]);
+    return integral_[k - 1] + h * (values_[k - 1] + 0.5 * slope * h);
+  }
+  const std::vector<double>& t_;
+  const std::vector<double>& values_;
+  double window_s_;
+  std::vector<double> integral_;
+};
+
+}  // namespace
+
 SensorSet ReadSensors(const JsonReader& block) {
   SensorSet set;
   set.seed = static_cast<unsigned long long>(block.Integer("seed", 0, 2147483647, 1));
@@ -21,6 +54,7 @@ SensorSet ReadSensors(const JsonReader& block) {
     SensorModel m;
     m.channel = item.key();
     m.time_constant_s = s.Number("time_constant_s", Range::Between(0, 1e4), 0.0);
+    m.window_s = s.Number("window_s", Range::Between(0, 1e4), 0.0);
     m.delay_s = s.Number("delay_s", Range::Between(0, 1e4), 0.0);
     m.hold_s = s.Number("hold_s", Range::Between(0, 1e4), 0.0);
     m.noise_std = s.Number("noise_std", Range::NonNegative(), 0.0);
@@ -41,6 +75,7 @@ std::vector<double> Measure(const SensorModel& sensor, const std::vector<double>
       const double a = 1 - std::exp(-(t[k] - t[k - 1]) / sensor.time_constant_s);
       filtered[k] = filtered[k - 1] + a * (values[k] - filtered[k - 1]);
     }
+  const WindowedReading reading(t, filtered, sensor.window_s);
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::vector<double> measured(t.size());
@@ -52,11 +87,11 @@ std::vector<double> Measure(const SensorModel& sensor, const std::vector<double>
       const long j = std::max(0L, static_cast<long>(std::floor((sent - t.front()) / sensor.hold_s + 1e-9)));
       while (held < j) {  // draw noise for every sample, received or skipped, so the noise does not depend on the output grid
         ++held;
-        held_value = InterpolateSampled(t, filtered, t.front() + held * sensor.hold_s) + sensor.noise_std * noise(rng);
+        held_value = reading(t.front() + held * sensor.hold_s) + sensor.noise_std * noise(rng);
       }
       measured[k] = held_value;
     } else {
-      measured[k] = InterpolateSampled(t, filtered, sent) + (sensor.noise_std > 0 ? sensor.noise_std * noise(rng) : 0.0);
+      measured[k] = reading(sent) + (sensor.noise_std > 0 ? sensor.noise_std * noise(rng) : 0.0);
     }
   }
   return measured;

@@ -4,7 +4,8 @@
 //    "model": {"kind": "<kind>", ...kind's fields...},
 //    "simulation": {"duration_s", "output_interval_s", "abs_tol", "rel_tol", "max_step_s"},
 //    "statistics": {"window_s": [begin, end]},
-//    "sensors": {"seed": n, "channels": {"<channel>": {"time_constant_s", "delay_s", "hold_s", "noise_std"}}},
+//    "sensors": {"seed": n,
+//                "channels": {"<channel>": {"time_constant_s", "window_s", "delay_s", "hold_s", "noise_std"}}},
 //    "expect": {"<summary key>": {"min": a, "max": b} | {"value": v, "rel_tol": r} | null}}
 // Every parameter is addressable by its JSON pointer (e.g. /model/bit/inertia_kgm2), so sweeps and fits patch the
 // document and parse it again: parsing is cheap and a PreparedModel is immutable.

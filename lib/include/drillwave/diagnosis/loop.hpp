@@ -6,7 +6,9 @@
 //      model's channels pass the same filter, so that physics as short as a glitch (a bouncing bit's impacts) is
 //      masked on both sides alike.
 //      Its sensor noise is estimated per channel and carried into the model's measured channels (a
-//      sensors block), so that model and recording are compared as the recording was made.
+//      sensors block), so that model and recording are compared as the recording was made; so is its sampling: each
+//      recorded sample the mean over its window (a logger's 100-Hz samples are 10-ms means, which blunt a bouncing
+//      bit's impacts), the model's measured channels the same window mean of a finer output.
 //   2. The usable recording is split into a fit window and a later held-out window. The baseline's error on each is
 //      the feature distance (features.hpp): differences counted in each feature's own variability.
 //   3. Rules read the baseline's differences as graded evidence for effects (effects.hpp); the strongest the case
@@ -49,6 +51,9 @@ struct LoopOptions {
   double fit_tolerance = 1e-4;
   int threads = 1;
   bool carry_noise = true;        // estimated sensor noise added to the model's measured channels
+  // Each recorded sample is the mean over this window ending at it (0: point samples); the model's measured channels
+  // are the same mean, from an output a fifth of the window apart.
+  double sample_window_s = 0;
   unsigned seed = 1;
   FeatureOptions features;
 };
@@ -92,7 +97,8 @@ struct DiagnosisLoop {
 
 // Options for a case and a recording: the model's time offset (a warm-up before the recording), and the usable
 // recording — after `settle_s` when there is a warm-up, up to the end of the recording or of the case's run — split
-// in halves, the fit window first. Everything else at its default; the channel maps are left to the caller.
+// in halves, the fit window first; each sample the mean over its sample interval. Everything else at its default;
+// the channel maps are left to the caller.
 LoopOptions DefaultLoopOptions(const cases::Case& c, const Recording& recording, double model_time_offset_s,
                                double settle_s = 5);
 
