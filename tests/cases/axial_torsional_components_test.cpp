@@ -1,15 +1,17 @@
 // The optional top-drive and bit components of the axial_torsional kind (Stribeck bit friction, axial coupling off,
-// DC motor, BHA mass unbalance), each against a closed form or a limit it must reach, and each absent-equivalent
-// setting against the plain run.
+// DC motor, BHA mass unbalance) and the start's bottom-hole roughness, each against a closed form or a limit it must
+// reach, and each absent-equivalent setting against the plain run.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "drillwave/bitrock/roughness.hpp"
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
@@ -283,6 +285,78 @@ TEST(AxialTorsionalUnbalance, SteadyWhirlIsTheClosedFormAndPeaksAtTheNaturalFreq
     amplitudes.push_back(mean);
   }
   EXPECT_EQ(std::max_element(amplitudes.begin(), amplitudes.end()) - amplitudes.begin(), 2);
+}
+
+// --- Bottom-hole roughness (BASELINE.md's start: the exact steady state plus a tiny roughness) ---------------------
+
+nlohmann::json Roughness(double rms, int seed) { return {{"rms_m", rms}, {"seed", seed}}; }
+
+// Without roughness nothing disturbs the unstable equilibrium: a field of rms 0 is the smooth start to the byte, and
+// it holds the steady state to rounding.
+TEST(AxialTorsionalRoughness, ZeroRoughnessIsTheSmoothStartAndStaysSteady) {
+  nlohmann::json doc = Nominal(60, 2, 2);
+  doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-9;
+  const CaseRun smooth = RunDoc(doc);
+  doc["model"]["rock"]["bottom_roughness"] = Roughness(0, 9);
+  const CaseRun zero = RunDoc(doc);
+  for (const char* name : {"bit_rpm", "top_torque_Nm", "wob_N", "depth_of_cut_m"})
+    EXPECT_EQ(Channel(smooth, name), Channel(zero, name)) << name;
+  std::printf("[ measured ] roughness 0 for 2 s: bit speed %.12f..%.12f rad/s\n", Get(zero, "bit_speed_min_rad_s"),
+              Get(zero, "bit_speed_max_rad_s"));
+  EXPECT_NEAR(Get(zero, "bit_speed_min_rad_s"), 2 * M_PI, 1e-7);
+  EXPECT_NEAR(Get(zero, "bit_speed_max_rad_s"), 2 * M_PI, 1e-7);
+  EXPECT_EQ(zero.summary.at("events").get<int>(), 0);
+}
+
+// The first blade pass cuts the rough bottom: at t = 0 the bit is at U = 0 and the previous blade passed at angle
+// -2 pi / n over the steady helix displaced by h, so d(0) = d0 - n h(-2 pi / n) per revolution.
+TEST(AxialTorsionalRoughness, TheFirstBladePassCutsTheRoughBottom) {
+  constexpr double kRms = 1e-5;
+  constexpr int kBlades = 5;
+  nlohmann::json doc = Nominal(60, 0.1, 0.1);
+  ASSERT_EQ(doc["model"]["bit"]["blades"].get<int>(), kBlades);
+  for (int seed : {1, 2, 3}) {
+    doc["model"]["rock"]["bottom_roughness"] = Roughness(kRms, seed);
+    const CaseRun run = RunDoc(doc);
+    const double d0 = Get(run, "steady_depth_of_cut_m");
+    const double h = bitrock::BottomRoughness(kRms, seed, 20).Depth(-2 * M_PI / kBlades);  // 20: the default modes
+    const double d = Channel(run, "depth_of_cut_m").front();
+    std::printf("[ measured ] seed %d: depth of cut at t = 0 %.12f m, steady %.12f, closed form %.12f\n", seed, d, d0,
+                d0 - kBlades * h);
+    EXPECT_NEAR(d, d0 - kBlades * h, 1e-10);
+    EXPECT_GT(std::abs(d - d0), 1e-8);
+  }
+}
+
+// The same seed, the same run; another seed, another run (the roughness is the only disturbance).
+TEST(AxialTorsionalRoughness, ASeedReproducesARunAndAnotherSeedDoesNot) {
+  nlohmann::json doc = Nominal(60, 5, 5);
+  doc["model"]["rock"]["bottom_roughness"] = Roughness(1e-5, 4);
+  const CaseRun first = RunDoc(doc), again = RunDoc(doc);
+  doc["model"]["rock"]["bottom_roughness"]["seed"] = 5;
+  const CaseRun other = RunDoc(doc);
+  for (const char* name : {"bit_rpm", "top_torque_Nm", "wob_N", "depth_of_cut_m"}) {
+    EXPECT_EQ(Channel(first, name), Channel(again, name)) << name;
+    EXPECT_NE(Channel(first, name), Channel(other, name)) << name;
+  }
+}
+
+TEST(AxialTorsionalRoughness, RefusesAnAmplitudeBeyondAMillimetreAndANegativeSeed) {
+  const std::pair<nlohmann::json, std::string> bad[] = {
+      {Roughness(2e-3, 1), "/model/rock/bottom_roughness/rms_m"},
+      {Roughness(-1e-6, 1), "/model/rock/bottom_roughness/rms_m"},
+      {Roughness(1e-5, -1), "/model/rock/bottom_roughness/seed"},
+      {{{"rms_m", 1e-5}}, "/model/rock/bottom_roughness/seed"}};
+  for (const auto& [field, path] : bad) {
+    nlohmann::json doc = Nominal(60, 1, 1);
+    doc["model"]["rock"]["bottom_roughness"] = field;
+    try {
+      ParseCase(doc);
+      ADD_FAILURE() << "accepted " << field.dump();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

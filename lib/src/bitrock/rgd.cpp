@@ -9,6 +9,10 @@ namespace drillwave::bitrock {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// A start disturbance, not a rock property: above about a millimetre it is no longer tiny against a blade's depth of
+// cut (2.6 mm at BASELINE.md's nominal point).
+constexpr double kMaxRoughnessM = 1e-3;
+constexpr int kDefaultRoughnessModes = 20;
 }  // namespace
 
 void RgdLaw::OnBottom(Turn turn, Axial axial, double w, bool cutting, RgdForces& f) const {
@@ -41,6 +45,14 @@ void ReadRgdRock(const io::JsonReader& k, RgdLaw& law) {
   law.mu = k.Number("mu", Range::NonNegative());
   law.gamma = k.Number("gamma", Range::NonNegative());
   law.surface_passes = k.Integer("surface_passes", 1, 16, 4);
+  if (k.Has("bottom_roughness")) {
+    const io::JsonReader b = k.Object("bottom_roughness");
+    const double rms = b.Number("rms_m", Range::Between(0, kMaxRoughnessM));
+    const int seed = b.Integer("seed", 0, std::numeric_limits<int>::max());
+    const int modes = b.Integer("modes", 1, 1000, kDefaultRoughnessModes);
+    b.Finish();
+    law.bottom_roughness = BottomRoughness(rms, static_cast<std::uint64_t>(seed), modes);
+  }
   law.static_mu = law.mu;
   if (k.Has("stribeck")) {
     const io::JsonReader st = k.Object("stribeck");
@@ -62,18 +74,29 @@ nlohmann::json RgdFieldSchema() {
           {"rock/surface_passes", "integer in [1, 16], default 4: the rock under a blade is the deepest position of "
                                   "the last this many blade passes (1: d = n (U(t) - U(t - t_n)) literally, against "
                                   "the previous pass even if the bit was in the air)"},
+          {"rock/bottom_roughness/rms_m",
+           "in [0, 0.001]: optional object (absent: a smooth bottom); the rock surface the blades left before t = 0 "
+           "deviates from steady drilling's helix by h(theta) along the hole, a seeded random function of the angle "
+           "around the hole with this root mean square (mean 0), so that a run from the exact steady state has a "
+           "tiny disturbance to grow from (BASELINE.md's start)"},
+          {"rock/bottom_roughness/seed", "integer in [0, 2147483647]: the same seed, the same surface and run"},
+          {"rock/bottom_roughness/modes", "integer in [1, 1000], default 20: h = sum_{k=1..modes} of equal cosines "
+                                          "cos(k theta + phi_k) with seeded random phases (shortest wavelength a "
+                                          "modes-th of the circumference)"},
           {"rock/stribeck/static_mu", ">= mu: optional object (absent: Coulomb); mu(w) = mu + (static_mu - mu) "
                                       "exp(-|w| / velocity_rad_s), a stuck bit holds with static_mu"},
           {"rock/stribeck/velocity_rad_s", "> 0, Stribeck speed"}};
 }
 
-CutProfile::CutProfile(int blades, double omega0, double rop0, int surface_passes)
+CutProfile::CutProfile(int blades, double omega0, double rop0, int surface_passes, const BottomRoughness& roughness)
     : blades_(blades),
       surface_passes_(surface_passes),
       omega0_(omega0),
-      history_(2, [omega0, rop0](double t, double* v, double* d) {
+      history_(2, [omega0, rop0, roughness](double t, double* v, double* d) {
+        // Steady drilling before t = 0, where the blades passed at angle omega0 t over the rough bottom.
         v[0] = omega0 * t, v[1] = rop0 * t;
         d[0] = omega0, d[1] = rop0;
+        if (roughness.on()) v[1] += roughness.Depth(omega0 * t), d[1] += omega0 * roughness.Slope(omega0 * t);
       }) {}
 
 // When the bit angle last stood `back` radians behind phi, from the stored angle. The root lies near t - guess (t_n

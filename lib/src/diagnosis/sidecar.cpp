@@ -52,13 +52,14 @@ nlohmann::json CaseFromSidecar(const nlohmann::json& sidecar, nlohmann::json doc
       throw InputError(where(knot + "/0"), "times must not decrease: " + ReadableNumber(t) + " s after " +
                                                ReadableNumber(previous) + " s");
     previous = t;
-    if (i == 0) {  // a 5 % bump in the warm-up's first seconds, to leave the unstable equilibrium
-      const double w0 = rpm * M_PI / 30;
-      knots = nlohmann::json::array({{0.0, w0}, {1.0, 1.05 * w0}, {2.0, w0}});
-    }
+    if (i == 0) knots.push_back({0.0, rpm * M_PI / 30});
     knots.push_back({t + warmup_s, rpm * M_PI / 30});
   }
   doc["model"]["top"]["speed_rad_s"] = {{"knots", knots}};
+  // BASELINE.md's start: the exact steady state plus a tiny bottom-hole roughness (unless the case brings its own).
+  nlohmann::json& rock = doc["model"]["rock"];
+  if (!rock.contains("bottom_roughness"))
+    rock["bottom_roughness"] = {{"rms_m", kSidecarStartRoughnessM}, {"seed", kSidecarStartSeed}};
   doc["simulation"]["duration_s"] = duration + warmup_s;
   doc["statistics"]["window_s"] = {warmup_s, duration + warmup_s};
   const auto name = sidecar.find("recording");

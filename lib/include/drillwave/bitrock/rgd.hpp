@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/bitrock/roughness.hpp"
 #include "drillwave/bitrock/stick_slip.hpp"
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/options.hpp"
@@ -45,6 +46,7 @@ struct RgdLaw {
   // literally, the previous blade's position even if it passed in the air (a bouncing bit then drifts upwards).
   int surface_passes = 4;
   double static_mu = 0, stribeck_speed = 0;  // Stribeck friction (stribeck_speed 0: Coulomb, static_mu = mu)
+  BottomRoughness bottom_roughness;  // of the rock surface the blades left before t = 0 (default: smooth)
 
   double ContactForce() const { return a * sigma_l; }  // a sigma l
   // Friction coefficient of the wear flats at bit speed w (Stribeck: decays from static_mu to mu).
@@ -76,11 +78,11 @@ void ReadRgdRock(const io::JsonReader& rock, RgdLaw& law);
 // The documentation of those fields, for FieldSchema.
 nlohmann::json RgdFieldSchema();
 
-// The bit's stored angle and position (prehistory: steady drilling Phi = Omega0 t, U = V0 t) and the depth of cut
-// against the rock surface under the blades.
+// The bit's stored angle and position (prehistory: steady drilling Phi = Omega0 t, U = V0 t + h(Omega0 t) over the
+// bottom's roughness h) and the depth of cut against the rock surface under the blades.
 class CutProfile {
  public:
-  CutProfile(int blades, double omega0, double rop0, int surface_passes = 4);
+  CutProfile(int blades, double omega0, double rop0, int surface_passes = 4, const BottomRoughness& roughness = {});
   // The depth of cut against the rock surface under the blades: the deepest position any of the last surface_passes
   // blades reached at the present angle phi. After a bounce the previous blade may have passed in the air; the rock is where
   // a blade last cut, not where the previous one happened to be (with continuous contact since the previous blade

@@ -30,8 +30,9 @@
 //        unbalance m at radius e turning with the bit angle Phi and reacting on the bit's torsion.
 // Three discrete regimes (rotation: forward / stuck / backward; axial: advancing / held / lifting; contact: on /
 // off) switch at located events. The run starts in steady drilling at the set-points (prehistory Phi = Omega t,
-// U = V t). Disturb it through the inputs (a set-point schedule), which keeps the waves free of jumps: a jump in a
-// node speed would travel through every sub-section, and only inputs are tracked as breakpoints here.
+// U = V t). Disturb it through the inputs (a set-point schedule) or the rock left before t = 0 (rock/bottom_roughness:
+// U = V t + h(Omega t) in the prehistory, BASELINE.md's start), which keep the waves free of jumps: a jump in a node
+// speed would travel through every sub-section, and only inputs are tracked as breakpoints here.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -144,7 +145,7 @@ class Process {
   using State = std::vector<double>;
   explicit Process(const Model& md)
       : md_(md), steady_(SteadyDrilling(md, md.top_speed.Value(0.0))),
-        cut_(md.blades, steady_.omega, steady_.rop, md.surface_passes) {
+        cut_(md.blades, steady_.omega, steady_.rop, md.surface_passes, md.bottom_roughness) {
     InitializeWaves();
     // Throws std::domain_error when the motor cannot carry the steady torque (below its pull-out torque).
     if (md.induction_on)

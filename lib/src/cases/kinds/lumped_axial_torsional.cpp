@@ -78,7 +78,7 @@ class Process {
   explicit Process(const Model& md)
       : md_(md),
         steady_(SteadyDrilling(md, md.top_speed.Value(0.0), md.weight.Value(0.0))),
-        cut_(md.law.blades, steady_.omega, steady_.rop, md.law.surface_passes) {}
+        cut_(md.law.blades, steady_.omega, steady_.rop, md.law.surface_passes, md.law.bottom_roughness) {}
 
   int Dimension() const { return kDim; }
   // The cut delay is looked up in the committed history: steps below a quarter of t_n0 keep it there while the bit
