@@ -9,6 +9,6 @@ cmake --build build -j"$(nproc)" --target drillwave_apps_tests drillwave_cli
 log=$(mktemp)
 status=0
 build/bin/drillwave_apps_tests --gtest_filter='Recordings/SyntheticScoring.*' >"$log" 2>&1 || status=$?
-grep -E '^\[ (measured|  FAILED|  PASSED) ' "$log" || true
+grep -E '^\[ +(measured|FAILED|PASSED) ' "$log" || true
 rm -f "$log"
 exit "$status"
