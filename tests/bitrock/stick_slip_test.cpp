@@ -63,5 +63,22 @@ TEST(StickSlip, BreakingFreeThroughAWitnessAgreesWithTheRegimeAtRestPastItsLimit
   }
 }
 
+// After an event: a stuck contact breaks free without the forces being evaluated; a slipping one is held first and
+// then stays (inside the range) or reverses (beyond it).
+TEST(StickSlip, AfterAnEventAStuckContactBreaksFreeAndASlippingOneIsHeldThenStaysOrReverses) {
+  int holds = 0;
+  double drive = 0;
+  const auto hold = [&] { return ++holds, AtRest{drive, kRange}; };
+  EXPECT_EQ(TurnAfterEvent(Turn::kStuck, 0, hold), Turn::kForward);
+  EXPECT_EQ(TurnAfterEvent(Turn::kStuck, 1, hold), Turn::kBackward);
+  EXPECT_EQ(holds, 0);
+  EXPECT_EQ(TurnAfterEvent(Turn::kForward, 0, hold), Turn::kStuck);
+  drive = -2.5;
+  EXPECT_EQ(TurnAfterEvent(Turn::kForward, 0, hold), Turn::kBackward);
+  drive = 3.5;
+  EXPECT_EQ(TurnAfterEvent(Turn::kBackward, 0, hold), Turn::kForward);
+  EXPECT_EQ(holds, 3);
+}
+
 }  // namespace
 }  // namespace drillwave::bitrock

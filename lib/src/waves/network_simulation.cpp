@@ -216,13 +216,10 @@ class NetworkProcess {
   bool OnEvent(int k, double t, State& x) {
     const int i = frictional_nodes_[k / 2];
     const Turn before = regime_[i];
-    Turn after;
-    if (before == Turn::kStuck) {
-      after = bitrock::TurnBreakingFree(k % 2);
-    } else {
-      regime_[i] = Turn::kStuck;  // come to rest: AtRest holds it
-      after = bitrock::TurnAtRest(AtRest(i, t, x));
-    }
+    const Turn after = bitrock::TurnAfterEvent(before, k % 2, [&] {
+      regime_[i] = Turn::kStuck;
+      return AtRest(i, t, x);
+    });
     regime_[i] = after;
     if (after == Turn::kStuck || before == Turn::kStuck) x[speed_index_[i]] = 0;
     changes_.push_back({t, i, before, after});

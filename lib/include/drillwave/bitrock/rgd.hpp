@@ -166,13 +166,11 @@ struct RgdRegimes {
         axial = v > 0 ? Axial::kAdvancing : Axial::kLifting;
       }
     } else if (k <= 1) {
-      if (turn == Turn::kStuck) {
-        turn = TurnBreakingFree(k);
-      } else {
+      turn = TurnAfterEvent(turn, k, [&] {
         w = 0;
-        turn = Turn::kStuck;  // forces() at rest
-        turn = TurnAtRest(forces().RotationAtRest());
-      }
+        turn = Turn::kStuck;
+        return forces().RotationAtRest();
+      });
       if (turn == Turn::kStuck) w = 0;
     } else {
       if (axial == Axial::kHeld) {

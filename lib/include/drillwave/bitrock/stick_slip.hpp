@@ -45,4 +45,12 @@ double TurnWitness(Turn turn, int k, double speed, const AtRestFn& at_rest) {
 // The regime after witness k of a stuck contact crossed zero: it breaks free in that witness's direction.
 inline Turn TurnBreakingFree(int k) { return k == 0 ? Turn::kForward : Turn::kBackward; }
 
+// The regime after witness k of a contact in regime `before` crossed zero. A stuck contact breaks free; a slipping
+// one has come to rest and stays or reverses: `hold()` -> AtRest is called only then, and must hold the contact (its
+// speed zero, its regime stuck) before it evaluates the driving torque.
+template <class HoldFn>
+Turn TurnAfterEvent(Turn before, int k, const HoldFn& hold) {
+  return before == Turn::kStuck ? TurnBreakingFree(k) : TurnAtRest(hold());
+}
+
 }  // namespace drillwave::bitrock

@@ -76,13 +76,11 @@ class ChainField : public analysis::PiecewiseSmoothField {
   int ModeAfter(int mode, int k, const Eigen::VectorXd& x) const override {
     const int slot = k / 2, i = frictional_[slot];
     std::vector<int> regimes = Decode(mode);
-    if (regimes[slot] == 0) {
-      regimes[slot] = static_cast<int>(bitrock::TurnBreakingFree(k % 2));
-      return Encode(regimes);
-    }
-    regimes[slot] = 0;
-    const int stuck = Encode(regimes);
-    regimes[slot] = static_cast<int>(bitrock::TurnAtRest(AtRest(stuck, i, x)));  // stays, or turns the other way
+    const auto before = static_cast<bitrock::Turn>(regimes[slot]);
+    regimes[slot] = static_cast<int>(bitrock::TurnAfterEvent(before, k % 2, [&] {
+      regimes[slot] = 0;
+      return AtRest(Encode(regimes), i, x);
+    }));
     return Encode(regimes);
   }
 

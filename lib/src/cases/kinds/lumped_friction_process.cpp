@@ -89,13 +89,10 @@ class ChainProcess {
   bool OnEvent(int k, double t, State& x) {
     const int i = frictional_[k / 2];
     const Turn before = regime_[i];
-    Turn after;
-    if (before == Turn::kStuck) {
-      after = bitrock::TurnBreakingFree(k % 2);
-    } else {
-      regime_[i] = Turn::kStuck;  // come to rest: AtRest holds it
-      after = bitrock::TurnAtRest(AtRest(i, x, t));
-    }
+    const Turn after = bitrock::TurnAfterEvent(before, k % 2, [&] {
+      regime_[i] = Turn::kStuck;
+      return AtRest(i, x, t);
+    });
     regime_[i] = after;
     if (after == Turn::kStuck || before == Turn::kStuck) x[SpeedIndex(i)] = 0;
     if (after == Turn::kStuck && before != Turn::kStuck) stuck_[i].push_back({t, kInf});
