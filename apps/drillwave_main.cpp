@@ -298,6 +298,7 @@ struct DiagnoseArguments {
   int threads = 1;
   int evaluations_per_parameter = 10;
   double sample_window_s = -1;  // < 0: the recording's sample interval
+  int draws = 3;
 };
 
 int Diagnose(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
@@ -329,6 +330,9 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
                                                          drillwave::ReadableNumber(a.sample_window_s));
     o.sample_window_s = a.sample_window_s;
   }
+  if (!(a.draws >= 1 && a.draws <= 20))
+    throw drillwave::InputError("--draws", "expected a whole number in [1, 20], got " + std::to_string(a.draws));
+  o.draws = a.draws;
   o.margin = a.margin;
   o.fit_tolerance = a.fit_tolerance;
   o.threads = a.threads;
@@ -522,6 +526,9 @@ int main(int argc, char** argv) {
   diagnose->add_option("--sample-window", diagnose_args.sample_window_s,
                        "each recorded sample is the mean over this window [s] ending at it; the model's measured "
                        "channels are read the same way (default: the recording's sample interval; 0: point samples)");
+  diagnose->add_option("--draws", diagnose_args.draws,
+                       "the baseline and each fitted candidate are judged over this many draws of the model's random "
+                       "inputs (its seeds and the sensor noise's; default 3)");
   diagnose->add_option("-j,--jobs", diagnose_args.threads, "candidates fitted in parallel (default 1)");
   diagnose->add_option("--out,-o", diagnose_out, "output folder (written all or nothing)");
   diagnose->add_option("--set", overrides, "override a parameter of the case by JSON pointer");

@@ -136,7 +136,34 @@ DiagnosisLoop AgainstTwin(const nlohmann::json& doc, const Recording& twin, doub
   o.fit_begin_s = 5, o.fit_end_s = o.held_out_begin_s = 27.5, o.held_out_end_s = 50;
   o.max_singles = 0;
   o.sample_window_s = sample_window_s;
+  o.draws = 1;  // the twin is one draw: the case's own
   return RunDiagnosisLoop(doc, twin, o);
+}
+
+// Judged over three draws (the bottom roughness's seed and the noise's moved), the bouncing bit's runs differ, and the
+// baseline stands for the median draw: its held-out error is the middle one of the three draws'.
+TEST(DiagnosisLoop, TheBaselineIsJudgedByItsMedianDraw) {
+  const nlohmann::json doc = BouncingCase();
+  const Recording twin = BouncingTwin(cases::RunCase(cases::ParseCase(doc)).result, true);
+  LoopOptions o;
+  o.maps = kAxialMaps;
+  o.model_time_offset_s = 30;
+  o.fit_begin_s = 5, o.fit_end_s = o.held_out_begin_s = 27.5, o.held_out_end_s = 50;
+  o.max_singles = 0;
+  o.sample_window_s = 0.01;
+  o.draws = 3;
+  const DiagnosisLoop loop = RunDiagnosisLoop(doc, twin, o);
+  std::vector<double> errors = loop.baseline_held_out_draw_errors;
+  ASSERT_EQ(errors.size(), 3u);
+  std::printf("[ measured ] bouncing twin over three draws: held-out errors %.3f, %.3f, %.3f\n", errors[0], errors[1],
+              errors[2]);
+  EXPECT_NE(errors[0], errors[1]);
+  EXPECT_NE(errors[1], errors[2]);
+  std::sort(errors.begin(), errors.end());
+  EXPECT_EQ(loop.baseline_held_out_error, errors[1]);
+  EXPECT_EQ(loop.fitted_held_out_error, loop.baseline_held_out_error);
+  EXPECT_EQ(DiagnosisLoopToJson(loop).at("held_out").at("error_before_each_draw").size(), 3u);
+  EXPECT_EQ(loop.model_runs, 3);
 }
 
 // A bouncing bit's weight-on-bit impacts are as short as a glitch; the artefact filter masks them in the model as in

@@ -93,6 +93,34 @@ void CheckScale(const Recording& rec, const Recording& model, const std::vector<
   }
 }
 
+// Draw d of a case's random inputs: every seed in its model (bottom roughness, rock heterogeneity) and the sensors'
+// moved by d (draw 0: the case as given).
+nlohmann::json Drawn(nlohmann::json doc, int d) {
+  const std::function<void(nlohmann::json&)> move_seeds = [&](nlohmann::json& j) {
+    if (!j.is_object()) return;
+    for (auto& [key, value] : j.items()) {
+      if (key == "seed" && value.is_number_integer())
+        value = (value.get<long long>() + d) % 2147483648LL;
+      else
+        move_seeds(value);
+    }
+  };
+  if (d == 0) return doc;
+  if (doc.contains("model")) move_seeds(doc["model"]);
+  if (doc.contains("sensors") && doc["sensors"].contains("seed"))
+    doc["sensors"]["seed"] = (doc["sensors"]["seed"].get<long long>() + 7919LL * d) % 2147483648LL;
+  return doc;
+}
+
+// A model judged over its draws by the median draw (LoopOptions::draws): that draw's channels and features, its
+// errors, and every draw's held-out error.
+struct Judged {
+  Recording model;
+  FeatureSet fit, held_out;
+  double fit_error = 0, held_out_error = 0;
+  std::vector<double> held_out_draw_errors;
+};
+
 }  // namespace
 
 LoopOptions DefaultLoopOptions(const cases::Case& c, const Recording& rec, double offset_s, double settle_s) {
@@ -207,24 +235,59 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
                          masked_in_model);
   };
 
-  // 2. The baseline on both windows.
-  say("baseline: running " + Fixed(full_duration, 0) + " s simulated");
-  loop.baseline_model = run(base, full_duration);
-  ++loop.model_runs;
+  // The median draw of a model's runs: the one whose held-out error is the median (the lower middle one of an even
+  // number); its fit-window error the median of the draws' (an information criterion on the fit window).
+  const int draws = std::max(1, o.draws);
+  auto judged = [&](std::vector<Recording> models) {
+    std::vector<FeatureSet> fit, held_out;
+    std::vector<double> fit_errors;
+    Judged j;
+    for (const Recording& m : models) {
+      fit.push_back(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, o.features));
+      held_out.push_back(MeasureFeatures(m, o.held_out_begin_s, o.held_out_end_s, o.features));
+      fit_errors.push_back(FeatureDistance(fit.back(), loop.recording_fit));
+      j.held_out_draw_errors.push_back(FeatureDistance(held_out.back(), loop.recording_held_out));
+    }
+    std::sort(fit_errors.begin(), fit_errors.end());
+    std::vector<std::size_t> order(models.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return j.held_out_draw_errors[a] < j.held_out_draw_errors[b]; });
+    const std::size_t median = order[(order.size() - 1) / 2];
+    j.model = std::move(models[median]);
+    j.fit = fit[median], j.held_out = held_out[median];
+    j.fit_error = fit_errors[(fit_errors.size() - 1) / 2];  // the median on the fit window, whichever draw
+    j.held_out_error = j.held_out_draw_errors[median];
+    return j;
+  };
+
+  // 2. The baseline on both windows, over the draws.
+  say("baseline: running " + Fixed(full_duration, 0) + " s simulated" +
+      (draws > 1 ? ", " + std::to_string(draws) + " draws" : std::string()));
+  std::vector<Recording> baseline_draws{run(base, full_duration)};
   {
     const auto& first = *simulations.begin()->second;  // the only simulation so far
     const auto it = first.summary.find("derivative_evaluations");
     if (it != first.summary.end() && it->is_number()) evaluations_per_second = it->get<double>() / full_duration;
   }
-  CheckScale(rec, loop.baseline_model, o.maps);
-  loop.baseline_fit = MeasureFeatures(loop.baseline_model, o.fit_begin_s, o.fit_end_s, o.features);
-  loop.baseline_held_out = MeasureFeatures(loop.baseline_model, o.held_out_begin_s, o.held_out_end_s, o.features);
-  loop.baseline_fit_error = FeatureDistance(loop.baseline_fit, loop.recording_fit);
-  loop.baseline_held_out_error = FeatureDistance(loop.baseline_held_out, loop.recording_held_out);
+  CheckScale(rec, baseline_draws.front(), o.maps);
+  for (Recording& m : ParallelMap(static_cast<std::size_t>(draws - 1), std::max(1, o.threads),
+                                  [&](std::size_t d) { return run(Drawn(base, static_cast<int>(d) + 1), full_duration); }))
+    baseline_draws.push_back(std::move(m));
+  loop.model_runs += draws;
+  const Judged baseline = judged(std::move(baseline_draws));
+  loop.baseline_model = baseline.model;
+  loop.baseline_fit = baseline.fit;
+  loop.baseline_held_out = baseline.held_out;
+  loop.baseline_fit_error = baseline.fit_error;
+  loop.baseline_held_out_error = baseline.held_out_error;
+  loop.baseline_held_out_draw_errors = baseline.held_out_draw_errors;
   const double k_features = FiniteCount(loop.recording_fit);
   loop.baseline_aic = k_features * std::log(loop.baseline_fit_error);
+  std::string each;
+  for (double e : loop.baseline_held_out_draw_errors) each += (each.empty() ? "" : ", ") + Significant(e, 3);
   say("baseline: error " + Significant(loop.baseline_fit_error, 3) + " on the fit window, " +
-      Significant(loop.baseline_held_out_error, 3) + " held out");
+      Significant(loop.baseline_held_out_error, 3) + " held out" + (draws > 1 ? " (draws alone: " + each + ")" : ""));
 
   // 3. Proposals, strongest first. Those the case can model are fitted alone, then in pairs and larger sets (below:
   //    every effect of a set must earn its place).
@@ -300,10 +363,12 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     c.unit_values = best.best;
     c.start_values = start;
     try {
-      const Recording m = run(document_at(set, best.best), full_duration);
-      c.fit_error = FeatureDistance(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, o.features), target);
-      c.held_out_error =
-          FeatureDistance(MeasureFeatures(m, o.held_out_begin_s, o.held_out_end_s, o.features), loop.recording_held_out);
+      std::vector<Recording> models;
+      for (int d = 0; d < draws; ++d) models.push_back(run(Drawn(document_at(set, best.best), d), full_duration));
+      const Judged j = judged(std::move(models));
+      c.fit_error = j.fit_error;
+      c.held_out_error = j.held_out_error;
+      c.held_out_draw_errors = j.held_out_draw_errors;
     } catch (const NumericalError& e) {
       c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
     } catch (const InputError& e) {
@@ -486,7 +551,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     loop.kept = next;
   }
   if (loop.kept >= 0) loop.candidates[loop.kept].kept = true;
-  for (const Candidate& c : loop.candidates) loop.model_runs += c.evaluations + (c.failure.empty() ? 1 : 0);
+  for (const Candidate& c : loop.candidates) loop.model_runs += c.evaluations + (c.failure.empty() ? draws : 0);
 
   // 5. The model that stands, on both windows.
   loop.fitted_document = base;
@@ -500,20 +565,25 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
           for (std::size_t j = 0; j < e.parameters.size(); ++j) values.push_back(c.parameters[k++].value);
           e.apply(loop.fitted_document, values);
         }
-    loop.fitted_model = run(loop.fitted_document, full_duration);
-    ++loop.model_runs;
+    std::vector<Recording> models;
+    for (int d = 0; d < draws; ++d) models.push_back(run(Drawn(loop.fitted_document, d), full_duration));
+    loop.model_runs += draws;
+    const Judged fitted = judged(std::move(models));
+    loop.fitted_model = fitted.model;
+    loop.fitted_fit = fitted.fit;
+    loop.fitted_held_out = fitted.held_out;
+    loop.fitted_fit_error = fitted.fit_error;
+    loop.fitted_held_out_error = fitted.held_out_error;
   } else {
     loop.fitted_model = loop.baseline_model;
+    loop.fitted_fit = loop.baseline_fit, loop.fitted_held_out = loop.baseline_held_out;
+    loop.fitted_fit_error = loop.baseline_fit_error, loop.fitted_held_out_error = loop.baseline_held_out_error;
   }
-  loop.fitted_fit = MeasureFeatures(loop.fitted_model, o.fit_begin_s, o.fit_end_s, o.features);
-  loop.fitted_held_out = MeasureFeatures(loop.fitted_model, o.held_out_begin_s, o.held_out_end_s, o.features);
-  loop.fitted_fit_error = FeatureDistance(loop.fitted_fit, loop.recording_fit);
-  loop.fitted_held_out_error = FeatureDistance(loop.fitted_held_out, loop.recording_held_out);
   for (const Feature& f : loop.recording_held_out.features) {
-    const double m = loop.fitted_held_out.Value(f.name);
-    if (std::isfinite(f.value) && std::isfinite(m) && std::abs(m - f.value) > 3 * f.scale)
+    const double m = loop.fitted_held_out.Value(f.name), scale = f.scale;
+    if (std::isfinite(f.value) && std::isfinite(m) && std::abs(m - f.value) > 3 * scale)
       loop.unexplained.push_back(f.name + ": model " + Significant(m, 4) + " against " + Significant(f.value, 4) +
-                                 " recorded (" + Fixed((m - f.value) / f.scale, 1) + " scales)");
+                                 " recorded (" + Fixed((m - f.value) / scale, 1) + " scales)");
     else if (std::isfinite(f.value) != std::isfinite(m))
       loop.unexplained.push_back(f.name + ": " + (std::isfinite(m) ? "only the model has it" : "only the recording has it"));
   }
@@ -536,7 +606,8 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
       parameters.push_back({{"effect", p.effect}, {"name", p.name}, {"unit", p.unit}, {"value", number(p.value)},
                             {"sigma", number(p.sigma)}, {"bounds", {p.lower, p.upper}}});
     candidates.push_back({{"effects", c.effects}, {"parameters", parameters}, {"fit_error", number(c.fit_error)},
-                          {"held_out_error", number(c.held_out_error)}, {"aic", number(c.aic)},
+                          {"held_out_error", number(c.held_out_error)},
+                          {"held_out_error_each_draw", c.held_out_draw_errors}, {"aic", number(c.aic)},
                           {"evaluations", c.evaluations}, {"failed_runs", c.failed_runs},
                           {"first_failed_run", c.first_failure}, {"kept", c.kept}, {"failure", c.failure}});
   }
@@ -560,6 +631,8 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
   return {{"hypotheses", hypotheses},
           {"held_out", {{"window_s", {loop.recording_held_out.begin_s, loop.recording_held_out.end_s}},
                         {"error_before", loop.baseline_held_out_error},
+                        {"error_before_each_draw", loop.baseline_held_out_draw_errors},
+                        {"draws", loop.baseline_held_out_draw_errors.size()},
                         {"error_after", loop.fitted_held_out_error},
                         {"error_chance", loop.error_chance}}},
           {"fit", {{"window_s", {loop.recording_fit.begin_s, loop.recording_fit.end_s}},

@@ -10,7 +10,9 @@
 //      recorded sample the mean over its window (a logger's 100-Hz samples are 10-ms means, which blunt a bouncing
 //      bit's impacts), the model's measured channels the same window mean of a finer output.
 //   2. The usable recording is split into a fit window and a later held-out window. The baseline's error on each is
-//      the feature distance (features.hpp): differences counted in each feature's own variability.
+//      the feature distance (features.hpp): differences counted in each feature's own variability. The baseline and
+//      every fitted candidate run several draws of their random inputs (roughness and noise seeds) and are judged by
+//      the median draw, so that a multistable motion's lottery does not decide.
 //   3. Rules read the baseline's differences as graded evidence for effects (effects.hpp); the strongest the case
 //      can model are fitted alone on the fit window (NLopt, bounded); then pairs (every pair of the three singles
 //      that predict the held-out window best, and the best with the fourth), since one missing effect may hide what
@@ -55,6 +57,13 @@ struct LoopOptions {
   // are the same mean, from an output a fifth of the window apart.
   double sample_window_s = 0;
   unsigned seed = 1;
+  // The baseline and every fitted candidate are judged over this many independent draws of the model's random inputs
+  // (each seed in the case's model and the sensor noise's; draw 0 is the case as given, the one the fits run), by the
+  // median draw: the one whose held-out error is the median. One draw of a multistable motion (a bit that bounces in
+  // some runs and drills in others) decides by chance which effect "explains" it; the median needs most draws to
+  // agree. (A mean of the draws' features counted in their spread was tried: one bouncing draw of three widened every
+  // scale so far that any model matched.)
+  int draws = 3;
   FeatureOptions features;
 };
 
@@ -67,7 +76,8 @@ struct FittedParameter {
 struct Candidate {
   std::vector<std::string> effects;
   std::vector<FittedParameter> parameters;
-  double fit_error = 0, held_out_error = 0;
+  double fit_error = 0, held_out_error = 0;  // medians over the draws (LoopOptions::draws)
+  std::vector<double> held_out_draw_errors;   // each draw's own held-out error
   double aic = 0;  // K ln(fit_error) + 2 p over the K features of the fit window
   int evaluations = 0;
   int failed_runs = 0;        // evaluations whose run the case rejected or that failed numerically
@@ -83,7 +93,9 @@ struct DiagnosisLoop {
   std::vector<std::pair<std::string, double>> noise;  // recording channel, estimated noise std (its unit)
   std::vector<std::pair<std::string, int>> masked_samples;  // recording channel, artefact samples masked
   FeatureSet recording_fit, recording_held_out;
+  // The models' features: the median draw's (LoopOptions::draws).
   FeatureSet baseline_fit, baseline_held_out, fitted_fit, fitted_held_out;
+  std::vector<double> baseline_held_out_draw_errors;  // each draw's own held-out error
   double baseline_fit_error = 0, baseline_held_out_error = 0, fitted_fit_error = 0, fitted_held_out_error = 0;
   double error_chance = 0;  // how much the held-out error moves by chance for a model that matches (sqrt(2 / K))
   double baseline_aic = 0;
@@ -91,7 +103,7 @@ struct DiagnosisLoop {
   std::vector<Candidate> candidates;
   int kept = -1;  // index into candidates, -1: the baseline stands
   std::vector<std::string> unexplained;  // held-out features still more than 3 scales off after the fit
-  Recording baseline_model, fitted_model;  // the models' measured channels on the recording's times and names
+  Recording baseline_model, fitted_model;  // the median draw's measured channels on the recording's times and names
   int model_runs = 0;
 };
 
