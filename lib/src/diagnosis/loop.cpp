@@ -265,15 +265,17 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   say("baseline: running " + Fixed(full_duration, 0) + " s simulated" +
       (draws > 1 ? ", " + std::to_string(draws) + " draws" : std::string()));
   std::vector<Recording> baseline_draws{run(base, full_duration)};
-  {
-    const auto& first = *simulations.begin()->second;  // the only simulation so far
-    const auto it = first.summary.find("derivative_evaluations");
-    if (it != first.summary.end() && it->is_number()) evaluations_per_second = it->get<double>() / full_duration;
-  }
   CheckScale(rec, baseline_draws.front(), o.maps);
   for (Recording& m : ParallelMap(static_cast<std::size_t>(draws - 1), std::max(1, o.threads),
                                   [&](std::size_t d) { return run(Drawn(base, static_cast<int>(d) + 1), full_duration); }))
     baseline_draws.push_back(std::move(m));
+  // The candidates' work budget: the costliest of the baseline's draws (one that bounces costs more than one that
+  // drills), set once they have all run unbudgeted.
+  for (const auto& [key, simulated] : simulations) {
+    const auto it = simulated->summary.find("derivative_evaluations");
+    if (it != simulated->summary.end() && it->is_number())
+      evaluations_per_second = std::max(evaluations_per_second, it->get<double>() / full_duration);
+  }
   loop.model_runs += draws;
   const Judged baseline = judged(std::move(baseline_draws));
   loop.baseline_model = baseline.model;
