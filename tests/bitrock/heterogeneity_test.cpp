@@ -44,9 +44,9 @@ TEST(StrengthHeterogeneity, OverSeedsHasMeanZeroTheGivenStdAndGaussianCorrelatio
 // Along a long drilled depth of one seed with many modes: the same three numbers (each mode averages to its own share
 // over many periods; the finite set of wavenumbers leaves a sampling error of about 1 / sqrt(modes)).
 TEST(StrengthHeterogeneity, AlongALongDepthOfOneSeedHasTheSameStatistics) {
-  const StrengthHeterogeneity g(kStd, kCorrelation, 11, 1000);
-  constexpr int kPoints = 200000;
-  const double dz = kCorrelation / 10;
+  const StrengthHeterogeneity g(kStd, kCorrelation, 11, 400);
+  constexpr int kPoints = 40000;
+  const double dz = kCorrelation / 5;
   double mean = 0, mean_square = 0, lagged = 0;
   for (int i = 0; i < kPoints; ++i) {
     const double a = g.Deviation(i * dz) / kStd, b = g.Deviation(i * dz + kCorrelation) / kStd;
