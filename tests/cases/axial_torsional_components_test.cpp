@@ -289,6 +289,21 @@ TEST(AxialTorsionalUnbalance, SteadyWhirlIsTheClosedFormAndPeaksAtTheNaturalFreq
 
 // --- Bottom-hole roughness (BASELINE.md's start: the exact steady state plus a tiny roughness) ---------------------
 
+// Each (value of rock/<key>, field path) is refused by ParseCase with an InputError naming that path.
+template <std::size_t N>
+void ExpectEachRefusedNaming(const char* key, const std::pair<nlohmann::json, std::string> (&bad)[N]) {
+  for (const auto& [field, path] : bad) {
+    nlohmann::json doc = Nominal(60, 1, 1);
+    doc["model"]["rock"][key] = field;
+    try {
+      ParseCase(doc);
+      ADD_FAILURE() << "accepted " << field.dump();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  }
+}
+
 nlohmann::json Roughness(double rms, int seed) { return {{"rms_m", rms}, {"seed", seed}}; }
 
 // Without roughness nothing disturbs the unstable equilibrium: a field of rms 0 is the smooth start to the byte, and
@@ -347,16 +362,42 @@ TEST(AxialTorsionalRoughness, RefusesAnAmplitudeBeyondAMillimetreAndANegativeSee
       {Roughness(-1e-6, 1), "/model/rock/bottom_roughness/rms_m"},
       {Roughness(1e-5, -1), "/model/rock/bottom_roughness/seed"},
       {{{"rms_m", 1e-5}}, "/model/rock/bottom_roughness/seed"}};
-  for (const auto& [field, path] : bad) {
-    nlohmann::json doc = Nominal(60, 1, 1);
-    doc["model"]["rock"]["bottom_roughness"] = field;
-    try {
-      ParseCase(doc);
-      ADD_FAILURE() << "accepted " << field.dump();
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-    }
+  ExpectEachRefusedNaming("bottom_roughness", bad);
+}
+
+// The rock's strength heterogeneity (rock/strength_heterogeneity) drives the coupled run: with 1 % the channels
+// differ from homogeneous rock, with std 0 they are the same to the byte, and bad values are refused by name.
+nlohmann::json Heterogeneity(double std, int seed) {
+  return {{"std", std}, {"correlation_m", 2e-3}, {"seed", seed}};
+}
+
+TEST(AxialTorsionalHeterogeneity, OnePercentChangesTheRunAndZeroIsHomogeneousRockToTheByte) {
+  nlohmann::json doc = Nominal(60, 2, 2);
+  const CaseRun homogeneous = RunDoc(doc);
+  doc["model"]["rock"]["strength_heterogeneity"] = Heterogeneity(0, 9);
+  const CaseRun zero = RunDoc(doc);
+  doc["model"]["rock"]["strength_heterogeneity"] = Heterogeneity(0.01, 9);
+  const CaseRun rough = RunDoc(doc);
+  for (const char* name : {"bit_rpm", "top_torque_Nm", "wob_N", "depth_of_cut_m"}) {
+    EXPECT_EQ(Channel(homogeneous, name), Channel(zero, name)) << name;
+    EXPECT_NE(Channel(homogeneous, name), Channel(rough, name)) << name;
   }
+  const auto& w0 = Channel(homogeneous, "wob_N");
+  const auto& w1 = Channel(rough, "wob_N");
+  double largest = 0;
+  for (std::size_t i = 0; i < std::min(w0.size(), w1.size()); ++i) largest = std::max(largest, std::abs(w1[i] - w0[i]));
+  std::printf("[ measured ] 1 %% heterogeneity, 2 s: largest weight-on-bit change %.1f N of %.0f N\n", largest,
+              w0.front());
+}
+
+TEST(AxialTorsionalHeterogeneity, RefusesBadValuesNamingTheField) {
+  const std::pair<nlohmann::json, std::string> bad[] = {
+      {Heterogeneity(0.3, 1), "/model/rock/strength_heterogeneity/std"},
+      {Heterogeneity(-0.01, 1), "/model/rock/strength_heterogeneity/std"},
+      {{{"std", 0.01}, {"correlation_m", 0}, {"seed", 1}}, "/model/rock/strength_heterogeneity/correlation_m"},
+      {Heterogeneity(0.01, -1), "/model/rock/strength_heterogeneity/seed"},
+      {{{"std", 0.01}, {"seed", 1}}, "/model/rock/strength_heterogeneity/correlation_m"}};
+  ExpectEachRefusedNaming("strength_heterogeneity", bad);
 }
 
 }  // namespace

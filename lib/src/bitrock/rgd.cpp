@@ -13,17 +13,22 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // cut (2.6 mm at BASELINE.md's nominal point).
 constexpr double kMaxRoughnessM = 1e-3;
 constexpr int kDefaultRoughnessModes = 20;
+// A small perturbation of the rock's strength (BASELINE.md: 0.5-1.5 %); 20 % keeps 1 + g well above zero.
+constexpr double kMaxHeterogeneityStd = 0.2;
+constexpr int kDefaultHeterogeneityModes = 64;
 }  // namespace
 
-void RgdLaw::OnBottom(Turn turn, Axial axial, double w, bool cutting, RgdForces& f) const {
+void RgdLaw::OnBottom(Turn turn, Axial axial, double w, bool cutting, double z, RgdForces& f) const {
   const double d = std::max(f.depth, 0.0);
-  f.cut_weight = cutting ? CutWeightPerDepth() * d : 0.0;
-  const double cut_torque = cutting ? CutTorquePerDepth() * d : 0.0;
+  const double strength = strength_heterogeneity.Multiplier(z);  // exactly 1 for homogeneous rock
+  f.cut_weight = cutting ? CutWeightPerDepth() * d * strength : 0.0;
+  const double cut_torque = cutting ? CutTorquePerDepth() * d * strength : 0.0;
+  const double contact_force = ContactForce() * strength;
   double contact = 0;  // W_f
   switch (axial) {
-    case Axial::kAdvancing: contact = ContactForce(); break;
+    case Axial::kAdvancing: contact = contact_force; break;
     case Axial::kLifting: contact = 0; break;
-    case Axial::kHeld: contact = std::clamp(f.drive_force - f.cut_weight, 0.0, ContactForce()); break;
+    case Axial::kHeld: contact = std::clamp(f.drive_force - f.cut_weight, 0.0, contact_force); break;
   }
   f.weight = f.cut_weight + contact;
   const double friction = FrictionArm(w) * contact, holding = StaticFrictionArm() * contact;
@@ -52,6 +57,16 @@ void ReadRgdRock(const io::JsonReader& k, RgdLaw& law) {
     const int modes = b.Integer("modes", 1, 1000, kDefaultRoughnessModes);
     b.Finish();
     law.bottom_roughness = BottomRoughness(rms, static_cast<std::uint64_t>(seed), modes);
+  }
+  if (k.Has("strength_heterogeneity")) {
+    const io::JsonReader h = k.Object("strength_heterogeneity");
+    const double std = h.Number("std", Range::Between(0, kMaxHeterogeneityStd));
+    const double correlation = h.Number("correlation_m", Range::Between(1e-5, 1));
+    const int seed = h.Integer("seed", 0, std::numeric_limits<int>::max());
+    const int modes = h.Integer("modes", 1, 1000, kDefaultHeterogeneityModes);
+    h.Finish();
+    law.strength_heterogeneity =
+        StrengthHeterogeneity(std, correlation, static_cast<std::uint64_t>(seed), modes);
   }
   law.static_mu = law.mu;
   if (k.Has("stribeck")) {
@@ -83,6 +98,15 @@ nlohmann::json RgdFieldSchema() {
           {"rock/bottom_roughness/modes", "integer in [1, 1000], default 20: h = sum_{k=1..modes} of equal cosines "
                                           "cos(k theta + phi_k) with seeded random phases (shortest wavelength a "
                                           "modes-th of the circumference)"},
+          {"rock/strength_heterogeneity/std",
+           "in [0, 0.2]: optional object (absent: homogeneous rock); eps and sigma l are both multiplied by 1 + g(U), "
+           "g a seeded, smooth, stationary random field of the drilled depth U (the bit's axial position) with mean 0 "
+           "and this standard deviation (BASELINE.md's rock heterogeneity: 0.005-0.015)"},
+          {"rock/strength_heterogeneity/correlation_m",
+           "in [1e-5, 1] m: correlation length L, E[g(z) g(z + dz)] = std^2 exp(-(dz / L)^2 / 2) (BASELINE.md: 0.002)"},
+          {"rock/strength_heterogeneity/seed", "integer in [0, 2147483647]: the same seed, the same rock and run"},
+          {"rock/strength_heterogeneity/modes", "integer in [1, 1000], default 64: g = sum of this many equal cosines "
+                                                "with seeded Gaussian wavenumbers (std 1 / L) and random phases"},
           {"rock/stribeck/static_mu", ">= mu: optional object (absent: Coulomb); mu(w) = mu + (static_mu - mu) "
                                       "exp(-|w| / velocity_rad_s), a stuck bit holds with static_mu"},
           {"rock/stribeck/velocity_rad_s", "> 0, Stribeck speed"}};

@@ -8,6 +8,8 @@
 //   wear-flat contact (d > 0): W_f = a sigma l advancing, in [0, a sigma l] held axially, 0 lifting
 //   friction: T_f = a gamma mu W_f / 2 sign(w), set-valued at w = 0 (stuck while the torque stays within T_c + T_f)
 //   off bottom (d <= 0): no contact at all.
+//   Optional rock strength heterogeneity: eps and sigma l both times 1 + g(U), g a seeded random field of the drilled
+//   depth U (the bit's axial position; StrengthHeterogeneity).
 //   Optional Stribeck friction: mu(w) = mu + (mu_s - mu) exp(-|w| / w_s) while turning; a stuck bit holds with mu_s.
 // Three pieces: RgdLaw (parameters and forces), CutProfile (the bit's stored angle and position and the search for
 // t_n and d) and RgdRegimes (rotation forward / stuck / backward, axial advancing / held / lifting, contact on / off,
@@ -17,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/bitrock/heterogeneity.hpp"
 #include "drillwave/bitrock/roughness.hpp"
 #include "drillwave/bitrock/stick_slip.hpp"
 #include "drillwave/integration/hermite_history.hpp"
@@ -47,8 +50,11 @@ struct RgdLaw {
   int surface_passes = 4;
   double static_mu = 0, stribeck_speed = 0;  // Stribeck friction (stribeck_speed 0: Coulomb, static_mu = mu)
   BottomRoughness bottom_roughness;  // of the rock surface the blades left before t = 0 (default: smooth)
+  StrengthHeterogeneity strength_heterogeneity;  // of eps and sigma l along the drilled depth (default: homogeneous)
 
-  double ContactForce() const { return a * sigma_l; }  // a sigma l
+  double ContactForce() const { return a * sigma_l; }  // a sigma l, of the homogeneous rock
+  // a sigma l (1 + g(z)) of the rock at drilled depth z (ContactForce() exactly when homogeneous).
+  double ContactForceAt(double z) const { return ContactForce() * strength_heterogeneity.Multiplier(z); }
   // Friction coefficient of the wear flats at bit speed w (Stribeck: decays from static_mu to mu).
   double MuAt(double w) const {
     return stribeck_speed > 0 ? mu + (static_mu - mu) * std::exp(-std::abs(w) / stribeck_speed) : mu;
@@ -68,8 +74,9 @@ struct RgdLaw {
     return 0.5 * a * gamma * ContactForce() * -(static_mu - mu) / stribeck_speed * std::exp(-w / stribeck_speed);
   }
   // The rock's answer to a bit on bottom (f.drive_force and f.depth set): turning w (0 when stuck), cutting into new
-  // rock or not (turning backwards, or not yet back past the furthest angle reached).
-  void OnBottom(Turn turn, Axial axial, double w, bool cutting, RgdForces& f) const;
+  // rock or not (turning backwards, or not yet back past the furthest angle reached), the bit at drilled depth z (its
+  // axial position U: where the rock's strength is read).
+  void OnBottom(Turn turn, Axial axial, double w, bool cutting, double z, RgdForces& f) const;
 };
 
 // Reads a (bit/radius_m) and n (bit/blades) from the bit block, and the rock block (which it finishes).

@@ -33,6 +33,8 @@
 // U = V t). Disturb it through the inputs (a set-point schedule) or the rock left before t = 0 (rock/bottom_roughness:
 // U = V t + h(Omega t) in the prehistory, BASELINE.md's start), which keep the waves free of jumps: a jump in a node
 // speed would travel through every sub-section, and only inputs are tracked as breakpoints here.
+// The rock's strength may vary with the drilled depth U (rock/strength_heterogeneity: eps and sigma l times 1 + g(U),
+// a smooth seeded field), a disturbance inside the bit-rock law that also keeps the right-hand side a pure function.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -264,7 +266,7 @@ class Process {
     const Side side = Side::kLeft;
     if (k >= 2 && !md_.axial_coupling) return 1.0;  // always on bottom and advancing
     return rg_.Witness(
-        k, x[kWbit], x[kVbit], md_.ContactForce(), [&] { return Forces(x, t, side); },
+        k, x[kWbit], x[kVbit], md_.ContactForceAt(x[kU]), [&] { return Forces(x, t, side); },
         [&] { return DepthOfCut(x, t, side); });
   }
 
@@ -273,7 +275,7 @@ class Process {
     for (waves::WaveChain& chain : chains_) chain.ForgetStart();  // the regime (and the bit's waves) may change here
     const Turn turn_before = rg_.turn;
     const bool changed =
-        rg_.OnEvent(k, t, x[kWbit], x[kVbit], md_.ContactForce(), [&] { return Forces(x, t, side); });
+        rg_.OnEvent(k, t, x[kWbit], x[kVbit], md_.ContactForceAt(x[kU]), [&] { return Forces(x, t, side); });
     if (k <= 1) {
       if (rg_.turn == Turn::kStuck) ++stick_onsets_, stuck_.push_back({t, kInf});
       if (turn_before == Turn::kStuck && !stuck_.empty()) stuck_.back().end_s = t;
@@ -373,7 +375,7 @@ class Process {
     if (!rg_.contact) return f;
     // Cutting only into new rock: not while turning backwards, nor before the bit is back past its furthest angle.
     const bool cutting = rg_.turn != Turn::kBackward && x[kPhi] >= cut_.Furthest(t);
-    md_.OnBottom(rg_.turn, rg_.axial, w, cutting, f);
+    md_.OnBottom(rg_.turn, rg_.axial, w, cutting, x[kU], f);
     if (!md_.axial_coupling) f.weight = md_.weight_on_bit;
     return f;
   }

@@ -123,13 +123,13 @@ class Process {
   double Witness(int k, double t, const State& x) const {
     const Side side = Side::kLeft;
     return rg_.Witness(
-        k, x[kW], x[kV], md_.law.ContactForce(), [&] { return Forces(x, t, side); },
+        k, x[kW], x[kV], md_.law.ContactForceAt(x[kU]), [&] { return Forces(x, t, side); },
         [&] { return DepthOfCut(x, t, side); });
   }
   bool OnEvent(int k, double t, State& x) {
     const Turn turn_before = rg_.turn;
     const bool changed =
-        rg_.OnEvent(k, t, x[kW], x[kV], md_.law.ContactForce(), [&] { return Forces(x, t, Side::kLeft); });
+        rg_.OnEvent(k, t, x[kW], x[kV], md_.law.ContactForceAt(x[kU]), [&] { return Forces(x, t, Side::kLeft); });
     if (rg_.turn == Turn::kStuck && turn_before != Turn::kStuck) stuck_.push_back({t, kInf});
     if (turn_before == Turn::kStuck && rg_.turn != Turn::kStuck && !stuck_.empty()) stuck_.back().end_s = t;
     return changed;
@@ -173,7 +173,7 @@ class Process {
     if (!rg_.contact) return f;
     // Cutting only into new rock: not while turning backwards, nor before the bit is back past its furthest angle.
     const bool cutting = rg_.turn != Turn::kBackward && x[kPhi] >= cut_.Furthest(t);
-    md_.law.OnBottom(rg_.turn, rg_.axial, w, cutting, f);
+    md_.law.OnBottom(rg_.turn, rg_.axial, w, cutting, x[kU], f);
     return f;
   }
 
