@@ -93,8 +93,8 @@ void CheckScale(const Recording& rec, const Recording& model, const std::vector<
   }
 }
 
-// Draw d of a case's random inputs: every seed in its model (bottom roughness, rock heterogeneity) and the sensors'
-// moved by d (draw 0: the case as given).
+// Draw d of a case's random inputs: every seed in its model (bottom roughness, rock heterogeneity) moved by d, the
+// sensor noise's by 7919 d (draw 0: the case as given).
 nlohmann::json Drawn(nlohmann::json doc, int d) {
   const std::function<void(nlohmann::json&)> move_seeds = [&](nlohmann::json& j) {
     if (!j.is_object()) return;
@@ -120,6 +120,13 @@ struct Judged {
   double fit_error = 0, held_out_error = 0;
   std::vector<double> held_out_draw_errors;
 };
+
+// The median draw's channels, features and errors, into the loop's fields for a model (baseline or fitted).
+void Adopt(const Judged& j, Recording& model, FeatureSet& fit, FeatureSet& held_out, double& fit_error,
+           double& held_out_error) {
+  model = j.model, fit = j.fit, held_out = j.held_out;
+  fit_error = j.fit_error, held_out_error = j.held_out_error;
+}
 
 }  // namespace
 
@@ -278,11 +285,8 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   }
   loop.model_runs += draws;
   const Judged baseline = judged(std::move(baseline_draws));
-  loop.baseline_model = baseline.model;
-  loop.baseline_fit = baseline.fit;
-  loop.baseline_held_out = baseline.held_out;
-  loop.baseline_fit_error = baseline.fit_error;
-  loop.baseline_held_out_error = baseline.held_out_error;
+  Adopt(baseline, loop.baseline_model, loop.baseline_fit, loop.baseline_held_out, loop.baseline_fit_error,
+        loop.baseline_held_out_error);
   loop.baseline_held_out_draw_errors = baseline.held_out_draw_errors;
   const double k_features = FiniteCount(loop.recording_fit);
   loop.baseline_aic = k_features * std::log(loop.baseline_fit_error);
@@ -557,6 +561,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
 
   // 5. The model that stands, on both windows.
   loop.fitted_document = base;
+  Judged fitted = baseline;
   if (loop.kept >= 0) {
     const Candidate& c = loop.candidates[loop.kept];
     std::size_t k = 0;
@@ -570,22 +575,15 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     std::vector<Recording> models;
     for (int d = 0; d < draws; ++d) models.push_back(run(Drawn(loop.fitted_document, d), full_duration));
     loop.model_runs += draws;
-    const Judged fitted = judged(std::move(models));
-    loop.fitted_model = fitted.model;
-    loop.fitted_fit = fitted.fit;
-    loop.fitted_held_out = fitted.held_out;
-    loop.fitted_fit_error = fitted.fit_error;
-    loop.fitted_held_out_error = fitted.held_out_error;
-  } else {
-    loop.fitted_model = loop.baseline_model;
-    loop.fitted_fit = loop.baseline_fit, loop.fitted_held_out = loop.baseline_held_out;
-    loop.fitted_fit_error = loop.baseline_fit_error, loop.fitted_held_out_error = loop.baseline_held_out_error;
+    fitted = judged(std::move(models));
   }
+  Adopt(fitted, loop.fitted_model, loop.fitted_fit, loop.fitted_held_out, loop.fitted_fit_error,
+        loop.fitted_held_out_error);
   for (const Feature& f : loop.recording_held_out.features) {
-    const double m = loop.fitted_held_out.Value(f.name), scale = f.scale;
-    if (std::isfinite(f.value) && std::isfinite(m) && std::abs(m - f.value) > 3 * scale)
+    const double m = loop.fitted_held_out.Value(f.name);
+    if (std::isfinite(f.value) && std::isfinite(m) && std::abs(m - f.value) > 3 * f.scale)
       loop.unexplained.push_back(f.name + ": model " + Significant(m, 4) + " against " + Significant(f.value, 4) +
-                                 " recorded (" + Fixed((m - f.value) / scale, 1) + " scales)");
+                                 " recorded (" + Fixed((m - f.value) / f.scale, 1) + " scales)");
     else if (std::isfinite(f.value) != std::isfinite(m))
       loop.unexplained.push_back(f.name + ": " + (std::isfinite(m) ? "only the model has it" : "only the recording has it"));
   }
