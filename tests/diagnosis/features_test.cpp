@@ -134,6 +134,47 @@ TEST(Features, TheWeightOnBitsLagBehindTheHookLoadShowsADelayLongerThanTheBounce
   EXPECT_TRUE(std::isnan(MeasureFeatures(Bouncing(60, travel, 2.1, 8, 0.0), 5, 57).Value("hook_to_wob_lag_s")));
 }
 
+// A steady bounce whose strength wanders (a 4-Hz bounce under an amplitude with a 0.5-s memory): the hook load's
+// fast motion answers the weight on bit's after the axial travel time, and the recorded weight on bit arrives `delay`
+// late. The envelopes' correlation peaks where the weight on bit follows by delay - travel.
+Recording WanderingBounce(double seconds, double travel, double delay, unsigned seed) {
+  Recording r = Empty({"hookload_kN", "wob_kN"});
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const int count = static_cast<int>(seconds * 100), back = static_cast<int>(std::lround((travel + delay) * 100));
+  std::vector<double> wob(count + back);
+  double wander = 0;
+  for (std::size_t i = 0; i < wob.size(); ++i) {
+    wander = 0.98 * wander + 0.2 * n(rng);  // std 1, memory 0.5 s
+    wob[i] = 150 + std::max(0.0, 60 + 40 * wander) * std::sin(2 * kPi * 0.01 * i / 0.25) + 1.5 * n(rng);
+  }
+  const int travel_samples = static_cast<int>(std::lround(travel * 100));
+  for (int i = 0; i < count; ++i) {
+    r.time_s.push_back(0.01 * i);
+    r.channels[0].push_back(700 - 0.3 * (wob[i + back - travel_samples] - 150) + 7 * n(rng));
+    r.channels[1].push_back(wob[i + back - static_cast<int>(std::lround(delay * 100))]);
+  }
+  return r;
+}
+
+TEST(Features, TheEnvelopesCorrelogramIsShiftedWholeByATelemetryDelay) {
+  const double travel = 0.58;
+  EXPECT_EQ(EnvelopeCorrelationName(1.5), "hook_wob_envelope_corr_at_+1.5s");
+  EXPECT_EQ(EnvelopeCorrelationName(-0.5), "hook_wob_envelope_corr_at_-0.5s");
+  const FeatureSet direct = MeasureFeatures(WanderingBounce(60, travel, 0.0, 3), 5, 57);
+  const FeatureSet delayed = MeasureFeatures(WanderingBounce(60, travel, 2.1, 4), 5, 57);
+  // The peak sits at the lag next to delay - travel: -0.5 s direct, +1.5 s delayed.
+  EXPECT_GT(direct.Value(EnvelopeCorrelationName(-0.5)), 0.7);
+  EXPECT_GT(delayed.Value(EnvelopeCorrelationName(1.5)), 0.7);
+  for (double lag : {-1.0, 0.5, 1.0, 1.5, 2.0, 2.5}) EXPECT_LT(direct.Value(EnvelopeCorrelationName(lag)), 0.5) << lag;
+  for (double lag : {-1.0, -0.5, 0.0, 0.5, 2.5}) EXPECT_LT(delayed.Value(EnvelopeCorrelationName(lag)), 0.5) << lag;
+  // Counted in the recording's own scales, the undelayed twin is far off at the delayed peak; a twin is not.
+  const FeatureSet twin = MeasureFeatures(WanderingBounce(60, travel, 2.1, 5), 5, 57);
+  const Feature& at = *delayed.Find(EnvelopeCorrelationName(1.5));
+  EXPECT_GT((at.value - direct.Value(at.name)) / at.scale, 3.0);
+  EXPECT_LT(std::abs(at.value - twin.Value(at.name)) / at.scale, 3.0);
+}
+
 TEST(Features, AnAxialLagOnAnotherPeakCountsAsThreeScales) {
   FeatureSet recording;
   recording.features = {{"hook_to_wob_lag_s", 1.5, 0.1}, {"wob_kN std", 100, 10}};
@@ -144,6 +185,25 @@ TEST(Features, AnAxialLagOnAnotherPeakCountsAsThreeScales) {
   EXPECT_NEAR(FeatureDistance(model, recording), 9.0 / 2, 1e-12);
   model.features[1].value = 150;  // 5 scales of a level: counted in full
   EXPECT_NEAR(FeatureDistance(model, recording), (9.0 + 25.0) / 2, 1e-12);
+}
+
+TEST(Features, TheCorrelogramCountsAsOneFeature) {
+  FeatureSet recording;
+  recording.features = {{"wob_kN std", 100, 10},
+                        {EnvelopeCorrelationName(0), 0.5, 0.05},
+                        {EnvelopeCorrelationName(1), 0.1, 0.05},
+                        {EnvelopeCorrelationName(2), std::nan(""), 0.05}};
+  FeatureSet model = recording;
+  model.features[1].value = 0.6;  // 2 scales
+  model.features[2].value = 0.3;  // 4 scales
+  model.features[0].value = 130;  // 3 scales
+  // Two features: the std (9) and the correlogram, the mean over its two defined lags ((4 + 16) / 2).
+  EXPECT_NEAR(FeatureDistance(model, recording), (9.0 + 10.0) / 2, 1e-12);
+  EXPECT_EQ(FeatureCount(recording), 2.0);
+  // A recording whose envelopes share too little (peak 0.29 < 0.3): its correlogram is not asked of the model.
+  recording.features[1].value = 0.29;
+  EXPECT_NEAR(FeatureDistance(model, recording), 9.0, 1e-12);
+  EXPECT_EQ(FeatureCount(recording), 1.0);
 }
 
 TEST(Features, AWindowWithoutEnoughSamplesIsRefused) {

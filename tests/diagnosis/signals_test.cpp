@@ -1,6 +1,8 @@
 // Robust signal tools: the Hampel filter masks spikes (with their ramped flanks) and leaves an honest noisy signal
 // alone; runs of flags become intervals.
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <cstdio>
 #include <random>
 
@@ -48,6 +50,45 @@ TEST(Hampel, MasksRampedSpikesAndNothingElse) {
   EXPECT_LT(worst_centre, 50.0);  // instead of 330 below it: the window median of a sine, not its value
   const auto bursts = Runs(std::vector<double>(), std::vector<char>(), 0, 0.0);
   EXPECT_TRUE(bursts.empty());
+}
+
+// 100 Hz, 60 s: a weight on bit of 150 kN with noise, and `spikes` impacts of +400 kN lasting 30 ms, evenly spread.
+Recording WithImpacts(int spikes, unsigned seed) {
+  Recording r;
+  r.source = "synthetic";
+  r.sample_interval_s = 0.01;
+  r.names = {"wob_kN"};
+  r.channels.resize(1);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  const int n = 6000;
+  for (int i = 0; i < n; ++i) r.time_s.push_back(0.01 * i), r.channels[0].push_back(150 + noise(rng));
+  for (int s = 0; s < spikes; ++s)
+    for (int k = 0; k < 3; ++k) r.channels[0][50 + s * (n - 100) / spikes + k] += 400;
+  return r;
+}
+
+TEST(MaskArtefacts, AFewGlitchesAreMaskedAndABouncesImpactsLeftWhole) {
+  // Ten impacts in a minute: glitches (0.5 % of the samples), masked.
+  const MaskedRecording glitches = MaskArtefacts(WithImpacts(10, 1));
+  EXPECT_EQ(glitches.whole, std::vector<char>{0});
+  EXPECT_EQ(glitches.masked.front().second, 30);
+  EXPECT_LT(*std::max_element(glitches.recording.channels[0].begin(), glitches.recording.channels[0].end()), 160);
+  // Four impacts a second (a bouncing bit): 12 % of the samples, motion, left whole and counted as none masked.
+  const Recording bounce = WithImpacts(240, 2);
+  const MaskedRecording motion = MaskArtefacts(bounce);
+  EXPECT_EQ(motion.whole, std::vector<char>{1});
+  EXPECT_EQ(motion.masked.front().second, 0);
+  EXPECT_EQ(motion.recording.channels[0], bounce.channels[0]);
+  // Another recording (a model's) follows the first one's decision, whatever its own share.
+  const MaskedRecording follows = MaskArtefacts(WithImpacts(10, 3), &motion.whole);
+  EXPECT_EQ(follows.whole, std::vector<char>{1});
+  EXPECT_EQ(follows.masked.front().second, 0);
+  const MaskedRecording masked_like = MaskArtefacts(WithImpacts(240, 4), &glitches.whole);
+  EXPECT_EQ(masked_like.whole, std::vector<char>{0});
+  EXPECT_GT(masked_like.masked.front().second, 600);
+  const std::vector<char> wrong_size{0, 0};
+  EXPECT_THROW(MaskArtefacts(bounce, &wrong_size), std::invalid_argument);
 }
 
 TEST(Signals, RunsMergeAndFilter) {

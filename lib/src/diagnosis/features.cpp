@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "drillwave/core/error.hpp"
@@ -12,6 +13,8 @@ namespace drillwave::diagnosis {
 namespace {
 
 const double kNaN = std::nan("");
+
+bool InCorrelogram(const std::string& name) { return name.rfind(kEnvelopeCorrelation, 0) == 0; }
 
 // Centred moving average over 2 half + 1 samples (shorter at the ends).
 std::vector<double> MovingAverage(const std::vector<double>& x, int half) {
@@ -106,6 +109,19 @@ double AxialLag(const std::vector<double>& hook_fast, const std::vector<double>&
   return best >= min_correlation ? best_lag : kNaN;
 }
 
+// The strength of a channel's fast motion: the rms of its fast part over envelope_window_s, less its own moving
+// average over envelope_detrend_s (so that a bounce building up over tens of seconds does not correlate everything
+// with everything).
+std::vector<double> Envelope(const std::vector<double>& fast, double dt, const FeatureOptions& o) {
+  std::vector<double> power(fast.size());
+  for (std::size_t i = 0; i < fast.size(); ++i) power[i] = fast[i] * fast[i];
+  std::vector<double> e = MovingAverage(power, static_cast<int>(std::lround(0.5 * o.envelope_window_s / dt)));
+  for (double& v : e) v = std::sqrt(v);
+  const std::vector<double> trend = MovingAverage(e, static_cast<int>(std::lround(0.5 * o.envelope_detrend_s / dt)));
+  for (std::size_t i = 0; i < e.size(); ++i) e[i] -= trend[i];
+  return e;
+}
+
 std::map<std::string, double> Measure(const Recording& r, std::size_t first, std::size_t last,
                                       const FeatureOptions& o) {
   std::map<std::string, double> f;
@@ -129,8 +145,13 @@ std::map<std::string, double> Measure(const Recording& r, std::size_t first, std
     if (r.names[j] == o.weight_on_bit) wob_fast = fast;
     smoothed.push_back(x);
   }
-  if (!hook_fast.empty() && !wob_fast.empty())
+  if (!hook_fast.empty() && !wob_fast.empty()) {
     f["hook_to_wob_lag_s"] = AxialLag(hook_fast, wob_fast, dt, o.min_axial_lag_s, o.max_axial_lag_s, o.min_axial_correlation);
+    const std::vector<double> hook_envelope = Envelope(hook_fast, dt, o), wob_envelope = Envelope(wob_fast, dt, o);
+    for (double lag : o.envelope_lags_s)
+      f[EnvelopeCorrelationName(lag)] =
+          LaggedCorrelation(hook_envelope, wob_envelope, static_cast<long>(std::lround(lag / dt)));
+  }
   if (!bit.empty()) {
     double mean_abs = 0;
     for (double v : bit) mean_abs += std::abs(v) / bit.size();
@@ -156,6 +177,7 @@ double Floor(const std::string& name, double value, const std::map<std::string, 
   if (name == "stick_fraction") return 0.03;
   if (name == "period_s") return std::max(0.05 * std::abs(value), 0.05);
   if (name == "hook_to_wob_lag_s") return 0.1;  // as the torque-to-bit lag's: ten samples
+  if (InCorrelogram(name)) return 0.05;  // a correlation: what 400 independent samples resolve
   if (name == "torque_to_bit_lag_s") {
     const auto p = whole.find("period_s");
     return std::max(0.1, p != whole.end() && std::isfinite(p->second) ? 0.05 * p->second : 0.0);
@@ -168,6 +190,12 @@ double Floor(const std::string& name, double value, const std::map<std::string, 
 }
 
 }  // namespace
+
+std::string EnvelopeCorrelationName(double lag_s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%+.1fs", lag_s);
+  return kEnvelopeCorrelation + std::string(text);
+}
 
 const Feature* FeatureSet::Find(const std::string& name) const {
   for (const Feature& f : features)
@@ -210,20 +238,50 @@ FeatureSet MeasureFeatures(const Recording& r, double begin_s, double end_s, con
   return set;
 }
 
+namespace {
+// Whether the recording's envelopes answer each other clearly enough for their correlogram to be asked of a model.
+bool CorrelogramCounts(const FeatureSet& recording) {
+  double peak = 0;
+  for (const Feature& f : recording.features)
+    if (InCorrelogram(f.name) && std::isfinite(f.value)) peak = std::max(peak, std::abs(f.value));
+  return peak >= kMinEnvelopeCorrelation;
+}
+}  // namespace
+
 double FeatureDistance(const FeatureSet& model, const FeatureSet& recording) {
-  double sum = 0;
-  int count = 0;
+  double sum = 0, correlogram_sum = 0;
+  int count = 0, correlogram_count = 0;
+  const bool correlogram_counts = CorrelogramCounts(recording);
   for (const Feature& r : recording.features) {
     const double m = model.Value(r.name);
     const bool rf = std::isfinite(r.value), mf = std::isfinite(m);
     if (!rf && !mf) continue;
     const double z = rf && mf ? (m - r.value) / r.scale : 3.0;
+    if (InCorrelogram(r.name)) {
+      if (correlogram_counts) correlogram_sum += z * z, ++correlogram_count;
+      continue;
+    }
     // The axial lag is the highest of the correlation's peaks over seconds of lags: a model more than three scales
     // off has picked another peak (a regime of its own), and how far that peak lies says nothing more.
     sum += r.name == "hook_to_wob_lag_s" ? std::min(z * z, 9.0) : z * z;
     ++count;
   }
+  // The envelopes' correlogram is one shape read at several lags: it counts as one feature, its lags' mean.
+  if (correlogram_count) sum += correlogram_sum / correlogram_count, ++count;
   return count ? sum / count : 0.0;
+}
+
+double FeatureCount(const FeatureSet& s) {
+  double n = 0;
+  bool correlogram = false;
+  for (const Feature& f : s.features) {
+    if (!std::isfinite(f.value)) continue;
+    if (InCorrelogram(f.name))
+      correlogram = true;
+    else
+      ++n;
+  }
+  return n + (correlogram && CorrelogramCounts(s) ? 1 : 0);
 }
 
 double NoiseStd(const std::vector<double>& x) {

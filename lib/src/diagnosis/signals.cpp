@@ -57,6 +57,22 @@ HampelResult HampelFilter(const std::vector<double>& x, int half_window, double 
   return r;
 }
 
+MaskedRecording MaskArtefacts(const Recording& rec, const std::vector<char>* whole) {
+  MaskedRecording out{rec, {}, whole ? *whole : std::vector<char>(rec.names.size(), 0)};
+  if (out.whole.size() != rec.names.size()) throw std::invalid_argument("MaskArtefacts: one decision per channel");
+  const int half_window = std::max(2, static_cast<int>(std::lround(0.1 / rec.sample_interval_s)));
+  for (std::size_t j = 0; j < rec.names.size(); ++j) {
+    std::vector<double> magnitude(rec.channels[j].size());
+    for (std::size_t i = 0; i < magnitude.size(); ++i) magnitude[i] = std::abs(rec.channels[j][i]);
+    const HampelResult h = HampelFilter(rec.channels[j], half_window, 5, 0.05 * Median(magnitude), 2);
+    const auto flagged = std::count(h.flagged.begin(), h.flagged.end(), 1);
+    if (!whole) out.whole[j] = flagged > kMaxArtefactShare * static_cast<double>(h.flagged.size());
+    if (!out.whole[j]) out.recording.channels[j] = h.cleaned;
+    out.masked.push_back({rec.names[j], out.whole[j] ? 0 : static_cast<int>(flagged)});
+  }
+  return out;
+}
+
 std::vector<Interval> Runs(const std::vector<double>& time_s, const std::vector<char>& on, int merge_gap,
                            double min_duration_s) {
   std::vector<std::pair<std::size_t, std::size_t>> runs;  // first, last index

@@ -3,7 +3,8 @@
 // runs that differ by a rounding error drift out of phase within a few periods, so a point-by-point error cannot be
 // fitted. Statistics over a window are reproducible: levels, spreads, the fast (> ~2 Hz) part of each channel, the
 // time the bit spends stuck, the oscillation period, the lag between the surface torque and the bit speed (modulo the
-// period) and the lag of the weight on bit behind the hook load (broadband: a telemetry delay shows whole). Each
+// period), the lag of the weight on bit behind the hook load (broadband: a telemetry delay shows whole), and the
+// correlation of their fast motions' envelopes at fixed lags (the shape that lag is the peak of). Each
 // feature carries a scale — how much it varies between the window's parts, with a floor — and a model's difference
 // is counted in those scales, so that a model which is the recording's twin scores about 1 whatever the regime.
 #include <string>
@@ -14,6 +15,13 @@
 #include "drillwave/diagnosis/recording.hpp"
 
 namespace drillwave::diagnosis {
+
+// "hook_wob_envelope_corr_at_+1.5s": the feature of the envelopes' correlation at a lag (the weight on bit later).
+inline constexpr const char* kEnvelopeCorrelation = "hook_wob_envelope_corr_at_";
+std::string EnvelopeCorrelationName(double lag_s);
+// Below this peak (over the lags, in absolute value) the recording's envelopes share too little (a bit that does not
+// bounce, rec01: 0.21; rec04's bounce: 0.68) for their correlogram to be asked of a model: it is then not counted.
+inline constexpr double kMinEnvelopeCorrelation = 0.3;
 
 struct Feature {
   std::string name;   // "<channel> mean", "<channel> std", "<channel> fast_std", "stick_fraction", ...
@@ -37,6 +45,12 @@ struct FeatureOptions {
   // Below this peak correlation the hook load and weight on bit share too little (a bit drilling smoothly, axial
   // coupling off) for the peak to stand out of the chance correlations of ~10^3 lags: no lag (NaN).
   double min_axial_correlation = 0.15;
+  // The envelopes' correlation (hook load against weight on bit) read at these lags: the shape of the correlogram,
+  // which repeats with the axial round trip, so that its highest peak alone is ambiguous in a steady bounce; read at
+  // fixed lags it is not, and a telemetry delay of the weight on bit shifts it whole (rec04: 2.1 s).
+  std::vector<double> envelope_lags_s = {-1, -0.5, 0, 0.5, 1, 1.5, 2, 2.5};
+  double envelope_window_s = 0.5;  // the rms of the fast part over this window
+  double envelope_detrend_s = 4;   // less its moving average over this window
   int parts = 4;                         // the window's parts whose spread sets each feature's scale
   double smoothing_s = 0.05;             // centred moving average before levels and spreads are read
   double fast_window_s = 0.5;            // "fast" = what a moving average over this window removes
@@ -51,8 +65,13 @@ FeatureSet MeasureFeatures(const Recording& recording, double begin_s, double en
 
 // Mean over the recording's defined features of ((model - recording) / scale)^2; a feature the recording defines
 // and the model does not (no oscillation at all) counts as 9, three scales off, and so does an axial lag more than
-// three scales off (another peak of the correlation).
+// three scales off (another peak of the correlation). The envelopes' correlogram counts as one feature, the mean of
+// its lags' squared differences, where the recording's peaks at kMinEnvelopeCorrelation or more.
 double FeatureDistance(const FeatureSet& model, const FeatureSet& recording);
+
+// The number of independent features a recording's set defines (its correlogram's lags counted once, where it counts):
+// the K of the distance.
+double FeatureCount(const FeatureSet& features);
 
 // The white measurement noise of a sampled channel, from its second differences (robust: 1.4826 MAD / sqrt 6), so
 // that slow physics (ramps, oscillations well below the sampling rate) does not count as noise.
