@@ -11,6 +11,7 @@
 
 #include "drillwave/integration/breakpoints.hpp"
 #include "drillwave/integration/hermite_history.hpp"
+#include "drillwave/integration/simulator.hpp"
 
 namespace drillwave::waves {
 namespace {

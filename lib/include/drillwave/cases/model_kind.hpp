@@ -11,7 +11,7 @@
 
 #include "drillwave/analysis/periodic_orbits.hpp"
 #include "drillwave/analysis/spectrum.hpp"
-#include "drillwave/integration/simulator.hpp"
+#include "drillwave/integration/options.hpp"
 #include "drillwave/io/json_reader.hpp"
 
 namespace drillwave::cases {

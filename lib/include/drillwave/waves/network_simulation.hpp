@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "drillwave/bitrock/stick_slip.hpp"
-#include "drillwave/integration/simulator.hpp"
+#include "drillwave/integration/options.hpp"
 #include "drillwave/waves/network.hpp"
 
 namespace drillwave::waves {

@@ -7,6 +7,7 @@
 
 #include "drillwave/bitrock/stick_slip.hpp"
 #include "drillwave/core/error.hpp"
+#include "drillwave/integration/simulator.hpp"
 
 namespace drillwave::cases::lumped {
 namespace {

@@ -16,7 +16,7 @@
 #include "drillwave/bitrock/friction.hpp"
 #include "drillwave/cases/model_kind.hpp"
 #include "drillwave/cases/statistics.hpp"
-#include "drillwave/integration/simulator.hpp"
+#include "drillwave/integration/options.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/model/schedule.hpp"
 
