@@ -176,7 +176,7 @@ TEST(DiagnosisLoop, ABouncingBitsImpactsAreLeftWholeAndItsTwinStaysATwin) {
   std::printf("[ measured ] bouncing twin: %d weight-on-bit samples masked, fit error %.3f, held-out error %.3f\n",
               masked, loop.baseline_fit_error, loop.baseline_held_out_error);
   // The impacts recur at every bounce, far more than 2 % of the samples: motion, not artefacts.
-  EXPECT_EQ(loop.motion_bursts, std::vector<std::string>{"wob_kN"});
+  EXPECT_EQ(loop.channels_left_whole, std::vector<std::string>{"wob_kN"});
   EXPECT_EQ(masked, 0);
   EXPECT_LT(std::abs(loop.recording_fit.Value("wob_kN mean") - loop.baseline_fit.Value("wob_kN mean")),
             3 * loop.recording_fit.Find("wob_kN mean")->scale);

@@ -144,7 +144,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   const Recording& rec = masked.recording;
   loop.masked_samples = masked.masked;
   for (std::size_t j = 0; j < masked.whole.size(); ++j)
-    if (masked.whole[j]) loop.motion_bursts.push_back(mapped.names[j]);
+    if (masked.whole[j]) loop.channels_left_whole.push_back(mapped.names[j]);
   loop.recording_fit = MeasureFeatures(rec, o.fit_begin_s, o.fit_end_s, o.features);
   loop.recording_held_out = MeasureFeatures(rec, o.held_out_begin_s, o.held_out_end_s, o.features);
 
@@ -251,8 +251,9 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     return j;
   };
 
-  for (const std::string& channel : loop.motion_bursts)
-    say(channel + ": too many bursts for artefacts (over 2 % of the samples): motion, left whole");
+  for (const std::string& channel : loop.channels_left_whole)
+    say(channel + ": too many bursts for artefacts (over " + Fixed(100 * kMaxArtefactShare, 0) +
+        " % of the samples): motion, left whole");
   // 2. The baseline on both windows, over the draws.
   say("baseline: running " + Fixed(full_duration, 0) + " s simulated" +
       (draws > 1 ? ", " + std::to_string(draws) + " draws" : std::string()));
@@ -644,7 +645,7 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
           {"unexplained", loop.unexplained},
           {"noise_std", noise},
           {"artefact_samples_masked", masked},
-          {"channels_left_whole", loop.motion_bursts},
+          {"channels_left_whole", loop.channels_left_whole},
           {"model_runs", loop.model_runs},
           {"features_held_out", FeatureSetToJson(loop.fitted_held_out, loop.recording_held_out)},
           {"features_fit_baseline", FeatureSetToJson(loop.baseline_fit, loop.recording_fit)}};

@@ -103,7 +103,7 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
   out << "</ul>\n<h2>Artefacts masked (not modelled)</h2>\n<ul>\n";
   for (const auto& [channel, count] : loop.masked_samples)
     out << "<li>" << Html(channel) << ": " << count << " samples</li>\n";
-  for (const std::string& channel : loop.motion_bursts)
+  for (const std::string& channel : loop.channels_left_whole)
     out << "<li>" << Html(channel) << ": left whole, its bursts too many for artefacts (motion, e.g. a bouncing bit's "
         << "impacts)</li>\n";
   out << "</ul>\n</body></html>\n";
