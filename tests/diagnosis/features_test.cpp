@@ -1,6 +1,6 @@
 // Features a chaotic model can be asked to reproduce: each is checked on signals whose answer is known (a sine's
-// period and amplitude, a delayed copy's lag, white noise's level), and the distance on twins and on a changed
-// signal.
+// period and amplitude, the content above 2 Hz, a delayed copy's lag, white noise's level), and the distance on twins
+// and on a changed signal.
 #include <cmath>
 #include <random>
 #include <string>
@@ -69,6 +69,23 @@ TEST(Features, StickFractionCountsTheTimeAtRest) {
   const double threshold = 0.05 * mean;
   const double rest = 0.5 - std::asin((60 - threshold) / 70) / kPi;
   EXPECT_NEAR(MeasureFeatures(r, 0, 100).Value("stick_fraction"), rest, 0.005);
+}
+
+TEST(Features, TheFastPartIsTheContentAboveTwoHertzWithoutTheCyclesHarmonics) {
+  // A stick-slip-like cycle of 0.35 Hz with four harmonics, all below the 2-Hz edge, and a small 5-Hz vibration: the
+  // fast part is the vibration's rms alone. (A 0.5-s moving average's residual lets the harmonics through: here it
+  // would read more than the vibration's rms five times over.)
+  Recording r = Empty({"top_torque_kNm"});
+  for (int i = 0; i < 6000; ++i) {
+    const double t = 0.01 * i;
+    double v = 9;
+    for (int k = 1; k <= 5; ++k) v += (2.0 / k) * std::sin(2 * kPi * 0.35 * k * t + k);
+    r.time_s.push_back(t);
+    r.channels[0].push_back(v + 0.1 * std::sin(2 * kPi * 5 * t));
+  }
+  EXPECT_NEAR(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_std"), 0.1 / std::sqrt(2.0), 0.002);
+  for (double& v : r.channels[0]) v = 9 + 3 * std::sin(2 * kPi * 1.75 * (&v - r.channels[0].data()) * 0.01);
+  EXPECT_LT(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_std"), 0.01);  // a 3-kN m line at 1.75 Hz
 }
 
 TEST(Features, NoOscillationHasNoPeriod) {

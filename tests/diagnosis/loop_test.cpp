@@ -254,11 +254,13 @@ TEST(DiagnosisLoop, TheReportOpensInHeadlessChromiumWithItsPlotsDrawn) {
 
 // The decision asks for a held-out gain larger than chance gives (sqrt(2 / K) over K features), not only a relative
 // one: a twin whose bit is 16 % heavier differs within the features' own scales (period 8 % longer, 1.6 scales), so
-// the fitted inertia's gain (the error falls by more than 80 %, yet by less than chance) is not kept; at 20 % it is,
-// with the inertia recovered as well as the period's floor allows.
+// the fitted inertia's gain (the error falls by more than 80 %, yet by less than chance) is not kept; at 35 % it is,
+// with the inertia recovered as well as the period's floor allows. (At 20 % the gain was 0.40 against chance 0.45
+// once the fast parts' rms read the 2-10 Hz band, where this pendulum has only sensor noise: the cycle's harmonics
+// that a moving average let through had added to the gain.)
 TEST(DiagnosisLoop, AGainWithinChanceIsNotKeptAndALargerOneIs) {
   const double j_bit = 471.9698;
-  for (const double heavier : {0.16, 0.20}) {
+  for (const double heavier : {0.16, 0.35}) {
     nlohmann::json truth = TwoMassCase();
     truth["model"]["bit"]["inertia_kgm2"] = j_bit * (1 + heavier);
     const DiagnosisLoop loop = RunDiagnosisLoop(TwoMassCase(), NoisyTwin(truth, 0.5), Options());
@@ -271,7 +273,7 @@ TEST(DiagnosisLoop, AGainWithinChanceIsNotKeptAndALargerOneIs) {
     EXPECT_LT(fitted.held_out_error, 0.8 * loop.baseline_held_out_error);  // the relative margin alone would keep it
     // The period is counted in a 5 % floor, so the inertia (the period squared) is identified to about 10 %.
     EXPECT_NEAR(fitted.parameters[0].value, j_bit * (1 + heavier), 0.12 * j_bit * (1 + heavier));
-    if (heavier < 0.18) {
+    if (heavier < 0.2) {
       EXPECT_LT(loop.baseline_held_out_error - fitted.held_out_error, loop.error_chance);
       EXPECT_EQ(loop.kept, -1);
     } else {

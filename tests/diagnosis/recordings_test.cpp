@@ -68,5 +68,26 @@ TEST(SyntheticRecordings, SoftDriveFindingMatchesTheConcealedEffect) {
   EXPECT_EQ(checked, 12);
 }
 
+TEST(SyntheticRecordings, OnlyTheBouncingBitsWeightOnBitIsLeftWhole) {
+  // rec04's bit bounces: its weight-on-bit impacts are as short as glitches and recur at every bounce, so more than
+  // kMaxArtefactShare of the samples are flagged and the inspection leaves the channel whole, as diagnose does.
+  const std::string dir = kShared + "/recordings/synthetic";
+  if (!std::filesystem::exists(dir + "/rec12.csv")) GTEST_SKIP() << "the synthetic recordings are not at " << dir;
+  for (int k = 1; k <= 12; ++k) {
+    const std::string name = (k < 10 ? "rec0" : "rec") + std::to_string(k);
+    const Inspection ins = InspectRecording(LoadRecording(dir + "/" + name + ".csv"));
+    for (const ChannelArtefacts& a : ins.artefacts) {
+      const bool bounce = name == "rec04" && a.channel == "wob_kN";
+      EXPECT_EQ(a.left_whole, bounce) << name << " " << a.channel << ": " << a.samples_flagged << " flagged";
+      if (a.left_whole) {
+        std::printf("[ measured ] %s %s: %d samples flagged, left whole\n", name.c_str(), a.channel.c_str(),
+                    a.samples_flagged);
+        EXPECT_TRUE(a.bursts.empty());
+        EXPECT_EQ(a.clean_max, a.raw_max);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace drillwave::diagnosis

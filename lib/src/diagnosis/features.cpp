@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <complex>
 #include <map>
+
+#include <unsupported/Eigen/FFT>
 
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
@@ -77,6 +80,29 @@ double Amplitude(const std::vector<double>& x, double dt, double hz) {
   return 2 * std::hypot(re, im) / x.size();
 }
 
+// The rms of x's content in [lo_hz, hi_hz] (mean removed): the Hann-windowed periodogram summed over the band
+// (Parseval). The band's edge is sharp where a moving average's side lobes pass a stick-slip cycle's harmonics: on
+// rec10's fit window the surface torque's 2-10 Hz content was 0.246 kN m in the model against 0.054 recorded (the
+// Kelvin-Voigt damping the model lacked), where a 0.5-s moving average's residual read 0.32 against 0.23.
+double BandRms(const std::vector<double>& x, double dt, double lo_hz, double hi_hz) {
+  const std::size_t n = x.size();
+  const double mean = Mean(x);
+  std::vector<double> windowed(n);
+  double window_power = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = 0.5 - 0.5 * std::cos(2 * 3.14159265358979323846 * (i + 0.5) / n);
+    windowed[i] = w * (x[i] - mean);
+    window_power += w * w;
+  }
+  std::vector<std::complex<double>> spectrum;
+  Eigen::FFT<double> fft;
+  fft.fwd(spectrum, windowed);
+  double power = 0;
+  for (std::size_t k = 1; 2 * k < n; ++k)  // both signs of each frequency; the Nyquist bin is left out
+    if (k / (n * dt) >= lo_hz && k / (n * dt) <= hi_hz) power += 2 * std::norm(spectrum[k]);
+  return std::sqrt(power / (n * window_power));
+}
+
 // The lag in [0, period) at which the bit speed follows the surface torque most closely.
 double Lag(const std::vector<double>& torque, const std::vector<double>& bit, double dt, double period) {
   if (!std::isfinite(period)) return kNaN;
@@ -138,7 +164,7 @@ std::map<std::string, double> Measure(const Recording& r, std::size_t first, std
     for (std::size_t i = 0; i < x.size(); ++i) fast[i] = x[i] - slow[i];
     f[r.names[j] + " mean"] = Mean(raw);
     f[r.names[j] + " std"] = Std(x);
-    f[r.names[j] + " fast_std"] = Std(fast);
+    f[r.names[j] + " fast_std"] = BandRms(raw, dt, 1 / o.fast_window_s, 0.5 / o.smoothing_s);
     if (r.names[j] == o.bit_speed) bit = x;
     if (r.names[j] == o.top_torque) torque = x;
     if (r.names[j] == o.hook_load) hook_fast = fast;

@@ -50,6 +50,8 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
     ChannelArtefacts a;
     a.channel = rec.names[j];
     a.samples_flagged = static_cast<int>(std::count(h.flagged.begin(), h.flagged.end(), 1));
+    a.left_whole = a.samples_flagged > kMaxArtefactShare * static_cast<double>(x.size());
+    if (a.left_whole) h = HampelResult{x, std::vector<char>(x.size(), 0)};
     a.bursts = Runs(rec.time_s, h.flagged, 3, 0.0);
     a.raw_min = *std::min_element(x.begin(), x.end()), a.raw_max = *std::max_element(x.begin(), x.end());
     a.clean_min = *std::min_element(h.cleaned.begin(), h.cleaned.end());
@@ -178,7 +180,12 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
   // Findings, restating the numbers.
   auto& f = ins.findings;
   for (const ChannelArtefacts& a : ins.artefacts)
-    if (a.samples_flagged > 0)
+    if (a.left_whole)
+      f.push_back(a.channel + ": " + std::to_string(a.samples_flagged) + " of " + std::to_string(rec.time_s.size()) +
+                  " samples (" + Fixed(100.0 * a.samples_flagged / rec.time_s.size(), 1) + " %) look like artefacts: " +
+                  "more than " + Fixed(100 * kMaxArtefactShare, 0) + " %, so they are taken for motion (a bouncing " +
+                  "bit's impacts) and the channel is left whole.");
+    else if (a.samples_flagged > 0)
       f.push_back(a.channel + ": " + std::to_string(a.samples_flagged) + " samples in " +
                   std::to_string(a.bursts.size()) + " bursts flagged as artefacts and masked (" +
                   std::to_string(a.bursts_while_stuck) + " bursts while the bit is at rest); range " +
@@ -216,6 +223,7 @@ nlohmann::json InspectionToJson(const Inspection& ins) {
   for (const ChannelArtefacts& a : ins.artefacts)
     artefacts.push_back({{"channel", a.channel},
                          {"samples_flagged", a.samples_flagged},
+                         {"left_whole", a.left_whole},
                          {"bursts", IntervalsToJson(a.bursts)},
                          {"bursts_while_stuck", a.bursts_while_stuck},
                          {"raw_range", {a.raw_min, a.raw_max}},

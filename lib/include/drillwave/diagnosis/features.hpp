@@ -1,10 +1,10 @@
 #pragma once
 // What a model can be asked to reproduce of a recording (DESIGN.md §5, issue 13 item 3). Stick-slip is chaotic: two
 // runs that differ by a rounding error drift out of phase within a few periods, so a point-by-point error cannot be
-// fitted. Statistics over a window are reproducible: levels, spreads, the fast (> ~2 Hz) part of each channel, the
-// time the bit spends stuck, the oscillation period, the lag between the surface torque and the bit speed (modulo the
-// period), the lag of the weight on bit behind the hook load (broadband: a telemetry delay shows whole), and the
-// correlation of their fast motions' envelopes at fixed lags (the shape that lag is the peak of). Each
+// fitted. Statistics over a window are reproducible: levels, spreads, the content of each channel between 2 and
+// 10 Hz, the time the bit spends stuck, the oscillation period, the lag between the surface torque and the bit speed
+// (modulo the period), the lag of the weight on bit behind the hook load (broadband: a telemetry delay shows whole),
+// and the correlation of their fast motions' envelopes at fixed lags (the shape that lag is the peak of). Each
 // feature carries a scale — how much it varies between the window's parts, with a floor — and a model's difference
 // is counted in those scales, so that a model which is the recording's twin scores about 1 whatever the regime.
 #include <string>
@@ -53,7 +53,9 @@ struct FeatureOptions {
   double envelope_detrend_s = 4;   // less its moving average over this window
   int parts = 4;                         // the window's parts whose spread sets each feature's scale
   double smoothing_s = 0.05;             // centred moving average before levels and spreads are read
-  double fast_window_s = 0.5;            // "fast" = what a moving average over this window removes
+  // "fast": what a moving average over this window removes (the envelopes and the axial lag read it); "fast_std" is
+  // the rms of the content between 1 / fast_window_s and 1 / (2 smoothing_s): 2 to 10 Hz.
+  double fast_window_s = 0.5;
   double stuck_fraction = 0.05;          // stuck while |bit speed| < max(stuck_floor, fraction * mean |speed|)
   double stuck_floor = 2.0;              // in the bit speed's unit
   double max_period_s = 20;              // longest oscillation period looked for

@@ -35,6 +35,9 @@ struct InspectOptions {
 struct ChannelArtefacts {
   std::string channel;
   int samples_flagged = 0;
+  // More than kMaxArtefactShare of the samples flagged: motion (a bouncing bit's impacts), not glitches; nothing of
+  // the channel is masked and `bursts` stays empty.
+  bool left_whole = false;
   std::vector<Interval> bursts;  // runs of flagged samples
   int bursts_while_stuck = 0;    // bursts that overlap a stuck episode of the bit
   double raw_min = 0, raw_max = 0, clean_min = 0, clean_max = 0;
