@@ -24,16 +24,21 @@ class WindowedReading {
     for (std::size_t k = 1; k < t.size(); ++k)
       integral_[k] = integral_[k - 1] + 0.5 * (t[k] - t[k - 1]) * (values[k] + values[k - 1]);
   }
-  double operator()(double s) const {
+  // Readings are asked in time order, so each end of the window keeps its place in t (the result is the same as a
+  // binary search's; the search took most of a measured channel's cost at outputs five times finer than the samples).
+  double operator()(double s) {
     if (window_s_ <= 0) return InterpolateSampled(t_, values_, s);
-    return (Integral(s) - Integral(s - window_s_)) / window_s_;
+    return (Integral(s, end_) - Integral(s - window_s_, begin_)) / window_s_;
   }
 
  private:
-  double Integral(double s) const {  // from t.front() to s; negative before it
+  // From t.front() to s (negative before it); `k` the index of the first t > s last time, moved to this s's.
+  double Integral(double s, std::size_t& k) const {
     if (s <= t_.front()) return (s - t_.front()) * values_.front();
     if (s >= t_.back()) return integral_.back() + (s - t_.back()) * values_.back();
-    const auto k = static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), s) - t_.begin());
+    k = std::clamp<std::size_t>(k, 1, t_.size() - 1);
+    while (t_[k] <= s) ++k;
+    while (t_[k - 1] > s) --k;
     const double h = s - t_[k - 1], slope = (values_[k] - values_[k - 1]) / (t_[k] - t_[k - 1]);
     return integral_[k - 1] + h * (values_[k - 1] + 0.5 * slope * h);
   }
@@ -41,6 +46,7 @@ class WindowedReading {
   const std::vector<double>& values_;
   double window_s_;
   std::vector<double> integral_;
+  std::size_t begin_ = 1, end_ = 1;
 };
 
 }  // namespace
@@ -75,7 +81,7 @@ std::vector<double> Measure(const SensorModel& sensor, const std::vector<double>
       const double a = 1 - std::exp(-(t[k] - t[k - 1]) / sensor.time_constant_s);
       filtered[k] = filtered[k - 1] + a * (values[k] - filtered[k - 1]);
     }
-  const WindowedReading reading(t, filtered, sensor.window_s);
+  WindowedReading reading(t, filtered, sensor.window_s);
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::vector<double> measured(t.size());

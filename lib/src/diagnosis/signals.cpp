@@ -19,7 +19,9 @@ double Std(const std::vector<double>& v) {
   return v.empty() ? std::nan("") : std::sqrt(s / v.size());
 }
 
-double Median(std::vector<double> v) {
+namespace {
+// The median of v, reordering v (the Hampel filter's windows: no copy per sample).
+double MedianInPlace(std::vector<double>& v) {
   if (v.empty()) return std::nan("");
   const std::size_t mid = v.size() / 2;
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
@@ -27,6 +29,9 @@ double Median(std::vector<double> v) {
   const double upper = v[mid];
   return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
 }
+}  // namespace
+
+double Median(std::vector<double> v) { return MedianInPlace(v); }
 
 HampelResult HampelFilter(const std::vector<double>& x, int half_window, double threshold, double min_deviation,
                           double grow_threshold) {
@@ -37,10 +42,10 @@ HampelResult HampelFilter(const std::vector<double>& x, int half_window, double 
   for (int i = 0; i < n; ++i) {
     const int lo = std::max(0, i - half_window), hi = std::min(n - 1, i + half_window);
     window.assign(x.begin() + lo, x.begin() + hi + 1);
-    median[i] = Median(window);
+    median[i] = MedianInPlace(window);
     deviation.resize(window.size());
     for (std::size_t k = 0; k < window.size(); ++k) deviation[k] = std::abs(window[k] - median[i]);
-    sigma[i] = 1.4826 * Median(deviation);
+    sigma[i] = 1.4826 * MedianInPlace(deviation);
     const double d = std::abs(x[i] - median[i]);
     if (d > threshold * sigma[i] && d > min_deviation) r.flagged[i] = 1;
   }
