@@ -88,6 +88,22 @@ TEST(Features, TheFastPartIsTheContentAboveTwoHertzWithoutTheCyclesHarmonics) {
   EXPECT_LT(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_std"), 0.01);  // a 3-kN m line at 1.75 Hz
 }
 
+TEST(Features, OffBottomShareIsTheTimeTheWeightOnBitIsGone) {
+  // 100 kN on the bottom, nothing for 0.3 s of every second (a bounce), 1 kN of noise.
+  Recording r = Empty({"wob_kN"});
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (int i = 0; i < 6000; ++i) {
+    r.time_s.push_back(0.01 * i);
+    r.channels[0].push_back((i % 100 < 30 ? 0.0 : 100.0) + noise(rng));
+  }
+  // The 50-ms average (7 samples) lifts the three samples next to each edge above 5 % of the mean: 24 of 100 remain.
+  EXPECT_NEAR(OffBottomShare(r, 0, 60), 0.24, 0.002);
+  for (double& v : r.channels[0]) v = 100 + noise(rng);
+  EXPECT_EQ(OffBottomShare(r, 0, 60), 0.0);
+  EXPECT_TRUE(std::isnan(OffBottomShare(Empty({"bit_rpm"}), 0, 60)));
+}
+
 TEST(Features, NoOscillationHasNoPeriod) {
   const Recording r = Oscillation(60, 3, 0, 1.0, 4, 0);
   EXPECT_TRUE(std::isnan(MeasureFeatures(r, 0, 60).Value("period_s")));

@@ -193,6 +193,32 @@ INSTANTIATE_TEST_SUITE_P(Recordings, KeyConsistencyAtTheKeysRock,
                                   std::to_string(static_cast<int>(std::lround(info.param.roughness_m * 1e6))) + "um";
                          });
 
+// rec12's operating point holds two regimes in drillwave's model, a bouncing bit and stick-slip on the bottom, and
+// the start decides between them (the independent simulator's twin without the DC motor bounced as well). The
+// recording stays on the bottom; the loop draws starts until three do too and judges the baseline on those, so that
+// the model is compared with the recording in the regime the recording shows, not by the share of starts that bounce.
+TEST(BistableRecording, Rec12sBaselineIsJudgedOnItsDrawsThatStayOnTheBottom) {
+  if (!fs::exists(kSynthetic / "rec12.csv")) GTEST_SKIP() << "the synthetic recordings are not at " << kSynthetic;
+  const DiagnosisLoop loop = CaseAgainst(SidecarCase("rec12"), LoadRecording((kSynthetic / "rec12.csv").string()));
+  const std::vector<char>& in_regime = loop.baseline_draw_in_regime;
+  const auto on_bottom = std::count(in_regime.begin(), in_regime.end(), 1);
+  std::printf("[ measured ] rec12's baseline: %ld of %zu draws on the bottom, held-out error %.3g; recording off the "
+              "bottom %.4f of the time\n", static_cast<long>(on_bottom), in_regime.size(), loop.baseline_held_out_error,
+              loop.recorded_off_bottom_share);
+  EXPECT_FALSE(loop.recording_bounces);
+  EXPECT_EQ(loop.recorded_off_bottom_share, 0.0);
+  ASSERT_EQ(in_regime.size(), loop.baseline_held_out_draw_errors.size());
+  EXPECT_LT(on_bottom, static_cast<long>(in_regime.size())) << "no draw bounced: the test no longer shows both regimes";
+  EXPECT_EQ(on_bottom, 3) << "three draws on the bottom were expected within nine";
+  EXPECT_TRUE(in_regime.at(static_cast<std::size_t>(loop.fit_draw)));
+  // The judged error is a draw on the bottom's, far below any bouncing draw's.
+  for (std::size_t d = 0; d < in_regime.size(); ++d)
+    if (!in_regime[d]) {
+      EXPECT_GT(loop.baseline_held_out_draw_errors[d], 20 * loop.baseline_held_out_error);
+    }
+  EXPECT_LT(loop.baseline_held_out_error, 5.0);
+}
+
 // Why rec01's pair is no harder than its parts: while every node of the string turns forward, Coulomb side friction
 // is a constant torque, so the pair is the soft drive alone (rec01's transient) with the top torque raised by the
 // friction's total f (s2 - s1) (`drillwave stability` gives the same roots with and without it). Held at its full

@@ -310,6 +310,21 @@ double FeatureCount(const FeatureSet& s) {
   return n + (correlogram && CorrelogramCounts(s) ? 1 : 0);
 }
 
+double OffBottomShare(const Recording& r, double begin_s, double end_s, const FeatureOptions& o) {
+  const auto wob = std::find(r.names.begin(), r.names.end(), o.weight_on_bit);
+  if (wob == r.names.end()) return kNaN;
+  std::vector<double> x;
+  for (std::size_t i = 0; i < r.time_s.size(); ++i)
+    if (r.time_s[i] >= begin_s && r.time_s[i] <= end_s) x.push_back(r.channels[wob - r.names.begin()][i]);
+  if (x.empty()) return kNaN;
+  x = MovingAverage(x, static_cast<int>(std::lround(0.5 * o.smoothing_s / r.sample_interval_s)));
+  double level = 0;
+  for (double v : x) level += std::abs(v) / x.size();
+  double off = 0;
+  for (double v : x) off += v < kOffBottomLevel * level ? 1.0 / x.size() : 0.0;
+  return off;
+}
+
 double NoiseStd(const std::vector<double>& x) {
   if (x.size() < 8) return 0;
   std::vector<double> d2(x.size() - 2);

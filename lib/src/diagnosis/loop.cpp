@@ -24,6 +24,14 @@ constexpr double kWorkFactor = 6;  // a candidate's run may cost this many times
 // Model outputs per sample window, for the measured window means: a bouncing bit's twin of 10-ms means from 0.5-ms
 // outputs reads 0.046 held out at 5 (0.007 at 10, chance 0.535; loop_test.cpp), for about a sixth less CPU than 10.
 constexpr double kOutputsPerWindow = 5;
+// A bit off the bottom for more than this share of the usable span bounces (the synthetic recordings: 0 in eleven,
+// 0.36 in rec04's bounce; a bouncing model's runs 0.27-0.51).
+constexpr double kBouncingShare = 0.01;
+// At most this many times LoopOptions::draws are run to find draws in the recording's regime (rec12's baseline: 4 of
+// 9 starts stay on the bottom).
+constexpr int kMaxDrawFactor = 3;
+// A fit's run that lands in the other regime is drawn again, at most this many times in all.
+constexpr int kFitDraws = 3;
 
 std::string Joined(const std::vector<std::string>& names) {
   std::string s;
@@ -91,14 +99,29 @@ nlohmann::json Drawn(nlohmann::json doc, int d) {
   return doc;
 }
 
-// A model judged over its draws by the median draw (LoopOptions::draws): that draw's channels and features, its
-// errors, and every draw's held-out error.
+// A model judged over its draws by the median draw (LoopOptions::draws) of those in the recording's regime: that
+// draw's channels and features, its errors, and every draw's held-out error and regime.
 struct Judged {
   Recording model;
   FeatureSet fit, held_out;
   double fit_error = 0, held_out_error = 0;
   std::vector<double> held_out_draw_errors;
+  std::vector<char> draw_in_regime;
 };
+
+nlohmann::json InRegimeJson(const std::vector<char>& in_regime) {
+  nlohmann::json out = nlohmann::json::array();
+  for (char c : in_regime) out.push_back(c != 0);
+  return out;
+}
+
+// "648, 4.4 (another regime), 1.1"
+std::string EachDraw(const std::vector<double>& errors, const std::vector<char>& in_regime) {
+  std::string each;
+  for (std::size_t d = 0; d < errors.size(); ++d)
+    each += (each.empty() ? "" : ", ") + Significant(errors[d], 3) + (in_regime[d] ? "" : " (another regime)");
+  return each;
+}
 
 // The median draw's channels, features and errors, into the loop's fields for a model (baseline or fitted).
 void Adopt(const Judged& j, Recording& model, FeatureSet& fit, FeatureSet& held_out, double& fit_error,
@@ -225,22 +248,49 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
         .recording;
   };
 
-  // The median draw of a model's runs: the one whose held-out error is the median (the lower middle one of an even
-  // number); its fit-window error the median of the draws' (an information criterion on the fit window).
+  // The recording's regime, and a model's draws run until `draws` of them are in it (or kMaxDrawFactor times as many
+  // have run), `threads` at a time.
+  loop.recorded_off_bottom_share = OffBottomShare(rec, o.fit_begin_s, o.held_out_end_s, o.features);
+  loop.recording_bounces = loop.recorded_off_bottom_share > kBouncingShare;
+  auto in_regime = [&](const Recording& m) {
+    if (!std::isfinite(loop.recorded_off_bottom_share)) return true;
+    return (OffBottomShare(m, o.fit_begin_s, o.held_out_end_s, o.features) > kBouncingShare) == loop.recording_bounces;
+  };
   const int draws = std::max(1, o.draws);
+  auto run_draws = [&](const nlohmann::json& doc, int threads) {
+    std::vector<Recording> models;
+    int matched = 0;
+    while (matched < draws && static_cast<int>(models.size()) < kMaxDrawFactor * draws) {
+      const int first = static_cast<int>(models.size());
+      const int batch = std::min(draws - matched, kMaxDrawFactor * draws - first);
+      for (Recording& m : ParallelMap(static_cast<std::size_t>(batch), threads, [&](std::size_t d) {
+             return run(Drawn(doc, first + static_cast<int>(d)), full_duration);
+           })) {
+        matched += in_regime(m);
+        models.push_back(std::move(m));
+      }
+    }
+    return models;
+  };
+  // The median draw of a model's runs in the recording's regime (of all its runs where none is): the one whose
+  // held-out error is the median (the lower middle one of an even number); its fit-window error the median of those
+  // draws' (an information criterion on the fit window).
   auto judged = [&](std::vector<Recording> models) {
     std::vector<FeatureSet> fit, held_out;
     std::vector<double> fit_errors;
+    std::vector<std::size_t> order;
     Judged j;
-    for (const Recording& m : models) {
-      fit.push_back(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, o.features));
-      held_out.push_back(MeasureFeatures(m, o.held_out_begin_s, o.held_out_end_s, o.features));
-      fit_errors.push_back(FeatureDistance(fit.back(), loop.recording_fit));
+    for (std::size_t d = 0; d < models.size(); ++d) {
+      fit.push_back(MeasureFeatures(models[d], o.fit_begin_s, o.fit_end_s, o.features));
+      held_out.push_back(MeasureFeatures(models[d], o.held_out_begin_s, o.held_out_end_s, o.features));
       j.held_out_draw_errors.push_back(FeatureDistance(held_out.back(), loop.recording_held_out));
+      j.draw_in_regime.push_back(in_regime(models[d]));
+      if (j.draw_in_regime.back()) order.push_back(d);
     }
+    if (order.empty())
+      for (std::size_t d = 0; d < models.size(); ++d) order.push_back(d);
+    for (std::size_t d : order) fit_errors.push_back(FeatureDistance(fit[d], loop.recording_fit));
     std::sort(fit_errors.begin(), fit_errors.end());
-    std::vector<std::size_t> order(models.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return j.held_out_draw_errors[a] < j.held_out_draw_errors[b]; });
     const std::size_t median = order[(order.size() - 1) / 2];
@@ -257,11 +307,8 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   // 2. The baseline on both windows, over the draws.
   say("baseline: running " + Fixed(full_duration, 0) + " s simulated" +
       (draws > 1 ? ", " + std::to_string(draws) + " draws" : std::string()));
-  std::vector<Recording> baseline_draws{run(base, full_duration)};
-  CheckScale(rec, baseline_draws.front(), o.maps);
-  for (Recording& m : ParallelMap(static_cast<std::size_t>(draws - 1), std::max(1, o.threads),
-                                  [&](std::size_t d) { return run(Drawn(base, static_cast<int>(d) + 1), full_duration); }))
-    baseline_draws.push_back(std::move(m));
+  CheckScale(rec, run(base, full_duration), o.maps);  // draw 0, from the cache below
+  std::vector<Recording> baseline_draws = run_draws(base, std::max(1, o.threads));
   // The candidates' work budget: the costliest of the baseline's draws (one that bounces costs more than one that
   // drills), set once they have all run unbudgeted.
   for (const auto& [key, simulated] : simulations) {
@@ -269,17 +316,31 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     if (it != simulated->summary.end() && it->is_number())
       evaluations_per_second = std::max(evaluations_per_second, it->get<double>() / full_duration);
   }
-  loop.model_runs += draws;
+  loop.model_runs += static_cast<int>(baseline_draws.size());
   const Judged baseline = judged(std::move(baseline_draws));
   Adopt(baseline, loop.baseline_model, loop.baseline_fit, loop.baseline_held_out, loop.baseline_fit_error,
         loop.baseline_held_out_error);
   loop.baseline_held_out_draw_errors = baseline.held_out_draw_errors;
+  loop.baseline_draw_in_regime = baseline.draw_in_regime;
+  loop.fit_draw = static_cast<int>(std::find(baseline.draw_in_regime.begin(), baseline.draw_in_regime.end(), 1) -
+                                   baseline.draw_in_regime.begin());
+  if (loop.fit_draw == static_cast<int>(baseline.draw_in_regime.size())) loop.fit_draw = 0;
   const double k_features = FeatureCount(loop.recording_fit);
   loop.baseline_aic = k_features * std::log(loop.baseline_fit_error);
-  std::string each;
-  for (double e : loop.baseline_held_out_draw_errors) each += (each.empty() ? "" : ", ") + Significant(e, 3);
+  const int baseline_in_regime = static_cast<int>(
+      std::count(loop.baseline_draw_in_regime.begin(), loop.baseline_draw_in_regime.end(), 1));
+  if (baseline_in_regime < static_cast<int>(loop.baseline_draw_in_regime.size()))
+    say("baseline: " + std::to_string(baseline_in_regime) + " of " +
+        std::to_string(loop.baseline_draw_in_regime.size()) + " draws in the recording's regime (" +
+        (loop.recording_bounces ? "the bit bounces" : "the bit stays on the bottom") + ", off the bottom " +
+        Fixed(100 * loop.recorded_off_bottom_share, 1) + " % of the time): the model has both regimes here, and " +
+        (baseline_in_regime ? "is judged on those draws; the fits run draw " + std::to_string(loop.fit_draw)
+                            : std::string("none is in the recording's: judged on all")));
   say("baseline: error " + Significant(loop.baseline_fit_error, 3) + " on the fit window, " +
-      Significant(loop.baseline_held_out_error, 3) + " held out" + (draws > 1 ? " (draws alone: " + each + ")" : ""));
+      Significant(loop.baseline_held_out_error, 3) + " held out" +
+      (loop.baseline_held_out_draw_errors.size() > 1
+           ? " (draws alone: " + EachDraw(loop.baseline_held_out_draw_errors, loop.baseline_draw_in_regime) + ")"
+           : ""));
 
   // 3. Proposals, strongest first. Those the case can model are fitted alone, then in pairs and larger sets (below:
   //    every effect of a set must earn its place).
@@ -340,8 +401,15 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     auto objective = [&](const std::vector<double>& u) {
       ++c.evaluations;
       try {
-        const Recording m = sensors_only ? run(document_at(set, u), full_duration)
-                                         : run(document_at(set, u), fit_duration, Tolerance::kFit);
+        // A run in the other regime is drawn again (at most kFitDraws times): the objective is the error in the
+        // recording's regime, not which attractor one start happened to reach.
+        const nlohmann::json doc = document_at(set, u);
+        Recording m;
+        for (int k = 0; k < kFitDraws; ++k) {
+          m = sensors_only ? run(Drawn(doc, loop.fit_draw + k), full_duration)
+                           : run(Drawn(doc, loop.fit_draw + k), fit_duration, Tolerance::kFit);
+          if (in_regime(m)) break;
+        }
         return FeatureDistance(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, o.features), target);
       } catch (const InputError& e) {
         if (c.failed_runs++ == 0) c.first_failure = e.what();
@@ -367,12 +435,11 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     c.unit_values = best.best;
     c.start_values = start;
     try {
-      std::vector<Recording> models;
-      for (int d = 0; d < draws; ++d) models.push_back(run(Drawn(document_at(set, best.best), d), full_duration));
-      const Judged j = judged(std::move(models));
+      const Judged j = judged(run_draws(document_at(set, best.best), 1));
       c.fit_error = j.fit_error;
       c.held_out_error = j.held_out_error;
       c.held_out_draw_errors = j.held_out_draw_errors;
+      c.draw_in_regime = j.draw_in_regime;
     } catch (const NumericalError& e) {
       c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
     } catch (const InputError& e) {
@@ -384,7 +451,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
         (c.failed_runs ? " (" + std::to_string(c.failed_runs) + " failed: " + c.first_failure + ")" : "") +
         (c.failure.empty() ? ", error " + Significant(c.fit_error, 3) + " fitted, " +
                                  Significant(c.held_out_error, 3) + " held out (baseline " +
-                                 Significant(loop.baseline_held_out_error, 3) + ")"
+                                 Significant(loop.baseline_held_out_error, 3) + ")" +
+                                 (std::count(c.draw_in_regime.begin(), c.draw_in_regime.end(), 0)
+                                      ? "; draws " + EachDraw(c.held_out_draw_errors, c.draw_in_regime)
+                                      : std::string())
                            : ", not judged: " + c.failure));
     return c;
   };
@@ -557,7 +627,8 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     loop.kept = next;
   }
   if (loop.kept >= 0) loop.candidates[loop.kept].kept = true;
-  for (const Candidate& c : loop.candidates) loop.model_runs += c.evaluations + (c.failure.empty() ? draws : 0);
+  for (const Candidate& c : loop.candidates)
+    loop.model_runs += c.evaluations + static_cast<int>(c.held_out_draw_errors.size());
 
   // 5. The model that stands, on both windows.
   loop.fitted_document = base;
@@ -572,9 +643,8 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
           for (std::size_t j = 0; j < e.parameters.size(); ++j) values.push_back(c.parameters[k++].value);
           e.apply(loop.fitted_document, values);
         }
-    std::vector<Recording> models;
-    for (int d = 0; d < draws; ++d) models.push_back(run(Drawn(loop.fitted_document, d), full_duration));
-    loop.model_runs += draws;
+    std::vector<Recording> models = run_draws(loop.fitted_document, std::max(1, o.threads));
+    loop.model_runs += static_cast<int>(models.size());
     fitted = judged(std::move(models));
   }
   Adopt(fitted, loop.fitted_model, loop.fitted_fit, loop.fitted_held_out, loop.fitted_fit_error,
@@ -607,7 +677,8 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
                             {"sigma", number(p.sigma)}, {"bounds", {p.lower, p.upper}}});
     candidates.push_back({{"effects", c.effects}, {"parameters", parameters}, {"fit_error", number(c.fit_error)},
                           {"held_out_error", number(c.held_out_error)},
-                          {"held_out_error_each_draw", c.held_out_draw_errors}, {"aic", number(c.aic)},
+                          {"held_out_error_each_draw", c.held_out_draw_errors},
+                          {"draw_in_regime", InRegimeJson(c.draw_in_regime)}, {"aic", number(c.aic)},
                           {"evaluations", c.evaluations}, {"failed_runs", c.failed_runs},
                           {"first_failed_run", c.first_failure}, {"kept", c.kept}, {"failure", c.failure}});
   }
@@ -632,7 +703,11 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
           {"held_out", {{"window_s", {loop.recording_held_out.begin_s, loop.recording_held_out.end_s}},
                         {"error_before", loop.baseline_held_out_error},
                         {"error_before_each_draw", loop.baseline_held_out_draw_errors},
+                        {"draw_in_regime", InRegimeJson(loop.baseline_draw_in_regime)},
                         {"draws", loop.baseline_held_out_draw_errors.size()},
+                        {"recorded_off_bottom_share", number(loop.recorded_off_bottom_share)},
+                        {"recording_bounces", loop.recording_bounces},
+                        {"fit_draw", loop.fit_draw},
                         {"error_after", loop.fitted_held_out_error},
                         {"error_chance", loop.error_chance}}},
           {"fit", {{"window_s", {loop.recording_fit.begin_s, loop.recording_fit.end_s}},

@@ -75,6 +75,11 @@ double FeatureDistance(const FeatureSet& model, const FeatureSet& recording);
 // the K of the distance.
 double FeatureCount(const FeatureSet& features);
 
+// The share of [begin_s, end_s] in which the bit is off the bottom: its weight on bit, averaged over smoothing_s,
+// below kOffBottomLevel of the window's mean |weight on bit|. NaN without a weight-on-bit channel.
+inline constexpr double kOffBottomLevel = 0.05;
+double OffBottomShare(const Recording& recording, double begin_s, double end_s, const FeatureOptions& options = {});
+
 // The white measurement noise of a sampled channel, from its second differences (robust: 1.4826 MAD / sqrt 6), so
 // that slow physics (ramps, oscillations well below the sampling rate) does not count as noise.
 double NoiseStd(const std::vector<double>& samples);

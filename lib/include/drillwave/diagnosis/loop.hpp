@@ -59,11 +59,12 @@ struct LoopOptions {
   double sample_window_s = 0;
   unsigned seed = 1;
   // The baseline and every fitted candidate are judged over this many independent draws of the model's random inputs
-  // (each seed in the case's model and the sensor noise's; draw 0 is the case as given, the one the fits run), by the
-  // median draw: the one whose held-out error is the median. One draw of a multistable motion (a bit that bounces in
-  // some runs and drills in others) decides by chance which effect "explains" it; the median needs most draws to
-  // agree. (A mean of the draws' features counted in their spread was tried: one bouncing draw of three widened every
-  // scale so far that any model matched.)
+  // (each seed in the case's model and the sensor noise's; draw 0 is the case as given), by the median draw: the one
+  // whose held-out error is the median. One draw of a multistable motion (a bit that bounces in some runs and drills
+  // in others) decides by chance which effect "explains" it; the median needs most draws to agree. Only draws in the
+  // recording's regime (bouncing or on the bottom) count: more are drawn, up to three times as many, to find them,
+  // and the fits run the baseline's first such draw. (A mean of the draws' features counted in their spread was
+  // tried: one bouncing draw of three widened every scale so far that any model matched.)
   int draws = 3;
   FeatureOptions features;
 };
@@ -77,8 +78,9 @@ struct FittedParameter {
 struct Candidate {
   std::vector<std::string> effects;
   std::vector<FittedParameter> parameters;
-  double fit_error = 0, held_out_error = 0;  // medians over the draws (LoopOptions::draws)
-  std::vector<double> held_out_draw_errors;   // each draw's own held-out error
+  double fit_error = 0, held_out_error = 0;  // medians over the draws judged (LoopOptions::draws)
+  std::vector<double> held_out_draw_errors;   // each draw's own held-out error, every draw run
+  std::vector<char> draw_in_regime;           // per draw run: in the recording's regime (judged), see DiagnosisLoop
   double aic = 0;  // K ln(fit_error) + 2 p over the K features of the fit window
   int evaluations = 0;
   int failed_runs = 0;        // evaluations whose run the case rejected or that failed numerically
@@ -97,7 +99,14 @@ struct DiagnosisLoop {
   FeatureSet recording_fit, recording_held_out;
   // The models' features: the median draw's (LoopOptions::draws).
   FeatureSet baseline_fit, baseline_held_out, fitted_fit, fitted_held_out;
-  std::vector<double> baseline_held_out_draw_errors;  // each draw's own held-out error
+  std::vector<double> baseline_held_out_draw_errors;  // each draw's own held-out error, every draw run
+  // The recording's regime: its bit's share of time off the bottom (NaN: no weight on bit) and whether that makes it
+  // a bouncing bit. A model may have both regimes at one set-point, and which one a run ends on depends on its start:
+  // a model is judged on its draws in the recording's regime (more are drawn to find them), on all where none is.
+  double recorded_off_bottom_share = 0;
+  bool recording_bounces = false;
+  std::vector<char> baseline_draw_in_regime;  // per draw run
+  int fit_draw = 0;  // the draw the fits run: the baseline's first in the recording's regime
   double baseline_fit_error = 0, baseline_held_out_error = 0, fitted_fit_error = 0, fitted_held_out_error = 0;
   double error_chance = 0;  // how much the held-out error moves by chance for a model that matches (sqrt(2 / K))
   double baseline_aic = 0;
