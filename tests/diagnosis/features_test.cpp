@@ -233,10 +233,15 @@ TEST(Features, TheCorrelogramCountsAsOneFeature) {
   // Two features: the std (9) and the correlogram, the mean over its two defined lags ((4 + 16) / 2).
   EXPECT_NEAR(FeatureDistance(model, recording), (9.0 + 10.0) / 2, 1e-12);
   EXPECT_EQ(FeatureCount(recording), 2.0);
+  // Reported as one: the rms of its lags' differences, the largest at 1 s.
+  const CorrelogramDifference difference = CompareCorrelograms(model, recording);
+  EXPECT_NEAR(difference.rms_scales, std::sqrt(10.0), 1e-12);
+  EXPECT_EQ(difference.largest_at_lag_s, 1.0);
   // A recording whose envelopes share too little (peak 0.29 < 0.3): its correlogram is not asked of the model.
   recording.features[1].value = 0.29;
   EXPECT_NEAR(FeatureDistance(model, recording), 9.0, 1e-12);
   EXPECT_EQ(FeatureCount(recording), 1.0);
+  EXPECT_TRUE(std::isnan(CompareCorrelograms(model, recording).rms_scales));
 }
 
 TEST(Features, AWindowWithoutEnoughSamplesIsRefused) {

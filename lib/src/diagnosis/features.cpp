@@ -297,6 +297,23 @@ double FeatureDistance(const FeatureSet& model, const FeatureSet& recording) {
   return count ? sum / count : 0.0;
 }
 
+CorrelogramDifference CompareCorrelograms(const FeatureSet& model, const FeatureSet& recording) {
+  CorrelogramDifference d{kNaN, kNaN};
+  if (!CorrelogramCounts(recording)) return d;
+  double sum = 0, largest = -1;
+  int count = 0;
+  for (const Feature& r : recording.features) {
+    const double m = model.Value(r.name);
+    if (!InCorrelogram(r.name) || !std::isfinite(r.value) || !std::isfinite(m)) continue;
+    const double z = (m - r.value) / r.scale;
+    sum += z * z, ++count;
+    if (std::abs(z) > largest)
+      largest = std::abs(z), d.largest_at_lag_s = std::stod(r.name.substr(std::string(kEnvelopeCorrelation).size()));
+  }
+  if (count) d.rms_scales = std::sqrt(sum / count);
+  return d;
+}
+
 double FeatureCount(const FeatureSet& s) {
   double n = 0;
   bool correlogram = false;

@@ -649,7 +649,14 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   }
   Adopt(fitted, loop.fitted_model, loop.fitted_fit, loop.fitted_held_out, loop.fitted_fit_error,
         loop.fitted_held_out_error);
+  // The envelopes' correlogram is one feature read at several lags: one entry, where it counts.
+  const CorrelogramDifference correlogram = CompareCorrelograms(loop.fitted_held_out, loop.recording_held_out);
+  if (correlogram.rms_scales > 3)
+    loop.unexplained.push_back("hook load and weight on bit envelopes' correlogram: " +
+                               Fixed(correlogram.rms_scales, 1) + " scales rms over its lags, most at " +
+                               Fixed(correlogram.largest_at_lag_s, 1) + " s");
   for (const Feature& f : loop.recording_held_out.features) {
+    if (f.name.rfind(kEnvelopeCorrelation, 0) == 0) continue;
     const double m = loop.fitted_held_out.Value(f.name);
     if (std::isfinite(f.value) && std::isfinite(m) && std::abs(m - f.value) > 3 * f.scale)
       loop.unexplained.push_back(f.name + ": model " + Significant(m, 4) + " against " + Significant(f.value, 4) +

@@ -71,6 +71,14 @@ FeatureSet MeasureFeatures(const Recording& recording, double begin_s, double en
 // its lags' squared differences, where the recording's peaks at kMinEnvelopeCorrelation or more.
 double FeatureDistance(const FeatureSet& model, const FeatureSet& recording);
 
+// The envelopes' correlogram as the distance counts it: the rms over its lags of the model's difference in scales,
+// and the lag where it is largest; NaN (and lag NaN) where the recording's correlogram does not count (its peak below
+// kMinEnvelopeCorrelation) or either set lacks it.
+struct CorrelogramDifference {
+  double rms_scales = 0, largest_at_lag_s = 0;
+};
+CorrelogramDifference CompareCorrelograms(const FeatureSet& model, const FeatureSet& recording);
+
 // The number of independent features a recording's set defines (its correlogram's lags counted once, where it counts):
 // the K of the distance.
 double FeatureCount(const FeatureSet& features);
