@@ -409,6 +409,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
           m = sensors_only ? run(Drawn(doc, loop.fit_draw + k), full_duration)
                            : run(Drawn(doc, loop.fit_draw + k), fit_duration, Tolerance::kFit);
           if (in_regime(m)) break;
+          if (k + 1 < kFitDraws) ++c.redrawn_runs;
         }
         return FeatureDistance(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, o.features), target);
       } catch (const InputError& e) {
@@ -447,7 +448,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     }
     c.aic = k_features * std::log(c.fit_error) + 2.0 * start.size();
     const std::lock_guard<std::mutex> lock(progress_mutex);
-    say(Joined(c.effects) + ": " + std::to_string(c.evaluations) + " runs" +
+    say(Joined(c.effects) + ": " + std::to_string(c.evaluations + c.redrawn_runs) + " runs" +
         (c.failed_runs ? " (" + std::to_string(c.failed_runs) + " failed: " + c.first_failure + ")" : "") +
         (c.failure.empty() ? ", error " + Significant(c.fit_error, 3) + " fitted, " +
                                  Significant(c.held_out_error, 3) + " held out (baseline " +
@@ -628,7 +629,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   }
   if (loop.kept >= 0) loop.candidates[loop.kept].kept = true;
   for (const Candidate& c : loop.candidates)
-    loop.model_runs += c.evaluations + static_cast<int>(c.held_out_draw_errors.size());
+    loop.model_runs += c.evaluations + c.redrawn_runs + static_cast<int>(c.held_out_draw_errors.size());
 
   // 5. The model that stands, on both windows.
   loop.fitted_document = base;
@@ -686,7 +687,8 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
                           {"held_out_error", number(c.held_out_error)},
                           {"held_out_error_each_draw", c.held_out_draw_errors},
                           {"draw_in_regime", InRegimeJson(c.draw_in_regime)}, {"aic", number(c.aic)},
-                          {"evaluations", c.evaluations}, {"failed_runs", c.failed_runs},
+                          {"evaluations", c.evaluations}, {"redrawn_runs", c.redrawn_runs},
+                          {"failed_runs", c.failed_runs},
                           {"first_failed_run", c.first_failure}, {"kept", c.kept}, {"failure", c.failure}});
   }
   if (loop.kept >= 0) {

@@ -83,6 +83,7 @@ struct Candidate {
   std::vector<char> draw_in_regime;           // per draw run: in the recording's regime (judged), see DiagnosisLoop
   double aic = 0;  // K ln(fit_error) + 2 p over the K features of the fit window
   int evaluations = 0;
+  int redrawn_runs = 0;       // fit runs drawn again because a start landed in the other regime
   int failed_runs = 0;        // evaluations whose run the case rejected or that failed numerically
   std::string first_failure;  // the first of their messages
   bool kept = false;
