@@ -1,5 +1,6 @@
 #include "drillwave/diagnosis/loop_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -69,6 +70,14 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
   out << " Held-out error (mean squared feature difference in feature scales) " << Cell(loop.baseline_held_out_error)
       << " &rarr; " << Cell(loop.fitted_held_out_error) << "; on the fit window " << Cell(loop.baseline_fit_error)
       << " &rarr; " << Cell(loop.fitted_fit_error) << ".</p>\n";
+  // Where some of the baseline's draws reached the other regime (a bistable point), how many, and what counts.
+  const auto in_regime = std::count(loop.baseline_draw_in_regime.begin(), loop.baseline_draw_in_regime.end(), 1);
+  if (in_regime < static_cast<long>(loop.baseline_draw_in_regime.size()))
+    out << "<p>Regime: the recording's bit " << (loop.recording_bounces ? "bounces" : "stays on the bottom") << " (off "
+        << "the bottom " << Fixed(100 * loop.recorded_off_bottom_share, 1) << " % of the time); " << in_regime << " of "
+        << loop.baseline_draw_in_regime.size() << " draws of the baseline did the same, and "
+        << (in_regime ? "only those are judged, the fits running draw " + std::to_string(loop.fit_draw) + "."
+                      : std::string("none did: all are judged.")) << "</p>\n";
   std::ostringstream svg;
   io::WriteSvg(ChannelsFigure(loop, rec), svg);
   std::string picture = svg.str();
@@ -82,7 +91,7 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
   for (const Candidate& c : loop.candidates) {
     out << "<tr" << (c.kept ? " class=\"kept\"" : "") << "><td>";
     for (const std::string& e : c.effects) out << Html(e) << " ";
-    out << "</td><td>" << c.evaluations << "</td><td>" << Cell(c.fit_error) << "</td><td>" << Cell(c.held_out_error)
+    out << "</td><td>" << c.evaluations + c.redrawn_runs << "</td><td>" << Cell(c.fit_error) << "</td><td>" << Cell(c.held_out_error)
         << "</td><td>" << Cell(c.aic) << "</td><td>";
     for (const FittedParameter& p : c.parameters)
       out << Html(p.name) << " = " << Cell(p.value) << " &plusmn; " << Cell(p.sigma, 2) << " " << Html(p.unit) << "<br>";
