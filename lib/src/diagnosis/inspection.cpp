@@ -50,7 +50,7 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
     ChannelArtefacts a;
     a.channel = rec.names[j];
     a.samples_flagged = static_cast<int>(std::count(h.flagged.begin(), h.flagged.end(), 1));
-    a.left_whole = a.samples_flagged > kMaxArtefactShare * static_cast<double>(x.size());
+    a.left_whole = TooManyForArtefacts(static_cast<std::size_t>(a.samples_flagged), x.size());
     if (a.left_whole) h = HampelResult{x, std::vector<char>(x.size(), 0)};
     a.bursts = Runs(rec.time_s, h.flagged, 3, 0.0);
     a.raw_min = *std::min_element(x.begin(), x.end()), a.raw_max = *std::max_element(x.begin(), x.end());

@@ -99,6 +99,12 @@ nlohmann::json Drawn(nlohmann::json doc, int d) {
   return doc;
 }
 
+// A model's draws, each marked in the recording's regime or not.
+struct Draws {
+  std::vector<Recording> models;
+  std::vector<char> in_regime;
+};
+
 // A model judged over its draws by the median draw (LoopOptions::draws) of those in the recording's regime: that
 // draw's channels and features, its errors, and every draw's held-out error and regime.
 struct Judged {
@@ -262,34 +268,36 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   };
   const int draws = std::max(1, o.draws);
   auto run_draws = [&](const nlohmann::json& doc, int threads) {
-    std::vector<Recording> models;
+    Draws runs;
     int matched = 0;
-    while (matched < draws && static_cast<int>(models.size()) < kMaxDrawFactor * draws) {
-      const int first = static_cast<int>(models.size());
+    while (matched < draws && static_cast<int>(runs.models.size()) < kMaxDrawFactor * draws) {
+      const int first = static_cast<int>(runs.models.size());
       const int batch = std::min(draws - matched, kMaxDrawFactor * draws - first);
       for (Recording& m : ParallelMap(static_cast<std::size_t>(batch), threads, [&](std::size_t d) {
              return run(Drawn(doc, first + static_cast<int>(d)), full_duration);
            })) {
-        matched += in_regime(m);
-        models.push_back(std::move(m));
+        runs.in_regime.push_back(in_regime(m));
+        matched += runs.in_regime.back();
+        runs.models.push_back(std::move(m));
       }
     }
-    return models;
+    return runs;
   };
   // The median draw of a model's runs in the recording's regime (of all its runs where none is): the one whose
   // held-out error is the median (the lower middle one of an even number); its fit-window error the median of those
   // draws' (an information criterion on the fit window).
-  auto judged = [&](std::vector<Recording> models) {
+  auto judged = [&](Draws runs) {
+    std::vector<Recording>& models = runs.models;
     std::vector<FeatureSet> fit, held_out;
     std::vector<double> fit_errors;
     std::vector<std::size_t> order;
     Judged j;
+    j.draw_in_regime = runs.in_regime;
     for (std::size_t d = 0; d < models.size(); ++d) {
       fit.push_back(MeasureFeatures(models[d], o.fit_begin_s, o.fit_end_s, model_features));
       held_out.push_back(MeasureFeatures(models[d], o.held_out_begin_s, o.held_out_end_s, model_features));
       j.held_out_draw_errors.push_back(FeatureDistance(held_out.back(), loop.recording_held_out));
-      j.draw_in_regime.push_back(in_regime(models[d]));
-      if (j.draw_in_regime.back()) order.push_back(d);
+      if (j.draw_in_regime[d]) order.push_back(d);
     }
     if (order.empty())
       for (std::size_t d = 0; d < models.size(); ++d) order.push_back(d);
@@ -312,7 +320,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   say("baseline: running " + Fixed(full_duration, 0) + " s simulated" +
       (draws > 1 ? ", " + std::to_string(draws) + " draws" : std::string()));
   CheckScale(rec, run(base, full_duration), o.maps);  // draw 0, from the cache below
-  std::vector<Recording> baseline_draws = run_draws(base, std::max(1, o.threads));
+  Draws baseline_draws = run_draws(base, std::max(1, o.threads));
   // The candidates' work budget: the costliest of the baseline's draws (one that bounces costs more than one that
   // drills), set once they have all run unbudgeted.
   for (const auto& [key, simulated] : simulations) {
@@ -320,7 +328,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     if (it != simulated->summary.end() && it->is_number())
       evaluations_per_second = std::max(evaluations_per_second, it->get<double>() / full_duration);
   }
-  loop.model_runs += static_cast<int>(baseline_draws.size());
+  loop.model_runs += static_cast<int>(baseline_draws.models.size());
   const Judged baseline = judged(std::move(baseline_draws));
   Adopt(baseline, loop.baseline_model, loop.baseline_fit, loop.baseline_held_out, loop.baseline_fit_error,
         loop.baseline_held_out_error);
@@ -648,8 +656,8 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
           for (std::size_t j = 0; j < e.parameters.size(); ++j) values.push_back(c.parameters[k++].value);
           e.apply(loop.fitted_document, values);
         }
-    std::vector<Recording> models = run_draws(loop.fitted_document, std::max(1, o.threads));
-    loop.model_runs += static_cast<int>(models.size());
+    Draws models = run_draws(loop.fitted_document, std::max(1, o.threads));
+    loop.model_runs += static_cast<int>(models.models.size());
     fitted = judged(std::move(models));
   }
   Adopt(fitted, loop.fitted_model, loop.fitted_fit, loop.fitted_held_out, loop.fitted_fit_error,

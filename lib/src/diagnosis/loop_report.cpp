@@ -91,8 +91,8 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
   for (const Candidate& c : loop.candidates) {
     out << "<tr" << (c.kept ? " class=\"kept\"" : "") << "><td>";
     for (const std::string& e : c.effects) out << Html(e) << " ";
-    out << "</td><td>" << c.evaluations + c.redrawn_runs << "</td><td>" << Cell(c.fit_error) << "</td><td>" << Cell(c.held_out_error)
-        << "</td><td>" << Cell(c.aic) << "</td><td>";
+    out << "</td><td>" << c.evaluations + c.redrawn_runs << "</td><td>" << Cell(c.fit_error) << "</td><td>"
+        << Cell(c.held_out_error) << "</td><td>" << Cell(c.aic) << "</td><td>";
     for (const FittedParameter& p : c.parameters)
       out << Html(p.name) << " = " << Cell(p.value) << " &plusmn; " << Cell(p.sigma, 2) << " " << Html(p.unit) << "<br>";
     out << "</td><td>" << Html(c.failure.empty() ? (c.kept ? "kept" : "") : c.failure) << "</td></tr>\n";

@@ -71,7 +71,7 @@ MaskedRecording MaskArtefacts(const Recording& rec, const std::vector<char>* who
     for (std::size_t i = 0; i < magnitude.size(); ++i) magnitude[i] = std::abs(rec.channels[j][i]);
     const HampelResult h = HampelFilter(rec.channels[j], half_window, 5, 0.05 * Median(magnitude), 2);
     const auto flagged = std::count(h.flagged.begin(), h.flagged.end(), 1);
-    if (!whole) out.whole[j] = flagged > kMaxArtefactShare * static_cast<double>(h.flagged.size());
+    if (!whole) out.whole[j] = TooManyForArtefacts(static_cast<std::size_t>(flagged), h.flagged.size());
     if (!out.whole[j]) out.recording.channels[j] = h.cleaned;
     out.masked.push_back({rec.names[j], out.whole[j] ? 0 : static_cast<int>(flagged)});
   }

@@ -1,5 +1,6 @@
 #pragma once
 // Robust signal tools for recordings: artefacts are flagged and masked, not modelled as physics (DESIGN.md §5).
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +27,10 @@ HampelResult HampelFilter(const std::vector<double>& x, int half_window, double 
 // Masked, such a channel's level would depend on the shape of the impacts (rec04: weight on bit 160 kN raw, 125 kN
 // masked in the recording, 37 kN masked in a model whose raw level is 156 kN), so it is left whole.
 inline constexpr double kMaxArtefactShare = 0.02;
+// Whether a channel's flagged samples are its motion by that rule (then it is left whole).
+inline bool TooManyForArtefacts(std::size_t flagged, std::size_t samples) {
+  return static_cast<double>(flagged) > kMaxArtefactShare * static_cast<double>(samples);
+}
 
 struct MaskedRecording {
   Recording recording;                              // artefacts replaced by their window's median
