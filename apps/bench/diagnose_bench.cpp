@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/diagnosis/loop.hpp"
 #include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
@@ -35,21 +36,15 @@ int BenchDiagnose(const std::vector<std::string>& names) {
               "loop / baseline run | kept |\n|---|---|---|---|---|---|\n");
   for (const std::string& name : names) {
     const nlohmann::json doc = dg::CaseFromSidecar(drillwave::io::LoadJsonFile((dir / (name + ".json")).string()),
-                                                   baseline, 30, name + ".json");
+                                                   baseline, dg::kSidecarWarmupS, name + ".json");
     const dg::Recording rec = dg::LoadRecording((dir / (name + ".csv")).string());
-    dg::LoopOptions o;
-    o.maps = {{"top_rpm", "top_rpm", 1},
-              {"top_torque_kNm", "top_torque_Nm", 1e-3},
-              {"hookload_kN", "hookload_N", 1e-3},
-              {"bit_rpm", "bit_rpm", 1},
-              {"wob_kN", "wob_N", 1e-3}};
-    o.model_time_offset_s = 30;
-    o.fit_begin_s = 5;
-    o.held_out_end_s = rec.time_s.back();
-    o.fit_end_s = o.held_out_begin_s = 0.5 * (o.fit_begin_s + o.held_out_end_s);
+    // The options `drillwave diagnose CASE REC --sidecar S -j 2` uses: its windows, sampling and channel maps.
+    const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
+    dg::LoopOptions o = dg::DefaultLoopOptions(c, rec, dg::kSidecarWarmupS);
+    o.maps = dg::ResolveChannelMaps({}, rec, dg::ProbeChannels(c));
     o.threads = 2;
     auto start = std::chrono::steady_clock::now();
-    drillwave::cases::RunCase(drillwave::cases::ParseCase(doc));
+    drillwave::cases::RunCase(c);
     const double one_run = Seconds(start);
     start = std::chrono::steady_clock::now();
     const dg::DiagnosisLoop loop = dg::RunDiagnosisLoop(doc, rec, o);

@@ -49,6 +49,12 @@ WaveChain::WaveChain(const ChainSpec& spec, double v, double bit_force) : spec_(
     if (j > 0) s += ch.damping[j] * v - ch.load[j] + ch.coulomb[j];
   }
   steady_top_force_ = s + ch.damping[0] * v - ch.load[0];
+  if (ch.kelvin_voigt() && std::any_of(ch.coulomb.begin(), ch.coulomb.end(), [](double c) { return c > 0; }))
+    for (int j = 1; j < m_; ++j) {
+      held_.diagonal.push_back(ch.z[j - 1] + ch.z[j] + ch.damping[j] + ch.kv[j - 1] + ch.kv[j]);
+      held_.friction.push_back(ch.coulomb[j]);
+      if (j + 1 < m_) held_.coupling.push_back(ch.kv[j]);
+    }
   node_waves_.reserve(m_ + 1);
   for (int j = 0; j <= m_; ++j) {
     const double up = initial[NodeBlock(j)], down = initial[NodeBlock(j) + 1];
@@ -95,6 +101,10 @@ void WaveChain::Arrivals(double t, Side side, double* in, double* rate) const {
 
 void WaveChain::NodeSpeeds(const double* in, double top, double bit, double* v) const {
   v[0] = top, v[m_] = bit;
+  if (held_.size()) {
+    SolveHeldNodes(in, top, bit, nullptr, v);
+    return;
+  }
   if (spec_.kelvin_voigt()) {
     SolveKelvinVoigtNodes(in, top, bit, true, v);
     return;
@@ -122,6 +132,10 @@ double WaveChain::InternalNodeRate(int j, double rate_a, double rate_b, double v
 
 void WaveChain::NodeRates(const double* in_rate, const double* v, double top, double bit, double* dv) const {
   dv[0] = top, dv[m_] = bit;
+  if (held_.size()) {
+    SolveHeldNodes(in_rate, top, bit, v, dv);
+    return;
+  }
   if (spec_.kelvin_voigt()) {
     SolveKelvinVoigtNodes(in_rate, top, bit, false, dv);
     return;
@@ -132,7 +146,7 @@ void WaveChain::NodeRates(const double* in_rate, const double* v, double top, do
 // With Kelvin-Voigt dashpots kv_k across the pieces, node j (1..m-1) balances
 //   (Z_{j-1} + Z_j + c_j + kv_{j-1} + kv_j) v_j - kv_{j-1} v_{j-1} - kv_j v_{j+1} = 2 Z_{j-1} a + 2 Z_j b + load_j,
 // a tridiagonal system in the internal speeds (its rates: the same matrix, without the loads). The Thomas algorithm
-// with the pivots factored once (the kind refuses Coulomb friction with it).
+// with the pivots factored once (with Coulomb friction: SolveHeldNodes).
 void WaveChain::SolveKelvinVoigtNodes(const double* in, double top, double bit, bool with_loads, double* v) const {
   const ChainSpec& ch = spec_;
   double previous = 0;
@@ -143,6 +157,26 @@ void WaveChain::SolveKelvinVoigtNodes(const double* in, double top, double bit, 
     v[j] = previous = (rhs + ch.kv[j - 1] * (j > 1 ? previous : 0.0)) * ch.kv_inv_pivot[j];
   }
   for (int j = m_ - 2; j >= 1; --j) v[j] += ch.kv_ratio[j] * v[j + 1];
+}
+
+// The same balance with Coulomb friction at the nodes (HeldNodes). Speeds (v == nullptr): the right-hand side with
+// the loads, warm-started from the last solution; rates: the nodes at rest in v held, the others' rates solved.
+void WaveChain::SolveHeldNodes(const double* in, double top, double bit, const double* v, double* out) const {
+  const ChainSpec& ch = spec_;
+  const int n = m_ - 1;
+  held_rhs_.resize(n);
+  for (int j = 1; j < m_; ++j)
+    held_rhs_[j - 1] = Incoming(ch.z[j - 1], in[2 * (j - 1)], ch.z[j], in[2 * j + 1]) + (v ? 0.0 : ch.load[j]);
+  held_rhs_[0] += ch.kv[0] * top;
+  held_rhs_[n - 1] += ch.kv[m_ - 1] * bit;
+  if (!v) {
+    held_.Solve(held_rhs_, held_out_, held_state_);
+  } else {
+    held_rate_state_.resize(n);
+    for (int j = 1; j < m_; ++j) held_rate_state_[j - 1] = v[j] == 0 && ch.coulomb[j] > 0 ? 0 : 1;
+    held_.Rates(held_rhs_, held_rate_state_, held_out_);
+  }
+  std::copy(held_out_.begin(), held_out_.end(), out + 1);
 }
 
 ChainEnds WaveChain::EndForces(double t, Side side, ChainEnds speeds) const {

@@ -9,7 +9,7 @@
 // inside every piece. A piece carries the force S = Z (D - U) onto its lower node; a node feels sum Z (2 w_in - v)
 // from its pieces. Options on the internal nodes: Coulomb friction against the borehole (side friction, set-valued at
 // rest), and Kelvin-Voigt damping (chapter eqs. 2.20, 2.24) as a dashpot eta K / length across each piece, which ties
-// the massless nodes into a tridiagonal system.
+// the massless nodes into a tridiagonal system (with side friction too: a convex problem, HeldNodes).
 //
 // Each node keeps the history of the two waves it sends (U_{j-1} up into piece j-1, D_j down into piece j). An
 // internal node's waves are algebraic in the waves arriving at it; where a kink arrives within a step (an event's,
@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "drillwave/integration/hermite_history.hpp"
+#include "drillwave/waves/held_nodes.hpp"
 
 namespace drillwave::waves {
 
@@ -96,6 +97,8 @@ class WaveChain {
   double InternalNodeRate(int j, double rate_a, double rate_b, double v) const;
   void NodeRates(const double* in_rate, const double* v, double top, double bit, double* dv) const;
   void SolveKelvinVoigtNodes(const double* in, double top, double bit, bool with_loads, double* v) const;
+  // Kelvin-Voigt with side friction: the internal nodes as HeldNodes (speeds, or their rates given the speeds v).
+  void SolveHeldNodes(const double* in, double top, double bit, const double* v, double* out) const;
   void Outgoing(double t, ChainEnds speeds, const ChainEnds* rates, Side side, double* out, double* rate) const;
   double WaveScale(int b, double abs_tol, double rel_tol) const;
   void ArrivingKinks(int j, double t0, double t1, double scale, std::vector<double>& times) const;
@@ -117,6 +120,9 @@ class WaveChain {
   double last_commit_end_ = 0;
   mutable std::vector<integration::HermiteHistory::Kink> kinks_;
   mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // scratch
+  HeldNodes held_;  // Kelvin-Voigt with side friction (empty otherwise)
+  mutable std::vector<double> held_rhs_, held_out_;
+  mutable std::vector<signed char> held_state_, held_rate_state_;  // the last solution's (a warm start), the rates'
 };
 
 }  // namespace drillwave::waves

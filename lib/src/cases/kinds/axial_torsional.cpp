@@ -598,9 +598,6 @@ StringSpec ReadString(const JsonReader& s) {
     if (sp.side_to <= sp.side_from) throw InputError(f.PathOf("to_m"), "expected a depth below from_m");
     f.Finish();
   }
-  if (sp.eta_t > 0 && sp.side_torque_per_m > 0)  // a held node tied to its neighbours by dashpots: a complementarity
-    throw InputError(s.PathOf("kelvin_voigt_s"),   // problem, not the closed form the nodes use
-                     "expected 0 with side_friction (Kelvin-Voigt damping and side friction are not combined yet)");
   pipe.pieces = s.Integer("subsections", 2, 400, 20);
   pipe.length = sp.length;
   sp.sections = {pipe};
@@ -832,7 +829,9 @@ class AxialTorsionalKind : public ModelKind {
             {"gravity_m_s2", "> 0, default 9.81"}};
     fields.update(TopComponentFields("top"));
     fields.update(StringComponentFields("string", "bit"));
-    fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() + "; not with side_friction";
+    fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() +
+                                      "; with side_friction the nodes tied by the dashpots are held by it where it "
+                                      "suffices (a convex problem solved exactly)";
     fields.update(bitrock::RgdFieldSchema());
     fields["top/induction_motor/pole_pairs"] =
         "p, integer in [1, 64]: optional induction motor (absent: the PI output is the torque) on a V/f supply with "
