@@ -298,7 +298,7 @@ struct DiagnoseArguments {
   int threads = 1;
   int evaluations_per_parameter = 10;
   double sample_window_s = -1;  // < 0: the recording's sample interval
-  int draws = 3;
+  int draws = 5;
 };
 
 int Diagnose(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
@@ -528,7 +528,7 @@ int main(int argc, char** argv) {
                        "channels are read the same way (default: the recording's sample interval; 0: point samples)");
   diagnose->add_option("--draws", diagnose_args.draws,
                        "the baseline and each fitted candidate are judged over this many draws of the model's random "
-                       "inputs (its seeds and the sensor noise's; default 3)");
+                       "inputs (its seeds and the sensor noise's; default 5)");
   diagnose->add_option("-j,--jobs", diagnose_args.threads, "candidates fitted in parallel (default 1)");
   diagnose->add_option("--out,-o", diagnose_out, "output folder (written all or nothing)");
   diagnose->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
