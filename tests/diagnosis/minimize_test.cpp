@@ -1,5 +1,6 @@
-// The bounded minimizer behind the fits: a known minimum inside the cube and on its edge, the budget kept, and
-// the curvature's sigma against a quadratic's exact one.
+// The bounded minimizer behind the fits: a known minimum inside the cube and on its edge, the budget kept, starts side
+// by side as one after the other, and the curvature's sigma against a quadratic's exact one.
+#include <atomic>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -41,6 +42,30 @@ TEST(Minimize, KeepsItsBudgetAndEvaluatesOnceWithoutParameters) {
   calls = 0;
   EXPECT_EQ(MinimizeInUnitCube([&](const std::vector<double>&) { return ++calls, 3.0; }, {}, o).evaluations, 1);
   EXPECT_EQ(calls, 1);
+}
+
+// Each start has its own share of the budget and its own seeded point, so running them side by side changes nothing:
+// the same best point, value and evaluations, with a multimodal function whose starts end in different valleys.
+TEST(Minimize, StartsSideBySideGiveTheSameResultAsOneAfterTheOther) {
+  std::atomic<int> calls{0};
+  auto wavy = [&](const std::vector<double>& u) {
+    ++calls;
+    return std::sin(17 * u[0]) * std::cos(11 * u[1]) + 0.3 * u[0];
+  };
+  MinimizeOptions o;
+  o.max_evaluations = 61;
+  o.starts = 4;
+  const MinimizeResult one = MinimizeInUnitCube(wavy, {0.5, 0.5}, o);
+  const int calls_one = calls.exchange(0);
+  o.threads = 2;
+  const MinimizeResult two = MinimizeInUnitCube(wavy, {0.5, 0.5}, o);
+  EXPECT_EQ(one.best, two.best);
+  EXPECT_EQ(one.value, two.value);
+  EXPECT_EQ(one.evaluations, two.evaluations);
+  EXPECT_EQ(calls.load(), calls_one);
+  EXPECT_EQ(one.evaluations, calls_one);
+  EXPECT_LE(one.evaluations, 61);
+  EXPECT_GT(one.evaluations, 30);  // the four starts used their shares (15 each, after the first point)
 }
 
 TEST(Minimize, CurvatureSigmaOfAQuadraticIsExact) {

@@ -406,12 +406,17 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
 
   std::mutex progress_mutex;
   const FeatureSet& target = loop.recording_fit;
-  auto fit_candidate = [&](const std::vector<int>& set, std::vector<double> start) {
+  auto fit_candidate = [&](const std::vector<int>& set, std::vector<double> start, int threads) {
     Candidate c;
     for (int i : set) c.effects.push_back(loop.proposals[i].name);
     const bool sensors_only = moves_only_sensors(set);
+    std::mutex count_mutex;  // the fit's starts may run side by side
+    auto count = [&](int& counter) {
+      const std::lock_guard<std::mutex> lock(count_mutex);
+      ++counter;
+    };
     auto objective = [&](const std::vector<double>& u) {
-      ++c.evaluations;
+      count(c.evaluations);
       try {
         // A run in the other regime is drawn again (at most kFitDraws times): the objective is the error in the
         // recording's regime, not which attractor one start happened to reach.
@@ -421,12 +426,14 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
           m = sensors_only ? run(Drawn(doc, loop.fit_draw + k), full_duration)
                            : run(Drawn(doc, loop.fit_draw + k), fit_duration, Tolerance::kFit);
           if (in_regime(m)) break;
-          if (k + 1 < kFitDraws) ++c.redrawn_runs;
+          if (k + 1 < kFitDraws) count(c.redrawn_runs);
         }
         return FeatureDistance(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, model_features), target);
       } catch (const InputError& e) {
+        const std::lock_guard<std::mutex> lock(count_mutex);
         if (c.failed_runs++ == 0) c.first_failure = e.what();
       } catch (const NumericalError& e) {
+        const std::lock_guard<std::mutex> lock(count_mutex);
         if (c.failed_runs++ == 0) c.first_failure = e.what();
       }
       return kFailedRun;
@@ -435,6 +442,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     mo.max_evaluations = o.evaluations_per_parameter * static_cast<int>(start.size()) + 1;
     mo.starts = start.empty() ? 1 : 2;
     mo.seed = o.seed + static_cast<unsigned>(set.front()) * 31 + static_cast<unsigned>(set.size());
+    mo.threads = threads;
     const MinimizeResult best = MinimizeInUnitCube(objective, start, mo);
     const std::vector<double> sigma_u = CurvatureSigma(objective, best.best, best.value, k_features);
     std::size_t k = 0;
@@ -448,7 +456,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     c.unit_values = best.best;
     c.start_values = start;
     try {
-      const Judged j = judged(run_draws(document_at(set, best.best), 1));
+      const Judged j = judged(run_draws(document_at(set, best.best), threads));
       c.fit_error = j.fit_error;
       c.held_out_error = j.held_out_error;
       c.held_out_draw_errors = j.held_out_draw_errors;
@@ -529,8 +537,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   };
   auto fit_all = [&](const std::vector<std::vector<int>>& sets,
                      const std::function<std::vector<double>(std::size_t)>& start) {
-    for (Candidate& c : ParallelMap(sets.size(), std::max(1, o.threads),
-                                    [&](std::size_t i) { return fit_candidate(sets[i], start(i)); }))
+    // Fewer sets than threads: the threads left over run a fit's starts and its judging draws side by side.
+    const int threads = std::max(1, o.threads), per_fit = std::max(1, threads / std::max<int>(1, sets.size()));
+    for (Candidate& c : ParallelMap(sets.size(), threads,
+                                    [&](std::size_t i) { return fit_candidate(sets[i], start(i), per_fit); }))
       loop.candidates.push_back(std::move(c));
   };
 

@@ -7,6 +7,8 @@
 
 #include <nlopt.hpp>
 
+#include "drillwave/core/parallel.hpp"
+
 namespace drillwave::diagnosis {
 
 MinimizeResult MinimizeInUnitCube(const UnitObjective& f, const std::vector<double>& start,
@@ -19,11 +21,20 @@ MinimizeResult MinimizeInUnitCube(const UnitObjective& f, const std::vector<doub
   const unsigned n = static_cast<unsigned>(start.size());
   if (n == 0) return result;
 
+  // The start points, drawn up front: the given one, then seeded random ones.
+  const int starts = std::max(1, o.starts);
+  std::vector<std::vector<double>> points(static_cast<std::size_t>(starts), result.best);
+  std::mt19937 random(o.seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int s = 1; s < starts; ++s)
+    for (double& xi : points[static_cast<std::size_t>(s)]) xi = unit(random);
+  const int share = std::max(1, (o.max_evaluations - result.evaluations) / starts);
+
   struct Context {
     const UnitObjective* f;
     MinimizeResult* result;
     int budget;
-  } context{&f, &result, o.max_evaluations};
+  };
   auto objective = [](const std::vector<double>& u, std::vector<double>&, void* data) {
     auto* c = static_cast<Context*>(data);
     if (c->result->evaluations >= c->budget) throw nlopt::forced_stop();
@@ -32,27 +43,28 @@ MinimizeResult MinimizeInUnitCube(const UnitObjective& f, const std::vector<doub
     if (value < c->result->value) c->result->value = value, c->result->best = u;
     return std::isfinite(value) ? value : std::numeric_limits<double>::max();
   };
-  std::mt19937 random(o.seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (int s = 0; s < std::max(1, o.starts) && result.evaluations < o.max_evaluations; ++s) {
-    std::vector<double> x = result.best;  // the first start refines the given point
-    if (s > 0)
-      for (double& xi : x) xi = unit(random);
+  auto from = [&](std::size_t s) {
+    MinimizeResult local{points[s], std::numeric_limits<double>::infinity(), 0};
+    Context context{&f, &local, share};
     nlopt::opt opt(nlopt::LN_SBPLX, n);
     opt.set_lower_bounds(std::vector<double>(n, 0.0));
     opt.set_upper_bounds(std::vector<double>(n, 1.0));
     opt.set_min_objective(objective, &context);
     opt.set_xtol_abs(o.x_tolerance);
     opt.set_initial_step(o.initial_step);
-    // Each start gets an equal share of what is left, so that later starts are not starved.
-    const int left = o.max_evaluations - result.evaluations;
-    opt.set_maxeval(std::max(1, left / (std::max(1, o.starts) - s)));
+    opt.set_maxeval(share);
+    std::vector<double> x = points[s];
     double value = 0;
     try {
       opt.optimize(x, value);
     } catch (const nlopt::forced_stop&) {
     } catch (const nlopt::roundoff_limited&) {  // the noise of the objective reached: what was found stands
     }
+    return local;
+  };
+  for (const MinimizeResult& local : ParallelMap(points.size(), std::max(1, o.threads), from)) {
+    result.evaluations += local.evaluations;
+    if (local.value < result.value) result.value = local.value, result.best = local.best;  // ties: the earlier start
   }
   return result;
 }

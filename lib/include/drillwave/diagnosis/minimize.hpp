@@ -1,16 +1,18 @@
 #pragma once
 // Bounded derivative-free minimization for fits that run a model per evaluation (DESIGN.md §5): NLopt's Subplex
 // (a Nelder-Mead on subspaces, robust to the small noise a feature objective keeps) inside the unit cube the
-// parameters are mapped onto, restarted from further seeded points while the budget lasts, and the curvature at the
-// best point for the uncertainty of each parameter.
+// parameters are mapped onto, from the given start and further seeded points, each with an equal share of the budget
+// (so the starts are independent, and may run side by side with the same result), and the curvature at the best
+// point for the uncertainty of each parameter.
 #include <functional>
 #include <vector>
 
 namespace drillwave::diagnosis {
 
 struct MinimizeOptions {
-  int max_evaluations = 40;    // over all starts
+  int max_evaluations = 40;    // over all starts, each an equal share
   int starts = 2;              // the given start, then seeded random points in the cube
+  int threads = 1;             // starts run side by side (f must then be safe to call from several threads)
   double initial_step = 0.15;  // of the unit cube
   double x_tolerance = 0.01;   // of the unit cube
   unsigned seed = 1;
