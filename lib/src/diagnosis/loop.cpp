@@ -415,6 +415,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
       const std::lock_guard<std::mutex> lock(count_mutex);
       ++counter;
     };
+    auto count_failure = [&](const std::exception& e) {
+      const std::lock_guard<std::mutex> lock(count_mutex);
+      if (c.failed_runs++ == 0) c.first_failure = e.what();
+    };
     auto objective = [&](const std::vector<double>& u) {
       count(c.evaluations);
       try {
@@ -430,11 +434,9 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
         }
         return FeatureDistance(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, model_features), target);
       } catch (const InputError& e) {
-        const std::lock_guard<std::mutex> lock(count_mutex);
-        if (c.failed_runs++ == 0) c.first_failure = e.what();
+        count_failure(e);
       } catch (const NumericalError& e) {
-        const std::lock_guard<std::mutex> lock(count_mutex);
-        if (c.failed_runs++ == 0) c.first_failure = e.what();
+        count_failure(e);
       }
       return kFailedRun;
     };

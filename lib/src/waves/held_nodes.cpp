@@ -42,6 +42,9 @@ int HeldNodes::Solve(const std::vector<double>& r, std::vector<double>& v, std::
     }
     return change <= 1e-15 * size_of_v;
   };
+  auto signs_of_speeds = [&] {  // held where at rest against friction
+    for (int j = 0; j < n; ++j) state[j] = v[j] > 0 ? 1 : v[j] < 0 ? -1 : friction[j] > 0 ? 0 : 1;
+  };
   int rounds = 0;
   for (int attempt = 1; attempt <= 30; ++attempt) {
     for (int round = 0; round < n + 2; ++round) {
@@ -62,12 +65,12 @@ int HeldNodes::Solve(const std::vector<double>& r, std::vector<double>& v, std::
     // one round confirms it.
     for (int k = 0; k < 10 * attempt; ++k)
       if (sweep()) break;
-    for (int j = 0; j < n; ++j) state[j] = v[j] > 0 ? 1 : v[j] < 0 ? -1 : friction[j] > 0 ? 0 : 1;
+    signs_of_speeds();
   }
   // Never seen: Gauss-Seidel until the speeds stop moving.
   for (int k = 0; k < 100000; ++k)
     if (sweep()) break;
-  for (int j = 0; j < n; ++j) state[j] = v[j] > 0 ? 1 : v[j] < 0 ? -1 : friction[j] > 0 ? 0 : 1;
+  signs_of_speeds();
   return -1;
 }
 
