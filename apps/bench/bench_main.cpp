@@ -7,6 +7,7 @@
 //   drillwave_bench delay      (only the generic delay solver against RADAR5's figures)
 //   drillwave_bench diagnose [recNN ...]   (the diagnosis loop on synthetic recordings; default rec01 rec07)
 //   drillwave_bench coupled    (the coupled axial–torsional kind per simulated second, over tolerances)
+//   drillwave_bench stability  (100 x 100 stability maps, torsional and coupled)
 //
 // Errors are relative to a tight engine run (tol 1e-11). Wall times are the best of several repeats of
 // cases::RunCase (integration and statistics, no output files) or of the reference's integration.
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <functional>
 #include <string>
 #include <vector>
@@ -160,7 +162,7 @@ int BenchDiagnose(const std::vector<std::string>& names);  // diagnose_bench.cpp
 int BenchStabilityMap();                                    // stability_bench.cpp
 int BenchCoupled();                                         // coupled_bench.cpp
 
-int main(int argc, char** argv) {
+static int Bench(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "diagnose") {
     std::vector<std::string> names(argv + 2, argv + argc);
     if (names.empty()) names = {"rec01", "rec07"};
@@ -285,4 +287,24 @@ int main(int argc, char** argv) {
   std::printf("\nSpec goals: >= 50000x faster than real time; >= 100x faster than the reference at equal accuracy.\n\n");
   BenchDelaySolver();
   return 0;
+}
+
+// Usage on -h/--help; a bad argument or case (a missing file, a field that is not there) ends with its message and
+// exit code 2 instead of std::terminate.
+int main(int argc, char** argv) {
+  if (argc > 1 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help")) {
+    std::printf(
+        "drillwave_bench [case.json] [engine tolerance, default 1e-3] [budget for one reference run in s, default 30]\n"
+        "drillwave_bench delay               the generic delay solver against RADAR5's figures\n"
+        "drillwave_bench diagnose [recNN..]  the diagnosis loop on synthetic recordings (default rec01 rec07)\n"
+        "drillwave_bench coupled             the coupled axial-torsional kind per simulated second\n"
+        "drillwave_bench stability           100 x 100 stability maps\n");
+    return 0;
+  }
+  try {
+    return Bench(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "drillwave_bench: %s\n", e.what());
+    return 2;
+  }
 }

@@ -41,8 +41,8 @@ waves::Node PiTop(double speed, double inertia, double kp, double ki) {
   top.name = "top";
   top.drive = waves::Drive::kPiSpeedController;
   top.inertia = inertia;
-  top.kp = kp;
-  top.ki = ki;
+  top.pi.kp = kp;
+  top.pi.ki = ki;
   top.setpoint = model::Schedule(speed);
   return top;
 }
@@ -126,7 +126,7 @@ struct Fraction {
 // Y = J s + K M / (K + M).
 Fraction TopImpedance(const waves::Node& top, Complex s) {
   const double j = top.LumpedInertia();
-  const Complex pi_poly = top.kp * s + top.ki;  // s (kp + ki / s)
+  const Complex pi_poly = top.pi.kp * s + top.pi.ki;  // s (kp + ki / s)
   if (top.has_compliant_gear()) {
     const model::Gear& g = top.gear;
     const Complex motor = g.ReferredMotorInertia() * s * s + pi_poly, gear = g.stiffness + g.damping * s;
@@ -535,7 +535,7 @@ TEST(NetworkStability, MotorTopsSteadyStatesAreRestPointsOfTheSimulation) {
   slip_control.drive = waves::Drive::kInductionMotorSpeed;
   slip_control.induction = InductionTop(0).induction;
   waves::Node proportional = slip_control;  // balances below the set-point
-  proportional.ki = 0;
+  proportional.pi.ki = 0;
   waves::Node dc_voltage = DcMotorTop(0);
   dc_voltage.drive = waves::Drive::kDcMotorVoltage;
   dc_voltage.setpoint = model::Schedule(500.0);  // volts: k_n w = 48 w balances it near 10 rad/s

@@ -22,7 +22,7 @@ Network MotorString(Drive drive, double setpoint, double voltage_limit = 0) {
   top.inertia = 500;
   top.drive = drive;
   top.motor = {kK, kR, kL, voltage_limit};
-  top.kp = 200, top.ki = 100;  // V·s/rad, V/rad (speed controller only)
+  top.pi.kp = 200, top.pi.ki = 100;  // V·s/rad, V/rad (speed controller only)
   top.setpoint = model::Schedule({{0.0, setpoint}});
   Node bit;
   bit.name = "bit";

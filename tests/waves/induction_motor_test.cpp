@@ -132,7 +132,7 @@ TEST(InductionMotor, SpeedControllerHoldsTheSetpointOnTheTorqueSpeedCurve) {
   for (double start : {0.0, omega}) {
     Network net = MotorString(m, model::Schedule(omega));
     net.nodes.front().drive = Drive::kInductionMotorSpeed;
-    net.nodes.front().kp = 2000, net.nodes.front().ki = 1000;
+    net.nodes.front().pi.kp = 2000, net.nodes.front().pi.ki = 1000;
     net.initial.speed_rad_s = start;
     const NetworkRun run = Settle(net, start == 0 ? 200 : 5);
     const auto& tr = run.trajectory;

@@ -23,7 +23,7 @@ Network RigString(double kp, double ki, double setpoint, double initial_speed) {
   top.name = "top";
   top.inertia = kTopInertia;
   top.drive = Drive::kPiSpeedController;
-  top.kp = kp, top.ki = ki;
+  top.pi.kp = kp, top.pi.ki = ki;
   top.setpoint = model::Schedule(setpoint);
   top.gear = {kRatio, kStiffness, kGearDamping, kMotorInertia};
   Node bit;
@@ -114,7 +114,7 @@ TEST(RigTwoMass, RigidGearRefersADcMotorToTheTop) {
   Network geared = RigString(0, 0, 10, 10);
   Node& top = geared.nodes.front();
   top.drive = Drive::kDcMotorSpeed;
-  top.kp = 200, top.ki = 100;  // V s/rad, V/rad
+  top.pi.kp = 200, top.pi.ki = 100;  // V s/rad, V/rad
   top.motor = {50, 0.05, 0.005, 0};
   top.setpoint = model::Schedule({{0.5, 10.0}, {1.0, 12.0}});
   top.gear.stiffness = top.gear.damping = 0;

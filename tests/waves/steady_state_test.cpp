@@ -79,8 +79,8 @@ TEST(SteadyState, PiTopDriveHoldsTheSetPoint) {
   top.name = "top";
   top.inertia = 2000;
   top.drive = Drive::kPiSpeedController;
-  top.kp = 2000;
-  top.ki = 500;
+  top.pi.kp = 2000;
+  top.pi.ki = 500;
   top.setpoint = Ramp();
   Node bit;
   bit.name = "bit";

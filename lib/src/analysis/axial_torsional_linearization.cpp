@@ -35,7 +35,7 @@ waves::Network ChannelNetwork(const WaveChannel& ch, const AxialTorsionalString*
   top.inertia = ch.top_inertia;
   if (torsion) {
     top.drive = top_drive->top_drive;
-    top.kp = top_drive->kp, top.ki = top_drive->ki;
+    top.pi = top_drive->pi;
     top.motor = top_drive->dc_motor;
     top.induction = top_drive->induction_motor;
     top.gear = top_drive->gear;

@@ -35,7 +35,7 @@ double NodeTorqueSlope(const Node& n, double w) {
 
 // Tops whose integral action (or imposition) holds the speed at the set-point in steady state.
 bool HoldsSpeed(const Node& top) {
-  return top.drive == Drive::kPrescribedSpeed || (top.has_speed_integral() && top.ki > 0);
+  return top.drive == Drive::kPrescribedSpeed || (top.has_speed_integral() && top.pi.ki > 0);
 }
 
 // A DC motor's constant referred to the node's side of its gear: torque n k I, back-emf n k w (as the simulation).
@@ -48,7 +48,7 @@ double ReferredMotorConstant(const Node& top) { return top.gear.ratio * top.moto
 double SteadySupplyHz(const Node& top, double set, double w, double torque) {
   if (top.drive == Drive::kInductionMotor) return set;
   const double n = top.gear.ratio;
-  if (!(top.ki > 0)) return top.induction.SupplyForTorque(top.kp * (set - w) / n, n * w);
+  if (!(top.pi.ki > 0)) return top.induction.SupplyForTorque(top.pi.Proportional(set, w) / n, n * w);
   return top.induction.SteadySupplyFrequency(torque / n, n * w);
 }
 
@@ -62,20 +62,20 @@ double Supply(const Node& top, double set, double w, bool& saturated) {
     case Drive::kSpeedDashpot: return top.drive_damping * (set - w);
     case Drive::kTorque: return set;
     case Drive::kPiSpeedController:
-      u = top.kp * (set - w);
+      u = top.pi.Proportional(set, w);
       saturated = top.torque_limit > 0 && std::abs(u) >= top.torque_limit;
       return Clamp(u, top.torque_limit);
     case Drive::kDcMotorVoltage:
     case Drive::kDcMotorSpeed: {
       const double k = ReferredMotorConstant(top);
-      u = top.drive == Drive::kDcMotorVoltage ? set : top.kp * (set - w);
+      u = top.drive == Drive::kDcMotorVoltage ? set : top.pi.Proportional(set, w);
       saturated = m.voltage_limit > 0 && std::abs(u) >= m.voltage_limit;
       return k * (Clamp(u, m.voltage_limit) - k * w) / m.armature_resistance;
     }
     case Drive::kInductionMotor: return n * top.induction.Torque(top.induction.SteadyFluxes(set, n * w));
     case Drive::kInductionMotorSpeed: {  // proportional only: the demand's slip at the measured speed
       const model::InductionMotor& im = top.induction;
-      u = top.kp * (set - w);
+      u = top.pi.Proportional(set, w);
       saturated = std::abs(u / n) >= im.SlipTorqueGain() * im.PullOutSlipFrequency();
       const double f = im.SupplyForTorque(u / n, n * w);
       return n * im.Torque(im.SteadyFluxes(f, n * w));
@@ -94,7 +94,7 @@ double LargestSpeed(const Network& net, double set) {
     case Drive::kPiSpeedController:
     case Drive::kInductionMotorSpeed: return set;  // no demand, no slip: no torque
     case Drive::kDcMotorVoltage: return Clamp(set, m.voltage_limit) / ReferredMotorConstant(top);
-    case Drive::kDcMotorSpeed: return top.kp * set / (top.kp + ReferredMotorConstant(top));
+    case Drive::kDcMotorSpeed: return top.pi.kp * set / (top.pi.kp + ReferredMotorConstant(top));
     case Drive::kInductionMotor: return 2 * pi * set / (top.induction.pole_pairs * top.gear.ratio);  // synchronous
     case Drive::kTorque: {
       double damping = 0;
@@ -233,7 +233,7 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
   for (int i = 0; i < nodes; ++i)
     if (!net.nodes[i].massless()) speed[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_speed_rad_s");
   for (int i = 0; i < nodes; ++i)
-    if (net.nodes[i].has_speed_integral() && net.nodes[i].ki > 0)
+    if (net.nodes[i].has_speed_integral() && net.nodes[i].pi.ki > 0)
       integral[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_speed_error_integral_rad");
   for (int i = 0; i < nodes; ++i)
     if (net.nodes[i].has_dc_motor()) current[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_current_A");
@@ -361,8 +361,8 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
       switch (node.drive) {
         case Drive::kSpeedDashpot: sys.a0(row, vd) -= factor * node.drive_damping; break;
         case Drive::kPiSpeedController:
-          sys.a0(row, vd) -= factor * node.kp;
-          if (integral[i] >= 0) sys.a0(row, integral[i]) += factor * node.ki;
+          sys.a0(row, vd) -= factor * node.pi.kp;
+          if (integral[i] >= 0) sys.a0(row, integral[i]) += factor * node.pi.ki;
           break;
         case Drive::kDcMotorVoltage:
         case Drive::kDcMotorSpeed: sys.a0(row, current[i]) += factor * ReferredMotorConstant(node); break;
@@ -406,8 +406,8 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
       sys.a0(c, c) = -m.armature_resistance / m.armature_inductance;
       sys.a0(c, vd) -= ReferredMotorConstant(node) / m.armature_inductance;
       if (node.drive == Drive::kDcMotorSpeed) {
-        sys.a0(c, vd) -= node.kp / m.armature_inductance;
-        if (integral[i] >= 0) sys.a0(c, integral[i]) += node.ki / m.armature_inductance;
+        sys.a0(c, vd) -= node.pi.kp / m.armature_inductance;
+        if (integral[i] >= 0) sys.a0(c, integral[i]) += node.pi.ki / m.armature_inductance;
       }
     }
     if (flux[i] >= 0) {
@@ -418,9 +418,9 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
       sys.a0.block(f, vd, 4, 1) += n_gear * induction.shaft_speed;
       if (node.drive == Drive::kInductionMotorSpeed) {
         const double two_pi = 6.283185307179586, gain = n_gear * node.induction.SlipTorqueGain();
-        const double supply_per_speed = (node.induction.pole_pairs * n_gear - node.kp / gain) / two_pi;
+        const double supply_per_speed = (node.induction.pole_pairs * n_gear - node.pi.kp / gain) / two_pi;
         sys.a0.block(f, vd, 4, 1) += supply_per_speed * induction.supply_hz;
-        if (integral[i] >= 0) sys.a0.block(f, integral[i], 4, 1) += node.ki / gain / two_pi * induction.supply_hz;
+        if (integral[i] >= 0) sys.a0.block(f, integral[i], 4, 1) += node.pi.ki / gain / two_pi * induction.supply_hz;
       }
     }
   }

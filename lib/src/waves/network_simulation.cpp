@@ -107,7 +107,7 @@ class NetworkProcess {
         if (node.drive == Drive::kInductionMotorSpeed)  // the demand that asks for this supply
           held = n * node.induction.TorqueDemandFor(supply, n * v0);
       }
-      if (integral_index_[i] != kNone && node.ki > 0) x[integral_index_[i]] = held / node.ki;
+      if (integral_index_[i] != kNone) x[integral_index_[i]] = node.pi.IntegralHolding(held);
       if (motor_speed_index_[i] != kNone) {
         x[motor_speed_index_[i]] = v0;
         x[motor_speed_index_[i] + 1] = steady_torque_ / node.gear.stiffness;
@@ -383,7 +383,7 @@ class NetworkProcess {
   // drive and the induction motor's demand, a voltage for the DC motor's speed loop.
   double SpeedControllerOutput(int i, const State& x, double v, double t, Side side) const {
     const Node& node = net_.nodes[i];
-    return node.kp * (Setpoint(node, t, side) - v) + node.ki * x[integral_index_[i]];
+    return node.pi.Output(Setpoint(node, t, side), v, x[integral_index_[i]]);
   }
 
   // An induction motor's supply: the setpoint (open loop), or the supply for the PI's torque demand at the drive's

@@ -24,6 +24,7 @@
 #include "drillwave/analysis/network_linearization.hpp"
 #include "drillwave/model/hoist_rig.hpp"
 #include "drillwave/model/jeffcott_bha.hpp"
+#include "drillwave/model/pi_controller.hpp"
 
 namespace drillwave::analysis {
 
@@ -38,7 +39,7 @@ struct WaveChannel {
 
 struct AxialTorsionalString {
   WaveChannel torsion, axial;       // torsion's top_inertia: the top drive's own (the gear adds a rigid motor's)
-  double kp = 0, ki = 0;            // the top drive's PI speed controller, in its drive's units (see top_drive)
+  model::PiController pi;           // the top drive's PI speed controller, in its drive's units (see top_drive)
   double cut_weight_per_depth = 0;  // a zeta eps [N/m]
   double cut_torque_per_depth = 0;  // a^2 eps / 2 [N m/m]
   int blades = 1;                   // n

@@ -11,6 +11,7 @@
 #include "drillwave/model/gear.hpp"
 #include "drillwave/model/induction_motor.hpp"
 #include "drillwave/model/jeffcott_bha.hpp"
+#include "drillwave/model/pi_controller.hpp"
 #include "drillwave/model/schedule.hpp"
 
 namespace drillwave::waves {
@@ -64,7 +65,7 @@ struct Node {
   Drive drive = Drive::kNone;
   model::Schedule setpoint;          // speed [rad/s] or torque [N·m], by drive
   double drive_damping = 0;          // beta of kSpeedDashpot [N·m·s/rad]
-  double kp = 0, ki = 0;             // PI gains [N·m·s/rad], [N·m/rad]
+  model::PiController pi;            // kPiSpeedController gains [N·m·s/rad], [N·m/rad]
   double torque_limit = 0;           // 0: unlimited
   DcMotor motor;                     // kDcMotorVoltage, kDcMotorSpeed; kp [V·s/rad], ki [V/rad] for the latter
   model::InductionMotor induction;   // kInductionMotor

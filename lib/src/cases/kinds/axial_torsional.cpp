@@ -54,6 +54,7 @@
 #include "drillwave/model/gear.hpp"
 #include "drillwave/model/hoist_rig.hpp"
 #include "drillwave/model/induction_motor.hpp"
+#include "drillwave/model/pi_controller.hpp"
 #include "drillwave/model/schedule.hpp"
 #include "drillwave/waves/wave_chain.hpp"
 #include "string_components.hpp"
@@ -88,7 +89,7 @@ struct Model : bitrock::RgdLaw {
   double length = 0;
   Channel torsion, axial;
   double top_inertia = 0, hoist_mass = 0, bit_inertia = 0, bit_mass = 0;
-  double kp = 0, ki = 0;
+  model::PiController pi;
   model::Schedule top_speed;  // rad/s
   model::Schedule hook_force;  // H(t) [N], up
   double weight_on_bit = 0;    // W0 of steady drilling at t = 0 [N] (the target the hook force is set for, or H(0)'s)
@@ -171,13 +172,13 @@ class Process {
     x[kVtop] = x[kVbit] = steady_.rop;
     // The PI holds the steady top torque with its integral part, the motor with its steady current (DC) or fluxes
     // (induction: at the supply frequency that gives the steady torque), the gear with its twist.
-    x[kZ] = md_.ki > 0 ? top_torque0_ / md_.ki : 0.0;
+    x[kZ] = md_.pi.IntegralHolding(top_torque0_);
     if (md_.motor.on) x[kCurrent] = top_torque0_ / md_.motor.k;
     if (md_.induction_on) {
       const auto psi = md_.induction.SteadyFluxes(steady_supply_hz_, md_.gear.ratio * steady_.omega);
       std::copy(psi.begin(), psi.end(), x.begin() + kFlux);
       const double n = md_.gear.ratio, u = n * md_.induction.TorqueDemandFor(steady_supply_hz_, n * steady_.omega);
-      x[kZ] = md_.ki > 0 ? u / md_.ki : 0.0;
+      x[kZ] = md_.pi.IntegralHolding(u);
     }
     if (md_.gear.compliant()) {
       x[kMotorSpeed] = steady_.omega;
@@ -382,7 +383,7 @@ class Process {
 
   // --- Top drive and BHA components ---------------------------------------------------------------------------
   double PiOutput(const State& x, double omega_ref) const {
-    return md_.kp * (omega_ref - DriveSpeed(x)) + md_.ki * x[kZ];
+    return md_.pi.Output(omega_ref, DriveSpeed(x), x[kZ]);
   }
   // Torque of the drive (on the top drive's side): the PI's output, or the motor's K I when a DC motor sits between
   // them, or n T_e of an induction motor. It turns the top drive, or the motor behind a compliant gear.
@@ -688,8 +689,8 @@ void DescribeTopDrive(const Model& md, analysis::AxialTorsionalString& string) {
   if (md.motor.on) {
     string.top_drive = waves::Drive::kDcMotorSpeed;
     string.dc_motor = {md.motor.k / md.gear.ratio, md.motor.resistance, md.motor.inductance, 0};
-    string.kp = md.motor.resistance / md.motor.k * md.kp;
-    string.ki = md.motor.resistance / md.motor.k * md.ki;
+    string.pi.kp = md.motor.resistance / md.motor.k * md.pi.kp;
+    string.pi.ki = md.motor.resistance / md.motor.k * md.pi.ki;
   } else if (md.induction_on) {
     string.top_drive = waves::Drive::kInductionMotorSpeed;
     string.induction_motor = md.induction;
@@ -724,7 +725,7 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   const Steady s = SteadyDrilling(at, omega);
   analysis::AxialTorsionalString string{LinearChannel(md_.torsion, md_.top_inertia, md_.bit_inertia),
                                         LinearChannel(md_.axial, md_.hoist_mass, md_.bit_mass),
-                                        md_.kp, md_.ki, md_.CutWeightPerDepth(), md_.CutTorquePerDepth(),
+                                        md_.pi, md_.CutWeightPerDepth(), md_.CutTorquePerDepth(),
                                         md_.blades, md_.axial_coupling};
   DescribeTopDrive(md_, string);
   string.rig = md_.rig;
@@ -855,8 +856,7 @@ class AxialTorsionalKind : public ModelKind {
     const JsonReader td = r.Object("top");
     td.String("type", {"top_drive"}, "top_drive");
     md.top_inertia = td.Number("inertia_kgm2", Range::Positive());
-    md.kp = td.Number("kp_Nms_per_rad", Range::NonNegative());
-    md.ki = td.Number("ki_Nm_per_rad", Range::NonNegative());
+    md.pi = ReadPiController(td);
     md.top_speed = model::Schedule::FromJson(td.Raw("speed_rad_s"), td.PathOf("speed_rad_s"));
     if (td.Has("motor")) {
       const JsonReader mo = td.Object("motor");

@@ -98,7 +98,7 @@ class ChainField : public analysis::PiecewiseSmoothField {
       const double w = p.steady_state.at("speed_rad_s").get<double>();
       for (int i = 0; i < n_; ++i)
         if (speed_index_[i] >= 0) x[speed_index_[i]] = w;
-      if (integral_ >= 0) x[integral_] = p.steady_state.at("drive_torque_Nm").get<double>() / c_.ki;
+      if (integral_ >= 0) x[integral_] = c_.pi.IntegralHolding(p.steady_state.at("drive_torque_Nm").get<double>());
       out.push_back(x);
     }
     return out;
@@ -142,7 +142,7 @@ class ChainField : public analysis::PiecewiseSmoothField {
     double torque = -c_.inertias[i].damping_Nms_per_rad * v;
     if (i == 0) {
       if (c_.drive == Drive::kTorque) torque += c_.torque_gain * u_;
-      if (c_.drive == Drive::kPiSpeed) torque += c_.kp * (u_ - v) + c_.ki * x[integral_];
+      if (c_.drive == Drive::kPiSpeed) torque += c_.pi.Output(u_, v, x[integral_]);
     }
     if (i > 0) {
       const Coupling& cp = c_.couplings[i - 1];

@@ -165,7 +165,7 @@ class ChainProcess {
     const double u = Setpoint(t).first;
     switch (c_.drive) {
       case Drive::kTorque: return c_.torque_gain * u;
-      case Drive::kPiSpeed: return c_.kp * (u - v0) + c_.ki * x[Integral()];
+      case Drive::kPiSpeed: return c_.pi.Output(u, v0, x[Integral()]);
       case Drive::kPrescribedSpeed: break;
     }
     return 0;
@@ -382,8 +382,8 @@ std::vector<LinearizedOperatingPoint> LinearizeChain(const Chain& c) {
         add_speed(row, i + 1, cp.damping_Nms_per_rad * inv);
       }
       if (i == 0 && pi) {
-        add_speed(row, 0, -c.kp * inv);
-        a(row, integral) += c.ki * inv;
+        add_speed(row, 0, -c.pi.kp * inv);
+        a(row, integral) += c.pi.ki * inv;
       }
     }
     if (pi) add_speed(integral, 0, -1);

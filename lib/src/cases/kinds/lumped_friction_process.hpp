@@ -18,6 +18,7 @@
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/integration/options.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "drillwave/model/pi_controller.hpp"
 #include "drillwave/model/schedule.hpp"
 
 namespace drillwave::cases::lumped {
@@ -42,7 +43,7 @@ struct Chain {
   Drive drive = Drive::kTorque;
   model::Schedule setpoint;  // speed [rad/s] (prescribed, PI) or the input of the torque drive
   double torque_gain = 1;    // torque drive: torque = torque_gain * setpoint (e.g. motor constant * voltage)
-  double kp = 0, ki = 0;     // PI drive
+  model::PiController pi;    // PI drive
   // > 0: every friction law with sign(w) replaced by tanh(w / eps) (a smooth reference model without stick phases).
   double friction_smoothing_rad_s = 0;
 

@@ -38,6 +38,13 @@ model::Gear ReadGear(const JsonReader& top) {
   return gear;
 }
 
+model::PiController ReadPiController(const JsonReader& top, const char* kp_key, const char* ki_key) {
+  model::PiController pi;
+  pi.kp = top.Number(kp_key, Range::NonNegative());
+  pi.ki = top.Number(ki_key, Range::NonNegative());
+  return pi;
+}
+
 nlohmann::json TopComponentFields(const std::string& top) {
   const std::string im = top + "/induction_motor/";
   return {

@@ -86,8 +86,7 @@ void ReadMotorCommand(const JsonReader& r, const MotorCommand& c, waves::Node& t
     top.setpoint = model::Schedule::FromJson(r.Raw(c.open_loop_key), r.PathOf(c.open_loop_key));
   } else {
     top.drive = c.speed_controlled;
-    top.kp = r.Number(c.kp_key, Range::NonNegative());
-    top.ki = r.Number(c.ki_key, Range::NonNegative());
+    top.pi = ReadPiController(r, c.kp_key, c.ki_key);
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
   }
 }
@@ -107,8 +106,7 @@ waves::Node ReadTop(const JsonReader& r) {
   } else if (type == "top_drive") {
     top.drive = waves::Drive::kPiSpeedController;
     top.inertia = r.Number("inertia_kgm2", Range::Positive());
-    top.kp = r.Number("kp_Nms_per_rad", Range::NonNegative());
-    top.ki = r.Number("ki_Nm_per_rad", Range::NonNegative());
+    top.pi = ReadPiController(r);
     top.torque_limit = r.Number("torque_limit_Nm", Range::NonNegative(), 0.0);
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
   } else if (type == "dc_motor") {

@@ -13,6 +13,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/model/schedule.hpp"
 #include "lumped_friction_process.hpp"
+#include "top_components.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -94,8 +95,7 @@ class TwoMassKind : public ModelKind {
       m.drive = type == "top_drive" ? lumped::Drive::kPiSpeed : lumped::Drive::kPrescribedSpeed;
       m.setpoint = model::Schedule::FromJson(top.Raw("speed_rad_s"), top.PathOf("speed_rad_s"));
       if (type == "top_drive") {
-        m.kp = top.Number("kp_Nms_per_rad", Range::NonNegative());
-        m.ki = top.Number("ki_Nm_per_rad", Range::NonNegative());
+        m.pi = ReadPiController(top);
       }
     }
     top.Finish();
