@@ -1,5 +1,6 @@
 // The hoist of the axial_torsional kind under a hook force schedule H(t) (chapter eq. 2.23): the steady weight on bit
 // of the axial balance, and the d'Alembert travel time of a hook-force step to the bit.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -124,6 +125,35 @@ TEST(AxialTorsionalHoist, HookForceAndTargetWeightOnBitExcludeEachOther) {
     FAIL() << "a hook force that lifts the bit off was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.json_path(), "/model/hoist/hook_force_N");
+  }
+}
+
+// The hoist's dashpot pulls against the block paying out at the steady rate of penetration: nothing in steady drilling,
+// so a start at the target weight on bit stays there. It is refused with the rig (whose dampers hold the block).
+TEST(AxialTorsionalHoist, HoistDashpotIsQuietInSteadyDrilling) {
+  nlohmann::json doc = HoistStep();
+  auto& hoist = doc["model"]["hoist"];
+  hoist.erase("hook_force_N");
+  hoist["weight_on_bit_N"] = 90000;
+  hoist["damping_Ns_per_m"] = 2e5;
+  doc["model"]["top"]["speed_rad_s"] = 2 * M_PI;
+  doc["simulation"]["duration_s"] = 2;
+  doc["statistics"] = {{"window_s", {0, 2}}};
+  const CaseRun run = RunCase(ParseCase(doc));
+  double drift = 0;
+  for (double w : Values(run, "wob_N")) drift = std::max(drift, std::abs(w - 90000));
+  std::printf("[ measured ] weight on bit over 2 s of steady drilling with a 2e5 N s/m hoist dashpot: within %.3g N of "
+              "90 kN\n", drift);
+  EXPECT_LT(drift, 1e-3);
+
+  nlohmann::json rig = doc;
+  rig["model"]["hoist"]["rig"] = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/hoist-rig.json")
+                                     ["model"]["hoist"]["rig"];
+  try {
+    ParseCase(rig);
+    ADD_FAILURE() << "a hoist dashpot with the rig was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/model/hoist/damping_Ns_per_m");
   }
 }
 

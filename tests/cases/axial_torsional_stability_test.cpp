@@ -24,6 +24,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/model/hoist_rig.hpp"
+#include "complex_newton.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -51,6 +52,7 @@ struct ClosedForm {
   double zt, taut, za, taua, j_top, kp, ki, j_bit, m_hoist, m_bit, cut_w, cut_t, blades, tn0, ratio;
   double gear_ratio = 1, gear_k = 0, gear_c = 0, j_motor = 0, dc_k = 0, dc_r = 0, dc_l = 0;  // optional top parts
   double rig_m1 = 0, rig_m2 = 0, rig_g1 = 0, rig_g2 = 0, rig_k01 = 0, rig_k12 = 0;            // optional hoisting rig
+  double hoist_c = 0;                                                                          // optional hoist dashpot
   int pieces = 1;
   double kv_t = 0, kv_a = 0;  // optional Kelvin-Voigt dashpots eta K / piece length across each piece
   explicit ClosedForm(const nlohmann::json& doc) {
@@ -66,6 +68,7 @@ struct ClosedForm {
     kv_a = s.value("axial_kelvin_voigt_s", 0.0) * e * area / (length / pieces);
     j_top = m["top"]["inertia_kgm2"], kp = m["top"]["kp_Nms_per_rad"], ki = m["top"]["ki_Nm_per_rad"];
     j_bit = m["bit"]["inertia_kgm2"], m_bit = m["bit"]["mass_kg"], m_hoist = m["hoist"]["mass_kg"];
+    hoist_c = m["hoist"].value("damping_Ns_per_m", 0.0);
     const double a = m["bit"]["radius_m"], eps = m["rock"]["intrinsic_specific_energy_Pa"], zeta = m["rock"]["zeta"];
     const double sigma_l = m["rock"]["sigma_l_N_per_m"], w0 = m["top"]["speed_rad_s"], wob = m["hoist"]["weight_on_bit_N"];
     blades = m["bit"]["blades"];
@@ -100,11 +103,11 @@ struct ClosedForm {
     const Complex motor = j_referred * s + drive, gear = gear_k / s + gear_c;
     return j_top * s + gear * motor / (gear + motor);
   }
-  // The hoist's impedance: M_h s under a constant hook force. Hanging from the rig (chapter eq. 2.22) it carries the
+  // The hoist's impedance: M_h s under a constant hook force, M_h s + c_h with its dashpot. Hanging from the rig (chapter eq. 2.22) it carries the
   // block, (M_h + M2) s + gamma2, and the cable k12 delta with delta = (v - s y1) / s and
   // (M1 s^2 + gamma1 s + k01) y1 = k12 delta: k12 D1 / (s (D1 + k12)), D1 = M1 s^2 + gamma1 s + k01.
   Complex HoistImpedance(Complex s) const {
-    if (rig_m1 == 0) return m_hoist * s;
+    if (rig_m1 == 0) return m_hoist * s + hoist_c;
     const Complex d1 = rig_m1 * s * s + rig_g1 * s + rig_k01;
     return (m_hoist + rig_m2) * s + rig_g2 + rig_k12 * d1 / (s * (d1 + rig_k12));
   }
@@ -131,17 +134,7 @@ struct ClosedForm {
     const Complex e = blades * (1.0 - std::exp(-s * tn0)) / s;
     return dt * da + e * (cut_w * dt - cut_t * ratio * da);
   }
-  // Newton's method on F with a central-difference derivative; false if it does not settle.
-  bool Refine(Complex& s) const {
-    for (int it = 0; it < 100; ++it) {
-      const Complex h = 1e-6 * (1.0 + std::abs(s));
-      const Complex step = (*this)(s) / (((*this)(s + h) - (*this)(s - h)) / (2.0 * h));
-      s -= step;
-      if (!std::isfinite(s.real()) || !std::isfinite(s.imag())) return false;
-      if (std::abs(step) < 1e-13 * (1.0 + std::abs(s))) return true;
-    }
-    return false;
-  }
+  bool Refine(Complex& s) const { return testing::NewtonZero(*this, s); }
 };
 
 // Every root of the linearization with |Im s| <= 40 is a zero of F to 1e-10 (Newton on F from it moves it by less), and
@@ -213,6 +206,15 @@ TEST(AxialTorsionalStability, GearedAndMotorTopsAreTheZerosOfTheClosedForm) {
   dc["model"]["top"]["gear"] = {{"ratio", 8}};
   dc["model"]["top"]["motor_inertia_kgm2"] = 10;
   ExpectRootsAreTheZerosOfTheClosedForm(dc, "undamped string in 2 pieces, DC motor through a rigid gear");
+}
+
+// The hoist's dashpot to the block paying out at the steady rate (hoist/damping_Ns_per_m), matched to the axial
+// impedance: Y_top = M_h s + c_h.
+TEST(AxialTorsionalStability, HoistDashpotIsTheZeroOfTheClosedForm) {
+  nlohmann::json doc = Undamped(2);
+  const ClosedForm plain(doc);
+  doc["model"]["hoist"]["damping_Ns_per_m"] = plain.za;
+  ExpectRootsAreTheZerosOfTheClosedForm(doc, "undamped string in 2 pieces, hoist dashpot c_h = Z_a");
 }
 
 // The top drive hanging from the two-mass hoisting rig of json-cases/hoist-rig.json (its derrick and block modes near

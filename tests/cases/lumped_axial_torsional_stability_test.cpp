@@ -39,6 +39,7 @@
 #include "drillwave/analysis/spectrum.hpp"
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "complex_newton.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -72,16 +73,10 @@ struct Characteristic {
     const Complex e = 1.0 - std::exp(-l * g.tau_n);
     return ((l * l + 2 * g.xi * l + 1.0) * (l * l + g.psi * e) - g.beta * e * l * l) / l;
   }
-  // Newton's method with a central-difference derivative; false if it does not settle.
   bool Refine(Complex& l) const {
-    for (int it = 0; it < 100; ++it) {
-      const Complex h = 1e-6 * (1.0 + std::abs(l));
-      const Complex step = (*this)(l) / (((*this)(l + h) - (*this)(l - h)) / (2.0 * h));
-      l -= step;
-      if (!std::isfinite(l.real()) || !std::isfinite(l.imag())) return false;
-      if (std::abs(step) < 1e-14 * (1.0 + std::abs(l))) return true;
-    }
-    return false;
+    testing::NewtonZeroOptions o;
+    o.tolerance = 1e-14;
+    return testing::NewtonZero(*this, l, o);
   }
 };
 

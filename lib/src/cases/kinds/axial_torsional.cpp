@@ -9,6 +9,9 @@
 // Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by the hook force H: constant,
 // set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)); or, with
 // hoist/rig, hanging from the two-mass hoisting rig of eq. 2.22 (model::HoistRig: rigid hook, constant pay-out).
+// Under the hook force the hoist may also have a dashpot c_h to the travelling block, which pays out line at the
+// steady rate of penetration V0: -c_h (v_top - V0), nothing in steady drilling. It gives the axial top the partial
+// reflection of Aarsnes & van de Wouw's distributed model (eta_a = (c_h - Z_a) / (c_h + Z_a) for a light hoist).
 // Bit (node m): inertia J_b, mass M_b (buoyant weight included) and the bit-rock forces:
 //   t_n: Phi(t) - Phi(t - t_n) = 2 pi / n,  d = n (U(t) - U(t - t_n))   (from the stored bit angle and position;
 //        after a bounce, against the deepest of the last four blade passes at that angle)
@@ -89,6 +92,7 @@ struct Model : bitrock::RgdLaw {
   double length = 0;
   Channel torsion, axial;
   double top_inertia = 0, hoist_mass = 0, bit_inertia = 0, bit_mass = 0;
+  double hoist_damping = 0;  // c_h [N s/m]: the hoist's dashpot to the block paying out at the steady V0
   model::PiController pi;
   model::Schedule top_speed;  // rad/s
   model::Schedule hook_force;  // H(t) [N], up
@@ -218,7 +222,7 @@ class Process {
       const auto rates = md_.rig->Rates(rig, x[kVtop], steady_.rop, t, t > step_start_);
       std::copy(rates.begin(), rates.end(), dx.begin() + kRig);
     } else {
-      dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first) / md_.hoist_mass;
+      dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first - HoistDashpot(x)) / md_.hoist_mass;
     }
     dx[kZ] = omega_ref - vd;
     // Bit.
@@ -310,7 +314,7 @@ class Process {
     s.top_torque = TopTorque(x, omega_ref);
     s.bit_torque = rg_.turn == Turn::kStuck ? f.drive_torque : f.torque;
     s.wob = f.weight;
-    s.hookload = md_.hook_force.Value(t) + md_.hoist_mass * dx[kVtop];
+    s.hookload = md_.hook_force.Value(t) + HoistDashpot(x) + md_.hoist_mass * dx[kVtop];
     // With the rig the string's pull on the top drive, as without it: the cable's pull plus (M2 + M_td) v'.
     if (md_.rig)
       s.hookload = md_.rig->CablePull(RigState(x), x[kVtop], steady_.rop, md_.hook_force.Value(0.0)) +
@@ -400,6 +404,8 @@ class Process {
     return {x[kFlux], x[kFlux + 1], x[kFlux + 2], x[kFlux + 3]};
   }
   double BitSpeed(const State& x) const { return rg_.turn == Turn::kStuck ? 0.0 : x[kWbit]; }
+  // The hoist's dashpot force (up) against the block paying out at the steady rate of penetration.
+  double HoistDashpot(const State& x) const { return md_.hoist_damping * (x[kVtop] - steady_.rop); }
   static model::HoistRig::State RigState(const State& x) { return {x[kRig], x[kRig + 1], x[kRig + 2]}; }
 
   // The Jeffcott rotor's torque on the bit at zero angular acceleration (the rest is in EffectiveBitInertia), and
@@ -677,8 +683,13 @@ HoistBalance Balance(const Model& md, const StringSpec& string) {
   return b;
 }
 
-analysis::WaveChannel LinearChannel(const Channel& ch, double top_inertia, double bit_inertia) {
-  return {ch.z, ch.tau, ch.damping, top_inertia, bit_inertia, ch.kv};
+// A dashpot at the top (the hoist's, to a block moving at the steady speed) adds to the top node's damping: the
+// linearization sees speed perturbations only.
+analysis::WaveChannel LinearChannel(const Channel& ch, double top_inertia, double bit_inertia,
+                                    double top_dashpot = 0) {
+  analysis::WaveChannel linear{ch.z, ch.tau, ch.damping, top_inertia, bit_inertia, ch.kv};
+  linear.node_damping.front() += top_dashpot;
+  return linear;
 }
 
 // The top drive's motor and gear as the linearization's network top. The DC motor's voltage R/K u_PI + K Omega_ref is
@@ -724,7 +735,7 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   if (!(omega > 0) || !(at.weight_on_bit > md_.ContactForce())) return {};  // no steady drilling
   const Steady s = SteadyDrilling(at, omega);
   analysis::AxialTorsionalString string{LinearChannel(md_.torsion, md_.top_inertia, md_.bit_inertia),
-                                        LinearChannel(md_.axial, md_.hoist_mass, md_.bit_mass),
+                                        LinearChannel(md_.axial, md_.hoist_mass, md_.bit_mass, md_.hoist_damping),
                                         md_.pi, md_.CutWeightPerDepth(), md_.CutTorquePerDepth(),
                                         md_.blades, md_.axial_coupling};
   DescribeTopDrive(md_, string);
@@ -804,13 +815,18 @@ class AxialTorsionalKind : public ModelKind {
             {"top/type", "top_drive (a PI speed controller, the only top of this kind; optional)"},
             {"top/inertia_kgm2", "J_td > 0"},
             {"top/kp_Nms_per_rad", ">= 0"},
-            {"top/ki_Nm_per_rad", ">= 0"},
+            {"top/ki_Nm_per_rad", ">= 0; the run starts, and `stability` linearizes, in steady drilling at the "
+                                  "set-point, which only integral action holds: with 0 (a proportional drive) the "
+                                  "start is out of balance and the drive settles below its set-point"},
             {"top/speed_rad_s", "set-point schedule [rad/s]"},
             {"top/motor/motor_constant_Nm_per_A", "K > 0: optional DC motor (absent: the PI output is the torque); "
                                                         "V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I, torque K I"},
             {"top/motor/resistance_ohm", "R > 0"},
             {"top/motor/inductance_H", "La > 0"},
             {"hoist/mass_kg", "M_td > 0"},
+            {"hoist/damping_Ns_per_m", "c_h >= 0, default 0: a dashpot from the hoist to the travelling block, which "
+                                       "pays out line at the steady rate of penetration V0 (-c_h (v_top - V0); the "
+                                       "top's reflection of Aarsnes & van de Wouw 2019); not with hoist/rig"},
             {"hoist/hook_force_N", "H(t) [N], a number or {\"knots\": [[t, v], ...]}, instead of weight_on_bit_N: the run "
                                    "starts in steady drilling under H(0), with W0 = (W_b - H(0) + kappa a sigma l) / "
                                    "(1 + kappa), kappa = c_a L Omega0 / (2 pi a zeta eps), which must exceed a sigma l"},
@@ -872,6 +888,7 @@ class AxialTorsionalKind : public ModelKind {
       throw InputError(td.PathOf("speed_rad_s"), "the run starts in steady drilling: the set-point at t = 0 must be > 0");
     const JsonReader h = r.Object("hoist");
     md.hoist_mass = h.Number("mass_kg", Range::Positive());
+    md.hoist_damping = h.Number("damping_Ns_per_m", Range::NonNegative(), 0.0);
     const bool hook_given = h.Has("hook_force_N");
     if (hook_given == h.Has("weight_on_bit_N"))
       throw InputError(h.path(), "expected either weight_on_bit_N (the hook force is set for it) or hook_force_N (a "
@@ -883,6 +900,9 @@ class AxialTorsionalKind : public ModelKind {
         throw InputError(h.PathOf("rig"), "the rig carries the top drive itself: expected weight_on_bit_N (the steady "
                                           "state it keeps) instead of hook_force_N");
       md.rig = ReadHoistRig(h.Object("rig"));
+      if (md.hoist_damping > 0)
+        throw InputError(h.PathOf("damping_Ns_per_m"), "expected 0 with hoist/rig (the rig's own dampers hold the "
+                                                       "block); the dashpot is for the hook-force hoist");
     }
     h.Finish();
     const double g = r.Number("gravity_m_s2", Range::Positive(), 9.81);
