@@ -161,6 +161,36 @@ TEST(StabilityMap2D, ContinuedRootsAgreeWithTheFullSpectrumOnTheCoupledModel) {
   }
 }
 
+// The wave network of pipe and collars: a map over the top speed and the bit inertia leaves the difference operator
+// (the sections' reflections) alone, so neighbours share its essential abscissa; a map over the collars' polar moment
+// changes it at every point. Both give the full spectrum's cells exactly.
+TEST(StabilityMap2D, ContinuedRootsAgreeWithTheFullSpectrumOnPipeAndCollars) {
+  const nlohmann::json doc = LoadCase("saldivar-collars");
+  for (const char* second : {"/model/bit/inertia_kgm2=50:150:6", "/model/string/sections/1/polar_moment_m4=3e-5:7e-5:6"}) {
+    StabilityMapSpec spec{ParseMapAxis("/model/top/speed_rad_s/knots/1/1=6:16:6", doc), ParseMapAxis(second, doc), 2,
+                          false, true};
+    const StabilityMapResult full = StabilityMap2D(doc, spec);
+    spec.full_spectrum = false;
+    const StabilityMapResult continued = StabilityMap2D(doc, spec);
+    ASSERT_EQ(continued.cells.size(), full.cells.size());
+    int stable = 0;
+    for (std::size_t k = 0; k < full.cells.size(); ++k) {
+      const StabilityMapCell &a = full.cells[k], &b = continued.cells[k];
+      ASSERT_GE(a.steady_states, 1) << second << " at " << a.x << ", " << a.y;
+      EXPECT_EQ(b.steady_states, a.steady_states);
+      stable += a.verdict == analysis::Spectrum::Verdict::kStable;
+      EXPECT_EQ(b.verdict, a.verdict) << second << " at " << a.x << ", " << a.y;
+      EXPECT_NEAR(b.spectral_abscissa, a.spectral_abscissa, 1e-9 * (1 + std::abs(a.spectral_abscissa)));
+      EXPECT_EQ(b.essential_abscissa, a.essential_abscissa) << second << " at " << a.x << ", " << a.y;
+    }
+    std::printf("[ measured ] 6 x 6 pipe-and-collars map over %s: %d stable; full %.3f s, continued %.3f s (%d full "
+                "spectra)\n", second, stable, full.linear_wall_time_s, continued.linear_wall_time_s,
+                continued.full_spectra);
+    EXPECT_GT(stable, 0);
+    EXPECT_LT(stable, 36);
+  }
+}
+
 // A kind without linearization maps the simulated regimes alone (with simulate), and refuses a linear map.
 TEST(StabilityMap2D, KindWithoutLinearizationMapsTheSimulatedRegimeOnly) {
   nlohmann::json doc = LoadCase("jeffcott-unbalance");

@@ -234,12 +234,13 @@ int CountRootsInBox(const CharacteristicDeterminant& det, double re_left, double
 }
 
 SeededSpectrum SpectrumFromSeeds(const LinearDelaySystem& sys, const std::vector<Complex>& seeds,
-                                 const SpectrumOptions& o) {
+                                 const SpectrumOptions& o, std::optional<double> known_essential_abscissa) {
   sys.Validate();
   SeededSpectrum out;
   Spectrum& sp = out.spectrum;
   std::vector<Complex> chain_starts;
-  sp.essential_abscissa = EssentialAbscissa(sys, o, chain_starts);
+  sp.essential_abscissa =
+      known_essential_abscissa ? *known_essential_abscissa : EssentialAbscissa(sys, o, chain_starts);
   sp.candidates = static_cast<int>(seeds.size());
   const CharacteristicDeterminant det(sys);
   std::vector<Complex> found;

@@ -381,6 +381,17 @@ bool LinearDelaySystem::IsNeutral() const {
   return false;
 }
 
+bool LinearDelaySystem::SameDifferenceOperator(const LinearDelaySystem& other) const {
+  if (dimension() != other.dimension() || delays.size() != other.delays.size()) return false;
+  for (std::size_t k = 0; k < delays.size(); ++k) {
+    const DelayTerm &a = delays[k], &b = other.delays[k];
+    const bool a_zero = a.neutral.size() == 0 || a.neutral.isZero(0), b_zero = b.neutral.size() == 0 || b.neutral.isZero(0);
+    if (a_zero != b_zero) return false;
+    if (!a_zero && (a.tau != b.tau || a.neutral != b.neutral)) return false;
+  }
+  return true;
+}
+
 void LinearDelaySystem::Validate() const {
   const auto n = a0.rows();
   if (n < 1 || a0.cols() != n) throw std::invalid_argument("A_0 must be a non-empty square matrix");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "drillwave/analysis/rightmost_root.hpp"
@@ -48,7 +49,11 @@ std::vector<OperatingPointStability> AnalyzeStabilityFromNeighbour(const Case& c
         std::vector<std::complex<double>> seeds;
         for (const auto& r : neighbour[b].spectrum.roots)
           if (seeds.size() < kSeedRoots) seeds.push_back(r.s);
-        analysis::SeededSpectrum seeded = analysis::SpectrumFromSeeds(p.system, seeds, options);
+        const auto& near = neighbour[b];
+        const std::optional<double> essential =
+            p.system.SameDifferenceOperator(near.point.system) ? std::optional(near.spectrum.essential_abscissa)
+                                                                : std::nullopt;
+        analysis::SeededSpectrum seeded = analysis::SpectrumFromSeeds(p.system, seeds, options, essential);
         certified = seeded.certified;
         if (certified) sp = std::move(seeded.spectrum);
       }

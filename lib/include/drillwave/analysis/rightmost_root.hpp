@@ -14,6 +14,7 @@
 // of sections into a narrow band (about 4 on either side of the diagonal for the coupled model), a few thousand
 // flops where the dense LU of Delta costs tens of thousands.
 #include <complex>
+#include <optional>
 #include <vector>
 
 #include "drillwave/analysis/spectrum.hpp"
@@ -69,7 +70,11 @@ struct SeededSpectrum {
 
 // Newton from each seed (conjugates folded into Im s >= 0; real seeds a little above the axis), each run with the roots
 // already found divided out, then the box count. Without a root found in the region, not certified.
+// known_essential_abscissa: the essential abscissa when the caller has it (a neighbour's, with the same difference
+// operator: LinearDelaySystem::SameDifferenceOperator); otherwise it is computed, which for several incommensurate
+// neutral delays costs more than the roots.
 SeededSpectrum SpectrumFromSeeds(const LinearDelaySystem& system, const std::vector<std::complex<double>>& seeds,
-                                 const SpectrumOptions& options = {});
+                                 const SpectrumOptions& options = {},
+                                 std::optional<double> known_essential_abscissa = std::nullopt);
 
 }  // namespace drillwave::analysis

@@ -42,6 +42,9 @@ struct LinearDelaySystem {
 
   int dimension() const { return static_cast<int>(a0.rows()); }
   bool IsNeutral() const;
+  // The same difference operator as `other` (same delays, same neutral matrices, exactly): then the same essential
+  // spectrum, which a map's neighbouring points share when the mapped parameters do not touch the reflections.
+  bool SameDifferenceOperator(const LinearDelaySystem& other) const;
   // Throws std::invalid_argument naming what is wrong (sizes, tau <= 0, non-finite entries).
   void Validate() const;
   // Delta(s) (with the derivative-only columns divided by s) and its derivative d Delta / ds.
