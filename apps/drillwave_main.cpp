@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -122,7 +123,7 @@ int StabilityMap2D(const std::string& file, const std::string& out_dir, const st
 }
 
 int Stability(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
-              const std::string& pointer, const std::string& values_text, int jobs) {
+              const std::string& pointer, const std::string& values_text, int jobs, bool run_from_start) {
   const nlohmann::json doc = LoadCaseDocument(file, overrides);
   const auto dir = std::filesystem::absolute(out_dir).string();
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
@@ -139,7 +140,6 @@ int Stability(const std::string& file, const std::string& out_dir, const std::ve
   }
   const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
   const auto result = drillwave::cases::AnalyzeStability(c);
-  drillwave::cases::WriteStabilityOutputs(c, result, out_dir);
   std::cout << "drillwave: linearized stability of '" << c.name << "' (kind " << c.kind << "): " << result.size()
             << " steady state(s)" << std::endl;
   for (std::size_t k = 0; k < result.size(); ++k) {
@@ -154,6 +154,18 @@ int Stability(const std::string& file, const std::string& out_dir, const std::ve
                    "ends at high frequency); no root found right of it up to |Im s| = 200, but no uniform decay rate"
                 << std::endl;
   }
+  // A stable steady state may share the phase space with a stick-slip cycle: the run from the case's start tells.
+  std::optional<drillwave::cases::RunFromStart> from_start;
+  if (run_from_start) {
+    std::cout << "  running the case from its start (" << c.settings.duration_s << " s simulated; --no-run skips it)"
+              << std::endl;
+    from_start = drillwave::cases::CompareWithRunFromStart(c, result);
+    if (from_start->ran)
+      std::cout << "  from its start the bit " << (from_start->sticks ? "sticks and slips" : "does not stick")
+                << " (stick fraction " << from_start->stick_fraction << ")" << std::endl;
+    if (!from_start->note.empty()) std::cout << "  note: " << from_start->note << std::endl;
+  }
+  drillwave::cases::WriteStabilityOutputs(c, result, out_dir, from_start ? &*from_start : nullptr);
   std::cout << "wrote " << dir << "/stability.json, roots.csv, report.md, case.json" << std::endl;
   return 0;
 }
@@ -456,6 +468,10 @@ int main(int argc, char** argv) {
   stability->add_flag("--full-spectrum", stability_full_spectrum,
                       "with --map: every point's full spectrum (the reference) instead of roots continued from the "
                       "neighbouring point and certified by the argument principle");
+  bool stability_no_run = false;
+  stability->add_flag("--no-run", stability_no_run,
+                      "one case: do not run it from its start (by default it runs, to tell whether a stable steady "
+                      "state coexists with a stick-slip cycle)");
   stability->add_option("--jobs,-j", jobs, "analyses at once (default: the number of cores)");
   stability->add_option("--out,-o", stability_out, "output folder (written all or nothing)");
   stability->add_option("--set", overrides, "override a parameter by JSON pointer");
@@ -578,7 +594,7 @@ int main(int argc, char** argv) {
       if (stability_simulate) throw drillwave::InputError("--simulate", "only with --map");
       if (sweep_pointer.empty() != sweep_values.empty())
         throw drillwave::InputError("--param/--values", "a stability map needs both --param and --values");
-      return Stability(case_file, stability_out, overrides, sweep_pointer, sweep_values, jobs);
+      return Stability(case_file, stability_out, overrides, sweep_pointer, sweep_values, jobs, !stability_no_run);
     }
     if (orbits->parsed()) return Orbits(case_file, orbits_out, overrides, orbits_continue);
     if (sweep->parsed()) return Sweep(case_file, sweep_out, overrides, sweep_pointer, sweep_values, jobs);

@@ -87,6 +87,35 @@ TEST_F(Cli, RunSaysWhenAStableSteadyStateCoexistsWithTheStickSlipItFound) {
   EXPECT_FALSE(nlohmann::json::parse(smooth_file).contains("linear_verdict"));
 }
 
+// `stability` says the same: it runs the case from its start beside the linearization (unless --no-run), and at 20
+// rad/s, where the run drills smoothly, it has nothing to add.
+TEST_F(Cli, StabilitySaysWhenAStableSteadyStateCoexistsWithStickSlipFromTheStart) {
+  const std::string out = (dir_ / "stab").string();
+  const Outcome o = RunTool("stability " + Write(base_.dump()) + " --out " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("coexists with the stick-slip"), std::string::npos) << o.output;
+  std::ifstream file(fs::path(out) / "stability.json");
+  const auto stability = nlohmann::json::parse(file);
+  ASSERT_TRUE(stability.contains("run_from_start")) << stability.dump();
+  EXPECT_TRUE(stability["run_from_start"]["sticks"].get<bool>());
+  EXPECT_NE(stability["run_from_start"]["note"].get<std::string>().find("6.2052 rad/s"), std::string::npos);
+  EXPECT_EQ(stability["operating_points"][0]["verdict"], "stable");
+
+  const std::string skipped = (dir_ / "skipped").string();
+  const Outcome no_run = RunTool("stability " + Write(base_.dump()) + " --no-run --out " + skipped);
+  ASSERT_EQ(no_run.exit_code, 0) << no_run.output;
+  std::ifstream skipped_file(fs::path(skipped) / "stability.json");
+  EXPECT_FALSE(nlohmann::json::parse(skipped_file).contains("run_from_start"));
+
+  base_["model"]["top"]["speed_rad_s"]["knots"][1][1] = 20.0;
+  const std::string smooth = (dir_ / "smooth").string();
+  ASSERT_EQ(RunTool("stability " + Write(base_.dump()) + " --out " + smooth).exit_code, 0);
+  std::ifstream smooth_file(fs::path(smooth) / "stability.json");
+  const auto smooth_stability = nlohmann::json::parse(smooth_file);
+  EXPECT_FALSE(smooth_stability["run_from_start"]["sticks"].get<bool>());
+  EXPECT_EQ(smooth_stability["run_from_start"]["note"], "");
+}
+
 TEST_F(Cli, NoArgumentsRunsTheEmbeddedDefaultCase) {
   const Outcome o = RunTool("run --out " + (dir_ / "default").string());
   EXPECT_EQ(o.exit_code, 0) << o.output;

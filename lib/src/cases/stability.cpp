@@ -87,9 +87,17 @@ nlohmann::json StabilityToJson(const std::vector<OperatingPointStability>& resul
 }
 
 void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStability>& result,
-                           const std::string& out_dir) {
+                           const std::string& out_dir, const RunFromStart* from_start) {
   io::OutputDirectory out(out_dir);
-  out.Open("stability.json") << StabilityToJson(result).dump(2) << "\n";
+  nlohmann::json stability = StabilityToJson(result);
+  if (from_start) {
+    stability["run_from_start"] = {{"ran", from_start->ran}, {"note", from_start->note}};
+    if (from_start->ran) {
+      stability["run_from_start"]["sticks"] = from_start->sticks;
+      stability["run_from_start"]["stick_fraction"] = from_start->stick_fraction;
+    }
+  }
+  out.Open("stability.json") << stability.dump(2) << "\n";
   out.Open("case.json") << c.document.dump(2) << "\n";
   std::vector<double> point, re, im, residual;
   for (std::size_t k = 0; k < result.size(); ++k)
@@ -125,6 +133,16 @@ void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStabil
             "without loss at high frequency, so root chains approach Re s = 0 and no uniform decay rate exists (a real "
             "string's distributed damping moves them left). Linear stability says nothing of large perturbations: stick-slip can coexist with a stable "
             "steady state (simulate the case from rest to see which motion it reaches).\n";
+  if (from_start) {
+    report << "\n## The run from the case's start\n\n";
+    if (from_start->ran)
+      report << "The case run as `drillwave run` runs it " << (from_start->sticks ? "sticks and slips" : "does not stick")
+             << " (stick fraction " << Significant(from_start->stick_fraction, 4) << ")"
+             << (from_start->note.empty() ? ", as the linear verdict leads one to expect.\n"
+                                          : ": " + from_start->note + ".\n");
+    else
+      report << from_start->note << ".\n";
+  }
   out.Commit();
 }
 
@@ -232,6 +250,48 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
   out.Commit();
 }
 
+std::string LinearVerdictNote(const std::vector<OperatingPointStability>& points, bool sticks, const std::string& run) {
+  // A marginal steady state (essential spectrum on the axis, no root to the right) counts as not unstable here.
+  auto not_unstable = [](const OperatingPointStability& p) {
+    return p.spectrum.verdict != analysis::Spectrum::Verdict::kUnstable;
+  };
+  for (const auto& p : points) {
+    if (!sticks || !not_unstable(p)) continue;
+    const auto& state = p.point.steady_state;  // wave kinds name the bit's speed, lumped kinds the common one
+    const double speed = state.contains("bit_speed_rad_s") ? state.value("bit_speed_rad_s", 0.0)
+                                                           : state.value("speed_rad_s", 0.0);
+    return std::string("a ") + analysis::VerdictName(p.spectrum.verdict) + " steady state (bit at " + Fixed(speed, 4) +
+           " rad/s, rightmost root Re s = " + Fixed(p.spectrum.spectral_abscissa, 4) + " 1/s) coexists with the " +
+           "stick-slip " + run + " found: which motion appears depends on the start";
+  }
+  if (!sticks && !points.empty() && std::none_of(points.begin(), points.end(), not_unstable))
+    return "every steady state is linearly unstable (rightmost root Re s = " +
+           Fixed(points.front().spectrum.spectral_abscissa, 4) + " 1/s), yet the bit did not stick in " + run +
+           ": it ends on an oscillation without sticking";
+  return "";
+}
+
+RunFromStart CompareWithRunFromStart(const Case& c, const std::vector<OperatingPointStability>& points) {
+  RunFromStart out;
+  nlohmann::json summary;
+  try {
+    summary = RunCase(c).summary;
+  } catch (const NumericalError& e) {
+    out.note = std::string("the run from the case's start failed: ") + e.what();
+    return out;
+  }
+  if (!summary.contains("stick_onsets") || !summary.at("stick_onsets").is_number()) {
+    out.note = "this kind reports no stick statistics: no run compared";
+    return out;
+  }
+  out.ran = true;
+  out.sticks = summary.at("stick_onsets").get<int>() > 0;
+  if (summary.contains("stick_fraction") && summary.at("stick_fraction").is_number())
+    out.stick_fraction = summary.at("stick_fraction").get<double>();
+  out.note = LinearVerdictNote(points, out.sticks, "the run from the case's start");
+  return out;
+}
+
 void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
   constexpr int kLinearVerdictStates = 64;
   if (!summary.contains("stick_onsets") || !summary.at("stick_onsets").is_number()) return;
@@ -245,27 +305,8 @@ void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
   } catch (const InputError&) {
     return;  // this kind or configuration has no linearization
   }
-  if (points.empty()) return;
-  const bool sticks = summary.at("stick_onsets").get<int>() > 0;
-  // A marginal steady state (essential spectrum on the axis, no root to the right) counts as not unstable here.
-  auto not_unstable = [](const OperatingPointStability& p) {
-    return p.spectrum.verdict != analysis::Spectrum::Verdict::kUnstable;
-  };
-  for (const auto& p : points) {
-    if (!sticks || !not_unstable(p)) continue;
-    const auto& state = p.point.steady_state;  // wave kinds name the bit's speed, lumped kinds the common one
-    const double speed = state.contains("bit_speed_rad_s") ? state.value("bit_speed_rad_s", 0.0)
-                                                           : state.value("speed_rad_s", 0.0);
-    summary["linear_verdict"] =
-        std::string("a ") + analysis::VerdictName(p.spectrum.verdict) + " steady state (bit at " + Fixed(speed, 4) +
-        " rad/s, rightmost root Re s = " + Fixed(p.spectrum.spectral_abscissa, 4) +
-        " 1/s) coexists with the stick-slip this run found: which motion appears depends on the start";
-    return;
-  }
-  if (!sticks && std::none_of(points.begin(), points.end(), not_unstable))
-    summary["linear_verdict"] = "every steady state is linearly unstable (rightmost root Re s = " +
-                                Fixed(points.front().spectrum.spectral_abscissa, 4) +
-                                " 1/s), yet the bit did not stick: the run ends on an oscillation without sticking";
+  const std::string note = LinearVerdictNote(points, summary.at("stick_onsets").get<int>() > 0, "this run");
+  if (!note.empty()) summary["linear_verdict"] = note;
 }
 
 }  // namespace drillwave::cases

@@ -33,9 +33,25 @@ std::vector<OperatingPointStability> AnalyzeStabilityFromNeighbour(const Case& c
 // residual], ...] (the rightmost max_roots)}]}
 nlohmann::json StabilityToJson(const std::vector<OperatingPointStability>& result, int max_roots = 12);
 
-// stability.json, roots.csv (every root found: point, Re, Im, residual), report.md, case.json; all or nothing.
+// Beyond the linearization: the case run from its own start (as `run` runs it), and whether that motion and the
+// linear verdicts tell of two coexisting attractors.
+struct RunFromStart {
+  bool ran = false;          // false: the kind reports no stick statistics, or the run failed (see note)
+  bool sticks = false;       // the bit stuck in the statistics window
+  double stick_fraction = 0;
+  std::string note;          // LinearVerdictNote, or why nothing was run; empty when motion and verdict agree
+};
+RunFromStart CompareWithRunFromStart(const Case& c, const std::vector<OperatingPointStability>& points);
+
+// The sentence that sets a run's motion against the linear verdicts, empty when they agree: stick-slip beside a
+// steady state that is not unstable (two attractors: the start decides), or no sticking although every steady state
+// is unstable. `run` names the run in the sentence ("this run", "the run from the case's start").
+std::string LinearVerdictNote(const std::vector<OperatingPointStability>& points, bool sticks, const std::string& run);
+
+// stability.json, roots.csv (every root found: point, Re, Im, residual), report.md, case.json; all or nothing. With
+// from_start, stability.json and the report also give that run's motion and note.
 void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStability>& result,
-                           const std::string& out_dir);
+                           const std::string& out_dir, const RunFromStart* from_start = nullptr);
 
 // One row per value and steady state (branch 0 = the slowest).
 struct StabilityMapRow {
