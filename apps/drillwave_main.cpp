@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/edge_tracking.hpp"
 #include "drillwave/cases/orbits.hpp"
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/stability_map.hpp"
@@ -370,6 +371,41 @@ int ListKinds() {
   return 0;
 }
 
+// The saddle cycle between two attractors of a case, by edge tracking on one parameter of a perturbation.
+int EdgeOrbit(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
+              const std::string& edge_text, const std::string& channel, double after_s, double tolerance) {
+  const nlohmann::json doc = LoadCaseDocument(file, overrides);
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
+  drillwave::cases::EdgeSpec spec = drillwave::cases::ParseEdgeOption(edge_text, doc);
+  if (!(tolerance > 0 && tolerance < 1))
+    throw drillwave::InputError("--tolerance", drillwave::Significant(tolerance, 6) + " is not in (0, 1)");
+  spec.tolerance = tolerance;
+  std::cout << "drillwave: edge tracking on " << spec.pointer << " between " << spec.decays << " (decays) and "
+            << spec.sticks << " (sticks)" << std::endl;
+  const auto edge = drillwave::cases::TrackEdge(doc, spec, [](int runs, double decays, double sticks) {
+    if (runs % 5 == 0 || runs == 2)
+      std::cout << "  " << runs << " runs: boundary in [" << drillwave::Significant(decays, 12) << ", "
+                << drillwave::Significant(sticks, 12) << "]" << std::endl;
+  });
+  const auto& names = edge.edge.channels;
+  if (std::none_of(names.begin(), names.end(), [&](const auto& c) { return c.name == channel; }))
+    throw drillwave::InputError("--channel", "the run has no channel '" + channel + "'");
+  const auto cycle = drillwave::cases::FindShadowedCycle(edge.edge.time_s, edge.edge.channel(channel).values, after_s);
+  drillwave::cases::WriteEdgeOutputs(doc, spec, edge, channel, after_s, cycle, out_dir);
+  std::cout << "boundary in [" << drillwave::Significant(edge.decays, 12) << ", "
+            << drillwave::Significant(edge.sticks, 12) << "] after " << edge.runs << " runs\n";
+  if (cycle.found)
+    std::cout << "saddle cycle: period " << drillwave::Significant(cycle.period_s, 6) << " s, " << channel
+              << " peak-to-peak " << drillwave::Significant(cycle.amplitude, 6) << " (from t = "
+              << drillwave::Significant(cycle.time_s, 6) << " s, changing " << drillwave::Significant(100 * cycle.relative_change, 3)
+              << " % per cycle)\n";
+  else
+    std::cout << "no cycle of " << channel << " after " << after_s << " s in the run at the edge\n";
+  std::cout << "wrote " << std::filesystem::absolute(out_dir).string()
+            << "/edge.json, edge_run.csv, edge.svg, report.md, case.json" << std::endl;
+  return 0;
+}
+
 // Steady states and periodic orbits over one parameter (pseudo-arclength continuation from each Hopf point).
 int Orbits(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
            const std::string& continue_text) {
@@ -445,8 +481,18 @@ int main(int argc, char** argv) {
                 "pseudo-arclength continuation with Floquet multipliers (saltation matrices at stick/slip), folds");
   std::string orbits_out = "drillwave-orbits", orbits_continue;
   orbits->add_option("case", case_file, "case JSON file (default: the embedded default case)");
-  orbits->add_option("--continue", orbits_continue, "/json/pointer=first:last[:count], the parameter and its range")
-      ->required();
+  auto* continue_option =
+      orbits->add_option("--continue", orbits_continue, "/json/pointer=first:last[:count], the parameter and its range");
+  std::string orbits_edge, orbits_channel = "bit_rpm";
+  double orbits_after = 0, orbits_tolerance = 1e-12;
+  orbits->add_option("--edge", orbits_edge,
+                     "instead of --continue, for any kind: POINTER=decays:sticks, a perturbation's parameter with a "
+                     "value whose run decays to the steady state and one whose run sticks; bisection finds the "
+                     "boundary between the attractors and the saddle cycle the run at it shadows")
+      ->excludes(continue_option);
+  orbits->add_option("--channel", orbits_channel, "with --edge: the channel whose cycle is measured (default bit_rpm)");
+  orbits->add_option("--after", orbits_after, "with --edge: look for the cycle after this time [s] (the perturbation's)");
+  orbits->add_option("--tolerance", orbits_tolerance, "with --edge: relative width of the final bracket (default 1e-12: the closer, the longer the run shadows the cycle)");
   orbits->add_option("--out,-o", orbits_out, "output folder (written all or nothing)");
   orbits->add_option("--set", overrides, "override another parameter by JSON pointer");
 
@@ -596,7 +642,13 @@ int main(int argc, char** argv) {
         throw drillwave::InputError("--param/--values", "a stability map needs both --param and --values");
       return Stability(case_file, stability_out, overrides, sweep_pointer, sweep_values, jobs, !stability_no_run);
     }
-    if (orbits->parsed()) return Orbits(case_file, orbits_out, overrides, orbits_continue);
+    if (orbits->parsed()) {
+      if (!orbits_edge.empty())
+        return EdgeOrbit(case_file, orbits_out, overrides, orbits_edge, orbits_channel, orbits_after, orbits_tolerance);
+      if (orbits_continue.empty())
+        throw drillwave::InputError("--continue", "required: /json/pointer=first:last[:count] (or --edge)");
+      return Orbits(case_file, orbits_out, overrides, orbits_continue);
+    }
     if (sweep->parsed()) return Sweep(case_file, sweep_out, overrides, sweep_pointer, sweep_values, jobs);
     return RunAndWrite(case_file, out_dir, overrides, check);
   } catch (const drillwave::InputError& e) {

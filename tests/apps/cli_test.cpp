@@ -284,6 +284,36 @@ TEST_F(Cli, OrbitsContinuesTheBranchFromTheHopfPointAndRefusesBadInput) {
   }
 }
 
+// The saddle cycle between the Saldivar string's two attractors at 10 rad/s, from the command line: edge tracking on
+// the depth of a top-speed dip finds the boundary near a dip to 7.1249 rad/s and the cycle the run there shadows
+// (period 2.585 s; it tends to the Hopf pair's 2.541 s as the top speed comes down, tests/cases/edge_tracking_test.cpp).
+TEST_F(Cli, OrbitsEdgeFindsTheSaddleCycleBetweenTheAttractorsAndRefusesBadInput) {
+  const std::string file = std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/saldivar-saddle-cycle.json";
+  const std::string out = (dir_ / "edge").string();
+  Outcome o = RunTool("orbits " + file + " --edge /model/top/speed_rad_s/knots/4/1=9:4 --after 101 -o " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  for (const char* f : {"edge.json", "edge_run.csv", "edge.svg", "report.md", "case.json"})
+    EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+  std::ifstream file_json(fs::path(out) / "edge.json");
+  const auto edge = nlohmann::json::parse(file_json);
+  EXPECT_NEAR(edge["decays"].get<double>(), 7.1249, 1e-3);
+  ASSERT_TRUE(edge["cycle_found"].get<bool>()) << edge.dump();
+  EXPECT_NEAR(edge["saddle_cycle"]["period_s"].get<double>(), 2.585, 0.01) << edge.dump();
+  EXPECT_LT(edge["saddle_cycle"]["relative_change_per_cycle"].get<double>(), 0.01);
+  const std::string bad = (dir_ / "edge-bad").string();
+  for (const auto& [args, named] :
+       {std::pair<std::string, std::string>{"--edge 9:4", "--edge"},
+        {"--edge /model/top/speed_rad_s/knots/4/1=9:x", "--edge"},
+        {"--edge /model/top/speed_rad_s/knots/4/1=5:4", "do not straddle"},
+        {"--edge /model/top/speed_rad_s/knots/4/1=9:4 --channel no_such", "--channel"},
+        {"--edge /model/top/speed_rad_s/knots/4/1=9:4 --continue /model/bit/inertia_kgm2=1:2", "excludes"}}) {
+    o = RunTool("orbits " + file + " " + args + " -o " + bad);
+    EXPECT_NE(o.exit_code, 0) << args << ": " << o.output;
+    EXPECT_NE(o.output.find(named), std::string::npos) << args << ": " << o.output;
+    EXPECT_FALSE(fs::exists(bad)) << args;
+  }
+}
+
 TEST_F(Cli, InspectNamesAMissingChannel) {
   const std::string csv = (dir_ / "rec.csv").string();
   {

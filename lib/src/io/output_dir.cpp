@@ -43,7 +43,7 @@ bool IsOutputName(const std::string& name) {
       kMarker,         "trajectory.csv",  "summary.json",  "plot.svg",         "report.md",        "case.json",
       "sweep.csv",     "bifurcation.svg", "stability.json", "roots.csv",       "stability_map.csv", "stability_map.svg",
       "findings.json", "comparison.json", "fit.json",       "fitted-case.json", "diagnosis.json", "report.html",
-      "orbits.csv",    "orbits.svg"};
+      "orbits.csv",    "orbits.svg",      "edge.json",     "edge_run.csv",     "edge.svg"};
   return names.count(name) > 0;
 }
 

@@ -4,6 +4,7 @@
 // decaying side of the boundary shadows the saddle cycle that separates the basins before it leaves it, so the
 // stretch where its oscillation neither grows nor decays gives that cycle's period and amplitude. This is the honest
 // tool for models whose full shooting is heavy (the wave network is a neutral delay system).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,8 +27,10 @@ struct EdgeResult {
   int runs = 0;
 };
 
-// Throws InputError if the two ends do not straddle the boundary (naming the pointer and both values).
-EdgeResult TrackEdge(const nlohmann::json& document, const EdgeSpec& spec);
+// Throws InputError if the two ends do not straddle the boundary (naming the pointer and both values). progress, if
+// given, hears the bracket after every run.
+EdgeResult TrackEdge(const nlohmann::json& document, const EdgeSpec& spec,
+                     const std::function<void(int runs, double decays, double sticks)>& progress = {});
 
 struct ShadowedCycle {
   bool found = false;
@@ -40,5 +43,16 @@ struct ShadowedCycle {
 // The cycle of y(t) (after t_from, between consecutive maxima) whose peak-to-peak amplitude changes least between
 // its neighbours, among cycles of at least 1 % of the largest amplitude.
 ShadowedCycle FindShadowedCycle(const std::vector<double>& time_s, const std::vector<double>& y, double t_from);
+
+// `drillwave orbits --edge POINTER=decays:sticks`: "POINTER=a:b" with a the value whose run decays to the steady
+// state and b one whose run sticks; InputError naming --edge otherwise (and naming the pointer if the case has no
+// number there).
+EdgeSpec ParseEdgeOption(const std::string& text, const nlohmann::json& document);
+
+// edge.json (bracket, runs, the shadowed cycle of `channel` after `after_s`), edge_run.csv (time and every channel
+// of the run at the edge), edge.svg (the channel with the cycle marked), report.md, case.json; all or nothing.
+void WriteEdgeOutputs(const nlohmann::json& document, const EdgeSpec& spec, const EdgeResult& edge,
+                      const std::string& channel, double after_s, const ShadowedCycle& cycle,
+                      const std::string& out_dir);
 
 }  // namespace drillwave::cases
