@@ -390,6 +390,32 @@ TEST(AxialTorsionalHeterogeneity, OnePercentChangesTheRunAndZeroIsHomogeneousRoc
               w0.front());
 }
 
+// Both drilling kinds linearize about the mean rock: with 1 % heterogeneity the linear system is the homogeneous one
+// to the bit, and the steady state says what became of the heterogeneity (a forcing and a gain modulation along the
+// drilled depth, outside the time-invariant part).
+TEST(AxialTorsionalHeterogeneity, LinearizationIsAboutTheMeanRockAndSaysSo) {
+  for (const char* name : {"baseline-coupled-stability", "rgd-lumped"}) {
+    nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/" + name + ".json");
+    doc.erase("expect");
+    const auto homogeneous = ParseCase(doc).model->Linearize();
+    doc["model"]["rock"]["strength_heterogeneity"] = Heterogeneity(0.01, 9);
+    const auto heterogeneous = ParseCase(doc).model->Linearize();
+    ASSERT_EQ(homogeneous.size(), 1u) << name;
+    ASSERT_EQ(heterogeneous.size(), 1u) << name;
+    const auto &a = homogeneous[0].system, &b = heterogeneous[0].system;
+    EXPECT_EQ(a.a0, b.a0) << name;
+    ASSERT_EQ(a.delays.size(), b.delays.size()) << name;
+    for (std::size_t k = 0; k < a.delays.size(); ++k) {
+      EXPECT_EQ(a.delays[k].tau, b.delays[k].tau) << name;
+      EXPECT_EQ(a.delays[k].retarded, b.delays[k].retarded) << name;
+      EXPECT_EQ(a.delays[k].neutral, b.delays[k].neutral) << name;
+    }
+    EXPECT_FALSE(homogeneous[0].steady_state.contains("rock_strength_heterogeneity")) << name;
+    ASSERT_TRUE(heterogeneous[0].steady_state.contains("rock_strength_heterogeneity")) << name;
+    EXPECT_EQ(heterogeneous[0].steady_state["rock_strength_heterogeneity"]["strength_std"], 0.01) << name;
+  }
+}
+
 TEST(AxialTorsionalHeterogeneity, RefusesBadValuesNamingTheField) {
   const std::pair<nlohmann::json, std::string> bad[] = {
       {Heterogeneity(0.3, 1), "/model/rock/strength_heterogeneity/std"},

@@ -23,6 +23,7 @@ StrengthHeterogeneity::StrengthHeterogeneity(double std, double correlation, std
   if (!(correlation > 0) || !std::isfinite(correlation))
     throw std::invalid_argument("strength heterogeneity: correlation length must be finite and > 0");
   if (modes < 1) throw std::invalid_argument("strength heterogeneity: at least one mode");
+  std_ = std;
   amplitude_ = std * std::sqrt(2.0 / modes);
   std::mt19937_64 draw(seed);
   wavenumbers_.resize(modes);

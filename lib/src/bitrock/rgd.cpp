@@ -182,4 +182,13 @@ void CutProfile::Commit(const integration::Piece& p, int phi_index, int u_index,
   history_.DiscardBefore(p.t1 - std::max(keep, 20.0 * tn_committed_ + 5.0));
 }
 
+nlohmann::json RgdLaw::LinearizedRock() const {
+  if (!strength_heterogeneity.on()) return nullptr;
+  return {{"strength_std", strength_heterogeneity.std()},
+          {"linearized_about", "the mean rock (g = 0). The heterogeneity enters the linear system as a forcing, "
+                               "eps g(V0 t) of the cutting forces, and as a modulation 1 + g of its cutting gains "
+                               "along the drilled depth; neither moves the roots of its time-invariant part, which "
+                               "are those of the mean rock"}};
+}
+
 }  // namespace drillwave::bitrock

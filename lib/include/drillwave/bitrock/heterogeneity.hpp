@@ -22,11 +22,13 @@ class StrengthHeterogeneity {
   StrengthHeterogeneity(double std, double correlation, std::uint64_t seed, int modes);
 
   bool on() const { return amplitude_ > 0; }
+  double std() const { return std_; }  // the relative standard deviation asked for
   double Deviation(double z) const;  // g(z), relative
   // 1 + g(z), exactly 1 when off.
   double Multiplier(double z) const { return on() ? 1.0 + Deviation(z) : 1.0; }
 
  private:
+  double std_ = 0;
   double amplitude_ = 0;                    // c
   std::vector<double> wavenumbers_, phases_;  // kappa_k [1/m], phi_k
 };

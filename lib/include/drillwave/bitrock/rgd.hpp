@@ -55,6 +55,9 @@ struct RgdLaw {
   double ContactForce() const { return a * sigma_l; }  // a sigma l, of the homogeneous rock
   // a sigma l (1 + g(z)) of the rock at drilled depth z (ContactForce() exactly when homogeneous).
   double ContactForceAt(double z) const { return ContactForce() * strength_heterogeneity.Multiplier(z); }
+  // What a linearization about steady drilling says of the heterogeneous rock, for its steady state's description:
+  // null when the rock is homogeneous.
+  nlohmann::json LinearizedRock() const;
   // Friction coefficient of the wear flats at bit speed w (Stribeck: decays from static_mu to mu).
   double MuAt(double w) const {
     return stribeck_speed > 0 ? mu + (static_mu - mu) * std::exp(-std::abs(w) / stribeck_speed) : mu;

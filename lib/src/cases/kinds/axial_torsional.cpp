@@ -771,6 +771,7 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
     point["steady_whirl_radius_m"] = md_.unbalance->WhirlAmplitude(omega);
     point["whirl_drag_torque_Nm"] = whirl_drag;
   }
+  if (md_.strength_heterogeneity.on()) point["rock_strength_heterogeneity"] = md_.LinearizedRock();
   return {{std::move(point), std::move(lin.state_names), std::move(lin.system)}};
 }
 

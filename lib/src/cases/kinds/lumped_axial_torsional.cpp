@@ -243,19 +243,20 @@ class LumpedAxialTorsionalModel : public PreparedModel {
       sys.a0(row, kAngle) -= k * per_phi, cut.retarded(row, kAngle) += k * per_phi;
     }
     sys.delays.push_back(std::move(cut));
-    return {{{{"bit_speed_rad_s", omega},
-              {"weight_on_bit_N", wob},
-              {"depth_of_cut_m", s.depth},
-              {"rop_m_h", 3600 * s.rop},
-              {"bit_torque_Nm", s.tob},
-              {"twist_rad", s.tob / md_.stiffness},
-              {"cut_delay_s", tn0},
-              {"torsional_frequency_rad_s", md_.NaturalFrequency()},
-              {"psi", g.psi},
-              {"beta", g.beta},
-              {"scaled_cut_delay", g.tau_n},
-              {"damping_ratio", g.xi}},
-             {"bit_angle_rad", "bit_speed_rad_s", "bit_axial_speed_m_s", "bit_position_m"},
+    nlohmann::json point = {{"bit_speed_rad_s", omega},
+                            {"weight_on_bit_N", wob},
+                            {"depth_of_cut_m", s.depth},
+                            {"rop_m_h", 3600 * s.rop},
+                            {"bit_torque_Nm", s.tob},
+                            {"twist_rad", s.tob / md_.stiffness},
+                            {"cut_delay_s", tn0},
+                            {"torsional_frequency_rad_s", md_.NaturalFrequency()},
+                            {"psi", g.psi},
+                            {"beta", g.beta},
+                            {"scaled_cut_delay", g.tau_n},
+                            {"damping_ratio", g.xi}};
+    if (law.strength_heterogeneity.on()) point["rock_strength_heterogeneity"] = law.LinearizedRock();
+    return {{std::move(point), {"bit_angle_rad", "bit_speed_rad_s", "bit_axial_speed_m_s", "bit_position_m"},
              std::move(sys)}};
   }
 
