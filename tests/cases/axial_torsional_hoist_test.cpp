@@ -157,5 +157,26 @@ TEST(AxialTorsionalHoist, HoistDashpotIsQuietInSteadyDrilling) {
   }
 }
 
+// After a hook-force step the rate of penetration changes and the dashpot carries c_h (V - V0): the run settles at
+// the steady state the linearization is taken about (its axial balance counts the dashpot), not at the plain one.
+TEST(AxialTorsionalHoist, HoistDashpotShiftsTheSteadyStateAfterAHookForceStep) {
+  nlohmann::json doc = HoistStep();
+  const double c_h = 2e6;
+  doc["model"]["hoist"]["damping_Ns_per_m"] = c_h;
+  const Case c = ParseCase(doc);
+  const auto points = c.model->Linearize();
+  ASSERT_EQ(points.size(), 1u);
+  const double linear_wob = points[0].steady_state.at("weight_on_bit_N");
+  const AxialBalance plain(doc["model"]);
+  const double omega = doc["model"]["top"]["speed_rad_s"];
+  const double plain_wob = plain.WeightOnBit(doc["model"]["hoist"]["hook_force_N"]["knots"].back()[1], omega);
+  const double wob_mean = RunCase(c).summary.at("wob_mean_N");
+  std::printf("[ measured ] hook-force step with a %.0e N s/m hoist dashpot: weight on bit %.4f N over the last 20 s, "
+              "the linearization's steady state %.4f N (without the dashpot's share %.4f N)\n", c_h, wob_mean,
+              linear_wob, plain_wob);
+  EXPECT_NEAR(wob_mean, linear_wob, 1e-5 * linear_wob);
+  EXPECT_GT(std::abs(plain_wob - linear_wob), 100 * std::abs(wob_mean - linear_wob));
+}
+
 }  // namespace
 }  // namespace drillwave::cases

@@ -723,6 +723,12 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   HoistBalance balance;
   for (double l : md_.axial.load) balance.buoyant_weight += l;
   for (double c : md_.axial.damping) balance.drag_per_speed += c;  // sum of c_a times piece length
+  // The hoist's dashpot pulls against the block paying out at the start's rate V0: at other set-points it carries
+  // c_h (V - V0), a drag like the string's with an offset.
+  if (md_.hoist_damping > 0) {
+    balance.buoyant_weight += md_.hoist_damping * SteadyDrilling(md_, md_.top_speed.Value(0.0)).rop;
+    balance.drag_per_speed += md_.hoist_damping;
+  }
   Model at = md_;
   if (md_.rig) {
     // The drawworks pays out at the rate of penetration of the start: steady drilling at omega keeps that rate, and
