@@ -8,7 +8,9 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include "drillwave/bitrock/friction.hpp"
 #include "drillwave/waves/network_simulation.hpp"
 #include "modal_decay.hpp"
 
@@ -54,15 +56,20 @@ struct Decay {
   double simulated, discrete, continuum;
 };
 
-// The first mode's decay after the held top is ramped to 1 rad/s: the bit's speed about 1 rad/s, demodulated.
-Decay FirstModeDecay(int m, double eta) {
+// A top whose speed is imposed, ramped from rest to `speed` over `ramp` seconds.
+Node RampedTop(double speed, double ramp) {
   Node top;
   top.name = "top";
   top.drive = Drive::kPrescribedSpeed;
-  top.setpoint = model::Schedule({{0.0, 0.0}, {0.02, 1.0}});
+  top.setpoint = model::Schedule({{0.0, 0.0}, {ramp, speed}});
+  return top;
+}
+
+// The first mode's decay after the held top is ramped to 1 rad/s: the bit's speed about 1 rad/s, demodulated.
+Decay FirstModeDecay(int m, double eta) {
   Node bit;
   bit.name = "bit";
-  const Network net = Chain(m, eta, top, bit);
+  const Network net = Chain(m, eta, RampedTop(1.0, 0.02), bit);
   NetworkRunOptions options;
   options.t_end_s = 12;
   options.output_interval_s = 1e-3;
@@ -170,6 +177,56 @@ TEST(KelvinVoigt, JumpsSpreadOverTheDashpotsAreFollowed) {
   // dashpots pass on are left to the step-size control).
   EXPECT_LT(damped.history_rejections, damped.steps / 10);
   EXPECT_LT(lossless.history_rejections, lossless.steps / 10);
+}
+
+// A massless bit with smooth friction closes the node system's sweep with its own scalar balance a - b v - T(v). A
+// viscous law c w there is the same string as a massless bit with a damper c, whose balance is linear: the runs agree
+// to rounding. A velocity-weakening law (rational, chapter eqs. 2.12-2.13) with dashpots tends to the run without them
+// as eta -> 0, first order in eta.
+std::vector<double> MasslessFrictionBitSpeed(double eta, const nlohmann::json& friction, double damper) {
+  Node bit;
+  bit.name = "bit";
+  bit.ground_damping = damper;
+  if (!friction.is_null()) bit.friction = bitrock::FrictionLaw::FromJson(friction, "/bit/friction");
+  const Network net = Chain(10, eta, RampedTop(10.0, 2.0), bit);
+  NetworkRunOptions options;
+  options.t_end_s = 8;
+  options.output_interval_s = 1e-3;
+  options.integrator.abs_tol = options.integrator.rel_tol = 1e-10;
+  return SimulateNetwork(net, options).trajectory.bit_speed_rad_s;
+}
+
+double LargestDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  double largest = 0;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) largest = std::max(largest, std::abs(a[i] - b[i]));
+  return largest;
+}
+
+TEST(KelvinVoigt, MasslessBitWithViscousFrictionIsTheBitWithADamper) {
+  const double c = 150;
+  const auto friction = MasslessFrictionBitSpeed(0.02, {{"law", "viscous"}, {"c_Nms_per_rad", c}}, 0);
+  const auto damper = MasslessFrictionBitSpeed(0.02, nullptr, c);
+  const double difference = LargestDifference(friction, damper);
+  std::printf("[ measured ] massless bit, eta 0.02 s: viscous friction against a damper of the same c, largest bit "
+              "speed difference %.3g rad/s over 8 s (bit at %.4f rad/s)\n", difference, damper.back());
+  EXPECT_LT(difference, 1e-9);
+  EXPECT_GT(damper.back(), 1);
+}
+
+TEST(KelvinVoigt, MasslessBitWithVelocityWeakeningFrictionTendsToTheRunWithoutDashpots) {
+  // Its steepest fall, about -p k / 8 zeta = -125 N m s, stays above -Z (300): the massless bit keeps one speed.
+  const nlohmann::json rational = {{"law", "rational"}, {"p_Nm", 1000}, {"k", 0.5}, {"zeta", 0.5}};
+  const auto plain = MasslessFrictionBitSpeed(0, rational, 0);
+  std::vector<double> difference;
+  for (double eta : {1e-4, 1e-5, 1e-6}) {
+    difference.push_back(LargestDifference(MasslessFrictionBitSpeed(eta, rational, 0), plain));
+    std::printf("[ measured ] massless bit with rational friction, eta %.0e s: largest bit speed difference to the run "
+                "without dashpots %.3g rad/s over 8 s (bit at %.4f rad/s)\n", eta, difference.back(), plain.back());
+  }
+  EXPECT_GT(difference[0], 1e-6);  // the dashpots do act
+  EXPECT_NEAR(difference[1] / difference[0], 0.1, 0.03);
+  EXPECT_NEAR(difference[2] / difference[1], 0.1, 0.03);
 }
 
 }  // namespace

@@ -21,10 +21,11 @@ void Network::Validate() const {
     if (!(s.dashpot >= 0) || !std::isfinite(s.dashpot))
       throw std::invalid_argument("a section's Kelvin-Voigt dashpot must be >= 0 and finite");
   for (const Node& n : nodes) {
-    // A massless node with friction between dashpots would make the node speeds a nonlinear system.
-    if (HasKelvinVoigt() && n.massless() && n.friction)
-      throw std::invalid_argument("node '" + n.name + "': friction at a massless node is not combined with "
-                                  "Kelvin-Voigt damping (give the node an inertia)");
+    // A massless node with friction between dashpots would make the node speeds a nonlinear system; at the bit, the
+    // last node, it is one scalar equation after the tridiagonal sweep, which the simulation solves.
+    if (HasKelvinVoigt() && n.massless() && n.friction && &n != &nodes.back())
+      throw std::invalid_argument("node '" + n.name + "': friction at a massless node inside the string is not "
+                                  "combined with Kelvin-Voigt damping (give the node an inertia; at the bit it is)");
     if (n.lateral && (n.massless() || &n != &nodes.back()))
       throw std::invalid_argument("node '" + n.name + "': a lateral BHA (unbalance) sits at the bit, with an inertia "
                                   "> 0");

@@ -67,6 +67,7 @@ class NetworkProcess {
       if (net.nodes[i].has_compliant_gear()) motor_speed_index_[i] = next, next += 2;  // motor speed, then twist
     if (net.bit().lateral) lateral_index_ = next, next += 4;  // x, y, x', y'
     kelvin_voigt_ = net.HasKelvinVoigt();
+    massless_bit_friction_ = kelvin_voigt_ && net.bit().massless() && net.bit().friction;
     if (kelvin_voigt_ && options.record_energy) dissipated_index_ = next++;
     dimension_ = next;
     for (int i = 0; i < num_nodes_; ++i)
@@ -467,10 +468,13 @@ class NetworkProcess {
     const std::pair<double, double> balance = MasslessBalance(i, TwiceIncoming(i, in), t, side);
     const double a = balance.first, b = balance.second;
     if (!node.friction) return a / b;
-    // Smooth friction: the root of r(v) = a - b v - T(v). r falls with v wherever b > -T'(v), so from the frictionless
-    // speed the root lies on the side r points to: bracket it by doubling steps, then Newton kept inside the bracket
-    // (a velocity-weakening law can send plain Newton out of it).
-    const auto& f = *node.friction;
+    return SmoothFrictionSpeed(*node.friction, a, b);
+  }
+
+  // Smooth friction T at a massless node whose linear balance is a - b v: the root of r(v) = a - b v - T(v). r falls
+  // with v wherever b > -T'(v), so from the frictionless speed the root lies on the side r points to: bracket it by
+  // doubling steps, then Newton kept inside the bracket (a velocity-weakening law can send plain Newton out of it).
+  static double SmoothFrictionSpeed(const bitrock::FrictionLaw& f, double a, double b) {
     auto residual = [&](double v) { return a - b * v - f.SlipTorque(v); };
     const double v0 = a / b, r0 = residual(v0);
     if (r0 == 0) return v0;
@@ -546,9 +550,21 @@ class NetworkProcess {
       ratio_[i] = upper * inv_pivot_[i];
     }
   }
-  // Solves the node system in place: v holds the right-hand side on entry, the speeds on return.
-  void SolveNodeSystem(double* v) const {
-    for (int i = 0; i < num_nodes_; ++i) v[i] = (v[i] - (i > 0 ? lower_[i] * v[i - 1] : 0.0)) * inv_pivot_[i];
+  // Solves the node system in place: v holds the right-hand side on entry, the speeds on return. A massless bit
+  // with (smooth) friction is the sweep's last node: there the forward sweep leaves the scalar balance a - b v - T(v)
+  // with a its reduced right-hand side and b its pivot (the dashpot chain above folded in), solved as a lone massless
+  // node's; with solve_bit_friction false the bit's balance is linear with T'(v) = bit_friction_slope instead (the
+  // rates' implicit derivative; 0 for the echoes' linear response).
+  void SolveNodeSystem(double* v, bool solve_bit_friction = false, double bit_friction_slope = 0) const {
+    const int bit = num_nodes_ - 1;
+    for (int i = 0; i < num_nodes_; ++i) {
+      const double reduced = v[i] - (i > 0 ? lower_[i] * v[i - 1] : 0.0);
+      if (i == bit && massless_bit_friction_)
+        v[i] = solve_bit_friction ? SmoothFrictionSpeed(*net_.nodes[i].friction, reduced, 1 / inv_pivot_[i])
+                                  : reduced / (1 / inv_pivot_[i] + bit_friction_slope);
+      else
+        v[i] = reduced * inv_pivot_[i];
+    }
     for (int i = num_nodes_ - 2; i >= 0; --i) v[i] -= ratio_[i] * v[i + 1];
   }
   void SolveNodeSpeeds(const State& x, double t, Side side, std::vector<double>& v) const {
@@ -559,7 +575,7 @@ class NetworkProcess {
       else if (node.drive == Drive::kPrescribedSpeed) v[i] = Setpoint(node, t, side);
       else v[i] = MasslessBalance(i, TwiceIncoming(i, t, side), t, side).first;
     }
-    SolveNodeSystem(v.data());
+    SolveNodeSystem(v.data(), true);
   }
   void SolveNodeSpeedRates(const State& f, double t, Side side, std::vector<double>& dv) const {
     dv.resize(num_nodes_);
@@ -569,7 +585,9 @@ class NetworkProcess {
       else if (node.drive == Drive::kPrescribedSpeed) dv[i] = SetpointRate(node, t, side);
       else dv[i] = MasslessBalanceRate(i, ArrivingRate(i, t, side), t, side);
     }
-    SolveNodeSystem(dv.data());
+    // Called after SolveNodeSpeeds at the same state: speeds_ holds the bit's speed for its friction slope.
+    SolveNodeSystem(dv.data(), false,
+                    massless_bit_friction_ ? net_.bit().friction->SlipTorqueDerivative(speeds_[num_nodes_ - 1]) : 0.0);
   }
   // Torque of the dashpots of node i's sections on it, and the power all of them dissipate, at node speeds v.
   double DashpotTorque(int i, const std::vector<double>& v) const {
@@ -778,6 +796,7 @@ class NetworkProcess {
   int lateral_index_ = kNone;  // the bit's lateral BHA
   // Kelvin-Voigt: the node system's factors (FactorNodeSystem), the dissipated energy's state, scratch.
   bool kelvin_voigt_ = false;
+  bool massless_bit_friction_ = false;  // a massless bit with smooth friction closes the node system's sweep
   int dissipated_index_ = kNone;
   std::vector<double> lower_, ratio_, inv_pivot_;
   mutable std::vector<double> speeds_, speed_rates_;

@@ -327,8 +327,8 @@ class TorsionalWaveKind : public ModelKind {
     fields.update(TopComponentFields("top"));
     fields.update(StringComponentFields("string", "bit"));
     fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() +
-                                      " (string/damping_subsections parts per section); not with a massless bit with "
-                                      "friction";
+                                      " (string/damping_subsections parts per section); with a massless bit its "
+                                      "smooth friction closes the dashpots' node system";
     fields["bit/unbalance/lateral_mass_kg"] = fields["bit/unbalance/lateral_mass_kg"].get<std::string>() +
                                               "; needs bit/inertia_kgm2 > 0";
     fields["top/supply_frequency_Hz"] = "induction_motor, open loop: supply frequency schedule [Hz] (instead of "
@@ -368,10 +368,6 @@ class TorsionalWaveKind : public ModelKind {
     bit.lateral = ReadUnbalance(bit_reader);
     if (bit.lateral && bit.massless())
       throw InputError(bit_reader.PathOf("inertia_kgm2"), "a BHA unbalance (bit/unbalance) needs a bit inertia > 0");
-    if (eta > 0 && bit.massless() && bit.friction)
-      throw InputError(string.PathOf("kelvin_voigt_s"), "expected 0 with a massless bit with friction (its speed "
-                                                        "would solve a nonlinear system with the dashpots): give "
-                                                        "/model/bit/inertia_kgm2 > 0");
     bit_reader.Finish();
     net.nodes.push_back(bit);
     // Half a damping part at each end of the string, so the total equals gamma * length.
