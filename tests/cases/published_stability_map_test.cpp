@@ -44,15 +44,18 @@ constexpr double kRigidMode = 0.05;  // |s| below it: the vanishing ki's slow mo
 
 // The published characteristic function, cleared of its poles: with g = A / B, A(x) = cosh x + Z_L sinh x and
 // B(x) = Z_L cosh x + sinh x, s B(s / c) B(s) (1 + G(s)) = s B_a B_t + (1 - e^{-s t_N}) (K_a A_a B_t - (V0 / Omega0)
-// A_t B_a) is entire, and has the zeros of 1 + G away from s = 0 (where 1 + G has a pole, B A != 0 stays).
+// A_t B_a) is entire, and has the zeros of 1 + G away from s = 0 (where 1 + G has a pole, B A != 0 stays). With
+// ka = 0, their torsional map (MAIN_Torsional_FreqStabMap.m: the axial loop left out), B_a is no factor of it.
 struct Published {
-  double v0, omega0;
+  double v0, omega0, ka = kKa;
   Complex operator()(Complex s) const {
     const double zl = (1 + kEta) / (1 - kEta);
+    const Complex at = std::cosh(s) + zl * std::sinh(s), bt = zl * std::cosh(s) + std::sinh(s);
+    const Complex delay = 1.0 - std::exp(-s / omega0);
+    if (ka == 0) return s * bt - delay * v0 / omega0 * at;
     const Complex xa = s / kWaveSpeedRatio;
     const Complex aa = std::cosh(xa) + zl * std::sinh(xa), ba = zl * std::cosh(xa) + std::sinh(xa);
-    const Complex at = std::cosh(s) + zl * std::sinh(s), bt = zl * std::cosh(s) + std::sinh(s);
-    return s * ba * bt + (1.0 - std::exp(-s / omega0)) * (kKa * aa * bt - v0 / omega0 * at * ba);
+    return s * ba * bt + delay * (ka * aa * bt - v0 / omega0 * at * ba);
   }
   bool Refine(Complex& s) const {
     testing::NewtonZeroOptions o;
@@ -77,9 +80,9 @@ struct Published {
     auto one_plus_g = [&](double x) {
       const double zl = (1 + kEta) / (1 - kEta);
       auto g = [&](double y) { return (1 + zl * std::tanh(y)) / (zl + std::tanh(y)); };
-      return 1 + (1 - std::exp(-x / omega0)) / x * (kKa * g(x / kWaveSpeedRatio) - v0 / omega0 * g(x));
+      return 1 + (1 - std::exp(-x / omega0)) / x * (ka * g(x / kWaveSpeedRatio) - v0 / omega0 * g(x));
     };
-    const double reach = v0 / omega0 + kKa + 10;
+    const double reach = v0 / omega0 + ka + 10;
     for (double lo = 3, step = reach / 2000; lo < reach; lo += step) {
       double a = lo, b = lo + step;
       if ((one_plus_g(a) > 0) == (one_plus_g(b) > 0)) continue;
@@ -91,11 +94,13 @@ struct Published {
   }
 };
 
-// The baseline case as the published model's physical twin at (V0, Omega0), masses mu Z tau.
+// The baseline case as the published model's physical twin at (V0, Omega0), masses mu Z tau. With axial_blocked the
+// bit's mass is a million Z_a tau instead: the bit cannot move axially within the band, the axial loop drops out and
+// what is left is the published torsional map's loop.
 struct Twin {
   nlohmann::json doc;
   double tau = 0;  // torsional travel time [s], the published time unit
-  Twin(double v0, double omega0, double mu) {
+  Twin(double v0, double omega0, double mu, bool axial_blocked = false) {
     doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
     doc.erase("expect");
     auto& m = doc["model"];
@@ -125,7 +130,7 @@ struct Twin {
                 {"speed_rad_s", omega}};
     m["hoist"] = {{"mass_kg", mu * za * tau}, {"damping_Ns_per_m", zl * za}, {"weight_on_bit_N", a * zeta * eps * depth}};
     m["bit"]["inertia_kgm2"] = mu * zt * tau;
-    m["bit"]["mass_kg"] = mu * za * tau;
+    m["bit"]["mass_kg"] = (axial_blocked ? 1e6 : mu) * za * tau;
   }
   // The linearization's roots in the published band, in published units (s tau), by Re desc.
   std::vector<Complex> Roots() const {
@@ -208,17 +213,19 @@ TEST(PublishedStabilityMap, BoundaryInRotationSpeedIsThePublishedOne) {
   }
 }
 
-// The published map's grid (axStabMapForComp.m scans V0 in [0.1, 31.6] and Omega0 in [0.049, 51], log-spaced): on
-// a 5 x 6 grid of it the kind (mu = 1e-6) gives every verdict of the published function, and its rightmost root in
-// the band within 1e-3 (relative beyond |s| = 1: at small Omega0 and large V0 a real root near V0 / Omega0 - K_a).
-TEST(PublishedStabilityMap, VerdictsOnThePublishedGridAreThePublishedOnes) {
+// The published maps' grid (axStabMapForComp.m scans V0 in [0.1, 31.6] and Omega0 in [0.049, 51], log-spaced): on a
+// 5 x 6 grid of it the kind (mu = 1e-6) gives every verdict of the published function, and its rightmost root in the
+// band within 1e-3 (relative beyond |s| = 1: at small Omega0 and large V0 a real root near V0 / Omega0 - K_a). Both
+// maps: the coupled one at K_a = 20, and the torsional one (their MAIN_Torsional_FreqStabMap.m) with the bit held
+// axially by a large mass.
+void ExpectThePublishedVerdictsOnTheGrid(bool torsional) {
   int unstable = 0, points = 0;
   double worst = 0;
   for (int i = 0; i < 5; ++i)
     for (int j = 0; j < 6; ++j) {
       const double v0 = std::pow(10, -1 + 2.5 * i / 4), omega0 = std::pow(10, -1.31 + 3.02 * j / 5);
-      const double published = Rightmost(Published{v0, omega0}.Zeros());
-      const double kind = Rightmost(Twin(v0, omega0, 1e-6).Roots());
+      const double published = Rightmost(Published{v0, omega0, torsional ? 0.0 : kKa}.Zeros());
+      const double kind = Rightmost(Twin(v0, omega0, 1e-6, torsional).Roots());
       EXPECT_EQ(kind > 0, published > 0) << "V0 " << v0 << ", Omega0 " << omega0 << ": " << kind << " vs " << published;
       // The masses' error grows with |s| (mu s tau against the impedances): relative for the fast real roots.
       const double error = std::abs(kind - published) / std::max(1.0, std::abs(published));
@@ -227,10 +234,17 @@ TEST(PublishedStabilityMap, VerdictsOnThePublishedGridAreThePublishedOnes) {
       unstable += published > 0;
       ++points;
     }
-  std::printf("[ measured ] %d grid points, %d unstable by the published function; the kind agrees on every verdict, "
-              "rightmost roots within %.2e (relative beyond 1)\n", points, unstable, worst);
+  std::printf("[ measured ] %s map: %d grid points, %d unstable by the published function; the kind agrees on every "
+              "verdict, rightmost roots within %.2e (relative beyond 1)\n", torsional ? "torsional" : "coupled", points,
+              unstable, worst);
   EXPECT_GT(unstable, 0);
   EXPECT_LT(unstable, points);
+}
+
+TEST(PublishedStabilityMap, VerdictsOnThePublishedGridAreThePublishedOnes) { ExpectThePublishedVerdictsOnTheGrid(false); }
+
+TEST(PublishedStabilityMap, TorsionalVerdictsOnThePublishedGridAreThePublishedOnes) {
+  ExpectThePublishedVerdictsOnTheGrid(true);
 }
 
 }  // namespace
