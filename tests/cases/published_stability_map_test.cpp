@@ -1,4 +1,5 @@
-// The published stability map of the coupled model, reproduced by the axial_torsional kind's linearization.
+// The published stability maps of the coupled model (and of its torsional loop alone), reproduced by the
+// axial_torsional kind's linearization.
 //
 // Aarsnes & van de Wouw (2019), "Axial and torsional self-excited vibrations of a distributed drill-string", J. Sound
 // Vib. 444, map the stability of the distributed string with the Richard-Germay-Detournay cut delay in the plane of
@@ -11,7 +12,7 @@
 // from the bit, normalized by the pipe's impedance.
 //
 // drillwave's kind is the same physics with inertias: derived in the same way, its determinant is this G with the
-// string's admittance Z g replaced by 1 / (Z / g + m s) at the bit and the tops' impedance by m_top s + Z Z_L. With
+// string's admittance g / Z replaced by 1 / (Z / g + m s) at the bit and the tops' impedance by m_top s + Z Z_L. With
 // every mass m = mu Z tau (mu -> 0), the top drive's gains kp = Z_L Z_t and a vanishing ki (the set-point start needs
 // one), the hoist's dashpot c_h = Z_L Z_a, no wear flat (sigma l = 0), eps for K_a = n tau a zeta eps / Z_a,
 // Omega0 = n tau omega / 2 pi and V0 = Omega0 n tau (a^2 eps / 2) (d0 / 2 pi) / Z_t (d0 the depth of cut per turn),
