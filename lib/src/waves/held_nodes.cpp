@@ -79,4 +79,24 @@ void HeldNodes::Rates(const std::vector<double>& r_rate, const std::vector<signe
   SolveWithHeld(r_rate, state, false, dv);
 }
 
+void HeldNodes::FactorLinear() {
+  const int n = size();
+  free_inv_pivot_.resize(n), free_ratio_.resize(n);
+  double previous_ratio = 0;
+  for (int j = 0; j < n; ++j) {
+    const double below = j > 0 ? coupling[j - 1] : 0.0, above = j + 1 < n ? coupling[j] : 0.0;
+    free_inv_pivot_[j] = 1 / (diagonal[j] - below * previous_ratio);
+    free_ratio_[j] = previous_ratio = above * free_inv_pivot_[j];
+  }
+}
+
+// SolveWithHeld's arithmetic with nothing held, on the stored pivots.
+void HeldNodes::SolveLinear(const std::vector<double>& r, std::vector<double>& v) const {
+  const int n = size();
+  v.resize(n);
+  double previous = 0;
+  for (int j = 0; j < n; ++j) v[j] = previous = (r[j] + (j > 0 ? coupling[j - 1] : 0.0) * previous) * free_inv_pivot_[j];
+  for (int j = n - 2; j >= 0; --j) v[j] += free_ratio_[j] * v[j + 1];
+}
+
 }  // namespace drillwave::waves

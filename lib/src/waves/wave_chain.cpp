@@ -27,17 +27,6 @@ double ChainSpec::travel_time() const {
   return total;
 }
 
-void ChainSpec::FactorKelvinVoigt() {
-  if (!kelvin_voigt()) return;
-  const int m = pieces();
-  kv_ratio.assign(m + 1, 0.0), kv_inv_pivot.assign(m + 1, 0.0);
-  for (int j = 1; j < m; ++j) {
-    const double diagonal = z[j - 1] + z[j] + damping[j] + kv[j - 1] + kv[j];
-    kv_inv_pivot[j] = 1 / (diagonal - (j > 1 ? kv[j - 1] * kv_ratio[j - 1] : 0.0));
-    kv_ratio[j] = kv[j] * kv_inv_pivot[j];
-  }
-}
-
 // Steady motion: S_{j-1} = S_j + c_j v - load_j (+ the Coulomb level against forward motion), from the bit up.
 WaveChain::WaveChain(const ChainSpec& spec, double v, double bit_force) : spec_(spec), m_(spec.pieces()) {
   const ChainSpec& ch = spec_;
@@ -49,12 +38,16 @@ WaveChain::WaveChain(const ChainSpec& spec, double v, double bit_force) : spec_(
     if (j > 0) s += ch.damping[j] * v - ch.load[j] + ch.coulomb[j];
   }
   steady_top_force_ = s + ch.damping[0] * v - ch.load[0];
-  if (ch.kelvin_voigt() && std::any_of(ch.coulomb.begin(), ch.coulomb.end(), [](double c) { return c > 0; }))
+  // Kelvin-Voigt: the internal nodes' tridiagonal system, held by side friction where there is some.
+  if (ch.kelvin_voigt()) {
+    held_friction_ = std::any_of(ch.coulomb.begin(), ch.coulomb.end(), [](double c) { return c > 0; });
     for (int j = 1; j < m_; ++j) {
       held_.diagonal.push_back(ch.z[j - 1] + ch.z[j] + ch.damping[j] + ch.kv[j - 1] + ch.kv[j]);
       held_.friction.push_back(ch.coulomb[j]);
       if (j + 1 < m_) held_.coupling.push_back(ch.kv[j]);
     }
+    if (!held_friction_) held_.FactorLinear();
+  }
   node_waves_.reserve(m_ + 1);
   for (int j = 0; j <= m_; ++j) {
     const double up = initial[NodeBlock(j)], down = initial[NodeBlock(j) + 1];
@@ -105,10 +98,6 @@ void WaveChain::NodeSpeeds(const double* in, double top, double bit, double* v) 
     SolveHeldNodes(in, top, bit, nullptr, v);
     return;
   }
-  if (spec_.kelvin_voigt()) {
-    SolveKelvinVoigtNodes(in, top, bit, true, v);
-    return;
-  }
   for (int j = 1; j < m_; ++j) v[j] = InternalNodeSpeed(j, in[2 * (j - 1)], in[2 * j + 1]);
 }
 
@@ -136,31 +125,14 @@ void WaveChain::NodeRates(const double* in_rate, const double* v, double top, do
     SolveHeldNodes(in_rate, top, bit, v, dv);
     return;
   }
-  if (spec_.kelvin_voigt()) {
-    SolveKelvinVoigtNodes(in_rate, top, bit, false, dv);
-    return;
-  }
   for (int j = 1; j < m_; ++j) dv[j] = InternalNodeRate(j, in_rate[2 * (j - 1)], in_rate[2 * j + 1], v[j]);
 }
 
 // With Kelvin-Voigt dashpots kv_k across the pieces, node j (1..m-1) balances
 //   (Z_{j-1} + Z_j + c_j + kv_{j-1} + kv_j) v_j - kv_{j-1} v_{j-1} - kv_j v_{j+1} = 2 Z_{j-1} a + 2 Z_j b + load_j,
-// a tridiagonal system in the internal speeds (its rates: the same matrix, without the loads). The Thomas algorithm
-// with the pivots factored once (with Coulomb friction: SolveHeldNodes).
-void WaveChain::SolveKelvinVoigtNodes(const double* in, double top, double bit, bool with_loads, double* v) const {
-  const ChainSpec& ch = spec_;
-  double previous = 0;
-  for (int j = 1; j < m_; ++j) {
-    double rhs = Incoming(ch.z[j - 1], in[2 * (j - 1)], ch.z[j], in[2 * j + 1]) + (with_loads ? ch.load[j] : 0.0);
-    if (j == 1) rhs += ch.kv[0] * top;
-    if (j == m_ - 1) rhs += ch.kv[m_ - 1] * bit;
-    v[j] = previous = (rhs + ch.kv[j - 1] * (j > 1 ? previous : 0.0)) * ch.kv_inv_pivot[j];
-  }
-  for (int j = m_ - 2; j >= 1; --j) v[j] += ch.kv_ratio[j] * v[j + 1];
-}
-
-// The same balance with Coulomb friction at the nodes (HeldNodes). Speeds (v == nullptr): the right-hand side with
-// the loads, warm-started from the last solution; rates: the nodes at rest in v held, the others' rates solved.
+// a tridiagonal system in the internal speeds (its rates: the same matrix, without the loads), solved by HeldNodes:
+// directly without side friction; with it (Coulomb friction at the nodes) speeds (v == nullptr) are warm-started from
+// the last solution, and for the rates the nodes at rest in v are held and the others' rates solved.
 void WaveChain::SolveHeldNodes(const double* in, double top, double bit, const double* v, double* out) const {
   const ChainSpec& ch = spec_;
   const int n = m_ - 1;
@@ -169,7 +141,9 @@ void WaveChain::SolveHeldNodes(const double* in, double top, double bit, const d
     held_rhs_[j - 1] = Incoming(ch.z[j - 1], in[2 * (j - 1)], ch.z[j], in[2 * j + 1]) + (v ? 0.0 : ch.load[j]);
   held_rhs_[0] += ch.kv[0] * top;
   held_rhs_[n - 1] += ch.kv[m_ - 1] * bit;
-  if (!v) {
+  if (!held_friction_) {
+    held_.SolveLinear(held_rhs_, held_out_);
+  } else if (!v) {
     held_.Solve(held_rhs_, held_out_, held_state_);
   } else {
     held_rate_state_.resize(n);

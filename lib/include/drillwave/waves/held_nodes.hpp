@@ -24,6 +24,10 @@ struct HeldNodes {
   int Solve(const std::vector<double>& r, std::vector<double>& v, std::vector<signed char>& state) const;
   // The rates of the speeds for the rate of the right-hand side, with the nodes at rest held (state from Solve).
   void Rates(const std::vector<double>& r_rate, const std::vector<signed char>& state, std::vector<double>& dv) const;
+  // Nothing held and no friction (Kelvin-Voigt dashpots alone): the tridiagonal system, for speeds and rates alike,
+  // with the pivots FactorLinear computed once (call it after setting diagonal and coupling).
+  void FactorLinear();
+  void SolveLinear(const std::vector<double>& r, std::vector<double>& v) const;
 
  private:
   // The tridiagonal system with the held nodes' rows replaced by v_j = 0 and the sliding nodes' right-hand sides
@@ -31,6 +35,7 @@ struct HeldNodes {
   void SolveWithHeld(const std::vector<double>& r, const std::vector<signed char>& state, bool with_friction,
                      std::vector<double>& v) const;
   mutable std::vector<double> pivot_ratio_;  // scratch of the Thomas algorithm
+  std::vector<double> free_inv_pivot_, free_ratio_;  // FactorLinear's: every node free
 };
 
 }  // namespace drillwave::waves

@@ -9,7 +9,7 @@
 // inside every piece. A piece carries the force S = Z (D - U) onto its lower node; a node feels sum Z (2 w_in - v)
 // from its pieces. Options on the internal nodes: Coulomb friction against the borehole (side friction, set-valued at
 // rest), and Kelvin-Voigt damping (chapter eqs. 2.20, 2.24) as a dashpot eta K / length across each piece, which ties
-// the massless nodes into a tridiagonal system (with side friction too: a convex problem, HeldNodes).
+// the massless nodes into a tridiagonal system (HeldNodes; with side friction too a convex problem).
 //
 // Each node keeps the history of the two waves it sends (U_{j-1} up into piece j-1, D_j down into piece j). An
 // internal node's waves are algebraic in the waves arriving at it; where a kink arrives within a step (an event's,
@@ -32,17 +32,12 @@ struct ChainSpec {
   std::vector<double> damping;  // per node (ground dashpot)
   std::vector<double> load;     // per node (constant force: buoyant weight, axial only)
   std::vector<double> coulomb;  // per node (Coulomb friction level against the borehole, torsion only)
-  // Kelvin-Voigt: the massless nodes 1..m-1 solve a constant tridiagonal system (Thomas algorithm, FactorKelvinVoigt).
-  std::vector<double> kv_ratio, kv_inv_pivot;  // per node: c'_j and 1 / (b_j - a_j c'_{j-1})
 
   int pieces() const { return static_cast<int>(z.size()); }
   bool kelvin_voigt() const { return !kv.empty(); }
   double ShortestPiece() const;
   double LongestPiece() const;
   double travel_time() const;
-  // The Thomas algorithm's pivots for the internal nodes' tridiagonal system: diagonally dominant, so stable
-  // without pivoting. Call once the pieces and nodes are set.
-  void FactorKelvinVoigt();
 };
 
 // The speeds of the chain's two end nodes (or their accelerations) at one instant.
@@ -96,8 +91,8 @@ class WaveChain {
   double InternalNodeSpeed(int j, double a, double b) const;
   double InternalNodeRate(int j, double rate_a, double rate_b, double v) const;
   void NodeRates(const double* in_rate, const double* v, double top, double bit, double* dv) const;
-  void SolveKelvinVoigtNodes(const double* in, double top, double bit, bool with_loads, double* v) const;
-  // Kelvin-Voigt with side friction: the internal nodes as HeldNodes (speeds, or their rates given the speeds v).
+  // Kelvin-Voigt: the internal nodes as HeldNodes (speeds, or their rates given the speeds v; held by side friction
+  // only where there is some).
   void SolveHeldNodes(const double* in, double top, double bit, const double* v, double* out) const;
   void Outgoing(double t, ChainEnds speeds, const ChainEnds* rates, Side side, double* out, double* rate) const;
   double WaveScale(int b, double abs_tol, double rel_tol) const;
@@ -120,7 +115,8 @@ class WaveChain {
   double last_commit_end_ = 0;
   mutable std::vector<integration::HermiteHistory::Kink> kinks_;
   mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // scratch
-  HeldNodes held_;  // Kelvin-Voigt with side friction (empty otherwise)
+  HeldNodes held_;               // Kelvin-Voigt: the internal nodes' system (empty otherwise)
+  bool held_friction_ = false;   // ... with side friction at some node
   mutable std::vector<double> held_rhs_, held_out_;
   mutable std::vector<signed char> held_state_, held_rate_state_;  // the last solution's (a warm start), the rates'
 };

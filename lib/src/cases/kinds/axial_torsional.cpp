@@ -659,7 +659,6 @@ void BuildChannels(const StringSpec& sp, double g, Model& md) {
       }
     }
   }
-  for (Channel* ch : {&md.torsion, &md.axial}) ch->FactorKelvinVoigt();
 }
 
 // The axial balance of steady drilling (chapter eq. 2.23 at rest in the moving frame): H = W_b - W0 - C V0, with the
