@@ -117,10 +117,10 @@ TEST(WaveChain, AgreesWithTheWaveNetworkOnADampedTwoSectionChain) {
   const NetworkTrajectory& tr = run.trajectory;
 
   // WaveChain as its callers step it: steps of at most 1/1024 s (ending on every knot and sample), cut short where a
-  // kink reaches an end (end_kinks) and where the stored waves fail their check, down to 1e-7 s. Measured: a few
-  // steps at that floor still fail it (check up to 1e3), at times where kinks arrive (some exactly on an end kink's
-  // reported time: perhaps a kink's time and its place in the histories differ by rounding; not traced further). They
-  // are taken as they are, and the forces still agree.
+  // kink reaches an end (end_kinks) and where the stored waves fail their check, down to 1e-7 s. With Kelvin-Voigt
+  // dashpots WaveChain does not split its nodes' waves at arriving kinks (the dashpots tie every node to the others),
+  // so the steps across a kink fail the check down to that floor (check up to 1e3); they are taken as they are, and the
+  // forces still agree.
   WaveChain chain(spec, 0.0, 0.0);
   const double h = 1.0 / 1024;
   std::vector<double> end_kinks;
