@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/io/csv.hpp"
@@ -68,17 +68,8 @@ EdgeSpec ParseEdgeOption(const std::string& text, const nlohmann::json& document
                                    text + "'");
   EdgeSpec spec;
   spec.pointer = text.substr(0, eq);
-  auto number = [&](const std::string& s, const char* what) {
-    try {
-      std::size_t used = 0;
-      const double v = std::stod(s, &used);
-      if (used == s.size() && std::isfinite(v)) return v;
-    } catch (const std::exception&) {
-    }
-    throw InputError("--edge", std::string("the ") + what + " value '" + s + "' is not a finite number");
-  };
-  spec.decays = number(text.substr(eq + 1, colon - eq - 1), "decaying");
-  spec.sticks = number(text.substr(colon + 1), "sticking");
+  spec.decays = ParseNumber(text.substr(eq + 1, colon - eq - 1), "--edge");
+  spec.sticks = ParseNumber(text.substr(colon + 1), "--edge");
   if (spec.decays == spec.sticks) throw InputError("--edge", "the two values must differ");
   nlohmann::json probe = document;
   io::SetByPointer(probe, spec.pointer, spec.decays);  // names the pointer if the case has nothing there
@@ -104,13 +95,13 @@ void WriteEdgeOutputs(const nlohmann::json& document, const EdgeSpec& spec, cons
   io::Figure figure;
   figure.title = "run at the edge: " + spec.pointer + " = " + Significant(edge.decays, 12);
   figure.x_label = "time [s]";
-  io::Panel panel{channel, {{channel, edge.edge.time_s, edge.edge.channel(channel).values}}};
+  const std::vector<double>& values = edge.edge.channel(channel).values;
+  io::Panel panel{channel, {{channel, edge.edge.time_s, values}}};
   if (cycle.found) {  // the shadowed cycle, drawn again over its own stretch
     io::Series marked{"saddle cycle (period " + Significant(cycle.period_s, 5) + " s)", {}, {}};
     for (std::size_t i = 0; i < edge.edge.time_s.size(); ++i) {
       const double t = edge.edge.time_s[i];
-      if (t >= cycle.time_s && t <= cycle.time_s + cycle.period_s)
-        marked.x.push_back(t), marked.y.push_back(edge.edge.channel(channel).values[i]);
+      if (t >= cycle.time_s && t <= cycle.time_s + cycle.period_s) marked.x.push_back(t), marked.y.push_back(values[i]);
     }
     panel.series.push_back(std::move(marked));
   }

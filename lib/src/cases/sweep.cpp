@@ -17,7 +17,6 @@
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::cases {
-namespace {
 
 double ParseNumber(const std::string& text, const std::string& what) {
   char* end = nullptr;
@@ -26,6 +25,8 @@ double ParseNumber(const std::string& text, const std::string& what) {
     throw InputError(what, "'" + text + "' is not a finite number");
   return v;
 }
+
+namespace {
 
 std::vector<std::string> Split(const std::string& text, char separator) {
   std::vector<std::string> parts;

@@ -556,14 +556,12 @@ class NetworkProcess {
   // node's; with solve_bit_friction false the bit's balance is linear with T'(v) = bit_friction_slope instead (the
   // rates' implicit derivative; 0 for the echoes' linear response).
   void SolveNodeSystem(double* v, bool solve_bit_friction = false, double bit_friction_slope = 0) const {
-    const int bit = num_nodes_ - 1;
-    for (int i = 0; i < num_nodes_; ++i) {
-      const double reduced = v[i] - (i > 0 ? lower_[i] * v[i - 1] : 0.0);
-      if (i == bit && massless_bit_friction_)
-        v[i] = solve_bit_friction ? SmoothFrictionSpeed(*net_.nodes[i].friction, reduced, 1 / inv_pivot_[i])
-                                  : reduced / (1 / inv_pivot_[i] + bit_friction_slope);
-      else
-        v[i] = reduced * inv_pivot_[i];
+    const int bit = num_nodes_ - 1, linear_rows = massless_bit_friction_ ? bit : num_nodes_;
+    for (int i = 0; i < linear_rows; ++i) v[i] = (v[i] - (i > 0 ? lower_[i] * v[i - 1] : 0.0)) * inv_pivot_[i];
+    if (massless_bit_friction_) {
+      const double reduced = v[bit] - lower_[bit] * v[bit - 1];
+      v[bit] = solve_bit_friction ? SmoothFrictionSpeed(*net_.bit().friction, reduced, 1 / inv_pivot_[bit])
+                                  : reduced / (1 / inv_pivot_[bit] + bit_friction_slope);
     }
     for (int i = num_nodes_ - 2; i >= 0; --i) v[i] -= ratio_[i] * v[i + 1];
   }

@@ -23,6 +23,8 @@ struct SweepSpec {
 // "a:b:n" -> n values evenly spaced from a to b inclusive; "v1,v2,..." -> those values. Throws InputError naming
 // `what` (the option) for anything else, n < 1, or a non-finite value.
 std::vector<double> ParseSweepValues(const std::string& text, const std::string& what);
+// One finite number, all of text; InputError naming `what` otherwise.
+double ParseNumber(const std::string& text, const std::string& what);
 
 struct SweepPoint {
   double value = 0;
