@@ -126,8 +126,9 @@ TEST(HermiteHistory, DiscardBeforeKeepsLaterValues) {
 }
 
 // |t - 1| + 0.1 t^2 in one component (a kink at 1 and at 2.5 after a jump of slope), smooth in the other: KinksIn
-// reports exactly the knots where a component's slope jumps, with the jump, and only in [a, b); the index survives
-// the compaction of DiscardBefore.
+// reports exactly the knots where a component's slope or value jumps, with the jumps, and only in [a, b): the first
+// piece's start against the prehistory (at rest: value and slope 0) too, while it is kept; the index survives the
+// compaction of DiscardBefore.
 TEST(HermiteHistory, KinksInFindsTheKnotsWhereASlopeJumps) {
   HermiteHistory h(2);
   auto slope = [](double t, bool right) { return (t > 1 || (t == 1 && right) ? 1.0 : -1.0) + 0.2 * t +
@@ -143,14 +144,22 @@ TEST(HermiteHistory, KinksInFindsTheKnotsWhereASlopeJumps) {
   }
   std::vector<HermiteHistory::Kink> kinks;
   h.KinksIn(0.0, 10.0, 0, kinks);
-  ASSERT_EQ(kinks.size(), 2u);
+  ASSERT_EQ(kinks.size(), 3u);
+  EXPECT_EQ(kinks[0].time_s, 0.0);  // the start, out of the prehistory's rest: |0 - 1| = 1 at slope -1
+  EXPECT_EQ(kinks[0].value_jump, 1.0);
+  EXPECT_EQ(kinks[0].slope_jump, -1.0);
+  kinks.erase(kinks.begin());
   EXPECT_EQ(kinks[0].time_s, 1.0);
+  EXPECT_EQ(kinks[0].value_jump, 0.0);
   EXPECT_NEAR(kinks[0].slope_jump, 2.0, 1e-15);
   EXPECT_EQ(kinks[1].time_s, 2.5);
   EXPECT_NEAR(kinks[1].slope_jump, 3.0, 1e-15);
   kinks.clear();
-  h.KinksIn(0.0, 10.0, 1, kinks);  // the smooth component: none
-  EXPECT_TRUE(kinks.empty());
+  h.KinksIn(0.0, 10.0, 1, kinks);  // the smooth component: only the start (slope 1 out of rest)
+  ASSERT_EQ(kinks.size(), 1u);
+  EXPECT_EQ(kinks[0].value_jump, 0.0);
+  EXPECT_EQ(kinks[0].slope_jump, 1.0);
+  kinks.clear();
   h.KinksIn(1.0, 2.5, 0, kinks);  // [a, b): the first only
   ASSERT_EQ(kinks.size(), 1u);
   EXPECT_EQ(kinks[0].time_s, 1.0);
@@ -158,10 +167,10 @@ TEST(HermiteHistory, KinksInFindsTheKnotsWhereASlopeJumps) {
   h.KinksIn(1.1, 2.5, 0, kinks);
   EXPECT_TRUE(kinks.empty());
 
-  // After a compaction past both kinks, a new one is still found, at its place.
+  // After a compaction past both kinks, a new one is still found, at its place, with a jump of value.
   h.DiscardBefore(400.0);
   const double t0 = 600.0, t1 = 600.25;
-  const double x0[] = {value(t0), std::sin(t0)}, d0[] = {slope(t0, true) - 1.5, std::cos(t0)};
+  const double x0[] = {value(t0) + 0.5, std::sin(t0)}, d0[] = {slope(t0, true) - 1.5, std::cos(t0)};
   const double x1[] = {value(t0) + 0.25 * d0[0], std::sin(t1)}, d1[] = {d0[0], std::cos(t1)};
   const double xm[] = {value(t0) + 0.125 * d0[0], std::sin(t0 + 0.125)};
   h.Append(t0, x0, d0, t1, x1, d1, xm);
@@ -169,6 +178,7 @@ TEST(HermiteHistory, KinksInFindsTheKnotsWhereASlopeJumps) {
   ASSERT_EQ(kinks.size(), 1u);
   EXPECT_EQ(kinks[0].time_s, 600.0);
   EXPECT_NEAR(kinks[0].slope_jump, -1.5, 1e-12);
+  EXPECT_NEAR(kinks[0].value_jump, 0.5, 1e-12);
 }
 
 }  // namespace

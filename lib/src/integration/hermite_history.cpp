@@ -52,14 +52,24 @@ void HermiteHistory::Append(double t0, const double* x0, const double* d0, doubl
     t0 = t_end_.back();  // keep the pieces contiguous despite rounding in the caller's times
     if (!(t1 > t0)) return;  // a piece within rounding of the end: nothing to add
   }
-  if (!empty()) {  // a slope that differs by more than rounding (a rate recomputed after a breakpoint differs by that)
-    const double* last_d1 = PieceData(t_begin_.size() - 1) + 3 * dimension_;
+  // A value or slope that differs by more than rounding from the last end's (a rate recomputed after a breakpoint
+  // differs by that) or, for the very first piece, from the prehistory's.
+  const double *last_x1 = nullptr, *last_d1 = nullptr;
+  if (!empty()) {
+    last_x1 = PieceData(t_begin_.size() - 1) + dimension_;
+    last_d1 = last_x1 + 2 * dimension_;
+  } else if (t_begin_.empty()) {
+    origin_.resize(2 * dimension_);
+    prehistory_(t0, origin_.data(), origin_.data() + dimension_);
+    last_x1 = origin_.data(), last_d1 = origin_.data() + dimension_;
+  }
+  auto differs = [](double a, double b) { return std::abs(a - b) > 1e-12 * std::max(std::abs(a), std::abs(b)); };
+  if (last_x1)
     for (int i = 0; i < dimension_; ++i)
-      if (std::abs(d0[i] - last_d1[i]) > 1e-12 * std::max(std::abs(d0[i]), std::abs(last_d1[i]))) {
+      if (differs(d0[i], last_d1[i]) || differs(x0[i], last_x1[i])) {
         kinked_.push_back(t_begin_.size());
         break;
       }
-  }
   t_begin_.push_back(t0);
   t_end_.push_back(t1);
   const std::size_t at = data_.size();
@@ -210,14 +220,23 @@ void HermiteHistory::KinksIn(double a, double b, int i, std::vector<Kink>& out) 
   }
   kink_hint_ = k;
   for (auto it = kinked_.begin() + static_cast<std::ptrdiff_t>(k); it != kinked_.end() && t_begin_[*it] < b; ++it) {
-    if (*it <= first_) continue;  // the oldest piece kept: its predecessor is gone
-    const double jump = PieceData(*it)[2 * dimension_ + i] - PieceData(*it - 1)[3 * dimension_ + i];
-    if (jump != 0) out.push_back({t_begin_[*it], jump});
+    const double *left_value, *left_slope;  // the limits from the left at the knot
+    if (*it > first_) {
+      left_value = PieceData(*it - 1) + dimension_, left_slope = PieceData(*it - 1) + 3 * dimension_;
+    } else if (*it == 0 && !origin_.empty()) {
+      left_value = origin_.data(), left_slope = origin_.data() + dimension_;
+    } else {
+      continue;  // the oldest piece kept: its predecessor is gone
+    }
+    const double* right = PieceData(*it);
+    const double slope_jump = right[2 * dimension_ + i] - left_slope[i], value_jump = right[i] - left_value[i];
+    if (slope_jump != 0 || value_jump != 0) out.push_back({t_begin_[*it], slope_jump, value_jump});
   }
 }
 
 void HermiteHistory::DiscardBefore(double t) {
   while (first_ + 1 < t_begin_.size() && t_end_[first_] < t) ++first_;
+  if (first_ > 0) origin_.clear();  // the first piece is forgotten, and with it its knot
   // Compact when more than half of the storage is dead, so appends stay amortized O(1).
   if (first_ > 32 && first_ * 2 > t_begin_.size()) {
     const auto n = static_cast<std::ptrdiff_t>(first_);

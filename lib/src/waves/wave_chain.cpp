@@ -14,8 +14,10 @@ double Incoming(double z_above, double above, double z_below, double below) {
 
 // A kink matters to a piece of length h when the quartic across it would miss by more than the tolerance unit: by
 // up to 0.077 |slope jump| h (a kink at 0.4 h). Smaller ones (the weak reflections at the damped nodes) are left
-// to the pieces.
-bool Matters(double slope_jump, double h, double scale) { return 0.08 * std::abs(slope_jump) * h > scale; }
+// to the pieces. A jump matters above a tenth of the unit (the network's AutomaticJumpThreshold, relative here).
+bool Matters(const integration::HermiteHistory::Kink& k, double h, double scale) {
+  return 0.08 * std::abs(k.slope_jump) * h > scale || std::abs(k.value_jump) > 0.1 * scale;
+}
 
 }  // namespace
 
@@ -216,7 +218,10 @@ double WaveChain::Prepare(const StepEnds& step, double abs_tol, double rel_tol) 
     if (splits && j > 0 && j < m_) {
       const double scale = WaveScale(b, abs_tol, rel_tol);
       split_times_.clear();
-      ArrivingKinks(j, step.t0, step.t1, scale, split_times_);
+      // A knot that arrives on the step's start: the waves kept from the last step's end are its left limits.
+      if (ArrivingKinks(j, step.t0, step.t1, scale, split_times_) && start_is_last_end_ &&
+          step.t0 == last_commit_end_)
+        NodeWaves(j, step.t0, Side::kRight, &out0_[b], &d0_[b]);
       if (!split_times_.empty()) {
         worst = std::max(worst, SplitNodeWaves(j, step.t0, step.t1, abs_tol, rel_tol));
         continue;
@@ -236,7 +241,7 @@ void WaveChain::Commit(double t0, double t1, double read_back, std::vector<doubl
     if (split < num_splits_ && splits_[split].node == j) {
       const SplitWaves& s = splits_[split++];
       for (std::size_t q = 0; q + 1 < s.time.size(); ++q)
-        history.Append(s.time[q], &s.value[2 * q], &s.rate_right[2 * q], s.time[q + 1], &s.value[2 * q + 2],
+        history.Append(s.time[q], &s.value_right[2 * q], &s.rate_right[2 * q], s.time[q + 1], &s.value_left[2 * q + 2],
                        &s.rate_left[2 * q + 2], &s.mid[2 * q]);
     } else {
       const int b = NodeBlock(j);
@@ -259,21 +264,26 @@ double WaveChain::WaveScale(int b, double abs_tol, double rel_tol) const {
                                        std::abs(out1_[b + 1])});
 }
 
-// Times within (t0, t1) at which kinks that matter arrive at internal node j, sorted, without repeats.
-void WaveChain::ArrivingKinks(int j, double t0, double t1, double scale, std::vector<double>& times) const {
+// Times within (t0, t1) at which kinks or jumps that matter arrive at internal node j, sorted, without repeats;
+// returns whether one arrives on t0 itself (within rounding).
+bool WaveChain::ArrivingKinks(int j, double t0, double t1, double scale, std::vector<double>& times) const {
   const std::vector<double>& tau = spec_.tau;
+  const double h = t1 - t0, margin = 1e-9 * h;
   kinks_.clear();
-  NodeHistory(j - 1).KinksIn(t0 - tau[j - 1], t1 - tau[j - 1], 1, kinks_);
+  NodeHistory(j - 1).KinksIn(t0 - margin - tau[j - 1], t1 - tau[j - 1], 1, kinks_);
   for (auto& k : kinks_) k.time_s += tau[j - 1];
   const std::size_t from_above = kinks_.size();
-  NodeHistory(j + 1).KinksIn(t0 - tau[j], t1 - tau[j], 0, kinks_);
+  NodeHistory(j + 1).KinksIn(t0 - margin - tau[j], t1 - tau[j], 0, kinks_);
   for (std::size_t i = from_above; i < kinks_.size(); ++i) kinks_[i].time_s += tau[j];
-  const double h = t1 - t0, margin = 1e-9 * h;
-  for (const auto& k : kinks_)
-    if (k.time_s > t0 + margin && k.time_s < t1 - margin && Matters(k.slope_jump, h, scale)) times.push_back(k.time_s);
+  bool at_start = false;
+  for (const auto& k : kinks_) {
+    if (k.time_s <= t0 + margin) at_start = at_start || k.time_s >= t0 - margin;
+    else if (k.time_s < t1 - margin && Matters(k, h, scale)) times.push_back(k.time_s);
+  }
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end(), [&](double a, double b) { return b - a <= margin; }),
               times.end());
+  return at_start;
 }
 
 // The two waves internal node j sends at time t (and their rates): algebraic in the waves arriving.
@@ -300,21 +310,20 @@ double WaveChain::SplitNodeWaves(int j, double t0, double t1, double abs_tol, do
   s.time.insert(s.time.end(), split_times_.begin(), split_times_.end());
   s.time.push_back(t1);
   const std::size_t parts = s.time.size() - 1;
-  s.value.resize(2 * (parts + 1)), s.rate_left.resize(2 * (parts + 1)), s.rate_right.resize(2 * (parts + 1));
+  for (auto* v : {&s.value_left, &s.value_right, &s.rate_left, &s.rate_right}) v->resize(2 * (parts + 1));
   s.mid.resize(2 * parts);
-  std::copy_n(&out0_[b], 2, &s.value[0]), std::copy_n(&d0_[b], 2, &s.rate_right[0]);
-  std::copy_n(&out1_[b], 2, &s.value[2 * parts]), std::copy_n(&d1_[b], 2, &s.rate_left[2 * parts]);
-  double unused[2];
-  for (std::size_t q = 1; q < parts; ++q) {
-    NodeWaves(j, s.time[q], Side::kLeft, &s.value[2 * q], &s.rate_left[2 * q]);
-    NodeWaves(j, s.time[q], Side::kRight, unused, &s.rate_right[2 * q]);
+  std::copy_n(&out0_[b], 2, &s.value_right[0]), std::copy_n(&d0_[b], 2, &s.rate_right[0]);
+  std::copy_n(&out1_[b], 2, &s.value_left[2 * parts]), std::copy_n(&d1_[b], 2, &s.rate_left[2 * parts]);
+  for (std::size_t q = 1; q < parts; ++q) {  // both limits: a jump may arrive there
+    NodeWaves(j, s.time[q], Side::kLeft, &s.value_left[2 * q], &s.rate_left[2 * q]);
+    NodeWaves(j, s.time[q], Side::kRight, &s.value_right[2 * q], &s.rate_right[2 * q]);
   }
   double worst = 0, quarter[2];
   for (std::size_t q = 0; q < parts; ++q) {
     const double start = s.time[q], h = s.time[q + 1] - start;
     NodeWaves(j, start + 0.5 * h, Side::kLeft, &s.mid[2 * q], nullptr);
     NodeWaves(j, start + 0.25 * h, Side::kLeft, quarter, nullptr);
-    worst = std::max(worst, integration::QuarterPointError(2, h, &s.value[2 * q], &s.value[2 * q + 2],
+    worst = std::max(worst, integration::QuarterPointError(2, h, &s.value_right[2 * q], &s.value_left[2 * q + 2],
                                                            &s.rate_right[2 * q], &s.rate_left[2 * q + 2],
                                                            &s.mid[2 * q], quarter, abs_tol, rel_tol));
   }
@@ -329,7 +338,7 @@ void WaveChain::EndKinks(const integration::HermiteHistory& sender, int comp, do
   sender.KinksIn(t0, t1, comp, kinks_);
   const double scale = prepared_scale_[0] + prepared_scale_[1] * std::abs(out0_[b]);  // out0_: now this step's end
   for (const auto& k : kinks_)
-    if (Matters(k.slope_jump, t1 - t0, scale)) end_kinks.push_back(k.time_s + tau);
+    if (Matters(k, t1 - t0, scale)) end_kinks.push_back(k.time_s + tau);
 }
 
 }  // namespace drillwave::waves

@@ -47,14 +47,17 @@ class HermiteHistory {
   // (5-point Gauss–Legendre per piece). Used for the energy carried by waves in flight.
   double IntegrateSquare(int i, double a, double b) const;
 
-  // A knot between two stored pieces where component i's slope jumps (a kink, which the pieces store exactly): its
-  // time and the jump, right slope minus left.
+  // A knot between two stored pieces where component i's slope or value jumps (a kink or a jump, which the pieces
+  // store exactly): its time and the jumps, right limit minus left.
   struct Kink {
     double time_s;
     double slope_jump;
+    double value_jump;
   };
-  // Appends to out the knots in [a, b) (not the start of the oldest piece kept) where component i's slope jumps by
-  // more than rounding (1e-12 relative). Cheap: Append indexes such knots, and most knots have none.
+  // Appends to out the knots in [a, b) where component i's slope or value jumps by more than rounding (1e-12
+  // relative): between two pieces, and between the prehistory and the first piece while that is kept (a start that
+  // does not continue the prehistory). Not the start of an oldest piece kept whose predecessor is gone. Cheap:
+  // Append indexes such knots, and most knots have none.
   void KinksIn(double a, double b, int i, std::vector<Kink>& out) const;
 
   // Forgets pieces that end before t (for constant delays: t = now - largest delay).
@@ -76,7 +79,9 @@ class HermiteHistory {
   std::vector<double> t_begin_;
   std::vector<double> t_end_;
   std::vector<double> data_;    // per piece: x0[dim], x1[dim], d0[dim], d1[dim], bubble[dim]
-  std::vector<std::size_t> kinked_;  // pieces (indices as above, ascending) whose start slope differs from the last end's
+  std::vector<std::size_t> kinked_;  // pieces (indices as above, ascending) whose start differs from the last end
+  // The prehistory's value and slope at the first piece's start, while that piece is kept (its knot can be a kink).
+  std::vector<double> origin_;  // value[dim], slope[dim]; empty once the first piece is forgotten
   mutable std::size_t kink_hint_ = 0;  // index into kinked_ of the last KinksIn answer (a cache, like hint_)
   mutable std::vector<double> scratch_value_, scratch_deriv_;
   mutable std::size_t hint_ = 0;  // piece of the last look-up (a cache; makes a history unsafe to share across threads)

@@ -12,9 +12,10 @@
 // the massless nodes into a tridiagonal system (HeldNodes; with side friction too a convex problem).
 //
 // Each node keeps the history of the two waves it sends (U_{j-1} up into piece j-1, D_j down into piece j). An
-// internal node's waves are algebraic in the waves arriving at it; where a kink arrives within a step (an event's,
-// passed on from node to node) they are stored in parts split at the kink, so that every stored quartic passes the
-// error check. Kinks that reach the top or the bit are reported, for the caller to stop its steps there.
+// internal node's waves are algebraic in the waves arriving at it; where a kink or a jump arrives within a step (an
+// event's, an imposed end speed's, the start's out of the steady prehistory; passed on from node to node) they are
+// stored in parts split at it, so that every stored quartic passes the error check and a jump stays a jump. Kinks and
+// jumps that reach the top or the bit are reported, for the caller to stop its steps there.
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -70,7 +71,7 @@ class WaveChain {
   };
   double Prepare(const StepEnds& step, double abs_tol, double rel_tol);
   // Appends the prepared step to the node histories, forgets what lies further back than read_back, and adds to
-  // end_kinks the times at which the kinks just stored next to the top and the bit reach them.
+  // end_kinks the times at which the kinks and jumps just stored next to the top and the bit reach them.
   void Commit(double t0, double t1, double read_back, std::vector<double>& end_kinks);
   // The step's start is not the last committed end (an event or a breakpoint lies between): Prepare computes it.
   void ForgetStart() { start_is_last_end_ = false; }
@@ -78,7 +79,7 @@ class WaveChain {
  private:
   struct SplitWaves {  // a node's waves over a step in parts: part q spans time[q]..time[q + 1]
     int node = 0;
-    std::vector<double> time, value, rate_left, rate_right, mid;
+    std::vector<double> time, value_left, value_right, rate_left, rate_right, mid;  // limits at the part ends
   };
 
   integration::HermiteHistory& NodeHistory(int j) { return node_waves_[j]; }
@@ -96,7 +97,7 @@ class WaveChain {
   void SolveHeldNodes(const double* in, double top, double bit, const double* v, double* out) const;
   void Outgoing(double t, ChainEnds speeds, const ChainEnds* rates, Side side, double* out, double* rate) const;
   double WaveScale(int b, double abs_tol, double rel_tol) const;
-  void ArrivingKinks(int j, double t0, double t1, double scale, std::vector<double>& times) const;
+  bool ArrivingKinks(int j, double t0, double t1, double scale, std::vector<double>& times) const;
   void NodeWaves(int j, double t, Side side, double* out, double* rate) const;
   double SplitNodeWaves(int j, double t0, double t1, double abs_tol, double rel_tol);
   void EndKinks(const integration::HermiteHistory& sender, int comp, double tau, double t0, double t1, int b,
