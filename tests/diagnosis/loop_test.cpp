@@ -143,7 +143,11 @@ DiagnosisLoop AgainstTwin(const nlohmann::json& doc, const Recording& twin, doub
 // Judged over three draws (the bottom roughness's seed and the noise's moved), the bouncing bit's runs differ, and the
 // baseline stands for the median draw: its held-out error is the middle one of the three draws'.
 TEST(DiagnosisLoop, TheBaselineIsJudgedByItsMedianDraw) {
-  const nlohmann::json doc = BouncingCase();
+  // At the case's tol 1e-5 the bouncing and the drilling regime are both within reach of the case's own start: the
+  // off-bottom share was 36 % before the coupled kind followed the start's kink and 0.1 % after; at 1e-6 it is 56 %,
+  // at 1e-7 57 % (both engines alike). The twin needs the case's draw in the regime the other draws are in.
+  nlohmann::json doc = BouncingCase();
+  doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-6;
   const Recording twin = BouncingTwin(cases::RunCase(cases::ParseCase(doc)).result, true);
   LoopOptions o;
   o.maps = kAxialMaps;

@@ -20,12 +20,14 @@ void Network::Validate() const {
   for (const Section& s : sections)
     if (!(s.dashpot >= 0) || !std::isfinite(s.dashpot))
       throw std::invalid_argument("a section's Kelvin-Voigt dashpot must be >= 0 and finite");
+  for (std::size_t i = 1; i + 1 < nodes.size(); ++i) {
+    const Node& n = nodes[i];
+    if (!n.massless() || n.drive != Drive::kNone || n.friction || n.lateral || !(n.ground_damping >= 0) ||
+        !std::isfinite(n.ground_damping))
+      throw std::invalid_argument("node '" + n.name + "': a node inside the string (between two sections) is massless, "
+                                  "undriven and without friction, with a finite damper >= 0 at most");
+  }
   for (const Node& n : nodes) {
-    // A massless node with friction between dashpots would make the node speeds a nonlinear system; at the bit, the
-    // last node, it is one scalar equation after the tridiagonal sweep, which the simulation solves.
-    if (HasKelvinVoigt() && n.massless() && n.friction && &n != &nodes.back())
-      throw std::invalid_argument("node '" + n.name + "': friction at a massless node inside the string is not "
-                                  "combined with Kelvin-Voigt damping (give the node an inertia; at the bit it is)");
     if (n.lateral && (n.massless() || &n != &nodes.back()))
       throw std::invalid_argument("node '" + n.name + "': a lateral BHA (unbalance) sits at the bit, with an inertia "
                                   "> 0");

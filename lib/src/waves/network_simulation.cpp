@@ -3,15 +3,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
-#include <map>
+#include <optional>
+#include <queue>
 #include <stdexcept>
 
 #include <boost/math/tools/roots.hpp>
 
-#include "drillwave/integration/breakpoints.hpp"
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/simulator.hpp"
+#include "drillwave/waves/wave_chain.hpp"
 
 namespace drillwave::waves {
 namespace {
@@ -22,32 +24,43 @@ using State = std::vector<double>;
 
 constexpr int kNone = -1;
 constexpr int kBitAngle = 0;
-// Kelvin-Voigt dashpots pass a discontinuity on to the neighbouring nodes at once up to this order (Echo).
-constexpr int kMaxSpreadOrder = 2;
-
-struct Arrivals {
-  double above = 0, below = 0;
-};
+constexpr double kInf = std::numeric_limits<double>::infinity();
 // The slip branch of a set-valued law is continued to the far side of zero by its limit at zero (trial stages can
 // overshoot a stop before the event that ends the regime is located).
 constexpr double kTinySpeed = 1e-300;
 
-// The mutable side of a run: committed wave buffers, friction regimes, pending breakpoints.
-// State layout: the bit angle (for statistics and, later, the cut-depth delay), then the speeds of nodes with
-// inertia, then PI integrals, DC motor currents, induction motor fluxes (4 each), for a node behind a compliant
+// The chain of the network's sections (WaveChain): the inner nodes' dampers; the ends' own dampers, drives and
+// friction stay with the process.
+ChainSpec ChainOf(const Network& net) {
+  ChainSpec spec;
+  for (const Section& s : net.sections) {
+    spec.z.push_back(s.impedance), spec.tau.push_back(s.travel_time_s), spec.kv.push_back(s.dashpot);
+  }
+  if (!net.HasKelvinVoigt()) spec.kv.clear();
+  for (std::size_t i = 0; i < net.nodes.size(); ++i) {
+    const bool end = i == 0 || i + 1 == net.nodes.size();
+    spec.damping.push_back(end ? 0.0 : net.nodes[i].ground_damping);
+  }
+  spec.load.assign(net.nodes.size(), 0.0), spec.coulomb.assign(net.nodes.size(), 0.0);
+  return spec;
+}
+
+// The mutable side of a run: the string's waves (a WaveChain: the inner nodes are massless, their waves stored split
+// at the kinks and jumps that arrive there), the ends' friction regimes, the breakpoints pending at the ends.
+// State layout: the bit angle (for statistics and, later, the cut-depth delay), then the speeds of the ends with
+// inertia, then PI integrals, DC motor currents, induction motor fluxes (4 each), for an end behind a compliant
 // gear its motor's speed (referred to the node) and the gear's twist, the bit's lateral BHA (x, y, x', y'), and with
-// Kelvin-Voigt damping and record_energy the energy the dashpots have dissipated. Other angles are not integrated:
-// nothing reads them and they would only add work.
+// Kelvin-Voigt damping and record_energy the energy the dashpots have dissipated. The top's angle is not integrated:
+// nothing reads it.
 class NetworkProcess {
  public:
   NetworkProcess(const Network& net, const NetworkRunOptions& options)
       : net_(net),
         options_(options),
-        kink_threshold_(options.echo_weight_threshold > 0 ? options.echo_weight_threshold
-                                                          : AutomaticKinkThreshold(options.integrator)),
-        jump_threshold_(AutomaticJumpThreshold(options.integrator)),
         num_nodes_(static_cast<int>(net.nodes.size())),
-        waves_(2 * static_cast<int>(net.sections.size())) {
+        bit_(num_nodes_ - 1),
+        chain_(ChainOf(net), net.initial.speed_rad_s, net.bit().SteadyLoad(net.initial.speed_rad_s)),
+        slopes_(chain_.end_slopes()) {
     int next = 1;  // index 0: bit angle
     speed_index_.assign(num_nodes_, kNone);
     integral_index_.assign(num_nodes_, kNone);
@@ -55,27 +68,33 @@ class NetworkProcess {
     flux_index_.assign(num_nodes_, kNone);
     motor_speed_index_.assign(num_nodes_, kNone);
     regime_.assign(num_nodes_, Turn::kForward);
-    for (int i = 0; i < num_nodes_; ++i)
+    const std::array<int, 2> ends{0, bit_};
+    for (int i : ends)
       if (!net.nodes[i].massless()) speed_index_[i] = next++;
-    for (int i = 0; i < num_nodes_; ++i)
+    for (int i : ends)
       if (net.nodes[i].has_speed_integral()) integral_index_[i] = next++;
-    for (int i = 0; i < num_nodes_; ++i)
+    for (int i : ends)
       if (net.nodes[i].has_dc_motor()) current_index_[i] = next++;
-    for (int i = 0; i < num_nodes_; ++i)
+    for (int i : ends)
       if (net.nodes[i].has_induction_motor()) flux_index_[i] = next, next += 4;
-    for (int i = 0; i < num_nodes_; ++i)
+    for (int i : ends)
       if (net.nodes[i].has_compliant_gear()) motor_speed_index_[i] = next, next += 2;  // motor speed, then twist
     if (net.bit().lateral) lateral_index_ = next, next += 4;  // x, y, x', y'
     kelvin_voigt_ = net.HasKelvinVoigt();
-    massless_bit_friction_ = kelvin_voigt_ && net.bit().massless() && net.bit().friction;
     if (kelvin_voigt_ && options.record_energy) dissipated_index_ = next++;
     dimension_ = next;
-    for (int i = 0; i < num_nodes_; ++i)
+    for (int i : ends)
       if (net.nodes[i].has_set_valued_friction()) frictional_nodes_.push_back(i);
-    max_travel_time_ = net.LargestTravelTime();
-    if (kelvin_voigt_) FactorNodeSystem();
-    InitializeWaves();
+    steady_torque_ = net_.SteadyTopTorque();
+    read_back_ = 2.0 * net.LargestTravelTime() + 1.0;  // what the delays can still reach, and output look-ups
+    if (!kelvin_voigt_) {
+      if (!KnownSpeed(0)) top_end_.emplace(*this, 0, -slopes_.top_top);
+      if (!KnownSpeed(bit_)) bit_end_.emplace(*this, bit_, -slopes_.bit_bit);
+      chain_.CloseEnds(top_end_ ? &*top_end_ : nullptr, bit_end_ ? &*bit_end_ : nullptr);
+    }
   }
+  NetworkProcess(const NetworkProcess&) = delete;  // the chain keeps pointers to the ends' closures
+  NetworkProcess& operator=(const NetworkProcess&) = delete;
 
   int Dimension() const { return dimension_; }
   double MaxStep() const { return net_.SmallestTravelTime(); }
@@ -134,15 +153,18 @@ class NetworkProcess {
 
   void Derivatives(const State& x, State& dxdt, double t) const {
     const Side side = SideAt(t);
-    if (kelvin_voigt_) {  // every node's speed at once: the dashpots couple them
-      SolveNodeSpeeds(x, t, side, speeds_);
-      if (dissipated_index_ != kNone) dxdt[dissipated_index_] = DashpotPower(speeds_);
+    const ChainEnds v = EndSpeeds(x, t, side, dissipated_index_ != kNone ? Massless::kBoth : Massless::kBit);
+    // Without dashpots each end's force reads only the wave arriving there; with them one solve gives both.
+    const ChainEnds force = kelvin_voigt_ ? chain_.EndForces(t, side, v) : ChainEnds{0.0, 0.0};
+    if (dissipated_index_ != kNone) {
+      chain_.NodeSpeedsAt(t, side, v, speeds_);
+      dxdt[dissipated_index_] = DashpotPower(speeds_);
     }
-    dxdt[kBitAngle] = Speed(num_nodes_ - 1, x, t, side);
-    for (int i = 0; i < num_nodes_; ++i) {
+    dxdt[kBitAngle] = v.bit;
+    for (int i : {0, bit_}) {
       const Node& node = net_.nodes[i];
-      if (speed_index_[i] == kNone) continue;  // drives, motors and gears sit on nodes with inertia (Validate)
-      const double v = Speed(i, x, t, side), vd = DriveSpeed(i, x, v);
+      if (speed_index_[i] == kNone) continue;  // drives, motors and gears sit on ends with inertia (Validate)
+      const double vi = i == 0 ? v.top : v.bit, vd = DriveSpeed(i, x, vi);
       if (integral_index_[i] != kNone) dxdt[integral_index_[i]] = Setpoint(node, t, side) - vd;
       if (current_index_[i] != kNone) {
         const DcMotor& m = node.motor;
@@ -156,55 +178,53 @@ class NetworkProcess {
       }
       if (motor_speed_index_[i] != kNone) {
         dxdt[motor_speed_index_[i]] =
-            (DriveTorque(i, x, vd, t, side) - GearTorque(i, x, v)) / node.gear.ReferredMotorInertia();
-        dxdt[motor_speed_index_[i] + 1] = vd - v;
+            (DriveTorque(i, x, vd, t, side) - GearTorque(i, x, vi)) / node.gear.ReferredMotorInertia();
+        dxdt[motor_speed_index_[i] + 1] = vd - vi;
       }
       double& a = dxdt[speed_index_[i]];
       if (regime_[i] == Turn::kStuck) {
         a = 0;
         continue;
       }
-      double torque = StringTorqueOnNode(i, v, t, side) - node.ground_damping * v + TorqueIntoNode(i, x, v, t, side);
-      if (kelvin_voigt_) torque += DashpotTorque(i, speeds_);
-      if (node.lateral) torque += node.lateral->Reaction(x[kBitAngle], v, Lateral(x));
-      if (node.friction) torque -= SlipFriction(i, v);
+      const double string = kelvin_voigt_ ? (i == 0 ? force.top : force.bit)
+                                          : (i == 0 ? chain_.TopForce(t, side, v) : chain_.BitForce(t, side, v));
+      double torque = string - node.ground_damping * vi + TorqueIntoNode(i, x, vi, t, side);
+      if (node.lateral) torque += node.lateral->Reaction(x[kBitAngle], vi, Lateral(x));
+      if (node.friction) torque -= SlipFriction(i, vi);
       a = torque / node.LumpedInertia();
     }
     if (lateral_index_ != kNone) {  // the bit's lateral BHA, driven by the bit's angular acceleration
-      const int bit = num_nodes_ - 1;
-      const auto rates = net_.bit().lateral->Rates(x[kBitAngle], Speed(bit, x, t, side), dxdt[speed_index_[bit]], Lateral(x));
+      const auto rates = net_.bit().lateral->Rates(x[kBitAngle], v.bit, dxdt[speed_index_[bit_]], Lateral(x));
       std::copy(rates.begin(), rates.end(), dxdt.begin() + lateral_index_);
     }
   }
 
-  // The waves leaving every node over the piece, and how well their cubic Hermite interpolant matches the exact
-  // midpoint value: a wave buffer is history too, and its interpolation error is invisible to the stepper.
+  // The waves leaving every node over the piece, checked and prepared by the chain (WaveChain::Prepare) from the
+  // ends' speeds: a wave buffer is history too, and its interpolation error is invisible to the stepper.
   double PrepareCommit(const integration::Piece& p, double abs_tol, double rel_tol) {
-    const int m = waves_.dimension();
-    out0_.resize(m), out1_.resize(m), outm_.resize(m), d0_.resize(m), d1_.resize(m);
-    // Without a breakpoint or event in between, the start of this piece is the end of the last one.
-    if (!(start_is_last_end_ && p.t0 == last_end_time_)) OutgoingWaves(p.t0, p.x0, p.f0, Side::kRight, out0_.data(), d0_.data());
-    OutgoingWaves(p.t1, p.x1, p.f1, Side::kLeft, out1_.data(), d1_.data());
-    OutgoingWaves(0.5 * (p.t0 + p.t1), p.x_mid, p.f1, Side::kLeft, outm_.data(), nullptr);
-    // The stored quartic against the exact outgoing waves at a quarter of the piece (state from the piece's own
-    // interpolant): the error of what later look-ups will read.
-    const double h = p.t1 - p.t0, tq = p.t0 + 0.25 * h;
+    const double h = p.t1 - p.t0, tq = p.t0 + 0.25 * h, tm = p.t0 + 0.5 * h;
     state_quarter_.resize(p.x0.size());
-    outq_.resize(m);
     integration::InterpolatePiece(p, tq, state_quarter_);
-    OutgoingWaves(tq, state_quarter_, p.f1, Side::kLeft, outq_.data(), nullptr);
-    return integration::QuarterPointError(m, h, out0_.data(), out1_.data(), d0_.data(), d1_.data(), outm_.data(),
-                                          outq_.data(), abs_tol, rel_tol);
+    WaveChain::StepEnds step{};
+    step.t0 = p.t0, step.t1 = p.t1;
+    const Massless asked = kelvin_voigt_ ? Massless::kBoth : Massless::kNeither;  // else the chain closes them
+    if (chain_.ReadsStart(p.t0)) {  // else the chain reuses the last step's end
+      step.speed0 = EndSpeeds(p.x0, p.t0, Side::kRight, asked);
+      step.rate0 = EndSpeedRates(p.f0, p.t0, Side::kRight, step.speed0);
+    }
+    step.speed_quarter = EndSpeeds(state_quarter_, tq, Side::kLeft, asked);
+    step.speed_mid = EndSpeeds(p.x_mid, tm, Side::kLeft, asked);
+    step.speed1 = EndSpeeds(p.x1, p.t1, Side::kLeft, asked);
+    step.rate1 = EndSpeedRates(p.f1, p.t1, Side::kLeft, step.speed1);
+    return chain_.Prepare(step, abs_tol, rel_tol);
   }
 
   void Commit(const integration::Piece& p) {
-    waves_.Append(p.t0, out0_.data(), d0_.data(), p.t1, out1_.data(), d1_.data(), outm_.data());
-    out0_.swap(out1_);
-    d0_.swap(d1_);
-    last_end_time_ = p.t1;
-    start_is_last_end_ = true;
-    // Keep what the delays can still reach, plus a margin for output look-ups.
-    waves_.DiscardBefore(p.t1 - 2.0 * max_travel_time_ - 1.0);
+    while (!end_breaks_.empty() && end_breaks_.top() < p.t1) end_breaks_.pop();
+    arriving_.clear();
+    chain_.Commit(p.t0, p.t1, read_back_, arriving_);
+    for (double t : arriving_)
+      if (t < t_end_) end_breaks_.push(t);
   }
 
   int NumWitnesses() const { return 2 * static_cast<int>(frictional_nodes_.size()); }
@@ -225,81 +245,66 @@ class NetworkProcess {
     regime_[i] = after;
     if (after == Turn::kStuck || before == Turn::kStuck) x[speed_index_[i]] = 0;
     changes_.push_back({t, i, before, after});
-    start_is_last_end_ = false;
-    Source(i, t, 1);
+    chain_.ForgetStart();  // the end's waves kink here
     return after != before;
   }
 
-  double NextBreakpoint() const { return breakpoints_.NextTime(); }
-  void OnBreakpoint(double t) {
-    start_is_last_end_ = false;
-    std::vector<integration::Breakpoint> due = breakpoints_.PopAt(t, 1e-12 * std::max(1.0, std::abs(t)));
-    if (kelvin_voigt_) EchoArrivalsThroughDashpots(t, due);  // takes the arrivals at massless nodes out of `due`
-    for (const auto& b : due) Echo(b);
+  // Breakpoints: the knots of the ends' input schedules (a repeated knot is a jump), and the kinks and jumps that the
+  // chain reports on their way to an end. The start needs none: the chain finds where the first waves leave the
+  // steady prehistory (a string at rest under a top speed that starts at 20 rad/s).
+  double NextBreakpoint() const {
+    double next = end_breaks_.empty() ? kInf : end_breaks_.top();
+    for (int i : {0, bit_}) next = std::min(next, net_.nodes[i].setpoint.NextKnotAfter(passed_));
+    return next;
   }
-
-  // Sources of breakpoints: every knot of every input schedule (a repeated knot time is a jump) and the start,
-  // which is followed as a jump: the initial waves need not match the inputs at t0 (a string at rest under a
-  // top speed that starts at 20 rad/s).
-  void SeedBreakpoints(double t0, double t_end) {
-    for (int i = 0; i < num_nodes_; ++i) {
-      const auto& knots = net_.nodes[i].setpoint.knots();
-      for (std::size_t k = 0; k < knots.size(); ++k) {
-        const double tk = knots[k].first;
-        const bool repeated = k > 0 && knots[k - 1].first == tk;
-        const bool jump = repeated || (k + 1 < knots.size() && knots[k + 1].first == tk);
-        if (tk > t0 && tk < t_end && !repeated) breakpoints_.Push({tk, i, 1.0, jump ? 0 : 1, kNone, 0});
-      }
-      const Node& node = net_.nodes[i];
-      if (!node.massless()) Source(i, t0, 1);
-      else if (node.drive != Drive::kNone) Source(i, t0, 0);  // a driven massless end can jump at t0
-    }
+  void OnBreakpoint(double t) {
+    passed_ = t;
+    chain_.ForgetStart();
+    while (!end_breaks_.empty() && end_breaks_.top() <= t + 1e-12 * std::max(1.0, std::abs(t))) end_breaks_.pop();
   }
 
   // Outputs at time t for a state x (interpolated by the caller).
   void Sample(double t, const State& x, NetworkTrajectory& out) const {
     const Side side = Side::kLeft;
-    const int top = 0, bit = num_nodes_ - 1;
-    const double v_top = Speed(top, x, t, side), v_bit = Speed(bit, x, t, side);
+    const int top = 0;
+    const ChainEnds v = EndSpeeds(x, t, side);
     out.time_s.push_back(t);
-    out.top_speed_rad_s.push_back(v_top);
-    out.bit_speed_rad_s.push_back(v_bit);
-    double top_torque = -StringTorqueOnNode(top, v_top, t, side);
-    if (kelvin_voigt_) {
-      SolveNodeSpeeds(x, t, side, speeds_);
-      top_torque -= DashpotTorque(top, speeds_);
-    }
-    out.top_torque_nm.push_back(top_torque);
-    out.bit_torque_nm.push_back(BitTorque(bit, x, t, side));
+    out.top_speed_rad_s.push_back(v.top);
+    out.bit_speed_rad_s.push_back(v.bit);
+    out.top_torque_nm.push_back(-chain_.TopForce(t, side, v));
+    out.bit_torque_nm.push_back(BitTorque(x, t, v.bit));
     out.bit_angle_rad.push_back(x[kBitAngle]);
-    out.bit_stuck.push_back(regime_[bit] == Turn::kStuck && net_.nodes[bit].has_set_valued_friction() ? 1.0 : 0.0);
+    out.bit_stuck.push_back(regime_[bit_] == Turn::kStuck && net_.bit().has_set_valued_friction() ? 1.0 : 0.0);
     if (current_index_[top] != kNone) out.top_current_a.push_back(x[current_index_[top]]);
     if (flux_index_[top] != kNone)
       out.top_current_a.push_back(net_.nodes[top].induction.StatorCurrentRms(Fluxes(top, x)));
     if (motor_speed_index_[top] != kNone) {
       out.motor_speed_rad_s.push_back(net_.nodes[top].gear.ratio * x[motor_speed_index_[top]]);
-      out.gear_torque_nm.push_back(GearTorque(top, x, v_top));
+      out.gear_torque_nm.push_back(GearTorque(top, x, v.top));
     }
-    if (options_.record_energy) out.energy_j.push_back(StoredEnergy(t, x));
+    if (options_.record_energy) out.energy_j.push_back(StoredEnergy(t, x, v));
     if (dissipated_index_ != kNone) out.dissipated_j.push_back(x[dissipated_index_]);
     if (lateral_index_ != kNone) out.lateral_displacement_m.push_back(std::hypot(x[lateral_index_], x[lateral_index_ + 1]));
   }
 
   const std::vector<RegimeChange>& changes() const { return changes_; }
+  void set_t_end(double t_end) { t_end_ = t_end; }
 
-  // Kinetic energy of the nodes plus the energy in flight in every section: the energy density of a section is
-  // rho J (D^2 + U^2), so a section holds Z times the integral of D^2 + U^2 over the last travel time.
-  double StoredEnergy(double t, const State& x) const {
+ private:
+  Side SideAt(double t) const { return t <= step_start_ ? Side::kRight : Side::kLeft; }
+
+  // Kinetic energy of the ends (with their motors, gears and lateral BHA) plus the energy of the waves in flight.
+  double StoredEnergy(double t, const State& x, ChainEnds v) const {
     double e = 0;
-    for (int i = 0; i < num_nodes_; ++i)
+    for (int i : {0, bit_})
       if (speed_index_[i] != kNone) {
-        const double v = Speed(i, x, t, Side::kLeft);
-        e += 0.5 * net_.nodes[i].LumpedInertia() * v * v;
+        const double w = i == 0 ? v.top : v.bit;
+        e += 0.5 * net_.nodes[i].LumpedInertia() * w * w;
       }
     if (lateral_index_ != kNone) {  // the bit's lateral BHA: the kinetic energy of eqs. 21-23 beyond J_eff w^2 / 2
       const model::JeffcottBha& b = *net_.bit().lateral;
       const auto s = Lateral(x);
-      const double w = Speed(num_nodes_ - 1, x, t, Side::kLeft), phi = x[kBitAngle];
+      const double w = v.bit, phi = x[kBitAngle];
       const double me_w = b.Moment() * w, along = -s[2] * std::sin(phi) + s[3] * std::cos(phi);
       // 1/2 (M + m) |r' + (m e w / (M + m)) (-sin, cos)|^2 = 1/2 (M + m)|r'|^2 + m e w along + (m e w)^2 / 2 (M + m)
       e += 0.5 * b.TotalMass() * (s[2] * s[2] + s[3] * s[3]) + me_w * along + 0.5 * me_w * me_w / b.TotalMass() +
@@ -311,47 +316,13 @@ class NetworkProcess {
         const double vm = x[motor_speed_index_[i]], twist = x[motor_speed_index_[i] + 1];
         e += 0.5 * g.ReferredMotorInertia() * vm * vm + 0.5 * g.stiffness * twist * twist;
       }
-    for (std::size_t k = 0; k < net_.sections.size(); ++k) {
-      const double tau = net_.sections[k].travel_time_s;
-      e += net_.sections[k].impedance * (waves_.IntegrateSquare(2 * static_cast<int>(k), t - tau, t) +
-                                         waves_.IntegrateSquare(2 * static_cast<int>(k) + 1, t - tau, t));
-    }
-    return e;
-  }
-
- private:
-  Side SideAt(double t) const { return t <= step_start_ ? Side::kRight : Side::kLeft; }
-
-  // Components of the wave history: 2k is the wave leaving the top of section k (going down), 2k+1 the wave
-  // leaving its bottom (going up). A wave arrives at the far end one travel time later.
-  // Waves arriving at node i at time t from the section above and the section below (0 where there is none).
-  Arrivals Arriving(int i, double t, Side side) const {
-    Arrivals in;
-    if (HasAbove(i)) in.above = waves_.Value(t - net_.sections[i - 1].travel_time_s, 2 * (i - 1), side);
-    if (HasBelow(i)) in.below = waves_.Value(t - net_.sections[i].travel_time_s, 2 * i + 1, side);
-    return in;
-  }
-  Arrivals ArrivingRate(int i, double t, Side side) const {
-    Arrivals in;
-    if (HasAbove(i)) in.above = waves_.Derivative(t - net_.sections[i - 1].travel_time_s, 2 * (i - 1), side);
-    if (HasBelow(i)) in.below = waves_.Derivative(t - net_.sections[i].travel_time_s, 2 * i + 1, side);
-    return in;
-  }
-  bool HasAbove(int i) const { return i > 0; }
-  bool HasBelow(int i) const { return i < num_nodes_ - 1; }
-
-  double ImpedanceSum(int i) const {
-    return (HasAbove(i) ? net_.sections[i - 1].impedance : 0.0) + (HasBelow(i) ? net_.sections[i].impedance : 0.0);
-  }
-  // Sum of Z_k * 2 w_in,k over the sections at node i (torque the string would exert on the node held at rest).
-  double TwiceIncoming(int i, const Arrivals& in) const {
-    return (HasAbove(i) ? 2 * net_.sections[i - 1].impedance * in.above : 0.0) +
-           (HasBelow(i) ? 2 * net_.sections[i].impedance * in.below : 0.0);
-  }
-  double TwiceIncoming(int i, double t, Side side) const { return TwiceIncoming(i, Arriving(i, t, side)); }
-  // Torque of the string on node i turning at v: sum of Z_k (2 w_in,k - v).
-  double StringTorqueOnNode(int i, double v, double t, Side side) const {
-    return TwiceIncoming(i, t, side) - ImpedanceSum(i) * v;
+    for (int i : {0, bit_})
+      if (motor_speed_index_[i] != kNone) {
+        const model::Gear& g = net_.nodes[i].gear;
+        const double vm = x[motor_speed_index_[i]], twist = x[motor_speed_index_[i] + 1];
+        e += 0.5 * g.ReferredMotorInertia() * vm * vm + 0.5 * g.stiffness * twist * twist;
+      }
+    return e + chain_.WaveEnergy(t);
   }
 
   static double Setpoint(const Node& node, double t, Side side) {
@@ -431,44 +402,128 @@ class NetworkProcess {
                                                : f.SlipTorque(std::min(v, -kTinySpeed));
   }
 
-  // Everything but friction acting on node i held at rest: what the friction must balance to keep it stuck.
-  // (The callers set the node's regime to stuck first, so that its neighbours' speeds are solved with it at rest.)
+  // Everything but friction acting on end i held at rest: what the friction must balance to keep it stuck.
+  // (The callers set the end's regime to stuck first, so that EndSpeeds gives it 0.)
   double DrivingTorqueAtRest(int i, double t, const State& x) const {
     const Side side = SideAt(t);
-    double torque = TwiceIncoming(i, t, side) + TorqueIntoNode(i, x, 0.0, t, side);
+    const ChainEnds v = EndSpeeds(x, t, side, i == 0 ? Massless::kBoth : Massless::kBit);
+    double torque = (i == 0 ? chain_.TopForce(t, side, v) : chain_.BitForce(t, side, v)) + TorqueIntoNode(i, x, 0.0, t, side);
     if (net_.nodes[i].lateral) torque += net_.nodes[i].lateral->Reaction(x[kBitAngle], 0.0, Lateral(x));
-    if (kelvin_voigt_) {
-      SolveNodeSpeeds(x, t, side, speeds_);
-      torque += DashpotTorque(i, speeds_);
-    }
     return torque;
   }
 
-  // The driving torque on node i held at rest and the static range of its friction.
+  // The driving torque on end i held at rest and the static range of its friction.
   bitrock::AtRest AtRest(int i, double t, const State& x) const {
     const auto& f = *net_.nodes[i].friction;
     return {DrivingTorqueAtRest(i, t, x), {f.StaticPositive(), f.StaticNegative()}};
   }
 
-  // Speed of node i: a state for nodes with inertia, algebraic for massless ones (the balance of the incoming
-  // waves and the external torques, DESIGN.md §1).
-  double Speed(int i, const State& x, double t, Side side) const {
+  // --- The ends' speeds ------------------------------------------------------------------------------------------
+  // An end with inertia has its speed in the state (0 while stuck), an imposed speed is its set-point; a massless end
+  // balances the string's force on it against its own: a - b v with a drive's a (a dissipative top's beta times its
+  // set-point, a torque top's torque) and its dampers' b, and at a massless bit its smooth friction T(v). Without
+  // Kelvin-Voigt dashpots each end feels only the wave arriving there (MasslessEnd, which the chain also uses to
+  // close its ends); with them the string's force is affine in both end speeds, F = F0 + S v (WaveChain::EndSlopes),
+  // and with both ends massless the top's linear balance is folded into the bit's.
+  bool KnownSpeed(int i) const { return speed_index_[i] != kNone || net_.nodes[i].drive == Drive::kPrescribedSpeed; }
+  double KnownSpeedOf(int i, const State& x, double t, Side side) const {
     if (speed_index_[i] != kNone) return regime_[i] == Turn::kStuck ? 0.0 : x[speed_index_[i]];
-    if (kelvin_voigt_) {
-      SolveNodeSpeeds(x, t, side, speeds_);
-      return speeds_[i];
-    }
-    return MasslessSpeed(i, Arriving(i, t, side), t, side);
+    return Setpoint(net_.nodes[i], t, side);
+  }
+  double KnownRateOf(int i, const State& f, double t, Side side) const {
+    if (speed_index_[i] != kNone) return regime_[i] == Turn::kStuck ? 0.0 : f[speed_index_[i]];
+    return SetpointRate(net_.nodes[i], t, side);
+  }
+  // The constant a of a massless end's own balance a - b v (friction aside), its rate, and b.
+  double OwnDrive(int i, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    if (node.drive == Drive::kSpeedDashpot) return node.drive_damping * Setpoint(node, t, side);
+    if (node.drive == Drive::kTorque) return Setpoint(node, t, side);
+    return 0;
+  }
+  double OwnDriveRate(int i, double t, Side side) const {
+    const Node& node = net_.nodes[i];
+    if (node.drive == Drive::kSpeedDashpot) return node.drive_damping * SetpointRate(node, t, side);
+    if (node.drive == Drive::kTorque) return SetpointRate(node, t, side);
+    return 0;
+  }
+  double OwnConductance(int i) const {
+    const Node& node = net_.nodes[i];
+    return node.ground_damping + (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0.0);
   }
 
-  double MasslessSpeed(int i, const Arrivals& in, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    if (node.drive == Drive::kPrescribedSpeed) return Setpoint(node, t, side);
-    // Named variables, not a structured binding: C++17 lets no lambda capture one (GCC allows it, clang refuses).
-    const std::pair<double, double> balance = MasslessBalance(i, TwiceIncoming(i, in), t, side);
-    const double a = balance.first, b = balance.second;
-    if (!node.friction) return a / b;
-    return SmoothFrictionSpeed(*node.friction, a, b);
+  // A massless end without dashpots: F_rest - (Z + c) v + a - b v - T(v) = 0, F_rest = 2 Z w_in.
+  class MasslessEnd : public WaveChain::EndClosure {
+   public:
+    MasslessEnd(const NetworkProcess& p, int i, double string_conductance)
+        : p_(p), i_(i), conductance_(p.OwnConductance(i) + string_conductance),
+          friction_(i == p.bit_ && p.net_.bit().friction ? &*p.net_.bit().friction : nullptr) {}
+    double Speed(double t, Side side, double force_at_rest) const override {
+      const double a = force_at_rest + p_.OwnDrive(i_, t, side);
+      return friction_ ? SmoothFrictionSpeed(*friction_, a, conductance_) : a / conductance_;
+    }
+    double Rate(double t, Side side, double speed, double force_rate_at_rest) const override {
+      return (force_rate_at_rest + p_.OwnDriveRate(i_, t, side)) /
+             (conductance_ + (friction_ ? friction_->SlipTorqueDerivative(speed) : 0.0));
+    }
+
+   private:
+    const NetworkProcess& p_;
+    int i_;
+    double conductance_;
+    const bitrock::FrictionLaw* friction_;
+  };
+
+  // Which massless ends' speeds a caller asks for: without dashpots each costs a look-up, and the chain closes them
+  // itself (Prepare), the right-hand side needs a massless top's only for the dashpots' power.
+  enum class Massless { kBoth, kBit, kNeither };
+
+  ChainEnds EndSpeeds(const State& x, double t, Side side, Massless asked = Massless::kBoth) const {
+    const bool top_known = KnownSpeed(0), bit_known = KnownSpeed(bit_);
+    ChainEnds v{top_known ? KnownSpeedOf(0, x, t, side) : 0.0, bit_known ? KnownSpeedOf(bit_, x, t, side) : 0.0};
+    if (top_known && bit_known) return v;
+    if (!kelvin_voigt_) {
+      if (!top_known && asked == Massless::kBoth) v.top = top_end_->Speed(t, side, chain_.TopForce(t, side, {0, 0}));
+      if (!bit_known && asked != Massless::kNeither) v.bit = bit_end_->Speed(t, side, chain_.BitForce(t, side, {0, 0}));
+      return v;
+    }
+    const ChainEnds f0 = chain_.EndForces(t, side, v);  // the unknown speeds at 0
+    const WaveChain::EndSlopes& s = slopes_;
+    // The top: f0.top + s.top_top v_t + s.top_bit v_b + a_t - b_t v_t = 0.
+    const double top_a = f0.top + OwnDrive(0, t, side), top_b = OwnConductance(0) - s.top_top;
+    if (bit_known) {
+      v.top = (top_a + s.top_bit * v.bit) / top_b;
+      return v;
+    }
+    // The bit: f0.bit + s.bit_top v_t + s.bit_bit v_b + a_b - b_b v_b - T(v_b) = 0.
+    const double a = f0.bit + OwnDrive(bit_, t, side) + (top_known ? 0.0 : s.bit_top * top_a / top_b);
+    const double b = OwnConductance(bit_) - s.bit_bit - (top_known ? 0.0 : s.bit_top * s.top_bit / top_b);
+    const auto& friction = net_.bit().friction;
+    v.bit = friction ? SmoothFrictionSpeed(*friction, a, b) : a / b;
+    if (!top_known) v.top = (top_a + s.top_bit * v.bit) / top_b;
+    return v;
+  }
+  // Their rates, for the chain: the known ones from the state's derivative or the set-point's slope; with dashpots
+  // the massless ones from the derivative of their balances (the bit's friction by its slope at its speed); without,
+  // the chain's MasslessEnd closes them.
+  ChainEnds EndSpeedRates(const State& f, double t, Side side, ChainEnds v) const {
+    const bool top_known = KnownSpeed(0), bit_known = KnownSpeed(bit_);
+    ChainEnds r{top_known ? KnownRateOf(0, f, t, side) : 0.0, bit_known ? KnownRateOf(bit_, f, t, side) : 0.0};
+    if ((top_known && bit_known) || !kelvin_voigt_) return r;
+    const ChainEnds f0 = chain_.EndForceRates(t, side, v, r);
+    const WaveChain::EndSlopes& s = slopes_;
+    const double top_a = f0.top + OwnDriveRate(0, t, side), top_b = OwnConductance(0) - s.top_top;
+    if (bit_known) {
+      r.top = (top_a + s.top_bit * r.bit) / top_b;
+      return r;
+    }
+    const auto& friction = net_.bit().friction;
+    const double a = f0.bit + OwnDriveRate(bit_, t, side) + (top_known ? 0.0 : s.bit_top * top_a / top_b);
+    const double b = OwnConductance(bit_) - s.bit_bit - (top_known ? 0.0 : s.bit_top * s.top_bit / top_b) +
+                     (friction ? friction->SlipTorqueDerivative(v.bit) : 0.0);
+    r.bit = a / b;
+    if (!top_known) r.top = (top_a + s.top_bit * r.bit) / top_b;
+    return r;
   }
 
   // Smooth friction T at a massless node whose linear balance is a - b v: the root of r(v) = a - b v - T(v). r falls
@@ -485,332 +540,47 @@ class NetworkProcess {
         std::min(v0, v1), std::max(v0, v1), 46);
   }
 
-  // Linear part of a massless node's balance: a - b v = sum Z(2 w_in - v) - c v + drive torque.
-  std::pair<double, double> MasslessBalance(int i, double twice_incoming, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    double a = twice_incoming;
-    if (node.drive == Drive::kSpeedDashpot) a += node.drive_damping * Setpoint(node, t, side);
-    else if (node.drive == Drive::kTorque) a += Setpoint(node, t, side);
-    return {a, MasslessConductance(i)};
-  }
-  // b of that balance: the sections' impedances, the node's damper and a dissipative top's beta.
-  double MasslessConductance(int i) const {
-    const Node& node = net_.nodes[i];
-    return ImpedanceSum(i) + node.ground_damping + (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0.0);
+  double BitTorque(const State& x, double t, double v) const {
+    if (!net_.bit().friction) return 0;
+    if (regime_[bit_] == Turn::kStuck) return DrivingTorqueAtRest(bit_, t, x);
+    return SlipFriction(bit_, v);
   }
 
-  // Rate of change of a massless node's speed (implicit derivative of its balance), for the wave buffers.
-  double MasslessSpeedRate(int i, double v, const Arrivals& rate, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    if (node.drive == Drive::kPrescribedSpeed) return SetpointRate(node, t, side);
-    double b = MasslessConductance(i);
-    if (node.friction) b += node.friction->SlipTorqueDerivative(v);
-    return MasslessBalanceRate(i, rate, t, side) / b;
-  }
-  // Rate of the constant part a of a massless node's balance a - b v.
-  double MasslessBalanceRate(int i, const Arrivals& rate, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    double da = TwiceIncoming(i, rate);
-    if (node.drive == Drive::kSpeedDashpot) da += node.drive_damping * SetpointRate(node, t, side);
-    else if (node.drive == Drive::kTorque) da += SetpointRate(node, t, side);
-    return da;
-  }
-
-  double BitTorque(int i, const State& x, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    const double v = Speed(i, x, t, side);
-    if (!node.friction) return 0;
-    if (regime_[i] == Turn::kStuck) return DrivingTorqueAtRest(i, t, x);
-    return SlipFriction(i, v);
-  }
-
-  // --- Kelvin-Voigt: the node system ---------------------------------------------------------------------------
-  // With dashpots kv_k across the sections, a massless node i balances
-  //   (sum Z + c + beta + kv_{i-1} + kv_i) v_i - kv_{i-1} v_{i-1} - kv_i v_{i+1} = sum 2 Z w_in + drive terms,
-  // and a node of known speed (inertial, or imposed) holds it: one tridiagonal system over the chain, whose matrix
-  // does not change during a run (a stuck node is a known speed of 0). Factored once (Thomas algorithm; diagonally
-  // dominant, so stable without pivoting); the speeds' rates solve the same matrix with the rates on the right.
   model::JeffcottBha::Lateral Lateral(const State& x) const {
     return {x[lateral_index_], x[lateral_index_ + 1], x[lateral_index_ + 2], x[lateral_index_ + 3]};
   }
-
-  bool KnownSpeed(int i) const { return speed_index_[i] != kNone || net_.nodes[i].drive == Drive::kPrescribedSpeed; }
-  double DashpotAbove(int i) const { return HasAbove(i) ? net_.sections[i - 1].dashpot : 0.0; }
-  double DashpotBelow(int i) const { return HasBelow(i) ? net_.sections[i].dashpot : 0.0; }
-
-  void FactorNodeSystem() {
-    lower_.assign(num_nodes_, 0.0), ratio_.assign(num_nodes_, 0.0), inv_pivot_.assign(num_nodes_, 0.0);
-    for (int i = 0; i < num_nodes_; ++i) {
-      double diagonal = 1, upper = 0;
-      if (!KnownSpeed(i)) {
-        diagonal = MasslessConductance(i) + DashpotAbove(i) + DashpotBelow(i);
-        lower_[i] = -DashpotAbove(i), upper = -DashpotBelow(i);
-      }
-      inv_pivot_[i] = 1 / (diagonal - (i > 0 ? lower_[i] * ratio_[i - 1] : 0.0));
-      ratio_[i] = upper * inv_pivot_[i];
-    }
-  }
-  // Solves the node system in place: v holds the right-hand side on entry, the speeds on return. A massless bit
-  // with (smooth) friction is the sweep's last node: there the forward sweep leaves the scalar balance a - b v - T(v)
-  // with a its reduced right-hand side and b its pivot (the dashpot chain above folded in), solved as a lone massless
-  // node's; with solve_bit_friction false the bit's balance is linear with T'(v) = bit_friction_slope instead (the
-  // rates' implicit derivative; 0 for the echoes' linear response).
-  void SolveNodeSystem(double* v, bool solve_bit_friction = false, double bit_friction_slope = 0) const {
-    const int bit = num_nodes_ - 1, linear_rows = massless_bit_friction_ ? bit : num_nodes_;
-    for (int i = 0; i < linear_rows; ++i) v[i] = (v[i] - (i > 0 ? lower_[i] * v[i - 1] : 0.0)) * inv_pivot_[i];
-    if (massless_bit_friction_) {
-      const double reduced = v[bit] - lower_[bit] * v[bit - 1];
-      v[bit] = solve_bit_friction ? SmoothFrictionSpeed(*net_.bit().friction, reduced, 1 / inv_pivot_[bit])
-                                  : reduced / (1 / inv_pivot_[bit] + bit_friction_slope);
-    }
-    for (int i = num_nodes_ - 2; i >= 0; --i) v[i] -= ratio_[i] * v[i + 1];
-  }
-  void SolveNodeSpeeds(const State& x, double t, Side side, std::vector<double>& v) const {
-    v.resize(num_nodes_);
-    for (int i = 0; i < num_nodes_; ++i) {
-      const Node& node = net_.nodes[i];
-      if (speed_index_[i] != kNone) v[i] = regime_[i] == Turn::kStuck ? 0.0 : x[speed_index_[i]];
-      else if (node.drive == Drive::kPrescribedSpeed) v[i] = Setpoint(node, t, side);
-      else v[i] = MasslessBalance(i, TwiceIncoming(i, t, side), t, side).first;
-    }
-    SolveNodeSystem(v.data(), true);
-  }
-  void SolveNodeSpeedRates(const State& f, double t, Side side, std::vector<double>& dv) const {
-    dv.resize(num_nodes_);
-    for (int i = 0; i < num_nodes_; ++i) {
-      const Node& node = net_.nodes[i];
-      if (speed_index_[i] != kNone) dv[i] = regime_[i] == Turn::kStuck ? 0.0 : f[speed_index_[i]];
-      else if (node.drive == Drive::kPrescribedSpeed) dv[i] = SetpointRate(node, t, side);
-      else dv[i] = MasslessBalanceRate(i, ArrivingRate(i, t, side), t, side);
-    }
-    // Called after SolveNodeSpeeds at the same state: speeds_ holds the bit's speed for its friction slope.
-    SolveNodeSystem(dv.data(), false,
-                    massless_bit_friction_ ? net_.bit().friction->SlipTorqueDerivative(speeds_[num_nodes_ - 1]) : 0.0);
-  }
-  // Torque of the dashpots of node i's sections on it, and the power all of them dissipate, at node speeds v.
-  double DashpotTorque(int i, const std::vector<double>& v) const {
-    return (HasAbove(i) ? DashpotAbove(i) * (v[i - 1] - v[i]) : 0.0) +
-           (HasBelow(i) ? DashpotBelow(i) * (v[i + 1] - v[i]) : 0.0);
-  }
+  // The power the Kelvin-Voigt dashpots dissipate at node speeds v.
   double DashpotPower(const std::vector<double>& v) const {
     double power = 0;
     for (int k = 0; k + 1 < num_nodes_; ++k) power += net_.sections[k].dashpot * (v[k + 1] - v[k]) * (v[k + 1] - v[k]);
     return power;
   }
 
-  // Waves leaving every node at time t: w_out = v - w_in on each of its sections, with their rates if asked.
-  void OutgoingWaves(double t, const State& x, const State& f, Side side, double* out, double* rate) const {
-    if (kelvin_voigt_) {
-      SolveNodeSpeeds(x, t, side, speeds_);
-      if (rate) SolveNodeSpeedRates(f, t, side, speed_rates_);
-    }
-    for (int i = 0; i < num_nodes_; ++i) {
-      const Arrivals in = Arriving(i, t, side);
-      const bool inertial = speed_index_[i] != kNone;
-      const double v = inertial ? (regime_[i] == Turn::kStuck ? 0.0 : x[speed_index_[i]])
-                       : kelvin_voigt_ ? speeds_[i]
-                                       : MasslessSpeed(i, in, t, side);
-      if (HasAbove(i)) out[2 * (i - 1) + 1] = v - in.above;  // up-going wave at the bottom of section i-1
-      if (HasBelow(i)) out[2 * i] = v - in.below;            // down-going wave at the top of section i
-      if (!rate) continue;
-      const Arrivals in_rate = ArrivingRate(i, t, side);
-      const double dv = inertial ? (regime_[i] == Turn::kStuck ? 0.0 : f[speed_index_[i]])
-                        : kelvin_voigt_ ? speed_rates_[i]
-                                        : MasslessSpeedRate(i, v, in_rate, t, side);
-      if (HasAbove(i)) rate[2 * (i - 1) + 1] = dv - in_rate.above;
-      if (HasBelow(i)) rate[2 * i] = dv - in_rate.below;
-    }
-  }
-
-  // Rigid rotation at the initial speed: every section carries the torque of everything below it.
-  void InitializeWaves() {
-    const double v0 = net_.initial.speed_rad_s;
-    std::vector<double> torque_below(net_.sections.size(), 0.0);
-    double acc = 0;
-    for (int i = num_nodes_ - 1; i >= 1; --i) torque_below[i - 1] = acc += net_.nodes[i].SteadyLoad(v0);
-    steady_torque_ = net_.SteadyTopTorque();
-    const int m = waves_.dimension();
-    std::vector<double> initial(m);
-    for (std::size_t k = 0; k < net_.sections.size(); ++k) {
-      const double z = net_.sections[k].impedance;
-      initial[2 * k] = 0.5 * (v0 + torque_below[k] / z);      // down: D - U = T / Z, D + U = v0
-      initial[2 * k + 1] = 0.5 * (v0 - torque_below[k] / z);  // up
-    }
-    waves_ = integration::HermiteHistory(m, [initial](double, double* value, double* rate) {
-      std::copy(initial.begin(), initial.end(), value);
-      std::fill(rate, rate + initial.size(), 0.0);
-    });
-  }
-
-  // A discontinuity at node i at time t travels into each of its sections and reaches the far node one travel time
-  // later. After a massless node its signed size is scaled by that node's reflection or transmission coefficient;
-  // an inertial node (or an imposed speed) reflects a jump as a jump of opposite sign but passes it on to its other
-  // sections smoothed by one order. Echoes arriving together are merged (BreakpointQueue), so that the signed sum of
-  // all paths decides, as the waves themselves do, and an echo is dropped once it falls below its threshold.
-  //
-  // Kelvin-Voigt dashpots couple a node's speed to its neighbours' at the same instant. A discontinuity arriving at a
-  // massless node then changes every massless node of its run (the nodes between two nodes of known speed) at once,
-  // by the column of the inverse of the node system (EchoThroughDashpots): each sends its change into both its
-  // sections, and the node it arrived at also passes on the arriving part (w_out = v - w_in). A known speed that
-  // jumps or kinks (an imposed speed's knot, an inertial node's kink) enters its neighbours' balances through the
-  // dashpot, kv dv, and spreads over their runs the same way. A jump at a massless node next to an inertial node
-  // jumps the dashpot torque on it: the inertial node's speed kinks (weight kv dv / 2 Z, as an arriving wave's
-  // 2 Z w). Spreading stops there: kinks that the dashpots pass on further, and kinks of order above 2, are left to
-  // the step-size control (they cost rejected steps, not accuracy).
-  void Echo(const integration::Breakpoint& b) {
-    const int i = b.site;
-    const Node& node = net_.nodes[i];
-    if (kelvin_voigt_ && !KnownSpeed(i)) {
-      EchoThroughDashpots(b);
-      return;
-    }
-    const double sum = MasslessConductance(i);
-    const bool scatters = node.massless() && node.drive != Drive::kPrescribedSpeed && b.via != kNone;
-    for (int k : {i - 1, i}) {
-      if (k < 0 || k >= static_cast<int>(net_.sections.size())) continue;
-      double w = b.weight;
-      int order = b.order;
-      if (scatters) {
-        const double share = 2 * net_.sections[b.via].impedance / sum;
-        w *= k == b.via ? share - 1 : share;
-      } else if (b.via != kNone && k == b.via) {
-        w = -w;  // w_out = v - w_in with v continuous (inertia) or imposed
-      } else if (!node.massless()) {
-        order = std::max(order + (b.via == kNone ? 0 : 1), 1);  // the node's speed is continuous
-      }
-      PushEcho(b.time, i, k, w, order, b.generation + 1);
-    }
-    if (!kelvin_voigt_) return;
-    // The known speed's own change: an imposed speed's knot as it is; an inertial node's speed one order smoother.
-    const bool imposed = node.drive == Drive::kPrescribedSpeed;
-    if (imposed && b.via != kNone) return;  // an arriving wave does not change an imposed speed
-    const int order = imposed ? b.order : std::max(b.order + (b.via == kNone ? 0 : 1), 1);
-    if (order > kMaxSpreadOrder) return;
-    for (int k : {i - 1, i}) {
-      if (k < 0 || k >= static_cast<int>(net_.sections.size()) || net_.sections[k].dashpot == 0) continue;
-      const int neighbour = k == i - 1 ? i - 1 : i + 1;
-      if (!KnownSpeed(neighbour)) SpreadOverRun(neighbour, net_.sections[k].dashpot * b.weight, b.time, order, b, false);
-    }
-  }
-
-  // A breakpoint arriving at (or starting from) a massless node of a Kelvin-Voigt run.
-  void EchoThroughDashpots(const integration::Breakpoint& b) {
-    const int i = b.site;
-    // An arriving wave adds 2 Z w to the node's balance; a source is a unit change of the node's own speed.
-    const double balance_change = b.via != kNone ? 2 * net_.sections[b.via].impedance * b.weight : 0.0;
-    SpreadOverRun(i, balance_change, b.time, b.order, b, b.via == kNone);
-  }
-
-  // The speeds of the run through node i change by A^-1 e_i times `balance_change` (or, for a source at i, so that
-  // node i's own changes by the breakpoint's weight): each changed node sends its change into its sections.
-  void SpreadOverRun(int i, double balance_change, double t, int order, const integration::Breakpoint& b,
-                     bool unit_at_node) {
-    std::vector<double> dv(num_nodes_, 0.0);
-    dv[i] = 1;
-    SolveNodeSystem(dv.data());
-    const double scale = unit_at_node ? b.weight / dv[i] : balance_change;
-    for (double& v : dv) v *= scale;
-    std::vector<std::array<double, 2>> arrived(num_nodes_, {0.0, 0.0});
-    if (b.site == i && b.via != kNone) arrived[i][b.via == i - 1 ? 0 : 1] = b.weight;
-    EmitFromRuns(dv, arrived, t, order, b.generation + 1);
-  }
-
-  // All the breakpoints of one order that arrive at massless nodes at time t at once: the node system is linear, so
-  // their balance changes add and one solve spreads them all (followed one by one, each would spread over its run and
-  // the echoes would be merged afterwards: the same result, at the cost of one solve and 2 n pushes per arrival).
-  void EchoArrivalsThroughDashpots(double t, std::vector<integration::Breakpoint>& due) {
-    std::map<int, std::pair<std::vector<double>, std::vector<std::array<double, 2>>>> by_order;
-    int generation = 0;
-    auto arrival_here = [&](const integration::Breakpoint& b) { return b.via != kNone && !KnownSpeed(b.site); };
-    for (const integration::Breakpoint& b : due) {
-      if (!arrival_here(b)) continue;
-      auto& [rhs, arrived] = by_order[b.order];
-      if (rhs.empty()) rhs.assign(num_nodes_, 0.0), arrived.assign(num_nodes_, {0.0, 0.0});
-      rhs[b.site] += 2 * net_.sections[b.via].impedance * b.weight;
-      arrived[b.site][b.via == b.site - 1 ? 0 : 1] += b.weight;
-      generation = std::max(generation, b.generation);
-    }
-    due.erase(std::remove_if(due.begin(), due.end(), arrival_here), due.end());
-    for (auto& [order, change] : by_order) {
-      SolveNodeSystem(change.first.data());
-      EmitFromRuns(change.first, change.second, t, order, generation + 1);
-    }
-  }
-
-  // Massless nodes whose speeds change by dv at time t send dv into both their sections, less the part `arrived`
-  // through each (w_out = v - w_in; [0] from above, [1] from below).
-  void EmitFromRuns(const std::vector<double>& dv, const std::vector<std::array<double, 2>>& arrived, double t,
-                    int order, int generation) {
-    for (int j = 0; j < num_nodes_; ++j) {
-      if (dv[j] == 0 && arrived[j][0] == 0 && arrived[j][1] == 0) continue;
-      for (int k : {j - 1, j}) {
-        if (k < 0 || k >= static_cast<int>(net_.sections.size())) continue;
-        PushEcho(t, j, k, dv[j] - arrived[j][k == j - 1 ? 0 : 1], order, generation);
-        // A jump next to an inertial node kinks it through the dashpot between them.
-        const int neighbour = k == j - 1 ? j - 1 : j + 1;
-        if (order == 0 && speed_index_[neighbour] != kNone && net_.sections[k].dashpot > 0) {
-          const double w = net_.sections[k].dashpot * dv[j] / (2 * net_.sections[k].impedance);
-          if (std::abs(w) >= kink_threshold_) Echo({t, neighbour, w, 1, kNone, generation});
-        }
-      }
-    }
-  }
-
-  // An echo of weight w leaving node i at time t into section k, unless it is below its threshold or past the end.
-  void PushEcho(double t, int i, int k, double w, int order, int generation) {
-    if (std::abs(w) < (order == 0 ? jump_threshold_ : kink_threshold_)) return;
-    const int far = k == i - 1 ? i - 1 : i + 1;
-    const double arrival = t + net_.sections[k].travel_time_s;
-    if (arrival >= t_end_) return;
-    const integration::Breakpoint echo{arrival, far, w, order, k, generation};
-    // Past the cap a kink may still join one that is pending, but not add to their number.
-    if (order > 0 && breakpoints_.size() >= options_.max_pending_kinks) breakpoints_.Merge(echo, MergeWindow(arrival));
-    else breakpoints_.Push(echo, MergeWindow(arrival));
-  }
-  static double MergeWindow(double t) { return 1e-10 * std::max(1.0, std::abs(t)); }
-  // A new discontinuity at node i: a regime change (kink, order 1) or an input knot (jump if the schedule jumps).
-  void Source(int i, double t, int order) { Echo({t, i, 1.0, order, kNone, 0}); }
-
- public:
-  void set_t_end(double t_end) { t_end_ = t_end; }
-
- private:
   const Network& net_;
   const NetworkRunOptions& options_;
-  double kink_threshold_, jump_threshold_;
-  int num_nodes_;
+  int num_nodes_, bit_;
   int dimension_ = 0;
+  WaveChain chain_;
+  WaveChain::EndSlopes slopes_;
   std::vector<int> speed_index_, integral_index_, current_index_, flux_index_, motor_speed_index_;
   std::vector<int> frictional_nodes_;
   std::vector<Turn> regime_;
-  integration::HermiteHistory waves_;
-  integration::BreakpointQueue breakpoints_;
   std::vector<RegimeChange> changes_;
+  std::priority_queue<double, std::vector<double>, std::greater<double>> end_breaks_;
+  std::vector<double> arriving_, state_quarter_;
+  double passed_ = -kInf;  // the last breakpoint passed
   double step_start_ = 0;
-  double max_travel_time_ = 0;
   double steady_torque_ = 0;
-  double t_end_ = std::numeric_limits<double>::infinity();
-  std::vector<double> out0_, out1_, outm_, d0_, d1_, outq_, state_quarter_;  // the prepared piece's waves (ends, midpoint, rates)
+  double read_back_ = 0;
+  double t_end_ = kInf;
   int lateral_index_ = kNone;  // the bit's lateral BHA
-  // Kelvin-Voigt: the node system's factors (FactorNodeSystem), the dissipated energy's state, scratch.
   bool kelvin_voigt_ = false;
-  bool massless_bit_friction_ = false;  // a massless bit with smooth friction closes the node system's sweep
   int dissipated_index_ = kNone;
-  std::vector<double> lower_, ratio_, inv_pivot_;
-  mutable std::vector<double> speeds_, speed_rates_;
-  bool start_is_last_end_ = false;
-  double last_end_time_ = 0;
+  mutable std::vector<double> speeds_;
+  std::optional<MasslessEnd> top_end_, bit_end_;  // massless ends without dashpots
 };
 
 }  // namespace
-
-double AutomaticKinkThreshold(const integration::IntegratorOptions& integrator) {
-  return std::clamp(std::sqrt(std::max(integrator.abs_tol, integrator.rel_tol)), 1e-5, 3e-2);
-}
-
-double AutomaticJumpThreshold(const integration::IntegratorOptions& integrator) {
-  return std::clamp(0.1 * std::min(integrator.abs_tol, integrator.rel_tol), 1e-15, 1e-6);
-}
 
 NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& options) {
   network.Validate();
@@ -818,7 +588,6 @@ NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& opti
   process.set_t_end(options.t_end_s);
   State x = process.InitialState();
   process.InitializeRegimes(0.0, x);
-  process.SeedBreakpoints(0.0, options.t_end_s);
 
   NetworkRun run;
   run.t_end_s = options.t_end_s;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 namespace drillwave::waves {
 namespace {
@@ -50,6 +52,7 @@ WaveChain::WaveChain(const ChainSpec& spec, double v, double bit_force) : spec_(
     }
     if (!held_friction_) held_.FactorLinear();
   }
+  end_slopes_ = FindEndSlopes();
   node_waves_.reserve(m_ + 1);
   for (int j = 0; j <= m_; ++j) {
     const double up = initial[NodeBlock(j)], down = initial[NodeBlock(j) + 1];
@@ -58,6 +61,73 @@ WaveChain::WaveChain(const ChainSpec& spec, double v, double bit_force) : spec_(
       rate[0] = rate[1] = 0.0;
     });
   }
+}
+
+void WaveChain::CloseEnds(const EndClosure* top, const EndClosure* bit) {
+  if ((top || bit) && spec_.kelvin_voigt())
+    throw std::logic_error("WaveChain::CloseEnds: with Kelvin-Voigt dashpots the caller solves the ends' speeds");
+  top_closure_ = top, bit_closure_ = bit;
+}
+
+// Each end feels -(Z + c) v from its own speed; a Kelvin-Voigt dashpot kv pulls it towards its neighbour, whose speed
+// (a massless node) moves with both ends' through the dashpot chain: dv_inner / dv_end = H^-1 e kv.
+WaveChain::EndSlopes WaveChain::FindEndSlopes() const {
+  const ChainSpec& ch = spec_;
+  EndSlopes s{-ch.z[0] - ch.damping[0], 0.0, 0.0, -ch.z[m_ - 1] - ch.damping[m_]};
+  if (!ch.kelvin_voigt()) return s;
+  if (held_friction_) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, nan, nan, nan};
+  }
+  const double kv_top = ch.kv[0], kv_bit = ch.kv[m_ - 1];
+  s.top_top -= kv_top, s.bit_bit -= kv_bit;
+  if (m_ == 1) {  // one piece: its dashpot ties the ends directly
+    s.top_bit = kv_top, s.bit_top = kv_bit;
+    return s;
+  }
+  const int n = m_ - 1;
+  std::vector<double> unit(n, 0.0), from_top, from_bit;
+  unit[0] = kv_top;
+  held_.SolveLinear(unit, from_top);
+  unit.assign(n, 0.0), unit[n - 1] = kv_bit;
+  held_.SolveLinear(unit, from_bit);
+  s.top_top += kv_top * from_top[0], s.top_bit = kv_top * from_bit[0];
+  s.bit_top = kv_bit * from_top[n - 1], s.bit_bit += kv_bit * from_bit[n - 1];
+  return s;
+}
+
+ChainEnds WaveChain::EndForceRates(double t, Side side, ChainEnds speeds, ChainEnds rates) const {
+  const ChainSpec& ch = spec_;
+  double in_top, in_bit, pull_top = 0, pull_bit = 0;
+  if (ch.kelvin_voigt()) {
+    arriving_.resize(2 * m_), arriving_rate_.resize(2 * m_), speeds_.resize(m_ + 1), speed_rates_.resize(m_ + 1);
+    Arrivals(t, side, arriving_.data(), arriving_rate_.data());
+    NodeSpeeds(arriving_.data(), speeds.top, speeds.bit, speeds_.data());  // which nodes side friction holds
+    NodeRates(arriving_rate_.data(), speeds_.data(), rates.top, rates.bit, speed_rates_.data());
+    in_top = arriving_rate_[1], in_bit = arriving_rate_[2 * (m_ - 1)];
+    pull_top = ch.kv[0] * (speed_rates_[1] - rates.top), pull_bit = ch.kv[m_ - 1] * (speed_rates_[m_ - 1] - rates.bit);
+  } else {
+    in_top = NodeHistory(1).Derivative(t - ch.tau[0], 0, side);
+    in_bit = NodeHistory(m_ - 1).Derivative(t - ch.tau[m_ - 1], 1, side);
+  }
+  return {ch.z[0] * (2 * in_top - rates.top) - ch.damping[0] * rates.top + pull_top,
+          ch.z[m_ - 1] * (2 * in_bit - rates.bit) - ch.damping[m_] * rates.bit + pull_bit};
+}
+
+void WaveChain::NodeSpeedsAt(double t, Side side, ChainEnds speeds, std::vector<double>& v) const {
+  arriving_.resize(2 * m_);
+  v.resize(m_ + 1);
+  Arrivals(t, side, arriving_.data(), nullptr);
+  NodeSpeeds(arriving_.data(), speeds.top, speeds.bit, v.data());
+}
+
+double WaveChain::WaveEnergy(double t) const {
+  double e = 0;
+  for (int k = 0; k < m_; ++k) {
+    const double a = t - spec_.tau[k];
+    e += spec_.z[k] * (NodeHistory(k).IntegrateSquare(1, a, t) + NodeHistory(k + 1).IntegrateSquare(0, a, t));
+  }
+  return e;
 }
 
 // Node j's U_{j-1} arrives at node j-1 as in[2j - 1] and its D_j at node j+1 as in[2j]: component 2k is down-going
@@ -172,11 +242,27 @@ ChainEnds WaveChain::EndForces(double t, Side side, ChainEnds speeds) const {
           ch.z[m_ - 1] * (2 * in_bit - bit) - ch.damping[m_] * bit + ch.load[m_] + pull_bit};
 }
 
+double WaveChain::TopForce(double t, Side side, ChainEnds speeds) const {
+  if (spec_.kelvin_voigt()) return EndForces(t, side, speeds).top;
+  const ChainSpec& ch = spec_;
+  return ch.z[0] * (2 * Arrival(0, t, side, false) - speeds.top) - ch.damping[0] * speeds.top + ch.load[0];
+}
+
+double WaveChain::BitForce(double t, Side side, ChainEnds speeds) const {
+  if (spec_.kelvin_voigt()) return EndForces(t, side, speeds).bit;
+  const ChainSpec& ch = spec_;
+  return ch.z[m_ - 1] * (2 * Arrival(m_, t, side, true) - speeds.bit) - ch.damping[m_] * speeds.bit + ch.load[m_];
+}
+
 // Waves leaving every node at time t (and their rates when rate != nullptr), laid out by node (NodeBlock).
 void WaveChain::Outgoing(double t, ChainEnds speeds, const ChainEnds* rates, Side side, double* out,
                          double* rate) const {
   arriving_.resize(2 * m_), arriving_rate_.resize(2 * m_), speeds_.resize(m_ + 1), speed_rates_.resize(m_ + 1);
   Arrivals(t, side, arriving_.data(), rate ? arriving_rate_.data() : nullptr);
+  const ChainSpec& ch = spec_;
+  const double in_top = arriving_[1], in_bit = arriving_[2 * (m_ - 1)];  // the waves arriving at the ends
+  if (top_closure_) speeds.top = top_closure_->Speed(t, side, 2 * ch.z[0] * in_top + ch.load[0]);
+  if (bit_closure_) speeds.bit = bit_closure_->Speed(t, side, 2 * ch.z[m_ - 1] * in_bit + ch.load[m_]);
   NodeSpeeds(arriving_.data(), speeds.top, speeds.bit, speeds_.data());
   for (int j = 0; j <= m_; ++j) {
     const int b = NodeBlock(j);
@@ -184,6 +270,11 @@ void WaveChain::Outgoing(double t, ChainEnds speeds, const ChainEnds* rates, Sid
     out[b + 1] = j < m_ ? speeds_[j] - arriving_[2 * j + 1] : 0.0;  // down-going into piece j
   }
   if (!rate) return;
+  ChainEnds end_rates = *rates;
+  if (top_closure_) end_rates.top = top_closure_->Rate(t, side, speeds.top, 2 * ch.z[0] * arriving_rate_[1]);
+  if (bit_closure_)
+    end_rates.bit = bit_closure_->Rate(t, side, speeds.bit, 2 * ch.z[m_ - 1] * arriving_rate_[2 * (m_ - 1)]);
+  rates = &end_rates;
   NodeRates(arriving_rate_.data(), speeds_.data(), rates->top, rates->bit, speed_rates_.data());
   for (int j = 0; j <= m_; ++j) {
     const int b = NodeBlock(j);
@@ -201,7 +292,7 @@ double WaveChain::Prepare(const StepEnds& step, double abs_tol, double rel_tol) 
   const int k = 2 * (m_ + 1);
   out0_.resize(k), out1_.resize(k), outm_.resize(k), outq_.resize(k), d0_.resize(k), d1_.resize(k);
   // Without an event or breakpoint in between, the start of this step is the end of the last one.
-  if (!(start_is_last_end_ && step.t0 == last_commit_end_))
+  if (ReadsStart(step.t0))
     Outgoing(step.t0, step.speed0, &step.rate0, Side::kRight, out0_.data(), d0_.data());
   // In time order, so that each history's look-ups walk forward from the last one.
   const double h = step.t1 - step.t0;
@@ -253,7 +344,15 @@ void WaveChain::Commit(double t0, double t1, double read_back, std::vector<doubl
   start_is_last_end_ = true;
   last_commit_end_ = t1;
   for (auto& w : node_waves_) w.DiscardBefore(t1 - read_back);
-  // The kinks just stored next to the top and the bit reach them one piece later.
+  // The kinks just stored next to the top and the bit reach them one piece later; with dashpots, those stored at any
+  // node reach its neighbours, and through the dashpots the ends, one piece later.
+  if (spec_.kelvin_voigt()) {
+    for (int j = 0; j <= m_; ++j) {
+      if (j > 0) EndKinks(NodeHistory(j), 0, spec_.tau[j - 1], t0, t1, NodeBlock(j), end_kinks);
+      if (j < m_) EndKinks(NodeHistory(j), 1, spec_.tau[j], t0, t1, NodeBlock(j) + 1, end_kinks);
+    }
+    return;
+  }
   EndKinks(NodeHistory(1), 0, spec_.tau[0], t0, t1, NodeBlock(1), end_kinks);                     // up, to the top
   EndKinks(NodeHistory(m_ - 1), 1, spec_.tau[m_ - 1], t0, t1, NodeBlock(m_ - 1) + 1, end_kinks);  // down, to the bit
 }

@@ -1,6 +1,7 @@
 #pragma once
-// Runs a wave network in time: the Simulator loop with a process that keeps the travel-time buffers (one dense
-// history of all outgoing waves), the set-valued friction modes and the breakpoint echoes.
+// Runs a wave network in time: the Simulator loop with a process that keeps the string's waves (a WaveChain, the
+// wave channel the coupled kind uses too), the ends' drives and set-valued friction modes, and the breakpoints where a
+// kink or a jump reaches an end.
 #include <string>
 #include <vector>
 
@@ -14,13 +15,6 @@ struct NetworkRunOptions {
   double t_end_s = 10;
   double output_interval_s = 1e-3;  // trajectory sampling; 0 samples only the integrator's steps
   integration::IntegratorOptions integrator;
-  // Breakpoint echoes: a jump or kink travels on after each node, scaled by the node's reflection or transmission
-  // coefficient; echoes that arrive together are merged. Value jumps are followed while their weight exceeds
-  // AutomaticJumpThreshold. Kinks, which the step-size control can resolve by itself at the price of rejected steps,
-  // are followed while their weight exceeds echo_weight_threshold and fewer than max_pending_kinks are pending.
-  // 0 means AutomaticKinkThreshold(tolerance).
-  double echo_weight_threshold = 0;
-  std::size_t max_pending_kinks = 4096;
   bool record_energy = false;           // sample the mechanical energy (for conservation checks; costs time)
 };
 
@@ -53,17 +47,6 @@ struct NetworkRun {
   double final_bit_angle_rad = 0;
   double t_end_s = 0;
 };
-
-// sqrt(max(abs_tol, rel_tol)) clamped to [1e-5, 3e-2]. A kink left inside a step costs the stored waves a few
-// rejected steps; a followed one costs a forced step end. Measured (80 s of saldivar-stickslip with 200 m of collars,
-// tol 1e-8): threshold 1e-3 with at most 64 pending kinks, 3.9e6 derivative evaluations of which 228 000 steps were
-// redone; 1e-4 and 4096 pending, 1.7e6 and 3 700; 1e-5, 2.4e6 and 111. At tol 1e-3, 3e-2 (about 11 round trips
-// of the single-section string) saves 40% of the evaluations against 1e-3 (apps/bench).
-double AutomaticKinkThreshold(const integration::IntegratorOptions& integrator);
-
-// Value jumps are followed while their weight exceeds a tenth of the tighter tolerance (clamped to [1e-15, 1e-6]):
-// a smaller jump, left inside a step, changes the stored waves by less than the tolerance allows.
-double AutomaticJumpThreshold(const integration::IntegratorOptions& integrator);
 
 NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& options);
 

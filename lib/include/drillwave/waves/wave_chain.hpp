@@ -49,11 +49,23 @@ struct ChainEnds {
 class WaveChain {
  public:
   using Side = integration::Side;
+  // An end whose speed is algebraic (a massless end balancing the string's force against its own), for chains without
+  // Kelvin-Voigt dashpots (with them the ends' speeds and the inner nodes' are one system, which the caller solves
+  // with EndSlopes): from the string's force on the end at rest (the waves arriving there), its speed; from that
+  // force's rate and the speed, the speed's rate. Prepare then ignores StepEnds' speeds and rates of that end.
+  class EndClosure {
+   public:
+    virtual ~EndClosure() = default;
+    virtual double Speed(double t, Side side, double force_at_rest) const = 0;
+    virtual double Rate(double t, Side side, double speed, double force_rate_at_rest) const = 0;
+  };
   // Steady motion: every node at speed v, the bit node loaded by bit_force (torque on bit, or weight on bit); each
   // piece carries the force that balances the nodes below it.
   WaveChain(const ChainSpec& spec, double v, double bit_force);
 
   const ChainSpec& spec() const { return spec_; }
+  // Closes the ends whose closure is not nullptr (kept by the caller; no Kelvin-Voigt dashpots).
+  void CloseEnds(const EndClosure* top, const EndClosure* bit);
   // What the top node supplies in that steady motion (the force on the top piece plus the top node's damping, less
   // its load).
   double steady_top_force() const { return steady_top_force_; }
@@ -61,6 +73,24 @@ class WaveChain {
   // Forces of the string on the top node and on the bit node at the given end speeds, with the end nodes' own share
   // of damping and load.
   ChainEnds EndForces(double t, Side side, ChainEnds speeds) const;
+  // One of them: without Kelvin-Voigt dashpots it reads only the wave arriving at that end (the other end's speed
+  // does not matter then).
+  double TopForce(double t, Side side, ChainEnds speeds) const;
+  double BitForce(double t, Side side, ChainEnds speeds) const;
+
+  // EndForces is affine in the end speeds (without side friction): its constant slopes, for ends whose speed is
+  // algebraic (a massless end balances the string's force against its own). Without Kelvin-Voigt dashpots the two
+  // ends do not feel each other's speed at once (top_bit = bit_top = 0). NaN with side friction.
+  struct EndSlopes {
+    double top_top, top_bit, bit_top, bit_bit;
+  };
+  const EndSlopes& end_slopes() const { return end_slopes_; }
+  // The rates of EndForces for the end speeds and their rates (the loads are constant).
+  ChainEnds EndForceRates(double t, Side side, ChainEnds speeds, ChainEnds rates) const;
+  // Every node's speed at time t for the given end speeds (node 0 the top, node m the bit).
+  void NodeSpeedsAt(double t, Side side, ChainEnds speeds, std::vector<double>& v) const;
+  // The energy of the waves in flight at t: each piece holds Z times the integral of D^2 + U^2 over its travel time.
+  double WaveEnergy(double t) const;
 
   // The waves every node sends over the step [t0, t1] (end speeds at t0, a quarter, the middle and t1; end
   // accelerations at t0 and t1), prepared for Commit; returns the largest scaled error of the stored quartics at the
@@ -71,10 +101,14 @@ class WaveChain {
   };
   double Prepare(const StepEnds& step, double abs_tol, double rel_tol);
   // Appends the prepared step to the node histories, forgets what lies further back than read_back, and adds to
-  // end_kinks the times at which the kinks and jumps just stored next to the top and the bit reach them.
+  // end_kinks the times at which the kinks and jumps just stored next to the top and the bit reach them. With
+  // Kelvin-Voigt dashpots, which tie the ends to every node at once, the times at which any stored knot reaches any
+  // node (the steps stop there, and the nodes' waves need no splitting).
   void Commit(double t0, double t1, double read_back, std::vector<double>& end_kinks);
   // The step's start is not the last committed end (an event or a breakpoint lies between): Prepare computes it.
   void ForgetStart() { start_is_last_end_ = false; }
+  // Whether Prepare reads StepEnds::speed0 and rate0 for a step from t0 (else it reuses the last committed end).
+  bool ReadsStart(double t0) const { return !(start_is_last_end_ && t0 == last_commit_end_); }
 
  private:
   struct SplitWaves {  // a node's waves over a step in parts: part q spans time[q]..time[q + 1]
@@ -86,6 +120,7 @@ class WaveChain {
   const integration::HermiteHistory& NodeHistory(int j) const { return node_waves_[j]; }
   static int NodeBlock(int j) { return 2 * j; }
 
+  EndSlopes FindEndSlopes() const;
   double Arrival(int j, double t, Side side, bool from_above) const;
   void Arrivals(double t, Side side, double* in, double* rate) const;
   void NodeSpeeds(const double* in, double top, double bit, double* v) const;
@@ -112,6 +147,9 @@ class WaveChain {
   std::size_t num_splits_ = 0;
   std::vector<double> split_times_;
   std::array<double, 2> prepared_scale_{};  // abs_tol, rel_tol of the last Prepare
+  EndSlopes end_slopes_{};
+  const EndClosure* top_closure_ = nullptr;  // CloseEnds'
+  const EndClosure* bit_closure_ = nullptr;
   bool start_is_last_end_ = false;          // out0_ and d0_ hold the waves at the end of the last committed step
   double last_commit_end_ = 0;
   mutable std::vector<integration::HermiteHistory::Kink> kinks_;
