@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "drillwave/bitrock/friction.hpp"
+#include "drillwave/model/schedule.hpp"
 #include "drillwave/waves/network_simulation.hpp"
 #include "modal_decay.hpp"
 
@@ -183,12 +184,18 @@ TEST(KelvinVoigt, JumpsSpreadOverTheDashpotsAreFollowed) {
 // viscous law c w there is the same string as a massless bit with a damper c, whose balance is linear: the runs agree
 // to rounding. A velocity-weakening law (rational, chapter eqs. 2.12-2.13) with dashpots tends to the run without them
 // as eta -> 0, first order in eta.
-std::vector<double> MasslessFrictionBitSpeed(double eta, const nlohmann::json& friction, double damper) {
+// top: the ramped imposed speed, or (dissipative) a massless top driven through a dashpot beta to that ramp, so that
+// both ends are massless: without dashpots each balances the wave arriving at it, with them they are one system
+// with the string between (the top's linear balance folded into the bit's).
+std::vector<double> MasslessFrictionBitSpeed(double eta, const nlohmann::json& friction, double damper,
+                                             bool dissipative_top = false) {
   Node bit;
   bit.name = "bit";
   bit.ground_damping = damper;
   if (!friction.is_null()) bit.friction = bitrock::FrictionLaw::FromJson(friction, "/bit/friction");
-  const Network net = Chain(10, eta, RampedTop(10.0, 2.0), bit);
+  Node top = RampedTop(10.0, 2.0);
+  if (dissipative_top) top.drive = Drive::kSpeedDashpot, top.drive_damping = 400;
+  const Network net = Chain(10, eta, top, bit);
   NetworkRunOptions options;
   options.t_end_s = 8;
   options.output_interval_s = 1e-3;
@@ -225,6 +232,66 @@ TEST(KelvinVoigt, MasslessBitWithVelocityWeakeningFrictionTendsToTheRunWithoutDa
                 "without dashpots %.3g rad/s over 8 s (bit at %.4f rad/s)\n", eta, difference.back(), plain.back());
   }
   EXPECT_GT(difference[0], 1e-6);  // the dashpots do act
+  EXPECT_NEAR(difference[1] / difference[0], 0.1, 0.03);
+  EXPECT_NEAR(difference[2] / difference[1], 0.1, 0.03);
+}
+
+// Both ends massless and tied by the dashpot of a single part, the whole string: a dissipative top (beta to a set
+// point that steps to 10 rad/s at t = 0, the string at rest before) and a bit with a damper c. Every wave is constant
+// between multiples of the travel time tau, and each level solves the two ends' balances together:
+//   (Z + beta + kv) v_t - kv v_b = 2 Z U_in + beta 10,   -kv v_t + (Z + c + kv) v_b = 2 Z D_in,
+// U_in and D_in the waves the other end sent one level before. The run against that lattice, inside the levels.
+TEST(KelvinVoigt, TwoMasslessEndsTiedByOneDashpotFollowTheExactLattice) {
+  const double beta = 400, c = 150, eta = 0.02;
+  Node top = RampedTop(10.0, 0.0);
+  top.drive = Drive::kSpeedDashpot, top.drive_damping = beta;
+  top.setpoint = model::Schedule(10.0);
+  Node bit;
+  bit.name = "bit";
+  bit.ground_damping = c;
+  const Network net = Chain(1, eta, top, bit);
+  NetworkRunOptions options;
+  options.t_end_s = 40 * net.sections[0].travel_time_s;
+  options.output_interval_s = net.sections[0].travel_time_s / 7;
+  options.integrator.abs_tol = options.integrator.rel_tol = 1e-10;
+  const NetworkTrajectory tr = SimulateNetwork(net, options).trajectory;
+
+  const double z = net.sections[0].impedance, tau = net.sections[0].travel_time_s, kv = net.sections[0].dashpot;
+  std::vector<double> bit_speed, down{0.0}, up{0.0};  // by level; level 0 before the start
+  for (int k = 1; k <= 41; ++k) {
+    const double a11 = z + beta + kv, a22 = z + c + kv, r1 = 2 * z * up[k - 1] + beta * 10, r2 = 2 * z * down[k - 1];
+    const double det = a11 * a22 - kv * kv, vt = (r1 * a22 + kv * r2) / det, vb = (a11 * r2 + kv * r1) / det;
+    down.push_back(vt - up[k - 1]), up.push_back(vb - down[k - 1]), bit_speed.push_back(vb);
+  }
+  double worst = 0, largest = 0;
+  int compared = 0;
+  for (std::size_t i = 0; i < tr.time_s.size(); ++i) {
+    const double level = tr.time_s[i] / tau, inside = level - std::floor(level);
+    if (inside < 1e-6 || inside > 1 - 1e-6) continue;  // on a level's boundary: either side
+    const double exact = bit_speed[static_cast<std::size_t>(level)];
+    worst = std::max(worst, std::abs(tr.bit_speed_rad_s[i] - exact)), largest = std::max(largest, std::abs(exact));
+    ++compared;
+  }
+  std::printf("[ measured ] two massless ends tied by one dashpot (kv / Z = %.3f): bit speed within %.2e of the "
+              "lattice at %d samples over 40 travel times (largest %.3f rad/s)\n", kv / z, worst, compared, largest);
+  EXPECT_GT(compared, 40);
+  EXPECT_GT(largest, 1.0);
+  EXPECT_LT(worst, 1e-10 * largest);
+}
+
+// The same with a massless dissipative top as well: the two massless ends solved together through the dashpots'
+// constant end slopes tend, first order in eta, to the ends closed one by one from their arriving waves.
+TEST(KelvinVoigt, TwoMasslessEndsTendToTheRunWithoutDashpots) {
+  const nlohmann::json rational = {{"law", "rational"}, {"p_Nm", 1000}, {"k", 0.5}, {"zeta", 0.5}};
+  const auto plain = MasslessFrictionBitSpeed(0, rational, 0, true);
+  std::vector<double> difference;
+  for (double eta : {1e-4, 1e-5, 1e-6}) {
+    difference.push_back(LargestDifference(MasslessFrictionBitSpeed(eta, rational, 0, true), plain));
+    std::printf("[ measured ] massless dissipative top and massless bit, eta %.0e s: largest bit speed difference to "
+                "the run without dashpots %.3g rad/s over 8 s (bit at %.4f rad/s)\n", eta, difference.back(),
+                plain.back());
+  }
+  EXPECT_GT(difference[0], 1e-6);
   EXPECT_NEAR(difference[1] / difference[0], 0.1, 0.03);
   EXPECT_NEAR(difference[2] / difference[1], 0.1, 0.03);
 }
