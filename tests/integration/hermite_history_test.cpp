@@ -155,10 +155,17 @@ TEST(HermiteHistory, KinksInFindsTheKnotsWhereASlopeJumps) {
   EXPECT_EQ(kinks[1].time_s, 2.5);
   EXPECT_NEAR(kinks[1].slope_jump, 3.0, 1e-15);
   kinks.clear();
-  h.KinksIn(0.0, 10.0, 1, kinks);  // the smooth component: only the start (slope 1 out of rest)
-  ASSERT_EQ(kinks.size(), 1u);
+  // The smooth component: the start (slope 1 out of rest); at the other component's knots nothing but the quartics'
+  // own curvature mismatch (sin t in pieces of 0.25: below 1e-3).
+  h.KinksIn(0.0, 10.0, 1, kinks);
+  ASSERT_EQ(kinks.size(), 3u);
   EXPECT_EQ(kinks[0].value_jump, 0.0);
   EXPECT_EQ(kinks[0].slope_jump, 1.0);
+  for (std::size_t k = 1; k < 3; ++k) {
+    EXPECT_EQ(kinks[k].value_jump, 0.0);
+    EXPECT_EQ(kinks[k].slope_jump, 0.0);
+    EXPECT_LT(std::abs(kinks[k].curvature_jump), 1e-3);
+  }
   kinks.clear();
   h.KinksIn(1.0, 2.5, 0, kinks);  // [a, b): the first only
   ASSERT_EQ(kinks.size(), 1u);
@@ -179,6 +186,33 @@ TEST(HermiteHistory, KinksInFindsTheKnotsWhereASlopeJumps) {
   EXPECT_EQ(kinks[0].time_s, 600.0);
   EXPECT_NEAR(kinks[0].slope_jump, -1.5, 1e-12);
   EXPECT_NEAR(kinks[0].value_jump, 0.5, 1e-12);
+}
+
+// (t - 1)^2 / 2 after t = 1, 0 before: value and slope continue at 1, the curvature jumps by 1. A knot is indexed
+// there only when its piece is appended as a restart (an event's), and then KinksIn gives the jump exactly (the
+// quartics hold quadratics exactly).
+TEST(HermiteHistory, ARestartedPieceShowsItsCurvatureJump) {
+  auto value = [](double t) { return t > 1 ? 0.5 * (t - 1) * (t - 1) : 0.0; };
+  auto slope = [](double t) { return t > 1 ? t - 1 : 0.0; };
+  for (bool restart : {false, true}) {
+    HermiteHistory h(1);
+    for (int k = 0; k < 8; ++k) {
+      const double t0 = 0.25 * k, t1 = t0 + 0.25, x0 = value(t0), x1 = value(t1), d0 = slope(t0), d1 = slope(t1),
+                   xm = value(t0 + 0.125);
+      h.Append(t0, &x0, &d0, t1, &x1, &d1, &xm, restart && t0 == 1.0);
+    }
+    std::vector<HermiteHistory::Kink> kinks;
+    h.KinksIn(0.5, 2.0, 0, kinks);
+    if (!restart) {
+      EXPECT_TRUE(kinks.empty());
+      continue;
+    }
+    ASSERT_EQ(kinks.size(), 1u);
+    EXPECT_EQ(kinks[0].time_s, 1.0);
+    EXPECT_EQ(kinks[0].value_jump, 0.0);
+    EXPECT_EQ(kinks[0].slope_jump, 0.0);
+    EXPECT_NEAR(kinks[0].curvature_jump, 1.0, 1e-12);
+  }
 }
 
 }  // namespace

@@ -46,7 +46,7 @@ double HermiteHistory::begin_time() const { return empty() ? 0.0 : t_begin_[firs
 double HermiteHistory::end_time() const { return empty() ? 0.0 : t_end_.back(); }
 
 void HermiteHistory::Append(double t0, const double* x0, const double* d0, double t1, const double* x1,
-                            const double* d1, const double* x_mid) {
+                            const double* d1, const double* x_mid, bool restart) {
   if (!(t1 > t0)) throw std::invalid_argument("HermiteHistory::Append: empty or reversed piece");
   if (!empty()) {
     t0 = t_end_.back();  // keep the pieces contiguous despite rounding in the caller's times
@@ -64,12 +64,15 @@ void HermiteHistory::Append(double t0, const double* x0, const double* d0, doubl
     last_x1 = origin_.data(), last_d1 = origin_.data() + dimension_;
   }
   auto differs = [](double a, double b) { return std::abs(a - b) > 1e-12 * std::max(std::abs(a), std::abs(b)); };
-  if (last_x1)
+  if (restart && !empty()) {
+    kinked_.push_back(t_begin_.size());
+  } else if (last_x1) {
     for (int i = 0; i < dimension_; ++i)
       if (differs(d0[i], last_d1[i]) || differs(x0[i], last_x1[i])) {
         kinked_.push_back(t_begin_.size());
         break;
       }
+  }
   t_begin_.push_back(t0);
   t_end_.push_back(t1);
   const std::size_t at = data_.size();
@@ -208,6 +211,13 @@ double HermiteHistory::IntegrateSquare(int i, double a, double b) const {
   return total;
 }
 
+double HermiteHistory::Curvature(std::size_t piece, int i, double s) const {
+  const double* p = PieceData(piece);
+  const int n = dimension_;
+  return QuarticSecondDerivative(s, t_end_[piece] - t_begin_[piece], p[i], p[n + i], p[2 * n + i], p[3 * n + i],
+                                 p[4 * n + i]);
+}
+
 void HermiteHistory::KinksIn(double a, double b, int i, std::vector<Kink>& out) const {
   if (empty() || kinked_.empty() || t_begin_[kinked_.back()] < a) return;  // the usual case: no kink that late
   // The first kink at or after a: queries advance with time, so from the last answer, a step or two on.
@@ -230,7 +240,9 @@ void HermiteHistory::KinksIn(double a, double b, int i, std::vector<Kink>& out) 
     }
     const double* right = PieceData(*it);
     const double slope_jump = right[2 * dimension_ + i] - left_slope[i], value_jump = right[i] - left_value[i];
-    if (slope_jump != 0 || value_jump != 0) out.push_back({t_begin_[*it], slope_jump, value_jump});
+    const double curvature_jump = *it > first_ ? Curvature(*it, i, 0.0) - Curvature(*it - 1, i, 1.0) : 0.0;
+    if (slope_jump != 0 || value_jump != 0 || curvature_jump != 0)
+      out.push_back({t_begin_[*it], slope_jump, value_jump, curvature_jump});
   }
 }
 

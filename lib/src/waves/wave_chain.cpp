@@ -15,10 +15,12 @@ double Incoming(double z_above, double above, double z_below, double below) {
 }
 
 // A kink matters to a piece of length h when the quartic across it would miss by more than the tolerance unit: by
-// up to 0.077 |slope jump| h (a kink at 0.4 h). Smaller ones (the weak reflections at the damped nodes) are left
-// to the pieces. A jump matters above a tenth of the unit (the network's AutomaticJumpThreshold, relative here).
+// up to 0.07 |slope jump| h at its quarter point (a kink at 0.4 h), and by up to 0.0057 |curvature jump| h^2 for a
+// jump of the second derivative (an event where the bit's acceleration is continuous but its rate is not). Smaller
+// ones (the weak reflections at the damped nodes) are left to the pieces. A jump matters above a tenth of the unit.
 bool Matters(const integration::HermiteHistory::Kink& k, double h, double scale) {
-  return 0.08 * std::abs(k.slope_jump) * h > scale || std::abs(k.value_jump) > 0.1 * scale;
+  return 0.08 * std::abs(k.slope_jump) * h > scale || 0.006 * std::abs(k.curvature_jump) * h * h > scale ||
+         std::abs(k.value_jump) > 0.1 * scale;
 }
 
 }  // namespace
@@ -292,7 +294,8 @@ double WaveChain::Prepare(const StepEnds& step, double abs_tol, double rel_tol) 
   const int k = 2 * (m_ + 1);
   out0_.resize(k), out1_.resize(k), outm_.resize(k), outq_.resize(k), d0_.resize(k), d1_.resize(k);
   // Without an event or breakpoint in between, the start of this step is the end of the last one.
-  if (ReadsStart(step.t0))
+  prepared_restart_ = ReadsStart(step.t0);
+  if (prepared_restart_)
     Outgoing(step.t0, step.speed0, &step.rate0, Side::kRight, out0_.data(), d0_.data());
   // In time order, so that each history's look-ups walk forward from the last one.
   const double h = step.t1 - step.t0;
@@ -333,10 +336,12 @@ void WaveChain::Commit(double t0, double t1, double read_back, std::vector<doubl
       const SplitWaves& s = splits_[split++];
       for (std::size_t q = 0; q + 1 < s.time.size(); ++q)
         history.Append(s.time[q], &s.value_right[2 * q], &s.rate_right[2 * q], s.time[q + 1], &s.value_left[2 * q + 2],
-                       &s.rate_left[2 * q + 2], &s.mid[2 * q]);
+                       &s.rate_left[2 * q + 2], &s.mid[2 * q], q > 0);  // a knot arrived there
     } else {
       const int b = NodeBlock(j);
-      history.Append(t0, &out0_[b], &d0_[b], t1, &out1_[b], &d1_[b], &outm_[b]);
+      // An end's waves depend on the state, whose curvature may jump at a restart (an event); an inner node's do only
+      // where a knot arrives (split there).
+      history.Append(t0, &out0_[b], &d0_[b], t1, &out1_[b], &d1_[b], &outm_[b], prepared_restart_ && (j == 0 || j == m_));
     }
   }
   out0_.swap(out1_);

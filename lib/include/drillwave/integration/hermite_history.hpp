@@ -31,9 +31,11 @@ class HermiteHistory {
   double end_time() const;    // end of the newest piece
   std::size_t num_pieces() const { return t_begin_.size() - first_; }
 
-  // Appends the piece [t0, t1]; t0 must equal end_time() (up to rounding) unless the history is empty.
+  // Appends the piece [t0, t1]; t0 must equal end_time() (up to rounding) unless the history is empty. restart: the
+  // piece's start was computed anew (after an event or a breakpoint), so its curvature may jump there even where its
+  // value and slope continue the last piece's; KinksIn looks at such a knot too.
   void Append(double t0, const double* x0, const double* d0, double t1, const double* x1, const double* d1,
-              const double* x_mid);
+              const double* x_mid, bool restart = false);
 
   // Component i at time t. Before the history: the prehistory; after its end: the last piece extrapolated (a
   // predictor for look-ups inside the step being taken, which the delay solver then iterates on).
@@ -47,17 +49,18 @@ class HermiteHistory {
   // (5-point Gauss–Legendre per piece). Used for the energy carried by waves in flight.
   double IntegrateSquare(int i, double a, double b) const;
 
-  // A knot between two stored pieces where component i's slope or value jumps (a kink or a jump, which the pieces
-  // store exactly): its time and the jumps, right limit minus left.
+  // A knot between two stored pieces where component i's value, slope or curvature jumps (which the pieces store
+  // exactly, or, for the curvature, to the quartics' own accuracy): its time and the jumps, right limit minus left.
   struct Kink {
     double time_s;
     double slope_jump;
     double value_jump;
+    double curvature_jump;  // 0 against the prehistory (the chains' prehistories are steady)
   };
   // Appends to out the knots in [a, b) where component i's slope or value jumps by more than rounding (1e-12
-  // relative): between two pieces, and between the prehistory and the first piece while that is kept (a start that
-  // does not continue the prehistory). Not the start of an oldest piece kept whose predecessor is gone. Cheap:
-  // Append indexes such knots, and most knots have none.
+  // relative), or that start a restarted piece: between two pieces, and between the prehistory and the first piece
+  // while that is kept (a start that does not continue the prehistory). Not the start of an oldest piece kept whose
+  // predecessor is gone. Cheap: Append indexes such knots, and most knots are none.
   void KinksIn(double a, double b, int i, std::vector<Kink>& out) const;
 
   // Forgets pieces that end before t (for constant delays: t = now - largest delay).
@@ -71,6 +74,7 @@ class HermiteHistory {
   static constexpr int kPerPiece = 5;
   static constexpr std::size_t kPrehistory = static_cast<std::size_t>(-1);
   Location Locate(double t, Side side) const;
+  double Curvature(std::size_t piece, int i, double s) const;  // component i's second derivative at s in [0, 1]
   const double* PieceData(std::size_t piece) const { return &data_[piece * kPerPiece * dimension_]; }
 
   int dimension_;

@@ -28,4 +28,9 @@ inline double QuarticDerivative(double s, double h, double x0, double x1, double
          (3 * s2 - 4 * s + 1) * d0 + (3 * s2 - 2 * s) * d1;
 }
 
+inline double QuarticSecondDerivative(double s, double h, double x0, double x1, double d0, double d1, double b) {
+  return ((12 * s - 6) * (x0 - x1) / h + (6 * s - 4) * d0 + (6 * s - 2) * d1) / h +
+         b * (2 - 12 * s + 12 * s * s) / (h * h);
+}
+
 }  // namespace drillwave::integration

@@ -12,10 +12,11 @@
 // the massless nodes into a tridiagonal system (HeldNodes; with side friction too a convex problem).
 //
 // Each node keeps the history of the two waves it sends (U_{j-1} up into piece j-1, D_j down into piece j). An
-// internal node's waves are algebraic in the waves arriving at it; where a kink or a jump arrives within a step (an
-// event's, an imposed end speed's, the start's out of the steady prehistory; passed on from node to node) they are
-// stored in parts split at it, so that every stored quartic passes the error check and a jump stays a jump. Kinks and
-// jumps that reach the top or the bit are reported, for the caller to stop its steps there.
+// internal node's waves are algebraic in the waves arriving at it; where a kink, a jump or a jump of curvature arrives
+// within a step (an event's, an imposed end speed's, the start's out of the steady prehistory; passed on from node to
+// node) they are stored in parts split at it, so that every stored quartic passes the error check and a jump stays a
+// jump. Those that reach the top or the bit are reported, for the caller to stop its steps there. (A curvature jump is
+// looked for where an end's piece restarts, after an event or a breakpoint, and at every split.)
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -151,6 +152,7 @@ class WaveChain {
   const EndClosure* top_closure_ = nullptr;  // CloseEnds'
   const EndClosure* bit_closure_ = nullptr;
   bool start_is_last_end_ = false;          // out0_ and d0_ hold the waves at the end of the last committed step
+  bool prepared_restart_ = false;           // the prepared step's start was computed anew (a knot for the histories)
   double last_commit_end_ = 0;
   mutable std::vector<integration::HermiteHistory::Kink> kinks_;
   mutable std::vector<double> arriving_, arriving_rate_, speeds_, speed_rates_;  // scratch
