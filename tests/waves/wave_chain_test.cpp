@@ -5,14 +5,18 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
-#include <tuple>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include "drillwave/bitrock/friction.hpp"
 #include "drillwave/waves/network_simulation.hpp"
 
 namespace drillwave::waves {
@@ -232,6 +236,41 @@ TEST(WaveChain, AgreesWithTheWaveNetworkOnADampedTwoSectionChain) {
   EXPECT_EQ(sample, tr.time_s.size());
   EXPECT_GT(largest, 100.0);
   EXPECT_LT(worst, 1e-9 * largest);
+}
+
+// What the network on WaveChain cannot carry is refused, naming the node: an inner node with inertia or friction (the
+// chain's inner nodes are massless dampers), and a massless top with friction (it would be ignored).
+TEST(WaveChain, TheNetworkRefusesWhatItsChainCannotCarry) {
+  auto network = [](Node inner, Node top) {
+    Network net;
+    top.name = "top", inner.name = "junction";
+    Node bit;
+    bit.name = "bit", bit.inertia = 89;
+    net.sections = {{100, 0.05, 300, 0}, {100, 0.02, 900, 0}};
+    net.nodes = {top, inner, bit};
+    return net;
+  };
+  Node prescribed;
+  prescribed.drive = Drive::kPrescribedSpeed, prescribed.setpoint = model::Schedule(1.0);
+  EXPECT_NO_THROW(network(Node(), prescribed).Validate());
+  auto refused = [](const Network& net, const std::string& node) {
+    try {
+      net.Validate();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what()).find("'" + node + "'") != std::string::npos;
+    }
+    return false;
+  };
+  Node heavy;
+  heavy.inertia = 10;
+  EXPECT_TRUE(refused(network(heavy, prescribed), "junction"));
+  Node rubbing;
+  rubbing.friction = bitrock::FrictionLaw::FromJson({{"law", "viscous"}, {"c_Nms_per_rad", 10.0}}, "/f");
+  EXPECT_TRUE(refused(network(rubbing, prescribed), "junction"));
+  Node massless_top_with_friction;
+  massless_top_with_friction.drive = Drive::kTorque, massless_top_with_friction.setpoint = model::Schedule(100.0);
+  massless_top_with_friction.friction = rubbing.friction;
+  EXPECT_TRUE(refused(network(Node(), massless_top_with_friction), "top"));
 }
 
 }  // namespace

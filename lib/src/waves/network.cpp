@@ -27,6 +27,9 @@ void Network::Validate() const {
       throw std::invalid_argument("node '" + n.name + "': a node inside the string (between two sections) is massless, "
                                   "undriven and without friction, with a finite damper >= 0 at most");
   }
+  // A massless bit's smooth friction is solved with its balance; a massless top's would be ignored.
+  if (top().friction && top().massless())
+    throw std::invalid_argument("node '" + top().name + "': friction at the top needs an inertia > 0");
   for (const Node& n : nodes) {
     if (n.lateral && (n.massless() || &n != &nodes.back()))
       throw std::invalid_argument("node '" + n.name + "': a lateral BHA (unbalance) sits at the bit, with an inertia "

@@ -487,21 +487,9 @@ class NetworkProcess {
       if (!bit_known && asked != Massless::kNeither) v.bit = bit_end_->Speed(t, side, chain_.BitForce(t, side, {0, 0}));
       return v;
     }
-    const ChainEnds f0 = chain_.EndForces(t, side, v);  // the unknown speeds at 0
-    const WaveChain::EndSlopes& s = slopes_;
-    // The top: f0.top + s.top_top v_t + s.top_bit v_b + a_t - b_t v_t = 0.
-    const double top_a = f0.top + OwnDrive(0, t, side), top_b = OwnConductance(0) - s.top_top;
-    if (bit_known) {
-      v.top = (top_a + s.top_bit * v.bit) / top_b;
-      return v;
-    }
-    // The bit: f0.bit + s.bit_top v_t + s.bit_bit v_b + a_b - b_b v_b - T(v_b) = 0.
-    const double a = f0.bit + OwnDrive(bit_, t, side) + (top_known ? 0.0 : s.bit_top * top_a / top_b);
-    const double b = OwnConductance(bit_) - s.bit_bit - (top_known ? 0.0 : s.bit_top * s.top_bit / top_b);
     const auto& friction = net_.bit().friction;
-    v.bit = friction ? SmoothFrictionSpeed(*friction, a, b) : a / b;
-    if (!top_known) v.top = (top_a + s.top_bit * v.bit) / top_b;
-    return v;
+    return FoldMasslessEnds(v, chain_.EndForces(t, side, v), {OwnDrive(0, t, side), OwnDrive(bit_, t, side)},
+                            [&](double a, double b) { return friction ? SmoothFrictionSpeed(*friction, a, b) : a / b; });
   }
   // Their rates, for the chain: the known ones from the state's derivative or the set-point's slope; with dashpots
   // the massless ones from the derivative of their balances (the bit's friction by its slope at its speed); without,
@@ -510,20 +498,28 @@ class NetworkProcess {
     const bool top_known = KnownSpeed(0), bit_known = KnownSpeed(bit_);
     ChainEnds r{top_known ? KnownRateOf(0, f, t, side) : 0.0, bit_known ? KnownRateOf(bit_, f, t, side) : 0.0};
     if ((top_known && bit_known) || !kelvin_voigt_) return r;
-    const ChainEnds f0 = chain_.EndForceRates(t, side, v, r);
-    const WaveChain::EndSlopes& s = slopes_;
-    const double top_a = f0.top + OwnDriveRate(0, t, side), top_b = OwnConductance(0) - s.top_top;
-    if (bit_known) {
-      r.top = (top_a + s.top_bit * r.bit) / top_b;
-      return r;
-    }
     const auto& friction = net_.bit().friction;
-    const double a = f0.bit + OwnDriveRate(bit_, t, side) + (top_known ? 0.0 : s.bit_top * top_a / top_b);
-    const double b = OwnConductance(bit_) - s.bit_bit - (top_known ? 0.0 : s.bit_top * s.top_bit / top_b) +
-                     (friction ? friction->SlipTorqueDerivative(v.bit) : 0.0);
-    r.bit = a / b;
-    if (!top_known) r.top = (top_a + s.top_bit * r.bit) / top_b;
-    return r;
+    const double slope = friction ? friction->SlipTorqueDerivative(v.bit) : 0.0;
+    return FoldMasslessEnds(r, chain_.EndForceRates(t, side, v, r),
+                            {OwnDriveRate(0, t, side), OwnDriveRate(bit_, t, side)},
+                            [&](double a, double b) { return a / (b + slope); });
+  }
+  // With dashpots, the massless ends of `known` (its other entries kept): the string's force f0 + S v (f0 at the
+  // unknown ends' 0, S the chain's EndSlopes) against each end's own a - b v, the top's linear balance folded into the
+  // bit's, which close_bit(a, b) solves (a - b v - T(v) = 0 for speeds, its derivative for rates).
+  template <class CloseBit>
+  ChainEnds FoldMasslessEnds(ChainEnds known, ChainEnds f0, ChainEnds own, CloseBit close_bit) const {
+    const bool top_known = KnownSpeed(0), bit_known = KnownSpeed(bit_);
+    const WaveChain::EndSlopes& s = slopes_;
+    // The top: f0.top + s.top_top v_t + s.top_bit v_b + a_t - b_t v_t = 0.
+    const double top_a = f0.top + own.top, top_b = OwnConductance(0) - s.top_top;
+    if (!bit_known) {  // the bit: f0.bit + s.bit_top v_t + s.bit_bit v_b + a_b - b_b v_b - T(v_b) = 0
+      const double a = f0.bit + own.bit + (top_known ? 0.0 : s.bit_top * top_a / top_b);
+      const double b = OwnConductance(bit_) - s.bit_bit - (top_known ? 0.0 : s.bit_top * s.top_bit / top_b);
+      known.bit = close_bit(a, b);
+    }
+    if (!top_known) known.top = (top_a + s.top_bit * known.bit) / top_b;
+    return known;
   }
 
   // Smooth friction T at a massless node whose linear balance is a - b v: the root of r(v) = a - b v - T(v). r falls

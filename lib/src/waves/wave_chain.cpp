@@ -240,20 +240,24 @@ ChainEnds WaveChain::EndForces(double t, Side side, ChainEnds speeds) const {
   } else {
     in_top = Arrival(0, t, side, false), in_bit = Arrival(m_, t, side, true);
   }
-  return {ch.z[0] * (2 * in_top - top) - ch.damping[0] * top + ch.load[0] + pull_top,
-          ch.z[m_ - 1] * (2 * in_bit - bit) - ch.damping[m_] * bit + ch.load[m_] + pull_bit};
+  return {EndForce(0, in_top, top, pull_top), EndForce(m_, in_bit, bit, pull_bit)};
+}
+
+// The string's force on end node `end` (0 or m) turning at v with the wave `in` arriving: Z (2 in - v) of its piece,
+// its own damper and load, and `pull`, its piece's Kelvin-Voigt dashpot.
+double WaveChain::EndForce(int end, double in, double v, double pull) const {
+  const ChainSpec& ch = spec_;
+  return ch.z[end == 0 ? 0 : m_ - 1] * (2 * in - v) - ch.damping[end] * v + ch.load[end] + pull;
 }
 
 double WaveChain::TopForce(double t, Side side, ChainEnds speeds) const {
   if (spec_.kelvin_voigt()) return EndForces(t, side, speeds).top;
-  const ChainSpec& ch = spec_;
-  return ch.z[0] * (2 * Arrival(0, t, side, false) - speeds.top) - ch.damping[0] * speeds.top + ch.load[0];
+  return EndForce(0, Arrival(0, t, side, false), speeds.top, 0.0);
 }
 
 double WaveChain::BitForce(double t, Side side, ChainEnds speeds) const {
   if (spec_.kelvin_voigt()) return EndForces(t, side, speeds).bit;
-  const ChainSpec& ch = spec_;
-  return ch.z[m_ - 1] * (2 * Arrival(m_, t, side, true) - speeds.bit) - ch.damping[m_] * speeds.bit + ch.load[m_];
+  return EndForce(m_, Arrival(m_, t, side, true), speeds.bit, 0.0);
 }
 
 // Waves leaving every node at time t (and their rates when rate != nullptr), laid out by node (NodeBlock).
@@ -313,8 +317,7 @@ double WaveChain::Prepare(const StepEnds& step, double abs_tol, double rel_tol) 
       const double scale = WaveScale(b, abs_tol, rel_tol);
       split_times_.clear();
       // A knot that arrives on the step's start: the waves kept from the last step's end are its left limits.
-      if (ArrivingKinks(j, step.t0, step.t1, scale, split_times_) && start_is_last_end_ &&
-          step.t0 == last_commit_end_)
+      if (ArrivingKinks(j, step.t0, step.t1, scale, split_times_) && !prepared_restart_)
         NodeWaves(j, step.t0, Side::kRight, &out0_[b], &d0_[b]);
       if (!split_times_.empty()) {
         worst = std::max(worst, SplitNodeWaves(j, step.t0, step.t1, abs_tol, rel_tol));
@@ -368,8 +371,8 @@ double WaveChain::WaveScale(int b, double abs_tol, double rel_tol) const {
                                        std::abs(out1_[b + 1])});
 }
 
-// Times within (t0, t1) at which kinks or jumps that matter arrive at internal node j, sorted, without repeats;
-// returns whether one arrives on t0 itself (within rounding).
+// Times within (t0, t1) at which knots that matter (jumps, kinks, curvature jumps) arrive at internal node j, sorted,
+// without repeats; returns whether one arrives on t0 itself (within rounding).
 bool WaveChain::ArrivingKinks(int j, double t0, double t1, double scale, std::vector<double>& times) const {
   const std::vector<double>& tau = spec_.tau;
   const double h = t1 - t0, margin = 1e-9 * h;

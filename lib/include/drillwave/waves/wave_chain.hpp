@@ -122,6 +122,7 @@ class WaveChain {
   static int NodeBlock(int j) { return 2 * j; }
 
   EndSlopes FindEndSlopes() const;
+  double EndForce(int end, double in, double v, double pull) const;
   double Arrival(int j, double t, Side side, bool from_above) const;
   void Arrivals(double t, Side side, double* in, double* rate) const;
   void NodeSpeeds(const double* in, double top, double bit, double* v) const;
