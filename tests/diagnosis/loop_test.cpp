@@ -70,7 +70,11 @@ TEST(DiagnosisLoop, ANoisyTwinKeepsTheBaselineAndItsNoiseIsMeasured) {
   const Recording twin = NoisyTwin(doc, 0.5);
   const DiagnosisLoop loop = RunDiagnosisLoop(doc, twin, Options());
   EXPECT_EQ(loop.kept, -1);
-  EXPECT_TRUE(loop.candidates.empty());  // no difference is evidence for anything: nothing proposed
+  // No difference is evidence for anything, yet every effect the case can model is screened (rules order the work,
+  // never gate it); none is kept and none contests.
+  EXPECT_EQ(loop.screening.size(), loop.proposals.size());
+  for (const Effect& e : loop.proposals) EXPECT_FALSE(e.strength > 0) << e.name;
+  EXPECT_TRUE(loop.rivals.empty());
   ASSERT_EQ(loop.noise.size(), 2u);
   for (const auto& [channel, sigma] : loop.noise) EXPECT_NEAR(sigma, 0.5, 0.05) << channel;
   // The model carries the same noise (other draws) and is the recording's twin: about one scale apart at most.

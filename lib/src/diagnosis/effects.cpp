@@ -153,6 +153,20 @@ std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, c
 
 }  // namespace
 
+std::vector<Effect> BaseCalibrations(const nlohmann::json& doc) {
+  std::vector<Effect> calibrations;
+  if (doc.value("/model/kind"_json_pointer, std::string()) != "axial_torsional") return calibrations;
+  // Only what the gross features identify: the contact stress sets the friction's share of the bit torque, and so the
+  // mean torque (T = a W / (2 zeta) + a^2 sigma l (gamma mu - 1 / zeta) / 2 in steady drilling). The rock's intrinsic
+  // specific energy moves only the depth of cut (no channel reads it) and the stability: left to the effects' fits.
+  const double sigma_l = Number(doc, "/model/rock/sigma_l_N_per_m", 450000);
+  Effect e{"contact_stress", "the wear-flat contact stress sigma*l of the rock (base calibration)", {}, nullptr, 0, ""};
+  e.parameters = {{"sigma_l_N_per_m", "N/m", 0.8 * sigma_l, 1.2 * sigma_l, false, sigma_l}};
+  e.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["rock"]["sigma_l_N_per_m"] = v[0]; };
+  calibrations.push_back(e);
+  return calibrations;
+}
+
 std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& m, const FeatureSet& r) {
   std::vector<Effect> effects;
   const std::string kind = doc.value("/model/kind"_json_pointer, std::string());

@@ -46,6 +46,13 @@ struct Effect {
 // omitted. `downhole` names the model channels measured downhole (they get a sensor delay).
 std::vector<Effect> ProposeEffects(const nlohmann::json& document, const FeatureSet& model, const FeatureSet& recording);
 
+// The base model's uncertain parameters, each within its stated prior range, as calibrations (no evidence; their
+// apply sets the parameter): fitted to the recording's gross features (levels, period) before any effect, so that
+// effects are fitted on a calibrated base rather than asked to make up for a wrong one. axial_torsional: the
+// wear-flat contact stress sigma*l within +-20 % of the case's (formations vary; the mean torque reads it). Empty for
+// other kinds.
+std::vector<Effect> BaseCalibrations(const nlohmann::json& document);
+
 // The vocabulary, for listing and checking names.
 const std::vector<std::string>& EffectVocabulary();
 

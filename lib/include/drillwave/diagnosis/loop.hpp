@@ -46,7 +46,10 @@ struct LoopOptions {
   double held_out_begin_s = 0, held_out_end_s = 0;  // recording time, after the fit window
   double margin = 0.2;            // a kept effect lowers the held-out error by at least this fraction
   int evaluations_per_parameter = 10;  // fit budget of a candidate: this times its parameters, plus 2
-  int max_singles = 4;            // the strongest proposals tried alone; pairs and extensions come from these
+  // Every effect the case can model is screened by a fit of this budget per parameter (one start) and one free run
+  // over the whole span; the max_singles best screened are fitted in full, and pairs and extensions come from these.
+  int screening_evaluations_per_parameter = 4;
+  int max_singles = 4;
   int max_effects = 3;            // forward selection stops at this many effects
   // The fits' runs use at most this tolerance's accuracy (rel and abs; 0: the case's); candidates are judged by runs
   // at the case's own tolerance. The features do not move with the tolerance up to 1e-4; at 1e-3 they did for
@@ -79,6 +82,11 @@ struct FittedParameter {
   double lower = 0, upper = 0;
 };
 
+struct CalibratedParameter {  // a base parameter fitted before the effects (effects.hpp: BaseCalibrations)
+  std::string calibration, name, unit;
+  double value = 0, case_value = 0, lower = 0, upper = 0;
+};
+
 struct Candidate {
   std::vector<std::string> effects;
   std::vector<FittedParameter> parameters;
@@ -89,6 +97,7 @@ struct Candidate {
   int evaluations = 0;
   int redrawn_runs = 0;       // fit runs drawn again because a start landed in the other regime
   int failed_runs = 0;        // evaluations whose run the case rejected or that failed numerically
+  int failed_draws = 0;       // judging draws whose run failed numerically (left out of the median)
   std::string first_failure;  // the first of their messages
   bool kept = false;
   std::vector<double> unit_values;   // the fitted parameters in the fit's unit cube
@@ -116,7 +125,13 @@ struct DiagnosisLoop {
   double error_chance = 0;  // how much the held-out error moves by chance for a model that matches (sqrt(2 / K))
   double baseline_aic = 0;
   std::vector<Effect> proposals;  // every effect with its evidence (strength 0: no evidence)
+  std::vector<CalibratedParameter> calibration;  // the base's parameters as calibrated (empty: none for this kind)
+  double plain_fit_error = 0, plain_held_out_error = 0;  // the case as given, before calibration (draw 0)
+  std::vector<Candidate> screening;  // every modelable effect's cheap fit (one draw judged), in proposal order
   std::vector<Candidate> candidates;
+  // Rival explanations: sets that lower the held-out error as the best one does, within chance of it (see loop.cpp).
+  // Only the effects every rival shares are named; the rest are reported here, each rival with its held-out error.
+  std::vector<Candidate> rivals;
   int kept = -1;  // index into candidates, -1: the baseline stands
   std::vector<std::string> unexplained;  // held-out features still more than 3 scales off after the fit
   Recording baseline_model, fitted_model;  // the median draw's measured channels on the recording's times and names

@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+"""Score `drillwave diagnose` on a set of synthetic recordings against their KEY (which only this script reads).
+
+For each recording: diagnose from json-cases/baseline-60rpm.json and its sidecar, then compare the effects named with
+the KEY's concealed ones. Prints one line per recording and the set's precision (named that are true), recall (true
+that are named), false names on base recordings and recordings whose held-out error did not fall where something was
+named. Results are kept in OUT/<set>-<rec>/diagnosis.json, so a rerun with --reuse only rescores.
+
+  scripts/score_recordings.py --set ../shared/recordings/synthetic-train [--only rec01,rec02] [--binary B] [-j 2]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--set", action="append", required=True, help="a folder of recNN.csv/json with a KEY.json")
+    ap.add_argument("--only", default="", help="comma-separated recording names")
+    ap.add_argument("--binary", default=os.path.join(root, "build", "bin", "drillwave"))
+    ap.add_argument("--out", default="/tmp/drillwave-score")
+    ap.add_argument("--parallel", type=int, default=1, help="recordings diagnosed side by side")
+    ap.add_argument("-j", "--jobs", type=int, default=2, help="diagnose's own -j")
+    ap.add_argument("--reuse", action="store_true", help="rescore existing results")
+    ap.add_argument("--extra", default="", help="extra diagnose arguments")
+    a = ap.parse_args()
+    only = set(filter(None, a.only.split(",")))
+    jobs = []
+    for folder in a.set:
+        key_path = os.path.join(folder, "KEY.json")
+        if not os.path.exists(key_path):
+            print(f"skipped: no KEY at {key_path}")
+            continue
+        key = json.load(open(key_path))
+        tag = os.path.basename(os.path.normpath(folder))
+        for r in key["recordings"]:
+            name = r["file"][:-4]
+            if only and name not in only:
+                continue
+            jobs.append((tag, folder, name, sorted(r["effects"].keys())))
+
+    def diagnose(job):
+        tag, folder, name, concealed = job
+        out = os.path.join(a.out, f"{tag}-{name}")
+        path = os.path.join(out, "diagnosis.json")
+        seconds = float("nan")
+        if not (a.reuse and os.path.exists(path)):
+            start = time.time()
+            cmd = [a.binary, "diagnose", os.path.join(root, "json-cases", "baseline-60rpm.json"),
+                   os.path.join(folder, name + ".csv"), "--sidecar", os.path.join(folder, name + ".json"),
+                   "-j", str(a.jobs), "-o", out] + a.extra.split()
+            p = subprocess.run(cmd, capture_output=True, text=True)
+            seconds = time.time() - start
+            if p.returncode != 0:
+                return job, None, seconds, p.stderr[-2000:]
+            with open(out + ".seconds", "w") as f:
+                f.write(f"{seconds:.1f}\n")
+        elif os.path.exists(out + ".seconds"):
+            seconds = float(open(out + ".seconds").read())
+        return job, json.load(open(path)), seconds, ""
+
+    tp = fp = fn = base_false = worse = failed = 0
+    with ThreadPoolExecutor(a.parallel) as pool:
+        for (tag, folder, name, concealed), d, seconds, err in pool.map(diagnose, jobs):
+            if d is None:
+                failed += 1
+                print(f"{tag}/{name}: FAILED {err.strip().splitlines()[-1] if err.strip() else ''}", flush=True)
+                continue
+            named = sorted(h["effect"] for h in d["hypotheses"])
+            ambiguous = ["+".join(x["effects"]) + f" {x['held_out_error']:.3g}" for x in d.get("ambiguous", [])]
+            t = len(set(named) & set(concealed))
+            tp += t
+            fp += len(set(named) - set(concealed))
+            fn += len(set(concealed) - set(named))
+            if not concealed and named:
+                base_false += 1
+            before, after = d["held_out"]["error_before"], d["held_out"]["error_after"]
+            if named and not after < before:
+                worse += 1
+            mark = "ok" if set(named) == set(concealed) else ("miss" if set(named) < set(concealed) else "WRONG")
+            print(f"{tag}/{name}: {mark:5s} concealed {concealed} named {named}"
+                  f"{' ambiguous ' + str(ambiguous) if ambiguous else ''} held-out {before:.3g} -> {after:.3g}"
+                  f" ({seconds:.0f} s)", flush=True)
+    precision = tp / (tp + fp) if tp + fp else float("nan")
+    recall = tp / (tp + fn) if tp + fn else float("nan")
+    print(f"precision {precision:.3f} ({tp} of {tp + fp} named are true), recall {recall:.3f} ({tp} of {tp + fn}"
+          f" concealed named), false names on base recordings {base_false}, named without a lower held-out error"
+          f" {worse}, failed {failed}")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
