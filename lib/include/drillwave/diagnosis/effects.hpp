@@ -53,6 +53,11 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& document, const Feature
 // other kinds.
 std::vector<Effect> BaseCalibrations(const nlohmann::json& document);
 
+// The effects and calibrations of a laboratory rig modelled as a two-inertia pendulum (kind two_mass):
+// rig_effects.cpp. ProposeEffects and BaseCalibrations hand a two_mass document to these.
+std::vector<Effect> RigEffects(const nlohmann::json& document, const FeatureSet& model, const FeatureSet& recording);
+std::vector<Effect> RigBaseCalibrations(const nlohmann::json& document);
+
 // The vocabulary, for listing and checking names.
 const std::vector<std::string>& EffectVocabulary();
 

@@ -126,6 +126,7 @@ struct DiagnosisLoop {
   double baseline_aic = 0;
   std::vector<Effect> proposals;  // every effect with its evidence (strength 0: no evidence)
   std::vector<CalibratedParameter> calibration;  // the base's parameters as calibrated (empty: none for this kind)
+  bool calibration_kept = false;  // the calibration brought the base closer on the whole fit window: the base uses it
   double plain_fit_error = 0, plain_held_out_error = 0;  // the case as given, before calibration (draw 0)
   std::vector<Candidate> screening;  // every modelable effect's cheap fit (one draw judged), in proposal order
   std::vector<Candidate> candidates;
