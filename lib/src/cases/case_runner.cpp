@@ -109,7 +109,7 @@ Case ParseCase(const nlohmann::json& document) {
   c.document = document;
   const JsonReader root(document, "");
   c.name = root.String("name", {});
-  root.Allow("description");
+  root.String("description", {}, "");  // free text, but the report writes it as text: a string or nothing
   root.Allow("references");
   root.Allow("notes");
 

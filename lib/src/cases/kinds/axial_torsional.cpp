@@ -101,10 +101,16 @@ Section ReadBha(const JsonReader& c, const Section& pipe, double string_length) 
   return bha;
 }
 
+// The longest drill strings reach about 12 km (extended-reach wells of 12-13 km measured depth); 20 km, the bound
+// of a sidecar's measured depth too, leaves room above them. Far longer strings are no drill string: their waves
+// do not come back within a run, so the nodes' histories are never trimmed and grow with every step (1e9 m ran out of
+// memory).
+constexpr double kMaxStringLengthM = 20000;
+
 StringSpec ReadString(const JsonReader& s) {
   StringSpec sp;
   Section pipe;
-  sp.length = s.Number("length_m", Range::Positive());
+  sp.length = s.Number("length_m", Range{0, kMaxStringLengthM, true, false});
   pipe.outer = s.Number("outer_diameter_m", Range::Positive());
   pipe.inner = s.Number("inner_diameter_m", Range::NonNegative());
   if (pipe.inner >= pipe.outer)
@@ -311,7 +317,7 @@ class AxialTorsionalKind : public ModelKind {
            "BHA mass unbalance (Jeffcott rotor at the bit), two-mass hoisting rig, axial coupling off";
   }
   nlohmann::json FieldSchema() const override {
-    nlohmann::json fields = {{"string/length_m", "> 0, top drive to bit"},
+    nlohmann::json fields = {{"string/length_m", "in (0, 20000], top drive to bit"},
             {"string/outer_diameter_m", "> 0"},
             {"string/inner_diameter_m", ">= 0, < outer"},
             {"string/youngs_modulus_Pa", "> 0"},
@@ -388,6 +394,7 @@ class AxialTorsionalKind : public ModelKind {
     Model md;
     const StringSpec string = ReadString(r.Object("string"));
     md.length = string.length;
+    md.pipe_damping_per_m = {string.sections[0].c_t, string.sections[0].c_a};
     const JsonReader b = r.Object("bit");
     md.bit_inertia = b.Number("inertia_kgm2", Range::Positive());
     md.bit_mass = b.Number("mass_kg", Range::Positive());

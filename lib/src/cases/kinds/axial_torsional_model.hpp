@@ -41,6 +41,7 @@
 // t = 0 kinks the top's waves against their steady prehistory).
 // The rock's strength may vary with the drilled depth U (rock/strength_heterogeneity: eps and sigma l times 1 + g(U),
 // a smooth seeded field), a disturbance inside the bit-rock law that also keeps the right-hand side a pure function.
+#include <array>
 #include <optional>
 
 #include "drillwave/bitrock/rgd.hpp"
@@ -76,6 +77,9 @@ struct Model : bitrock::RgdLaw {
   int m = 20;
   double length = 0;
   Channel torsion, axial;
+  // The pipe's viscous dampings c_t and c_a per metre as read: the run checks what they put on the top against its
+  // step budget (CheckTopDamping in axial_torsional_run.cpp).
+  std::array<double, 2> pipe_damping_per_m{};
   double top_inertia = 0, hoist_mass = 0, bit_inertia = 0, bit_mass = 0;
   double hoist_damping = 0;  // c_h [N s/m]: the hoist's dashpot to the block paying out at the steady V0
   model::PiController pi;

@@ -6,10 +6,13 @@
 #include <limits>
 #include <queue>
 #include <stdexcept>
+#include <string>
 
 #include "axial_torsional_model.hpp"
 #include "drilling_run.hpp"
 #include "drillwave/cases/statistics.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/simulator.hpp"
 
@@ -147,6 +150,7 @@ class Process {
     for (double t : arriving_kinks_) end_kinks_.push(t);
     const double keep = 2 * std::max(md_.torsion.travel_time(), md_.axial.travel_time()) + 1.0;
     cut_.Commit(p, kPhi, kU, rg_.contact, rg_.last_contact_change, keep);
+    held_phi_ = p.x1[kPhi], held_u_ = p.x1[kU];
   }
 
   // Witnesses: bitrock::RgdRegimes's (0, 1 rotation; 2, 3 axial; 4 contact).
@@ -184,6 +188,14 @@ class Process {
   }
 
   // --- Outputs --------------------------------------------------------------------------------------------
+  // A sample of the last committed piece, read from its quartic, with the coordinates its regime holds still (a
+  // stuck bit's angle, a held bit's position) put back to the exact values the dynamics held them at. The quartic
+  // returns a constant only to rounding, and an angle an ulp below the furthest one reached reads as "not cutting":
+  // such a sample dropped the cutting force, and a held bit's weight on bit fell to a sigma l (issue 39).
+  void RestoreHeld(State& x) const {
+    if (rg_.turn == Turn::kStuck) x[kPhi] = held_phi_;
+    if (rg_.AxiallyHeld()) x[kU] = held_u_;
+  }
   struct Sample {
     double top_speed, bit_speed, top_torque, bit_torque, wob, hookload, depth, bit_axial_speed, tn, stuck, off_bottom;
     double top_current, lateral_displacement, motor_speed, gear_torque;
@@ -318,6 +330,7 @@ class Process {
   double steady_supply_hz_ = 0;  // induction motor: the supply frequency of steady drilling
   bitrock::RgdRegimes rg_;
   double step_start_ = 0, passed_ = 0;
+  double held_phi_ = 0, held_u_ = 0;  // bit angle and position at the end of the last committed piece
   int stick_onsets_ = 0;
   std::vector<StuckInterval> stuck_;
   State state_quarter_;
@@ -326,15 +339,62 @@ class Process {
   std::vector<double> arriving_kinks_;  // Commit's scratch
 };
 
+// The top drive and the hoist move throughout a run (unlike the bit, which may stick or be held), and the dashpot
+// the pipe's damping puts on them, with the wave impedance, decays their speed at the rate (c + Z) / J. The explicit
+// Dormand-Prince steps are stable only while h times that rate stays below about 3.3 (its stability interval on the
+// negative real axis), so a damping too large for the run's step budget is refused here, naming it and the most it
+// may be, rather than integrated in steps of nanoseconds whose histories fill the memory (issue 38: 1e9 N m s/rad per
+// m ended in bad_alloc).
+void CheckTopDamping(const Model& md, const RunSettings& settings) {
+  constexpr double kStableStepTimesRate = 3.3;
+  const double steps_allowed = settings.integrator.max_planned_steps;
+  if (!std::isfinite(steps_allowed)) return;
+  const double fastest = kStableStepTimesRate * steps_allowed / settings.duration_s;  // the largest rate allowed
+  struct Top {
+    const Channel& channel;
+    double inertia;
+    const char *field, *unit, *node, *inertia_unit;
+  };
+  const double hoist_mass = md.hoist_mass + (md.rig ? md.rig->block_mass : 0.0);  // on the rig's rigid hook
+  const Top tops[2] = {
+      {md.torsion, md.TopInertia(), "torsional_damping_Nms_per_rad_m", "N m s/rad", "top drive", "kg m2"},
+      {md.axial, hoist_mass, "axial_damping_Ns_per_m2", "N s/m", "hoist", "kg"}};
+  for (int c = 0; c < (md.axial_coupling ? 2 : 1); ++c) {
+    const Top& top = tops[c];
+    const double dashpot = top.channel.damping[0], impedance = top.channel.z[0];
+    // Only where the damping, not the impedance alone, makes the top too fast for the budget.
+    if (!(dashpot > 0) || impedance / top.inertia > fastest || (dashpot + impedance) / top.inertia <= fastest) continue;
+    const double per_m = md.pipe_damping_per_m[c];
+    double most = per_m * (fastest * top.inertia - impedance) / dashpot;  // dashpot is proportional to per_m
+    if (most > 0) {  // four digits, rounded down so that the bound shown is allowed
+      const double unit = std::pow(10.0, std::floor(std::log10(most)) - 3);
+      most = std::floor(most / unit) * unit;
+    }
+    const double rate = (dashpot + impedance) / top.inertia;
+    throw InputError(std::string("/model/string/") + top.field,
+                     Significant(per_m, 4) + " " + top.unit + " per m puts " + Significant(dashpot, 4) + " " + top.unit + " on the " +
+                         top.node + " (" + Significant(top.inertia, 4) + " " + top.inertia_unit +
+                         "), which explicit steps follow only below " + Significant(kStableStepTimesRate / rate, 4) +
+                         " s: the " + Significant(settings.duration_s, 4) + " s run needs at least " +
+                         Significant(settings.duration_s * rate / kStableStepTimesRate, 4) + " steps, above the limit of " +
+                         Significant(steps_allowed, 4) + " (--max-samples); expected a number in [0, " + Significant(most, 4) +
+                         "] for this run");
+  }
+}
+
 }  // namespace
 
 RunResult Simulate(const Model& md_, const RunSettings& settings) {
+  CheckTopDamping(md_, settings);
   Process process(md_);
   std::vector<double> x = process.InitialState();
   DrillingSamples d;
   std::vector<double> hook, current, lateral, motor_rpm, gear_torque;
-  std::vector<double> dx(x.size());
-  auto sample = [&](double t, const std::vector<double>& s) {
+  std::vector<double> dx(x.size()), exact(x.size());
+  auto sample = [&](double t, const std::vector<double>& interpolated) {
+    exact = interpolated;
+    process.RestoreHeld(exact);
+    const std::vector<double>& s = exact;
     process.BeginStep(t);  // look-ups at t from the committed history (left limits inside the last piece)
     process.Derivatives(s, dx, t);
     const Process::Sample v = process.Sampled(t, s, dx);
