@@ -312,6 +312,7 @@ struct DiagnoseArguments {
   int evaluations_per_parameter = 10;
   double sample_window_s = -1;  // < 0: the recording's sample interval
   int draws = 5;
+  double predict_until_s = 0;  // > 0: the fitted model run on to this recording time (prediction.csv)
 };
 
 int Diagnose(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
@@ -343,6 +344,7 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
                                                          drillwave::ReadableNumber(a.sample_window_s));
     o.sample_window_s = a.sample_window_s;
   }
+  if (a.predict_until_s != 0) dg::CheckPredictionTime(o, a.predict_until_s);
   if (!(a.draws >= 1 && a.draws <= 20))
     throw drillwave::InputError("--draws", "expected a whole number in [1, 20], got " + std::to_string(a.draws));
   o.draws = a.draws;
@@ -357,10 +359,16 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
             << o.held_out_end_s << "] s" << std::endl;
   const dg::DiagnosisLoop loop =
       dg::RunDiagnosisLoop(doc, recording, o, [](const std::string& line) { std::cout << "  " << line << std::endl; });
-  dg::WriteDiagnosisLoop(loop, recording, out_dir);
+  std::optional<dg::Recording> prediction;
+  if (a.predict_until_s > 0) {
+    std::cout << "  predicting with the fitted model up to " << a.predict_until_s << " s" << std::endl;
+    prediction = dg::PredictFitted(loop, o, recording, a.predict_until_s);
+  }
+  dg::WriteDiagnosisLoop(loop, recording, out_dir, prediction ? &*prediction : nullptr);
   for (const auto& u : loop.unexplained) std::cout << "  unexplained: " << u << std::endl;
   std::cout << "wrote " << std::filesystem::absolute(out_dir).string()
-            << "/diagnosis.json, fitted-case.json, case.json, report.html, plot.svg" << std::endl;
+            << "/diagnosis.json, fitted-case.json, case.json, report.html, plot.svg"
+            << (prediction ? ", prediction.csv" : "") << std::endl;
   return 0;
 }
 
@@ -592,6 +600,9 @@ int main(int argc, char** argv) {
                        "the baseline and each fitted candidate are judged over this many draws of the model's random "
                        "inputs (its seeds and the sensor noise's; default 5)");
   diagnose->add_option("-j,--jobs", diagnose_args.threads, "candidates fitted in parallel (default 1)");
+  diagnose->add_option("--predict-until", diagnose_args.predict_until_s,
+                       "run the fitted model on to this recording time [s], past the recording's end, and write its "
+                       "channels to prediction.csv (from the fit window's start, without sensor noise)");
   diagnose->add_option("--out,-o", diagnose_out, "output folder (written all or nothing)");
   diagnose->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 

@@ -29,13 +29,17 @@ def main():
     ap.add_argument("-j", "--jobs", type=int, default=2, help="diagnose's own -j")
     ap.add_argument("--reuse", action="store_true", help="rescore existing results")
     ap.add_argument("--extra", default="", help="extra diagnose arguments")
+    ap.add_argument("--min-precision", type=float, default=None, help="fail below this precision")
+    ap.add_argument("--min-recall", type=float, default=None, help="fail below this recall")
+    ap.add_argument("--strict", action="store_true",
+                    help="fail on any name on a base recording or any recording named without a lower held-out error")
     a = ap.parse_args()
     only = set(filter(None, a.only.split(",")))
     jobs = []
     for folder in a.set:
         key_path = os.path.join(folder, "KEY.json")
         if not os.path.exists(key_path):
-            print(f"skipped: no KEY at {key_path}")
+            print(f"skipped: no KEY at {key_path} (the recordings of ../shared are not beside this checkout)")
             continue
         key = json.load(open(key_path))
         tag = os.path.basename(os.path.normpath(folder))
@@ -65,6 +69,9 @@ def main():
             seconds = float(open(out + ".seconds").read())
         return job, json.load(open(path)), seconds, ""
 
+    if not jobs:
+        print("nothing to score")
+        return 0
     tp = fp = fn = base_false = worse = failed = 0
     with ThreadPoolExecutor(a.parallel) as pool:
         for (tag, folder, name, concealed), d, seconds, err in pool.map(diagnose, jobs):
@@ -92,7 +99,20 @@ def main():
     print(f"precision {precision:.3f} ({tp} of {tp + fp} named are true), recall {recall:.3f} ({tp} of {tp + fn}"
           f" concealed named), false names on base recordings {base_false}, named without a lower held-out error"
           f" {worse}, failed {failed}")
-    return 1 if failed else 0
+    problems = []
+    if failed:
+        problems.append(f"{failed} diagnose run(s) failed")
+    if a.min_precision is not None and not precision >= a.min_precision:
+        problems.append(f"precision {precision:.3f} below {a.min_precision}")
+    if a.min_recall is not None and not recall >= a.min_recall:
+        problems.append(f"recall {recall:.3f} below {a.min_recall}")
+    if a.strict and base_false:
+        problems.append(f"{base_false} base recording(s) with a name")
+    if a.strict and worse:
+        problems.append(f"{worse} recording(s) named without a lower held-out error")
+    for p in problems:
+        print("FAILED: " + p)
+    return 1 if problems else 0
 
 
 if __name__ == "__main__":

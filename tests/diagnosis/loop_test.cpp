@@ -87,6 +87,43 @@ TEST(DiagnosisLoop, ANoisyTwinKeepsTheBaselineAndItsNoiseIsMeasured) {
   EXPECT_TRUE(loop.baseline_document.contains(nlohmann::json::json_pointer("/sensors/channels/bit_rpm/noise_std")));
 }
 
+// diagnose --predict-until: the fitted model (here the baseline: nothing is kept on a twin) run on past the
+// recording's end is the case's own free run there, without the sensors' noise; a time inside the recording's
+// windows, or absurdly far past them, is refused before any work.
+TEST(DiagnosisLoop, ThePredictionPastTheRecordingIsTheFittedModelsFreeRun) {
+  const nlohmann::json doc = TwoMassCase();
+  const Recording twin = NoisyTwin(doc, 0.5);
+  const LoopOptions o = Options();
+  EXPECT_THROW(CheckPredictionTime(o, 80), InputError);     // inside the held-out window
+  EXPECT_THROW(CheckPredictionTime(o, 1e5), InputError);    // a hundred spans past it
+  const DiagnosisLoop loop = RunDiagnosisLoop(doc, twin, o);
+  ASSERT_EQ(loop.kept, -1);
+  const Recording prediction = PredictFitted(loop, o, twin, 150);
+  ASSERT_EQ(prediction.names, (std::vector<std::string>{"top_rpm", "bit_rpm"}));
+  EXPECT_NEAR(prediction.time_s.front(), o.fit_begin_s, 1e-12);
+  EXPECT_NEAR(prediction.time_s.back(), 150, 1e-6);
+  nlohmann::json longer = doc;
+  longer["simulation"]["duration_s"] = 250;
+  longer["statistics"]["window_s"] = {100, 250};
+  const cases::RunResult run = cases::RunCase(cases::ParseCase(longer)).result;
+  double largest = 0, peak = 0;
+  int compared = 0;
+  for (std::size_t i = 0; i < prediction.time_s.size(); ++i) {
+    const double t = prediction.time_s[i] + o.model_time_offset_s;
+    if (prediction.time_s[i] < 100) continue;  // past the recording's end only
+    const auto it = std::lower_bound(run.time_s.begin(), run.time_s.end(), t - 1e-9);
+    if (it == run.time_s.end() || std::abs(*it - t) > 1e-9) continue;  // on the run's own output times
+    const double direct = run.channel("bit_rpm").values[static_cast<std::size_t>(it - run.time_s.begin())];
+    largest = std::max(largest, std::abs(prediction.channels[1][i] - direct));
+    peak = std::max(peak, std::abs(direct));
+    ++compared;
+  }
+  std::printf("[ measured ] prediction past the recording: %d samples, largest difference %.3g of %.3g rpm\n",
+              compared, largest, peak);
+  ASSERT_GT(compared, 1000);
+  EXPECT_LT(largest, 1e-6 * peak);
+}
+
 // A bouncing bit (BASELINE.md's model at 3000 m, 150 kN, 60 rpm, as in rec04): its weight-on-bit impacts are as
 // short as a glitch, so the artefact filter masks hundreds of samples of the recording. The model's channels pass
 // the same filter, so the model stays the recording's twin (unmasked, its weight on bit was 15 scales off rec04's).

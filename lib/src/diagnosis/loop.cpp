@@ -895,6 +895,35 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   return loop;
 }
 
+void CheckPredictionTime(const LoopOptions& o, double until_s) {
+  const double span = o.held_out_end_s - o.fit_begin_s;
+  if (!(until_s > o.held_out_end_s && until_s <= o.held_out_end_s + 100 * span))
+    throw InputError("--predict-until", "expected a recording time after the held-out window's end, " +
+                                            ReadableNumber(o.held_out_end_s) + " s, and at most " +
+                                            ReadableNumber(o.held_out_end_s + 100 * span) + " s, got " +
+                                            ReadableNumber(until_s));
+}
+
+Recording PredictFitted(const DiagnosisLoop& loop, const LoopOptions& o, const Recording& rec, double until_s) {
+  CheckPredictionTime(o, until_s);
+  nlohmann::json doc = loop.fitted_document;
+  doc.erase("sensors");
+  const double dt = rec.sample_interval_s > 0 ? rec.sample_interval_s : 0.01;
+  const double duration = o.model_time_offset_s + until_s + dt;  // the last sample inside, whatever its rounding
+  doc["simulation"]["duration_s"] = duration;
+  const auto window = nlohmann::json::json_pointer("/statistics/window_s");
+  if (doc.contains(window)) doc.at(window) = {std::min(doc.at(window)[0].get<double>(), 0.5 * duration), duration};
+  const cases::RunResult run = cases::RunCase(cases::ParseCase(doc)).result;
+  Recording grid = rec;  // the recording's sampling carried on past its end
+  grid.time_s.clear();
+  // (A sample interval read from a CSV carries rounding: 150 s at 0.010000000000002 s is still 15 000 samples.)
+  const auto samples = static_cast<long>(std::floor((until_s - o.fit_begin_s) / dt + 1e-6));
+  for (long k = 0; k <= samples; ++k) grid.time_s.push_back(o.fit_begin_s + static_cast<double>(k) * dt);
+  Recording out = ModelRecording(run, o.maps, grid, o.model_time_offset_s, o.fit_begin_s, until_s + 0.5 * dt);
+  out.source = "prediction of the fitted model";
+  return out;
+}
+
 nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
   auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json hypotheses = nlohmann::json::array(), candidates = nlohmann::json::array(),

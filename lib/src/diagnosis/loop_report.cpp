@@ -1,5 +1,7 @@
 #include "drillwave/diagnosis/loop_report.hpp"
 
+#include <iomanip>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -118,8 +120,20 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
   out << "</ul>\n</body></html>\n";
 }
 
-void WriteDiagnosisLoop(const DiagnosisLoop& loop, const Recording& rec, const std::string& out_dir) {
+void WriteDiagnosisLoop(const DiagnosisLoop& loop, const Recording& rec, const std::string& out_dir,
+                        const Recording* prediction) {
   io::OutputDirectory out(out_dir);
+  if (prediction) {
+    std::ostream& csv = out.Open("prediction.csv");
+    csv << "time_s";
+    for (const std::string& name : prediction->names) csv << "," << name;
+    csv << "\n" << std::setprecision(9);
+    for (std::size_t i = 0; i < prediction->time_s.size(); ++i) {
+      csv << prediction->time_s[i];
+      for (const auto& channel : prediction->channels) csv << "," << channel[i];
+      csv << "\n";
+    }
+  }
   out.Open("diagnosis.json") << DiagnosisLoopToJson(loop).dump(2) << "\n";
   out.Open("fitted-case.json") << loop.fitted_document.dump(2) << "\n";
   out.Open("case.json") << loop.baseline_document.dump(2) << "\n";

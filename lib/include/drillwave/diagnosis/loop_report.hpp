@@ -13,7 +13,9 @@ namespace drillwave::diagnosis {
 
 void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& recording, std::ostream& out);
 
-// Writes the files above into out_dir, all or nothing (io::OutputDirectory).
-void WriteDiagnosisLoop(const DiagnosisLoop& loop, const Recording& recording, const std::string& out_dir);
+// Writes the files above into out_dir, all or nothing (io::OutputDirectory), and prediction.csv where a prediction
+// past the recording is given (PredictFitted).
+void WriteDiagnosisLoop(const DiagnosisLoop& loop, const Recording& recording, const std::string& out_dir,
+                        const Recording* prediction = nullptr);
 
 }  // namespace drillwave::diagnosis
