@@ -375,7 +375,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
       MeasureFeatures(plain, o.held_out_begin_s, o.held_out_end_s, model_features), loop.recording_held_out);
   // 2a. A calibrated base before effects: the base's uncertain parameters, within their prior ranges, fitted to the
   //     recording's gross features on the fit window (the levels and the period; what no effect is needed for).
-  const std::vector<Effect> calibrations = BaseCalibrations(base);
+  const std::vector<Effect> calibrations = o.max_singles > 0 ? BaseCalibrations(base) : std::vector<Effect>{};
   if (!calibrations.empty()) {
     FeatureSet gross = loop.recording_fit;
     gross.features.erase(std::remove_if(gross.features.begin(), gross.features.end(),
@@ -687,11 +687,12 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   // Screening: every effect the case can model gets a cheap fit, judged on one free run over the whole span (the fit
   // draw) against the baseline's same draw; the max_singles that predict the held-out window best are fitted in
   // full (ties: the stronger evidence first).
-  say("screening " + std::to_string(modelable.size()) + " effect(s), each fitted cheaply and run over the whole span");
-  loop.screening = ParallelMap(modelable.size(), std::max(1, o.threads), [&](std::size_t i) {
+  const std::size_t screened = o.max_singles > 0 ? modelable.size() : 0;
+  if (screened) say("screening " + std::to_string(screened) + " effect(s), each fitted cheaply and run over the whole span");
+  loop.screening = ParallelMap(screened, std::max(1, o.threads), [&](std::size_t i) {
     return fit_candidate({modelable[i]}, start_of({modelable[i]}), 1, true);
   });
-  std::vector<std::size_t> screening_order(modelable.size());
+  std::vector<std::size_t> screening_order(screened);
   for (std::size_t i = 0; i < screening_order.size(); ++i) screening_order[i] = i;
   auto screened_error = [&](std::size_t i) {
     const Candidate& c = loop.screening[i];

@@ -49,7 +49,7 @@ struct LoopOptions {
   // Every effect the case can model is screened by a fit of this budget per parameter (one start) and one free run
   // over the whole span; the max_singles best screened are fitted in full, and pairs and extensions come from these.
   int screening_evaluations_per_parameter = 4;
-  int max_singles = 4;
+  int max_singles = 4;  // 0: the case's own errors only (no base calibration, screening or fits)
   int max_effects = 3;            // forward selection stops at this many effects
   // The fits' runs use at most this tolerance's accuracy (rel and abs; 0: the case's); candidates are judged by runs
   // at the case's own tolerance. The features do not move with the tolerance up to 1e-4; at 1e-3 they did for
