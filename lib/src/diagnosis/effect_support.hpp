@@ -1,5 +1,6 @@
 #pragma once
 // What effects.cpp and rig_effects.cpp share: reading a case document and a feature difference in scales.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -33,22 +34,6 @@ inline std::string Describe(const FeatureSet& model, const FeatureSet& recording
 // How much smoother the recorded bit runs than the model's: less sticking, smaller speed swings (in scales, >= 0).
 inline double BitRunsSmoother(const FeatureSet& model, const FeatureSet& recording) {
   return std::max(Z(model, recording, "stick_fraction") - 1, 0.0) + std::max(Z(model, recording, "bit_rpm std"), 0.0);
-}
-
-// The downhole channels of a sensors block (bit speed, weight on bit): what telemetry delays.
-inline bool Downhole(const std::string& channel) { return channel.rfind("bit_", 0) == 0 || channel.rfind("wob", 0) == 0; }
-
-struct Pipe {
-  double length, impedance, wave_speed, density, polar;
-};
-
-inline Pipe PipeOf(const nlohmann::json& doc) {
-  const double od = Number(doc, "/model/string/outer_diameter_m", 0.127);
-  const double id = Number(doc, "/model/string/inner_diameter_m", 0.1086);
-  const double g = Number(doc, "/model/string/shear_modulus_Pa", 8.08e10);
-  const double rho = Number(doc, "/model/string/density_kg_m3", 7850);
-  const double polar = kPi / 32 * (std::pow(od, 4) - std::pow(id, 4));
-  return {Number(doc, "/model/string/length_m", 2000), polar * std::sqrt(g * rho), std::sqrt(g / rho), rho, polar};
 }
 
 }  // namespace drillwave::diagnosis::effect_support

@@ -10,6 +10,26 @@ namespace drillwave::diagnosis {
 
 using namespace effect_support;
 
+namespace {
+
+// The downhole channels of a sensors block (bit speed, weight on bit): what telemetry delays.
+bool Downhole(const std::string& channel) { return channel.rfind("bit_", 0) == 0 || channel.rfind("wob", 0) == 0; }
+
+struct Pipe {
+  double length, impedance, wave_speed, density, polar;
+};
+
+Pipe PipeOf(const nlohmann::json& doc) {
+  const double od = Number(doc, "/model/string/outer_diameter_m", 0.127);
+  const double id = Number(doc, "/model/string/inner_diameter_m", 0.1086);
+  const double g = Number(doc, "/model/string/shear_modulus_Pa", 8.08e10);
+  const double rho = Number(doc, "/model/string/density_kg_m3", 7850);
+  const double polar = kPi / 32 * (std::pow(od, 4) - std::pow(id, 4));
+  return {Number(doc, "/model/string/length_m", 2000), polar * std::sqrt(g * rho), std::sqrt(g / rho), rho, polar};
+}
+
+}  // namespace
+
 const std::vector<std::string>& EffectVocabulary() {
   static const std::vector<std::string> names = {"bha",          "stribeck",      "unbalance",
                                                  "side_friction", "kelvin_voigt",  "soft_topdrive",
@@ -29,9 +49,7 @@ double FromUnit(const EffectParameter& p, double u) {
 
 std::vector<Effect> BaseCalibrations(const nlohmann::json& doc) {
   std::vector<Effect> calibrations;
-  const std::string kind = doc.value("/model/kind"_json_pointer, std::string());
-  if (kind == "two_mass") return RigBaseCalibrations(doc);
-  if (kind != "axial_torsional") return calibrations;
+  if (doc.value("/model/kind"_json_pointer, std::string()) != "axial_torsional") return calibrations;
   // Only what the gross features identify: the contact stress sets the friction's share of the bit torque, and so the
   // mean torque (T = a W / (2 zeta) + a^2 sigma l (gamma mu - 1 / zeta) / 2 in steady drilling). The rock's intrinsic
   // specific energy moves only the depth of cut (no channel reads it) and the stability: left to the effects' fits.

@@ -1,11 +1,12 @@
 #include "drillwave/diagnosis/loop.hpp"
 
 #include <algorithm>
-#include <iterator>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <optional>
 
 #include "drillwave/cases/case_runner.hpp"
@@ -116,6 +117,25 @@ nlohmann::json Drawn(nlohmann::json doc, int d) {
 double ErrorSpread(double e, double k_features) {
   const double s2 = std::clamp(e, 0.0, 1.0);
   return std::sqrt((2 * s2 * s2 + 4 * s2 * std::max(e - 1, 0.0)) / std::max(1.0, k_features));
+}
+
+// `doc` with each effect switched on at its parameters' values u (in their unit cubes, one after the other).
+nlohmann::json Applied(nlohmann::json doc, const std::vector<const Effect*>& effects, const std::vector<double>& u) {
+  std::size_t k = 0;
+  for (const Effect* e : effects) {
+    std::vector<double> values;
+    for (const EffectParameter& p : e->parameters) values.push_back(FromUnit(p, u[k++]));
+    e->apply(doc, values);
+  }
+  return doc;
+}
+
+// The effects' first values, in their unit cubes.
+std::vector<double> StartOf(const std::vector<const Effect*>& effects) {
+  std::vector<double> u;
+  for (const Effect* e : effects)
+    for (const EffectParameter& p : e->parameters) u.push_back(ToUnit(p, p.start));
+  return u;
 }
 
 // A model's draws, each marked in the recording's regime or not.
@@ -386,20 +406,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
                                           return !(is_mean || f.name == "period_s");
                                         }),
                          gross.features.end());
-    auto calibrated = [&](const std::vector<double>& u) {
-      nlohmann::json doc = base;
-      std::size_t k = 0;
-      for (const Effect& e : calibrations) {
-        std::vector<double> values;
-        for (const EffectParameter& p : e.parameters) values.push_back(FromUnit(p, u[k++]));
-        e.apply(doc, values);
-      }
-      return doc;
-    };
-    std::vector<double> start;
-    for (const Effect& e : calibrations)
-      for (const EffectParameter& p : e.parameters) start.push_back(ToUnit(p, p.start));
-    int failures = 0;
+    std::vector<const Effect*> calibrated_effects;
+    for (const Effect& e : calibrations) calibrated_effects.push_back(&e);
+    auto calibrated = [&](const std::vector<double>& u) { return Applied(base, calibrated_effects, u); };
+    const std::vector<double> start = StartOf(calibrated_effects);
     auto objective = [&](const std::vector<double>& u) {
       try {
         return FeatureDistance(MeasureFeatures(run(calibrated(u), fit_duration, Tolerance::kFit), o.fit_begin_s,
@@ -408,7 +418,6 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
       } catch (const InputError&) {
       } catch (const NumericalError&) {
       }
-      ++failures;
       return kFailedRun;
     };
     MinimizeOptions mo;
@@ -489,22 +498,15 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     if (e.strength > 0)
       say((e.Proposed() ? "proposed " : "indicated ") + e.name + " (evidence " + Fixed(e.strength, 1) + "): " + e.evidence);
 
+  auto effects_of = [&](const std::vector<int>& set) {
+    std::vector<const Effect*> effects;
+    for (int i : set) effects.push_back(&loop.proposals[i]);
+    return effects;
+  };
   auto document_at = [&](const std::vector<int>& set, const std::vector<double>& u) {
-    nlohmann::json doc = base;
-    std::size_t k = 0;
-    for (int i : set) {
-      std::vector<double> values;
-      for (const EffectParameter& p : loop.proposals[i].parameters) values.push_back(FromUnit(p, u[k++]));
-      loop.proposals[i].apply(doc, values);
-    }
-    return doc;
+    return Applied(base, effects_of(set), u);
   };
-  auto start_of = [&](const std::vector<int>& set) {
-    std::vector<double> u;
-    for (int i : set)
-      for (const EffectParameter& p : loop.proposals[i].parameters) u.push_back(ToUnit(p, p.start));
-    return u;
-  };
+  auto start_of = [&](const std::vector<int>& set) { return StartOf(effects_of(set)); };
   // Every effect is a candidate: the rules' evidence orders the work (the proposals are sorted by it), never gates it.
   std::vector<int> modelable;
   for (std::size_t i = 0; i < loop.proposals.size(); ++i) {
@@ -683,17 +685,15 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
       loop.candidates.push_back(std::move(c));
   };
 
-  // Singles: the strongest proposals, each fitted alone from its first value.
   // Screening: every effect the case can model gets a cheap fit, judged on one free run over the whole span (the fit
-  // draw) against the baseline's same draw; the max_singles that predict the held-out window best are fitted in
-  // full (ties: the stronger evidence first).
+  // draw), and the effects are ranked by that run's held-out error (ties: the stronger evidence first).
   const std::size_t screened = o.max_singles > 0 ? modelable.size() : 0;
   if (screened) say("screening " + std::to_string(screened) + " effect(s), each fitted cheaply and run over the whole span");
   loop.screening = ParallelMap(screened, std::max(1, o.threads), [&](std::size_t i) {
     return fit_candidate({modelable[i]}, start_of({modelable[i]}), 1, true);
   });
   std::vector<std::size_t> screening_order(screened);
-  for (std::size_t i = 0; i < screening_order.size(); ++i) screening_order[i] = i;
+  std::iota(screening_order.begin(), screening_order.end(), std::size_t{0});
   auto screened_error = [&](std::size_t i) {
     const Candidate& c = loop.screening[i];
     return c.failure.empty() && std::isfinite(c.held_out_error) ? c.held_out_error : kFailedRun;
@@ -719,8 +719,9 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   fit_all(sets, [&](std::size_t i) { return start_of(sets[i]); });
   // Pairs, since one missing effect may hide what another explains — neither alone need lower the error (side
   // friction without the soft drive that lets the top move): every pair of the singles fitted in full (dev rec01's
-  // side friction and soft drive are its second and fourth singles once the base is calibrated). Each starts from its effects' own fits, where a fit moved the fit-window error by more than chance (a fit that
-  // did not found no value for its effect: then from the effect's first value).
+  // side friction and soft drive are its second and fourth singles). Each starts from its effects' own fits, where a
+  // fit moved the fit-window error by more than chance (a fit that did not found no value for its effect: then from
+  // the effect's first value).
   auto own_fit = [&](int effect) {
     const int single = representative({effect});
     if (single >= 0 && loop.baseline_fit_error - loop.candidates[single].fit_error > loop.error_chance &&
@@ -734,11 +735,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   std::stable_sort(ranked.begin(), ranked.end(), [&](int a, int b) {
     return loop.candidates[representative({a})].held_out_error < loop.candidates[representative({b})].held_out_error;
   });
-  const std::vector<int>& paired = ranked;
   sets.clear();
-  for (std::size_t a = 0; a < paired.size(); ++a)
-    for (std::size_t b = a + 1; b < paired.size(); ++b)
-      sets.push_back({std::min(paired[a], paired[b]), std::max(paired[a], paired[b])});
+  for (std::size_t a = 0; a < ranked.size(); ++a)
+    for (std::size_t b = a + 1; b < ranked.size(); ++b)
+      sets.push_back({std::min(ranked[a], ranked[b]), std::max(ranked[a], ranked[b])});
   if (!sets.empty()) say(std::to_string(sets.size()) + " pair(s) of them to fit");
   fit_all(sets, [&](std::size_t i) {
     std::vector<double> start = own_fit(sets[i][0]), second = own_fit(sets[i][1]);
@@ -791,7 +791,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
       continue;
     }
     if (static_cast<int>(set.size()) >= o.max_effects) break;
-    for (int i : paired)
+    for (int i : ranked)
       if (!std::binary_search(set.begin(), set.end(), i)) {
         std::vector<int> larger = set;
         larger.insert(std::upper_bound(larger.begin(), larger.end(), i), i);

@@ -96,7 +96,4 @@ std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, c
 }
 
 
-// None yet: the disc's inertia is an effect of RigEffects ("bit_inertia"), fitted with the others.
-std::vector<Effect> RigBaseCalibrations(const nlohmann::json&) { return {}; }
-
 }  // namespace drillwave::diagnosis

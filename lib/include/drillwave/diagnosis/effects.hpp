@@ -50,13 +50,12 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& document, const Feature
 // apply sets the parameter): fitted to the recording's gross features (levels, period) before any effect, so that
 // effects are fitted on a calibrated base rather than asked to make up for a wrong one. axial_torsional: the
 // wear-flat contact stress sigma*l within +-20 % of the case's (formations vary; the mean torque reads it). Empty for
-// other kinds.
+// other kinds (the rig's disc inertia is among its effects).
 std::vector<Effect> BaseCalibrations(const nlohmann::json& document);
 
-// The effects and calibrations of a laboratory rig modelled as a two-inertia pendulum (kind two_mass):
-// rig_effects.cpp. ProposeEffects and BaseCalibrations hand a two_mass document to these.
+// The effects of a laboratory rig modelled as a two-inertia pendulum (kind two_mass; rig_effects.cpp), to which
+// ProposeEffects hands a two_mass document. Its disc's inertia is one of them ("bit_inertia"), fitted with the others.
 std::vector<Effect> RigEffects(const nlohmann::json& document, const FeatureSet& model, const FeatureSet& recording);
-std::vector<Effect> RigBaseCalibrations(const nlohmann::json& document);
 
 // The vocabulary, for listing and checking names.
 const std::vector<std::string>& EffectVocabulary();
