@@ -1,12 +1,11 @@
 #include "drillwave/diagnosis/loop_report.hpp"
 
-#include <iomanip>
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "drillwave/core/format.hpp"
+#include "drillwave/io/csv.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
@@ -124,15 +123,11 @@ void WriteDiagnosisLoop(const DiagnosisLoop& loop, const Recording& rec, const s
                         const Recording* prediction) {
   io::OutputDirectory out(out_dir);
   if (prediction) {
-    std::ostream& csv = out.Open("prediction.csv");
-    csv << "time_s";
-    for (const std::string& name : prediction->names) csv << "," << name;
-    csv << "\n" << std::setprecision(9);
-    for (std::size_t i = 0; i < prediction->time_s.size(); ++i) {
-      csv << prediction->time_s[i];
-      for (const auto& channel : prediction->channels) csv << "," << channel[i];
-      csv << "\n";
-    }
+    std::vector<std::string> header = {"time_s"};
+    header.insert(header.end(), prediction->names.begin(), prediction->names.end());
+    std::vector<std::vector<double>> columns = {prediction->time_s};
+    columns.insert(columns.end(), prediction->channels.begin(), prediction->channels.end());
+    io::WriteCsv(out.Open("prediction.csv"), header, columns);
   }
   out.Open("diagnosis.json") << DiagnosisLoopToJson(loop).dump(2) << "\n";
   out.Open("fitted-case.json") << loop.fitted_document.dump(2) << "\n";
