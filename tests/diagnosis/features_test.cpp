@@ -53,6 +53,30 @@ TEST(Features, PeriodLagAndLevelsOfAKnownOscillation) {
   EXPECT_LT(f.Value("bit_rpm rotation_amplitude"), 1.0);
 }
 
+// A lab rig's laws read off its channels: a bit sticking and slipping under friction that falls 0.01 N m per rpm while
+// slipping, driven through a drive whose speed droops 40 rpm per N m. The slopes are the laws' (up to the noise and
+// the 50-ms smoothing), and absent without a channel named as the torque on bit.
+TEST(Features, TheFrictionSlopeAndTheDrivesDroopOfARig) {
+  Recording r = Empty({"top_rpm", "bit_rpm", "tob_Nm"});
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int i = 0; i < 6000; ++i) {
+    const double t = 0.01 * i, phase = std::fmod(t, 0.8) / 0.8;
+    const double bit = phase < 0.2 ? 0.0 : 160 * std::sin(kPi * (phase - 0.2) / 0.8);  // stuck a fifth of the time
+    const double tob = phase < 0.2 ? 2.0 + 5 * phase : 3.0 - 0.01 * bit + 0.02 * n(rng);
+    r.time_s.push_back(t);
+    r.channels[0].push_back(150 - 40 * tob + 0.5 * n(rng));
+    r.channels[1].push_back(bit);
+    r.channels[2].push_back(tob);
+  }
+  FeatureOptions o;
+  EXPECT_FALSE(std::isfinite(MeasureFeatures(r, 0, 60, o).Value(kFrictionSlope)));
+  o.bit_torque = "tob_Nm";
+  const FeatureSet f = MeasureFeatures(r, 0, 60, o);
+  EXPECT_NEAR(f.Value(kFrictionSlope), -0.01, 0.001);
+  EXPECT_NEAR(f.Value(kDriveDroop), -40, 1);
+}
+
 TEST(Features, RotationLineOfAWhirlIsMeasured) {
   Recording r = Oscillation(60, 3.2, 0, 0.2, 2, 0);
   for (std::size_t i = 0; i < r.time_s.size(); ++i) r.channels[0][i] += 4 * std::cos(2 * kPi * 1.0 * r.time_s[i]);

@@ -68,7 +68,8 @@ TEST(UfrjRig, FittedCasePredictsTheHeldOutFeaturesBetterThanItsStart) {
 // out 20-30 s, it must add the physics the rig shows (velocity weakening, a soft drive) and predict the held-out part
 // far better. Measured: stribeck + soft_topdrive + bit_inertia kept, held-out error 30.9 -> 5.51 (with pairs, f9ff18c);
 // with every effect screened and the soft drive a droop drive on its motor's inertia (no integral), the same three,
-// 20.5 -> 3.51.
+// 20.5 -> 3.51; with the friction's slope and the drive's droop among the features and the droop as the drive's start,
+// stribeck + soft_topdrive, 38.2 -> 8.31 (the CLI's README command, without the torque-to-bit lag: 34 -> 1.1).
 LoopOptions RigLoopOptions() {
   LoopOptions o;
   o.maps = {{"top_rpm", "top_rpm", 1}, {"bit_rpm", "bit_rpm", 1}, {"tob_Nm", "bit_torque_Nm", 1}};

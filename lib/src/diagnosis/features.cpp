@@ -32,6 +32,20 @@ std::vector<double> MovingAverage(const std::vector<double>& x, int half) {
   return out;
 }
 
+// Least-squares slope of y on x over the samples where `use` holds; NaN with fewer than 16 or no spread in x.
+template <class Use>
+double Slope(const std::vector<double>& x, const std::vector<double>& y, Use use) {
+  double n = 0, sx = 0, sy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (use(i)) n += 1, sx += x[i], sy += y[i];
+  if (n < 16) return kNaN;
+  const double mx = sx / n, my = sy / n;
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (use(i)) sxx += (x[i] - mx) * (x[i] - mx), sxy += (x[i] - mx) * (y[i] - my);
+  return sxx > 0 ? sxy / sxx : kNaN;
+}
+
 // Normalized correlation of a(t) with b(t + lag) for lag = k samples.
 double LaggedCorrelation(const std::vector<double>& a, const std::vector<double>& b, long k) {
   const long n = static_cast<long>(a.size());
@@ -160,7 +174,7 @@ std::map<std::string, double> Measure(const Recording& r, std::size_t first, std
   const double dt = r.sample_interval_s;
   const int smooth_half = static_cast<int>(std::lround(0.5 * o.smoothing_s / dt));
   const int fast_half = static_cast<int>(std::lround(0.5 * o.fast_window_s / dt));
-  std::vector<double> bit, torque, hook_fast, wob_fast;
+  std::vector<double> bit, top, torque, bit_torque, hook_fast, wob_fast;
   std::vector<std::vector<double>> smoothed;
   for (std::size_t j = 0; j < r.names.size(); ++j) {
     const std::vector<double> raw(r.channels[j].begin() + first, r.channels[j].begin() + last);
@@ -172,7 +186,9 @@ std::map<std::string, double> Measure(const Recording& r, std::size_t first, std
     f[r.names[j] + " std"] = Std(x);
     f[r.names[j] + " fast_std"] = BandRms(raw, dt, 1 / o.fast_window_s, 0.5 / o.smoothing_s);
     if (r.names[j] == o.bit_speed) bit = x;
+    if (r.names[j] == o.top_speed) top = x;
     if (r.names[j] == o.top_torque) torque = x;
+    if (!o.bit_torque.empty() && r.names[j] == o.bit_torque) bit_torque = x;
     if (r.names[j] == o.hook_load) hook_fast = fast;
     if (r.names[j] == o.weight_on_bit) wob_fast = fast;
     smoothed.push_back(x);
@@ -193,6 +209,10 @@ std::map<std::string, double> Measure(const Recording& r, std::size_t first, std
     f["stick_fraction"] = stuck;
     f["period_s"] = Period(bit, dt, o.max_period_s);
     if (!torque.empty()) f["torque_to_bit_lag_s"] = Lag(torque, bit, dt, f["period_s"]);
+    if (!bit_torque.empty()) {
+      f[kFrictionSlope] = Slope(bit, bit_torque, [&](std::size_t i) { return bit[i] >= threshold; });
+      if (!top.empty()) f[kDriveDroop] = Slope(bit_torque, top, [](std::size_t) { return true; });
+    }
     // The line at the bit's mean rotation frequency in every channel: a whirling unbalance forces it.
     const double rotation_hz = Mean(bit) / 60;  // the bit speed in rpm
     for (std::size_t j = 0; j < r.names.size(); ++j)

@@ -215,11 +215,15 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   loop.masked_samples = masked.masked;
   for (std::size_t j = 0; j < masked.whole.size(); ++j)
     if (masked.whole[j]) loop.channels_left_whole.push_back(mapped.names[j]);
-  loop.recording_fit = MeasureFeatures(rec, o.fit_begin_s, o.fit_end_s, o.features);
-  loop.recording_held_out = MeasureFeatures(rec, o.held_out_begin_s, o.held_out_end_s, o.features);
+  // A recording channel that maps the model's torque on bit is read as one (a lab rig's calibration features).
+  FeatureOptions features = o.features;
+  for (const ChannelMap& map : o.maps)
+    if (features.bit_torque.empty() && map.model == "bit_torque_Nm") features.bit_torque = map.recording;
+  loop.recording_fit = MeasureFeatures(rec, o.fit_begin_s, o.fit_end_s, features);
+  loop.recording_held_out = MeasureFeatures(rec, o.held_out_begin_s, o.held_out_end_s, features);
   // A model's features are read against the recording's scales, so its own (the spread between the window's parts)
   // are never used: measured on the whole window only, for a fifth of the cost.
-  FeatureOptions model_features = o.features;
+  FeatureOptions model_features = features;
   model_features.parts = 1;
 
   // 1. The recording's noise, carried into the model's measured channels.
@@ -302,11 +306,11 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
 
   // The recording's regime, and a model's draws run until `draws` of them are in it (or kMaxDrawFactor times as many
   // have run), `threads` at a time.
-  loop.recorded_off_bottom_share = OffBottomShare(rec, o.fit_begin_s, o.held_out_end_s, o.features);
+  loop.recorded_off_bottom_share = OffBottomShare(rec, o.fit_begin_s, o.held_out_end_s, features);
   loop.recording_bounces = loop.recorded_off_bottom_share > kBouncingShare;
   auto in_regime = [&](const Recording& m) {
     if (!std::isfinite(loop.recorded_off_bottom_share)) return true;
-    return (OffBottomShare(m, o.fit_begin_s, o.held_out_end_s, o.features) > kBouncingShare) == loop.recording_bounces;
+    return (OffBottomShare(m, o.fit_begin_s, o.held_out_end_s, features) > kBouncingShare) == loop.recording_bounces;
   };
   const int draws = std::max(1, o.draws);
   // A draw whose run fails numerically (its work budget, a step-size underflow) is left out and counted; the model

@@ -32,7 +32,13 @@ std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, c
     const double motor = Number(doc, "/model/top/inertia_kgm2", j);
     Effect e{"soft_topdrive", "a soft drive: a speed loop with droop (gain, no-load speed) on the motor's inertia", {},
              nullptr, 0, ""};
-    e.parameters = {{"kp_Nms_per_rad", "N m s/rad", 0.01 * impedance, 100 * impedance, true, impedance},
+    // The recorded droop (top rpm per N m of torque on bit, the shaft's torque on average) is the gain a lab would
+    // read off its drive: the fit starts there (from the shaft's impedance without it).
+    const double droop = r.Value(kDriveDroop);
+    const double kp = std::isfinite(droop) && droop < 0
+                          ? std::clamp(-30 / (kPi * droop), 0.01 * impedance, 100 * impedance)
+                          : impedance;
+    e.parameters = {{"kp_Nms_per_rad", "N m s/rad", 0.01 * impedance, 100 * impedance, true, kp},
                     {"motor_inertia_kgm2", "kg m^2", 0.05 * j, 10 * j, true, std::clamp(motor, 0.05 * j, 10 * j)}};
     e.apply = [speed, torque](nlohmann::json& d, const std::vector<double>& v) {
       d["model"]["top"]["kp_Nms_per_rad"] = v[0];

@@ -36,9 +36,19 @@ struct FeatureSet {
   double Value(const std::string& name) const;         // NaN if absent
 };
 
+// With a measured torque on bit (FeatureOptions::bit_torque): the friction's slope, torque on bit per unit of bit
+// speed while slipping, and the drive's droop, top speed per unit of torque on bit (units of the recording's channels).
+inline constexpr const char* kFrictionSlope = "friction_slope";
+inline constexpr const char* kDriveDroop = "drive_droop";
+
 struct FeatureOptions {
   std::string bit_speed = "bit_rpm";     // the channel read for sticking, period and lag (skipped if absent)
+  std::string top_speed = "top_rpm";
   std::string top_torque = "top_torque_kNm";
+  // A measured torque on bit (a lab rig's; empty: none). With it two laws are read off the recording as a laboratory
+  // would calibrate them: the friction's torque-speed slope while slipping (velocity weakening) and the drive's
+  // speed-torque slope (its droop, the torque on bit standing for the shaft's), each a least-squares line.
+  std::string bit_torque;
   std::string hook_load = "hookload_kN";  // with weight_on_bit: the axial lag (skipped if either is absent)
   std::string weight_on_bit = "wob_kN";
   double min_axial_lag_s = -3, max_axial_lag_s = 8;  // the lags looked at (at most a third of the window)
