@@ -30,6 +30,7 @@
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/diagnosis/fit.hpp"
 #include "drillwave/diagnosis/inspection.hpp"
+#include "drillwave/estimation/recording_estimate.hpp"
 #include "drillwave/io/json_reader.hpp"
 
 namespace {
@@ -301,6 +302,39 @@ int Fit(const std::string& file, const std::string& recording_file, const std::s
   for (std::size_t i = 0; i < parameters.size(); ++i) std::cout << " " << parameters[i].pointer << " = " << r.fitted[i];
   std::cout << "\nwrote " << std::filesystem::absolute(out_dir).string()
             << "/fitted-case.json, fit.json, report.md, plot.svg" << std::endl;
+  return 0;
+}
+
+// `estimate` (issue 34): the bit seen from the surface channels named in --from, scored against the downhole ones.
+int Estimate(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
+             const std::vector<std::string>& overrides, const std::string& from, const std::string& window,
+             const std::string& out_dir) {
+  namespace es = drillwave::estimation;
+  nlohmann::json doc = LoadCaseDocument(file, overrides);
+  double hook_force_N = 0;
+  es::EstimateOptions options;
+  if (!sidecar_file.empty()) {
+    const nlohmann::json sidecar = drillwave::io::LoadJsonFile(sidecar_file);
+    doc = drillwave::diagnosis::CaseFromSidecar(sidecar, doc, drillwave::diagnosis::kSidecarWarmupS, sidecar_file);
+    hook_force_N = 1000 * sidecar.value("hookload_setpoint_kN", 0.0);
+    options.model_time_offset_s = -drillwave::diagnosis::kSidecarWarmupS;
+  }
+  drillwave::cases::ParseCase(doc);  // validates every field (InputError names its path)
+  const es::EstimatorModel model = es::EstimatorModelFromCase(doc, hook_force_N);
+  const auto recording = drillwave::diagnosis::LoadRecording(recording_file);
+  const es::SurfaceSignals signals = es::SignalsFromRecording(recording, es::ParseSurfaceChannels(from, recording));
+  es::ScoreWindow score;
+  if (!window.empty()) std::tie(score.begin_s, score.end_s) = Window(window);
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
+  const es::BitEstimate e = es::EstimateBit(model, signals, options);
+  const nlohmann::json summary = es::EstimateSummary(recording, e, score);
+  es::WriteEstimate(recording, e, summary, out_dir);
+  std::cout << "drillwave: estimated the bit from " << from << " (" << e.method << "), latency " << e.latency_s
+            << " s\n";
+  for (const auto& [key, value] : summary.at("errors").items())
+    if (value.is_object()) std::cout << "  " << key << ": " << value.dump() << "\n";
+  std::cout << "wrote " << std::filesystem::absolute(out_dir).string() << "/estimate.csv, estimate.json, plot.svg"
+            << std::endl;
   return 0;
 }
 
@@ -606,6 +640,19 @@ int main(int argc, char** argv) {
   diagnose->add_option("--out,-o", diagnose_out, "output folder (written all or nothing)");
   diagnose->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 
+  auto* estimate = app.add_subcommand(
+      "estimate", "a virtual downhole sensor: the bit's speed, torque, weight on bit and stuck flag estimated from "
+                  "surface channels only, scored against the recording's downhole channels where it has them");
+  std::string estimate_out = "drillwave-estimate", estimate_from, estimate_window;
+  estimate->add_option("case", case_file, "case JSON file (two_mass or axial_torsional; e.g. diagnose's fitted-case.json)")
+      ->required();
+  estimate->add_option("recording", recording_file, "recording CSV file")->required();
+  estimate->add_option("--sidecar", sidecar_file, "a synthetic recording's operator sidecar (as for diagnose)");
+  estimate->add_option("--from", estimate_from, "surface channels, e.g. top_rpm,top_torque_kNm,hookload_kN")->required();
+  estimate->add_option("--window", estimate_window, "begin,end [s] of the error figures (default: all)");
+  estimate->add_option("--out,-o", estimate_out, "output folder (written all or nothing)");
+  estimate->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
+
   auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
 
   try {
@@ -635,6 +682,8 @@ int main(int argc, char** argv) {
       std::cout << "case '" << c.name << "' is valid (kind " << c.kind << ")\n";
       return 0;
     }
+    if (estimate->parsed())
+      return Estimate(case_file, recording_file, sidecar_file, overrides, estimate_from, estimate_window, estimate_out);
     if (diagnose->parsed())
       return Diagnose(case_file, recording_file, sidecar_file, overrides, maps, diagnose_args, diagnose_out);
     if (fit->parsed())

@@ -1,0 +1,45 @@
+#pragma once
+// The virtual sensor on a recording: which of its channels are the surface signals (--from), the estimate, its errors
+// against the downhole channels the recording may hold (read only for the scores, after the estimate), and the
+// output folder (estimate.csv, estimate.json, plot.svg).
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "drillwave/diagnosis/recording.hpp"
+#include "drillwave/estimation/estimate.hpp"
+
+namespace drillwave::estimation {
+
+// Channels named in --from, by role. A channel's unit is read from its name's suffix: _rpm or _rad_s a speed, _Nm or
+// _kNm a torque, _N or _kN a force (the hook load).
+struct SurfaceChannels {
+  std::string top_speed, top_torque, hook_load;
+};
+
+// Parses "top_rpm,top_torque_kNm,hookload_kN". Throws InputError("--from", ...) naming the value for an unknown
+// channel, a unit it cannot read, two channels of one role, a missing speed, or a downhole channel (a name starting
+// with bit_, tob or wob: the estimate never reads them).
+SurfaceChannels ParseSurfaceChannels(const std::string& from, const diagnosis::Recording& recording);
+
+// The named channels in SI units on the recording's grid (InputError naming time_s if it is not uniform).
+SurfaceSignals SignalsFromRecording(const diagnosis::Recording& recording, const SurfaceChannels& channels);
+
+struct ScoreWindow {
+  double begin_s = -1e300, end_s = 1e300;
+};
+
+// estimate.json's content: method, latency, stuck threshold, notes, stick-slip events, severity windows, and, for
+// each downhole channel the recording holds (bit_rpm or bit_rad_s; tob_Nm, bit_torque_Nm or tob_kNm; wob_N or
+// wob_kN), the error over `window` (RMS, bias, measured mean; for the bit speed in rpm and stuck precision, recall
+// and F1 with the same threshold on the measurement).
+nlohmann::json EstimateSummary(const diagnosis::Recording& recording, const BitEstimate& estimate,
+                               const ScoreWindow& window);
+
+// estimate.csv (time_s, bit_rpm, bit_rpm_band, bit_torque_Nm, bit_torque_Nm_band, wob_N, wob_N_band, bit_stuck),
+// estimate.json and plot.svg (estimate against the measured downhole channels where present) into `dir`, all or
+// nothing.
+void WriteEstimate(const diagnosis::Recording& recording, const BitEstimate& estimate, const nlohmann::json& summary,
+                   const std::string& dir);
+
+}  // namespace drillwave::estimation

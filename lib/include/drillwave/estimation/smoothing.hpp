@@ -1,0 +1,22 @@
+#pragma once
+// Noise levels and local-polynomial smoothing of sampled signals (uniform grid), NaN-aware: a window with a NaN in it
+// gives NaN, so the edges where an estimate is not available stay marked.
+#include <vector>
+
+namespace drillwave::estimation {
+
+struct Smoothed {
+  std::vector<double> value, derivative;
+  double noise_gain = 0;  // std of the smoothed value per unit std of white noise in the input
+  double derivative_noise_gain = 0;  // the same for the derivative [1/s]
+};
+
+// Least-squares quadratic over the centred window of 2 half_width + 1 samples (Savitzky-Golay): value and first
+// derivative at the centre. half_width 0 returns the input and a central-difference derivative.
+Smoothed SmoothQuadratic(const std::vector<double>& x, double dt, int half_width);
+
+// White-noise standard deviation of a sampled signal read from its successive differences (robust: 1.4826 MAD of the
+// differences over sqrt 2), which the signal's own motion barely moves when it is sampled well above its bandwidth.
+double NoiseStd(const std::vector<double>& x);
+
+}  // namespace drillwave::estimation

@@ -1,0 +1,193 @@
+// The virtual downhole sensor (issue 34): the continuation is exact on a lossless string, the estimators recover the
+// bit of drillwave's own runs from their top signals, and the observer forgets a wrong start.
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/diagnosis/recording.hpp"
+#include "drillwave/diagnosis/sidecar.hpp"
+#include "drillwave/estimation/estimate.hpp"
+#include "drillwave/estimation/lumped_observer.hpp"
+#include "drillwave/estimation/metrics.hpp"
+#include "drillwave/estimation/recording_estimate.hpp"
+#include "drillwave/estimation/wave_continuation.hpp"
+#include "drillwave/io/json_reader.hpp"
+
+namespace es = drillwave::estimation;
+
+namespace {
+
+constexpr double kRpm = M_PI / 30;
+
+std::vector<double> Rad(const std::vector<double>& rpm) {
+  std::vector<double> w(rpm);
+  for (double& v : w) v *= kRpm;
+  return w;
+}
+
+// Two smooth waves at the top of a lossless uniform string: the bottom's speed and torque are known in closed form.
+TEST(WaveContinuation, LosslessStringGivesTheBottomFromTheTopOneTravelTimeLater) {
+  const double z = 300, tau = 0.6, dt = 0.002;
+  auto down = [](double t) { return 5 + std::sin(2 * t) + 0.3 * std::cos(7 * t); };
+  auto up = [](double t) { return 1 + 0.5 * std::sin(3 * t + 1); };
+  std::vector<double> t, v, f;
+  for (int i = 0; i <= 5000; ++i) {
+    t.push_back(i * dt);
+    v.push_back(down(t.back()) + up(t.back()));
+    f.push_back(z * (down(t.back()) - up(t.back())));
+  }
+  const std::vector<es::WavePiece> pieces(4, es::WavePiece{z, tau / 4, 0});
+  const es::WaveEnd end = es::ContinueDownward(t, v, f, pieces);
+  double worst = 0;
+  int finite = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!std::isfinite(end.velocity[i])) continue;
+    ++finite;
+    // At the bottom the down-going wave left the top tau earlier, the up-going one reaches the top tau later.
+    worst = std::max(worst, std::abs(end.velocity[i] - (down(t[i] - tau) + up(t[i] + tau))));
+    worst = std::max(worst, std::abs(end.force[i] / z - (down(t[i] - tau) - up(t[i] + tau))));
+  }
+  EXPECT_GT(finite, 4000);                         // all but the first and last travel time (and a sample or two)
+  EXPECT_TRUE(std::isnan(end.velocity[100]));      // 0.2 s < tau: not available
+  EXPECT_LT(worst, 1e-5);                          // cubic interpolation of waves of 7 rad/s sampled at 500 Hz
+}
+
+TEST(WaveContinuation, AShuntDashpotTakesItsTorqueFromASteadyRotation) {
+  std::vector<double> t, v, f;
+  for (int i = 0; i < 400; ++i) t.push_back(0.01 * i), v.push_back(6), f.push_back(5000);
+  const es::WaveEnd end = es::ContinueDownward(t, v, f, {{300, 0.2, 60}, {300, 0.2, 60}});
+  EXPECT_NEAR(end.velocity[200], 6, 1e-9);  // uniform speed down a rotating string
+  EXPECT_NEAR(end.force[200], 5000 - 2 * 60 * 6, 1e-6);  // the steady torque less c L w
+}
+
+TEST(Metrics, StuckScoresCountSamples) {
+  const std::vector<double> t{0, 1, 2, 3, 4, 5};
+  const std::vector<double> measured{0, 0, 5, 5, 0, 5}, estimate{0, 5, 5, 0, 0, NAN};
+  const std::vector<char> stuck{1, 0, 0, 1, 1, 0};
+  const es::StuckScore s = es::ScoreStuck(t, estimate, stuck, measured, 1.0, 0, 10);
+  EXPECT_EQ(s.samples, 5u);  // the NaN estimate is left out
+  EXPECT_EQ(s.true_positive, 2u);
+  EXPECT_EQ(s.false_positive, 1u);
+  EXPECT_EQ(s.false_negative, 1u);
+  EXPECT_NEAR(s.f1, 4.0 / 6.0, 1e-12);
+  const auto events = es::StuckEvents({0, 1, 2, 3, 4, 5, 6}, {1, 1, 0, 1, 1, 0, 0});
+  ASSERT_EQ(events.size(), 1u);  // one free sample inside a stick is noise across the threshold
+  EXPECT_EQ(events[0].end_s, 4);
+}
+
+// drillwave's own coupled run (the baseline at 60 rpm sticks and slips from about 9 s): its top signals give its bit.
+TEST(WaveStringEstimate, RecoversTheBitOfDrillwavesOwnCoupledRun) {
+  nlohmann::json doc = drillwave::io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  doc["simulation"]["duration_s"] = 40;
+  doc["statistics"]["window_s"] = {0, 40};
+  const auto run = drillwave::cases::RunCase(drillwave::cases::ParseCase(doc));
+  es::SurfaceSignals s;
+  s.time_s = run.result.time_s;
+  s.top_speed_rad_s = Rad(run.result.channel("top_rpm").values);
+  s.top_torque_Nm = run.result.channel("top_torque_Nm").values;
+  s.hook_load_N = run.result.channel("hookload_N").values;
+  const es::EstimatorModel model = es::EstimatorModelFromCase(doc);
+  const es::BitEstimate e = es::EstimateBit(model, s, {});
+  const std::vector<double> bit = Rad(run.result.channel("bit_rpm").values);
+  const es::SeriesError speed = es::CompareSeries(e.time_s, e.bit_speed_rad_s, bit, 10, 40);
+  // Exact up to the lumping of the distributed damping (here at the pieces' middles, in the model at their ends), the
+  // interpolation, the top inertia's torque taken as a time advance and the smoothing over 0.08 s, which rounds the
+  // stick's corners. Measured: 2.09 rpm, 3.3 % of the mean (more than these alone explain: not yet found); bound 5 %.
+  EXPECT_GT(speed.samples, 2500u);
+  EXPECT_LT(speed.rms, 0.05 * speed.measured_mean) << "RMS " << speed.rms / kRpm << " rpm";
+  const es::StuckScore stuck = es::ScoreStuck(e.time_s, e.bit_speed_rad_s, e.stuck, bit, e.stuck_threshold_rad_s, 10, 40);
+  EXPECT_GT(stuck.measured_stuck, 200u);  // it does stick
+  EXPECT_GT(stuck.f1, 0.9);
+  EXPECT_NEAR(e.latency_s, 2000 / std::sqrt(80769e6 / 7850) + 0.025 + 0.08, 0.02);
+  const es::SeriesError torque = es::CompareSeries(e.time_s, e.bit_torque_Nm, run.result.channel("bit_torque_Nm").values, 10, 40);
+  // The torque needs the bit's acceleration, a derivative of the continued speed: measured 715 N m, 13 % of the mean.
+  EXPECT_LT(torque.rms, 0.2 * torque.measured_mean) << "torque RMS " << torque.rms << " N m";
+}
+
+// A two-mass pendulum as the rig's diagnosis fits it (droop drive, Stribeck friction), in stick-slip.
+nlohmann::json RigLikeCase() {
+  return nlohmann::json::parse(R"({
+    "name": "rig-like", "model": {"kind": "two_mass",
+      "string": {"stiffness_Nm_per_rad": 2.9, "damping_Nms_per_rad": 0.06},
+      "top": {"type": "top_drive", "inertia_kgm2": 2.2e-4, "kp_Nms_per_rad": 0.6, "ki_Nm_per_rad": 0,
+              "speed_rad_s": 12.33},
+      "bit": {"inertia_kgm2": 0.0026, "nominal_weight_on_bit_N": 570,
+              "friction": {"law": "stribeck", "W_N": 570, "R_m": 1, "mu_c": 0.00243, "mu_s": 0.00513,
+                           "gamma_b": 1, "nu_f_rad_s": 5.26, "c_b_Nms_per_rad": 0}}},
+    "simulation": {"duration_s": 10, "output_interval_s": 0.001, "abs_tol": 1e-8, "rel_tol": 1e-8},
+    "statistics": {"window_s": [0, 10]}})");
+}
+
+TEST(LumpedObserver, ConvergesFromAWrongStartToTheSimulatedBit) {
+  const nlohmann::json doc = RigLikeCase();
+  const auto run = drillwave::cases::RunCase(drillwave::cases::ParseCase(doc));
+  es::SurfaceSignals s;
+  s.time_s = run.result.time_s;
+  s.top_speed_rad_s = Rad(run.result.channel("top_rpm").values);
+  const std::vector<double> bit = Rad(run.result.channel("bit_rpm").values);
+  const es::EstimatorModel model = es::EstimatorModelFromCase(doc);
+  es::LumpedObserverOptions o;
+  o.initial_bit_speed_rad_s = bit[0] + 10;  // 95 rpm off
+  o.initial_twist_rad = 0.5;
+  o.smoothing_lag_s = 0;  // the filter alone, so that the start's error shows
+  const es::BitEstimate e = es::EstimateLumped(model.lumped, s, 0.05 * 12.33, o);
+  EXPECT_GT(std::abs(e.bit_speed_rad_s[1] - bit[1]), 5.0);  // it does start wrong
+  const es::SeriesError late = es::CompareSeries(e.time_s, e.bit_speed_rad_s, bit, 2, 10);
+  // Noise-free top speed and the exact model: what is left is the filter's discretisation (explicit sub-steps of the
+  // stick-slip switching against the solver's located events): within 2 % of the mean bit speed.
+  EXPECT_LT(late.rms, 0.02 * late.measured_mean) << "RMS " << late.rms / kRpm << " rpm";
+  int stuck_samples = 0;
+  for (double w : bit) stuck_samples += std::abs(w) < 0.05 * 12.33;
+  EXPECT_GT(stuck_samples, 100);  // the run sticks
+  const es::StuckScore stuck = es::ScoreStuck(e.time_s, e.bit_speed_rad_s, e.stuck, bit, 0.05 * 12.33, 2, 10);
+  EXPECT_GT(stuck.f1, 0.8);
+}
+
+TEST(EstimatorModel, RefusesKindsWithoutAnEstimatorNamingTheField) {
+  const nlohmann::json doc = {{"model", {{"kind", "two_disc"}}}};
+  try {
+    es::EstimatorModelFromCase(doc);
+    FAIL() << "no error";
+  } catch (const drillwave::InputError& e) {
+    EXPECT_EQ(e.json_path(), "/model/kind");
+  }
+}
+
+TEST(SurfaceChannels, RefusesDownholeChannelsAndUnknownUnits) {
+  drillwave::diagnosis::Recording r;
+  r.names = {"top_rpm", "bit_rpm", "top_torque_kNm", "mystery"};
+  r.channels.assign(4, {1, 2, 3});
+  r.time_s = {0, 1, 2};
+  for (const std::string bad : {"top_rpm,bit_rpm", "top_rpm,mystery", "top_torque_kNm", "top_rpm,top_rpm", "nope"}) {
+    try {
+      es::ParseSurfaceChannels(bad, r);
+      FAIL() << bad;
+    } catch (const drillwave::InputError& e) {
+      SUCCEED();
+    }
+  }
+  const es::SurfaceChannels c = es::ParseSurfaceChannels("top_rpm,top_torque_kNm", r);
+  EXPECT_EQ(c.top_torque, "top_torque_kNm");
+}
+
+// The independent simulator's recording rec03 (stick-slip at 105 rpm), surface channels only.
+TEST(SyntheticRecordings, Rec03MeetsTheIssuesTargets) {
+  const std::string dir = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/synthetic/";
+  if (!std::filesystem::exists(dir + "rec03.csv")) GTEST_SKIP() << dir << "rec03.csv is absent";
+  nlohmann::json doc = drillwave::io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  const nlohmann::json sidecar = drillwave::io::LoadJsonFile(dir + "rec03.json");
+  doc = drillwave::diagnosis::CaseFromSidecar(sidecar, doc, drillwave::diagnosis::kSidecarWarmupS);
+  const auto rec = drillwave::diagnosis::LoadRecording(dir + "rec03.csv");
+  const es::SurfaceSignals s =
+      es::SignalsFromRecording(rec, es::ParseSurfaceChannels("top_rpm,top_torque_kNm,hookload_kN", rec));
+  const es::BitEstimate e = es::EstimateBit(
+      es::EstimatorModelFromCase(doc, 1000 * sidecar.at("hookload_setpoint_kN").get<double>()), s, {});
+  const nlohmann::json j = es::EstimateSummary(rec, e, {});
+  EXPECT_LT(j["errors"]["bit_rpm"]["rms_percent_of_mean"].get<double>(), 10);
+  EXPECT_GT(j["errors"]["stuck"]["f1"].get<double>(), 0.9);
+}
+
+}  // namespace
