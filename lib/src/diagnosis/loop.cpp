@@ -18,25 +18,20 @@
 #include "drillwave/core/sampled.hpp"
 #include "drillwave/diagnosis/minimize.hpp"
 #include "drillwave/diagnosis/signals.hpp"
+#include "model_runs.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
 
-constexpr double kFailedRun = 1e6;  // objective of a run that fails numerically or that the case rejects
-constexpr double kWorkFactor = 6;  // a fit's run may cost this many times the baseline's evaluations
-// A judging run (a fitted model over the whole span, at the case's tolerance) may cost this many times: the fitted
-// values are no corner of the box, but a model with more physics costs more (a distributed BHA of 240 m of collars
-// cost more than 6 times the lumped body's at rec04 of synthetic-train, and failed its judging).
-constexpr double kJudgingWorkFactor = 30;
+using loop_internal::Draws;
+using loop_internal::Drawn;
+using loop_internal::Judged;
+using loop_internal::kFailedRun;
+using loop_internal::ModelRecording;
+using loop_internal::ModelRuns;
 // Model outputs per sample window, for the measured window means: a bouncing bit's twin of 10-ms means from 0.5-ms
 // outputs reads 0.046 held out at 5 (0.007 at 10, chance 0.535; loop_test.cpp), for about a sixth less CPU than 10.
 constexpr double kOutputsPerWindow = 5;
-// A bit off the bottom for more than this share of the usable span bounces (the synthetic recordings: 0 in eleven,
-// 0.36 in rec04's bounce; a bouncing model's runs 0.27-0.51).
-constexpr double kBouncingShare = 0.01;
-// At most this many times LoopOptions::draws are run to find draws in the recording's regime (rec12's baseline: 4 of
-// 9 starts stay on the bottom).
-constexpr int kMaxDrawFactor = 3;
 // At most this many of the singles fitted in full are chosen by the rules' evidence, the others by screening.
 constexpr int kRuleSingles = 2;
 // A fit's run that lands in the other regime is drawn again, at most this many times in all.
@@ -46,29 +41,6 @@ std::string Joined(const std::vector<std::string>& names) {
   std::string s;
   for (const std::string& n : names) s += (s.empty() ? "" : " + ") + n;
   return s.empty() ? "baseline" : s;
-}
-
-// The model's measured channels on the recording's times in [begin, end], named and scaled as the recording's.
-Recording ModelRecording(const cases::RunResult& run, const std::vector<ChannelMap>& maps, const Recording& rec,
-                         double offset_s, double begin_s, double end_s) {
-  Recording m;
-  m.source = "model";
-  m.sample_interval_s = rec.sample_interval_s;
-  for (double t : rec.time_s)
-    if (t >= begin_s && t <= end_s) m.time_s.push_back(t);
-  std::vector<double> model_time = run.time_s;
-  for (double& t : model_time) t -= offset_s;
-  for (const ChannelMap& map : maps) {
-    const std::string measured = map.model + "_measured";
-    const bool has_measured = std::any_of(run.channels.begin(), run.channels.end(),
-                                          [&](const cases::Channel& c) { return c.name == measured; });
-    const std::vector<double>& values = run.channel(has_measured ? measured : map.model).values;
-    std::vector<double> out(m.time_s.size());
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = map.scale * InterpolateSampled(model_time, values, m.time_s[i]);
-    m.names.push_back(map.recording);
-    m.channels.push_back(std::move(out));
-  }
-  return m;
 }
 
 // The recording and model must be of one scale: a field string against a lab rig differs by orders of magnitude.
@@ -87,25 +59,6 @@ void CheckScale(const Recording& rec, const Recording& model, const std::vector<
                                    ": the case does not describe the system recorded (a field string against a lab "
                                    "rig?); start from a case of the recorded system");
   }
-}
-
-// Draw d of a case's random inputs: every seed in its model (bottom roughness, rock heterogeneity) moved by d, the
-// sensor noise's by 7919 d (draw 0: the case as given).
-nlohmann::json Drawn(nlohmann::json doc, int d) {
-  const std::function<void(nlohmann::json&)> move_seeds = [&](nlohmann::json& j) {
-    if (!j.is_object()) return;
-    for (auto& [key, value] : j.items()) {
-      if (key == "seed" && value.is_number_integer())
-        value = (value.get<long long>() + d) % 2147483648LL;
-      else
-        move_seeds(value);
-    }
-  };
-  if (d == 0) return doc;
-  if (doc.contains("model")) move_seeds(doc["model"]);
-  if (doc.contains("sensors") && doc["sensors"].contains("seed"))
-    doc["sensors"]["seed"] = (doc["sensors"]["seed"].get<long long>() + 7919LL * d) % 2147483648LL;
-  return doc;
 }
 
 // How much a feature distance e over K features moves by chance from one window to the next. Each difference in
@@ -137,24 +90,6 @@ std::vector<double> StartOf(const std::vector<const Effect*>& effects) {
     for (const EffectParameter& p : e->parameters) u.push_back(ToUnit(p, p.start));
   return u;
 }
-
-// A model's draws, each marked in the recording's regime or not.
-struct Draws {
-  std::vector<Recording> models;
-  std::vector<char> in_regime;
-  int failed = 0;  // draws whose run failed numerically, left out
-};
-
-// A model judged over its draws by the median draw (LoopOptions::draws) of those in the recording's regime: that
-// draw's channels and features, its errors, and every draw's held-out error and regime.
-struct Judged {
-  Recording model;
-  FeatureSet fit, held_out;
-  double fit_error = 0, held_out_error = 0;
-  std::vector<double> held_out_draw_errors;
-  std::vector<char> draw_in_regime;
-  int failed_draws = 0;
-};
 
 nlohmann::json InRegimeJson(const std::vector<char>& in_regime) {
   nlohmann::json out = nlohmann::json::array();
@@ -221,10 +156,6 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     if (features.bit_torque.empty() && map.model == "bit_torque_Nm") features.bit_torque = map.recording;
   loop.recording_fit = MeasureFeatures(rec, o.fit_begin_s, o.fit_end_s, features);
   loop.recording_held_out = MeasureFeatures(rec, o.held_out_begin_s, o.held_out_end_s, features);
-  // A model's features are read against the recording's scales, so its own (the spread between the window's parts)
-  // are never used: measured on the whole window only, for a fifth of the cost.
-  FeatureOptions model_features = features;
-  model_features.parts = 1;
 
   // 1. The recording's noise, carried into the model's measured channels.
   nlohmann::json base = document;
@@ -247,135 +178,12 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   }
   loop.baseline_document = base;
 
-  const double full_duration = o.model_time_offset_s + o.held_out_end_s;
-  const double fit_duration = o.model_time_offset_s + o.fit_end_s + 0.5;
-  // Runs that differ only in their sensors (a telemetry delay, the noise's draw) share one simulation.
-  std::mutex cache_mutex;
-  std::map<std::string, std::shared_ptr<const cases::RunResult>> simulations;
-  double evaluations_per_second = 0;  // the baseline's, once it has run
-  // A fit's runs may use a looser tolerance than the case's (features are statistics of the motion, which do not
-  // move with it: tests/diagnosis/loop_test.cpp); the runs that decide (whole span, held out) use the case's own.
-  enum class Tolerance { kCase, kFit };
-  auto run = [&](nlohmann::json doc, double duration, Tolerance tolerance = Tolerance::kCase,
-                 double work_factor = kWorkFactor) {
-    doc["simulation"]["duration_s"] = duration;
-    if (tolerance == Tolerance::kFit && o.fit_tolerance > 0)
-      for (const char* key : {"rel_tol", "abs_tol"})
-        doc["simulation"][key] = std::max(doc["simulation"].value(key, 1e-8), o.fit_tolerance);
-    const auto window = nlohmann::json::json_pointer("/statistics/window_s");
-    if (doc.contains(window) && doc.at(window).is_array() && doc.at(window).size() == 2)  // kept inside the run
-      doc.at(window) = {std::min(doc.at(window)[0].get<double>(), 0.5 * duration), duration};
-    const cases::SensorSet sensors = doc.contains("sensors")
-                                         ? cases::ReadSensors(io::JsonReader(doc["sensors"], "/sensors"))
-                                         : cases::SensorSet{};
-    doc.erase("sensors");
-    const std::string key = doc.dump();
-    std::shared_ptr<const cases::RunResult> simulated;
-    {
-      const std::lock_guard<std::mutex> lock(cache_mutex);
-      const auto it = simulations.find(key);
-      if (it != simulations.end()) simulated = it->second;
-    }
-    if (!simulated) {
-      cases::Case c = cases::ParseCase(doc);
-      // A candidate's run may cost at most kWorkFactor times the baseline's work per simulated second: a corner of
-      // the parameter box that makes the model stiff fails as a run instead of taking the machine's time and memory.
-      if (evaluations_per_second > 0)
-        c.settings.integrator.max_evaluations = static_cast<long>(work_factor * evaluations_per_second * duration);
-      cases::RunResult result = cases::RunCase(c).result;
-      // Only the mapped channels are read: at an output finer than the recording's, the others would fill the cache.
-      const auto unmapped = [&](const cases::Channel& ch) {
-        return std::none_of(o.maps.begin(), o.maps.end(), [&](const ChannelMap& m) { return m.model == ch.name; });
-      };
-      result.channels.erase(std::remove_if(result.channels.begin(), result.channels.end(), unmapped),
-                            result.channels.end());
-      simulated = std::make_shared<const cases::RunResult>(std::move(result));
-      const std::lock_guard<std::mutex> lock(cache_mutex);
-      if (simulations.size() >= 64) simulations.clear();  // a bound on memory; fits revisit recent points
-      simulations.emplace(key, simulated);
-    }
-    cases::RunResult measured = *simulated;
-    cases::ApplySensors(sensors, measured);
-    // The model's channels pass the artefact filter the recording passed, each masked or left whole as the
-    // recording's was.
-    return MaskArtefacts(ModelRecording(measured, o.maps, rec, o.model_time_offset_s, o.fit_begin_s,
-                                        std::min(o.held_out_end_s, duration - o.model_time_offset_s)),
-                         &masked.whole)
-        .recording;
-  };
-
-  // The recording's regime, and a model's draws run until `draws` of them are in it (or kMaxDrawFactor times as many
-  // have run), `threads` at a time.
-  loop.recorded_off_bottom_share = OffBottomShare(rec, o.fit_begin_s, o.held_out_end_s, features);
-  loop.recording_bounces = loop.recorded_off_bottom_share > kBouncingShare;
-  auto in_regime = [&](const Recording& m) {
-    if (!std::isfinite(loop.recorded_off_bottom_share)) return true;
-    return (OffBottomShare(m, o.fit_begin_s, o.held_out_end_s, features) > kBouncingShare) == loop.recording_bounces;
-  };
+  ModelRuns runner(o, rec, masked.whole, features, loop.recording_fit, loop.recording_held_out);
+  const double full_duration = runner.FullDuration(), fit_duration = runner.FitDuration();
+  using Tolerance = ModelRuns::Tolerance;
+  loop.recorded_off_bottom_share = runner.RecordedOffBottomShare();
+  loop.recording_bounces = runner.RecordingBounces();
   const int draws = std::max(1, o.draws);
-  // A draw whose run fails numerically (its work budget, a step-size underflow) is left out and counted; the model
-  // fails its judging only when every draw does.
-  auto run_draws = [&](const nlohmann::json& doc, int threads) {
-    Draws runs;
-    int matched = 0, attempted = 0;
-    std::string first_failure;
-    while (matched < draws && attempted < kMaxDrawFactor * draws) {
-      const int first = attempted;
-      const int batch = std::min(draws - matched, kMaxDrawFactor * draws - first);
-      attempted += batch;
-      for (std::optional<Recording>& m :
-           ParallelMap(static_cast<std::size_t>(batch), threads, [&](std::size_t d) -> std::optional<Recording> {
-             try {
-               return run(Drawn(doc, first + static_cast<int>(d)), full_duration, Tolerance::kCase,
-                          kJudgingWorkFactor);
-             } catch (const NumericalError& e) {
-               const std::lock_guard<std::mutex> lock(cache_mutex);
-               if (first_failure.empty()) first_failure = e.what();
-               return std::nullopt;
-             }
-           })) {
-        if (!m) {
-          ++runs.failed;
-          continue;
-        }
-        runs.in_regime.push_back(in_regime(*m));
-        matched += runs.in_regime.back();
-        runs.models.push_back(std::move(*m));
-      }
-    }
-    if (runs.models.empty()) throw NumericalError("every draw failed; the first: " + first_failure, std::nan(""), {});
-    return runs;
-  };
-  // The median draw of a model's runs in the recording's regime (of all its runs where none is): the one whose
-  // held-out error is the median (the lower middle one of an even number); its fit-window error the median of those
-  // draws' (an information criterion on the fit window).
-  auto judged = [&](Draws runs) {
-    std::vector<Recording>& models = runs.models;
-    std::vector<FeatureSet> fit, held_out;
-    std::vector<double> fit_errors;
-    std::vector<std::size_t> order;
-    Judged j;
-    j.draw_in_regime = runs.in_regime;
-    j.failed_draws = runs.failed;
-    for (std::size_t d = 0; d < models.size(); ++d) {
-      fit.push_back(MeasureFeatures(models[d], o.fit_begin_s, o.fit_end_s, model_features));
-      held_out.push_back(MeasureFeatures(models[d], o.held_out_begin_s, o.held_out_end_s, model_features));
-      j.held_out_draw_errors.push_back(FeatureDistance(held_out.back(), loop.recording_held_out));
-      if (j.draw_in_regime[d]) order.push_back(d);
-    }
-    if (order.empty())
-      for (std::size_t d = 0; d < models.size(); ++d) order.push_back(d);
-    for (std::size_t d : order) fit_errors.push_back(FeatureDistance(fit[d], loop.recording_fit));
-    std::sort(fit_errors.begin(), fit_errors.end());
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return j.held_out_draw_errors[a] < j.held_out_draw_errors[b]; });
-    const std::size_t median = order[(order.size() - 1) / 2];
-    j.model = std::move(models[median]);
-    j.fit = fit[median], j.held_out = held_out[median];
-    j.fit_error = fit_errors[(fit_errors.size() - 1) / 2];  // the median on the fit window, whichever draw
-    j.held_out_error = j.held_out_draw_errors[median];
-    return j;
-  };
 
   for (const std::string& channel : loop.channels_left_whole)
     say(channel + ": too many bursts for artefacts (over " + Fixed(100 * kMaxArtefactShare, 0) +
@@ -383,20 +191,11 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   // 2. The baseline on both windows, over the draws.
   say("baseline: running " + Fixed(full_duration, 0) + " s simulated" +
       (draws > 1 ? ", " + std::to_string(draws) + " draws" : std::string()));
-  const Recording plain = run(base, full_duration);  // draw 0 of the case as given, from the cache below
+  const Recording plain = runner.Run(base, full_duration);  // draw 0 of the case as given, from the cache below
   CheckScale(rec, plain, o.maps);
-  auto set_work_budget = [&] {  // the costliest run so far, per simulated second
-    for (const auto& [key, simulated] : simulations) {
-      const auto it = simulated->summary.find("derivative_evaluations");
-      if (it != simulated->summary.end() && it->is_number())
-        evaluations_per_second = std::max(evaluations_per_second, it->get<double>() / full_duration);
-    }
-  };
-  set_work_budget();
-  loop.plain_fit_error = FeatureDistance(MeasureFeatures(plain, o.fit_begin_s, o.fit_end_s, model_features),
-                                         loop.recording_fit);
-  loop.plain_held_out_error = FeatureDistance(
-      MeasureFeatures(plain, o.held_out_begin_s, o.held_out_end_s, model_features), loop.recording_held_out);
+  runner.SetWorkBudget();
+  loop.plain_fit_error = FeatureDistance(runner.FitFeatures(plain), loop.recording_fit);
+  loop.plain_held_out_error = FeatureDistance(runner.HeldOutFeatures(plain), loop.recording_held_out);
   // 2a. A calibrated base before effects: the base's uncertain parameters, within their prior ranges, fitted to the
   //     recording's gross features on the fit window (the levels and the period; what no effect is needed for).
   const std::vector<Effect> calibrations = o.max_singles > 0 ? BaseCalibrations(base) : std::vector<Effect>{};
@@ -416,9 +215,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     const std::vector<double> start = StartOf(calibrated_effects);
     auto objective = [&](const std::vector<double>& u) {
       try {
-        return FeatureDistance(MeasureFeatures(run(calibrated(u), fit_duration, Tolerance::kFit), o.fit_begin_s,
-                                               o.fit_end_s, model_features),
-                               gross);
+        return FeatureDistance(runner.FitFeatures(runner.Run(calibrated(u), fit_duration, Tolerance::kFit)), gross);
       } catch (const InputError&) {
       } catch (const NumericalError&) {
       }
@@ -443,9 +240,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     // fixed at the cost of the motion point to an effect (side friction raising the mean torque, not a softer rock;
     // dev rec01: sigma*l to its -20 % bound, the fit window's error 84 -> 99).
     auto whole_fit_error = [&](const nlohmann::json& doc) {
-      return FeatureDistance(
-          MeasureFeatures(run(doc, fit_duration, Tolerance::kFit), o.fit_begin_s, o.fit_end_s, model_features),
-          loop.recording_fit);
+      return FeatureDistance(runner.FitFeatures(runner.Run(doc, fit_duration, Tolerance::kFit)), loop.recording_fit);
     };
     double before = kFailedRun, after = kFailedRun;
     try {
@@ -463,12 +258,12 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
         Significant(before, 3) + " -> " + Significant(after, 3) +
         (loop.calibration_kept ? ": kept" : ": not kept (the motion got worse), the case's values stand"));
   }
-  Draws baseline_draws = run_draws(base, std::max(1, o.threads));
+  Draws baseline_draws = runner.RunDraws(base, std::max(1, o.threads));
   // The candidates' work budget: the costliest of the baseline's draws (one that bounces costs more than one that
   // drills).
-  set_work_budget();
+  runner.SetWorkBudget();
   loop.model_runs += static_cast<int>(baseline_draws.models.size());
-  const Judged baseline = judged(std::move(baseline_draws));
+  const Judged baseline = runner.Judge(std::move(baseline_draws));
   Adopt(baseline, loop.baseline_model, loop.baseline_fit, loop.baseline_held_out, loop.baseline_fit_error,
         loop.baseline_held_out_error);
   loop.baseline_held_out_draw_errors = baseline.held_out_draw_errors;
@@ -561,12 +356,12 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
         const nlohmann::json doc = document_at(set, u);
         Recording m;
         for (int k = 0; k < kFitDraws; ++k) {
-          m = sensors_only ? run(Drawn(doc, loop.fit_draw + k), full_duration)
-                           : run(Drawn(doc, loop.fit_draw + k), fit_duration, Tolerance::kFit);
-          if (in_regime(m)) break;
+          m = sensors_only ? runner.Run(Drawn(doc, loop.fit_draw + k), full_duration)
+                           : runner.Run(Drawn(doc, loop.fit_draw + k), fit_duration, Tolerance::kFit);
+          if (runner.InRegime(m)) break;
           if (k + 1 < kFitDraws) count(c.redrawn_runs);
         }
-        return FeatureDistance(MeasureFeatures(m, o.fit_begin_s, o.fit_end_s, model_features), target);
+        return FeatureDistance(runner.FitFeatures(m), target);
       } catch (const InputError& e) {
         count_failure(e);
       } catch (const NumericalError& e) {
@@ -596,10 +391,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     try {
       Draws one;
       if (screening) {
-        one.models.push_back(run(Drawn(document_at(set, best.best), loop.fit_draw), full_duration));
-        one.in_regime.push_back(in_regime(one.models.back()));
+        one.models.push_back(runner.Run(Drawn(document_at(set, best.best), loop.fit_draw), full_duration));
+        one.in_regime.push_back(runner.InRegime(one.models.back()));
       }
-      const Judged j = judged(screening ? std::move(one) : run_draws(document_at(set, best.best), threads));
+      const Judged j = runner.Judge(screening ? std::move(one) : runner.RunDraws(document_at(set, best.best), threads));
       c.fit_error = j.fit_error;
       c.held_out_error = j.held_out_error;
       c.held_out_draw_errors = j.held_out_draw_errors;
@@ -873,9 +668,9 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
           for (std::size_t j = 0; j < e.parameters.size(); ++j) values.push_back(c.parameters[k++].value);
           e.apply(loop.fitted_document, values);
         }
-    Draws models = run_draws(loop.fitted_document, std::max(1, o.threads));
+    Draws models = runner.RunDraws(loop.fitted_document, std::max(1, o.threads));
     loop.model_runs += static_cast<int>(models.models.size());
-    fitted = judged(std::move(models));
+    fitted = runner.Judge(std::move(models));
   }
   Adopt(fitted, loop.fitted_model, loop.fitted_fit, loop.fitted_held_out, loop.fitted_fit_error,
         loop.fitted_held_out_error);
