@@ -2,6 +2,7 @@
 // 2 bad input (the message names the JSON path or option, the value and what was expected; checked before any work
 // starts), 3 numerical failure (with time and state), 4 internal error (with its message).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -30,6 +31,7 @@
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/diagnosis/fit.hpp"
 #include "drillwave/diagnosis/inspection.hpp"
+#include "drillwave/estimation/follow.hpp"
 #include "drillwave/estimation/recording_estimate.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -306,9 +308,74 @@ int Fit(const std::string& file, const std::string& recording_file, const std::s
 }
 
 // `estimate` (issue 34): the bit seen from the surface channels named in --from, scored against the downhole ones.
+struct EstimateArguments {
+  std::string from, window, out = "drillwave-estimate";
+  bool follow = false;
+  double follow_idle_s = 10;
+};
+
+// --follow: the recording read as it grows (or from standard input), each estimate row printed to standard output as
+// soon as the latency allows; at the end (standard input closed, or the file idle for --follow-idle seconds) the
+// output folder as without --follow, from the rows given out.
+drillwave::estimation::BitEstimate FollowRecording(const drillwave::estimation::EstimatorModel& model,
+                                                   const drillwave::estimation::EstimateOptions& options,
+                                                   const EstimateArguments& a, const std::string& recording_file,
+                                                   drillwave::diagnosis::Recording& recording,
+                                                   double& estimating_s) {
+  namespace es = drillwave::estimation;
+  es::GrowingCsv csv(recording_file);
+  std::vector<std::vector<double>> rows;
+  constexpr double kPollS = 0.05;
+  double idle_s = 0;
+  bool more = true;
+  while (csv.names().empty() && more && idle_s < a.follow_idle_s) {
+    more = csv.Read(rows, kPollS);
+    if (csv.names().empty()) std::this_thread::sleep_for(std::chrono::duration<double>(kPollS)), idle_s += kPollS;
+  }
+  if (csv.names().empty()) throw drillwave::InputError(csv.source(), "no header line arrived");
+  drillwave::diagnosis::Recording header;
+  header.source = csv.source();
+  header.names = csv.names();
+  es::LiveEstimator live(model, options, csv.names(), es::ParseSurfaceChannels(a.from, header));
+  std::vector<es::EstimateRow> given_out;
+  std::cout << "time_s,bit_rpm,bit_rpm_band,bit_torque_Nm,bit_torque_Nm_band,wob_N,wob_N_band,bit_stuck\n";
+  const auto print = [&](const std::vector<es::EstimateRow>& out) {
+    for (const es::EstimateRow& r : out) {
+      std::cout << r.time_s << "," << r.bit_speed_rad_s * 30 / M_PI << "," << r.bit_speed_band_rad_s * 30 / M_PI << ","
+                << r.bit_torque_Nm << "," << r.bit_torque_band_Nm << "," << r.wob_N << "," << r.wob_band_N << ","
+                << (r.stuck ? 1 : 0) << "\n";
+      given_out.push_back(r);
+    }
+    if (!out.empty()) std::cout.flush();
+  };
+  const auto timed = [&](const auto& work) {
+    const auto begin = std::chrono::steady_clock::now();
+    std::vector<es::EstimateRow> out = work();
+    estimating_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    return out;
+  };
+  print(timed([&] { return live.Push(rows); }));  // the rows that came with the header
+  idle_s = 0;
+  while (more && idle_s < a.follow_idle_s) {
+    rows.clear();
+    more = csv.Read(rows, kPollS);
+    if (rows.empty()) {
+      if (more) std::this_thread::sleep_for(std::chrono::duration<double>(kPollS)), idle_s += kPollS;
+      continue;
+    }
+    idle_s = 0;
+    print(timed([&] { return live.Push(rows); }));
+  }
+  print(timed([&] { return live.Finish(); }));
+  recording = live.Recording();
+  recording.source = csv.source();
+  std::cerr << "drillwave: followed " << recording.time_s.size() << " rows of " << csv.source() << "; latency "
+            << live.latency_s() << " s (estimates given out in stretches of 0.1 s)" << std::endl;
+  return es::FromRows(given_out, live.stuck_threshold_rad_s(), live.latency_s(), live.method(), live.notes());
+}
+
 int Estimate(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
-             const std::vector<std::string>& overrides, const std::string& from, const std::string& window,
-             const std::string& out_dir) {
+             const std::vector<std::string>& overrides, const EstimateArguments& a) {
   namespace es = drillwave::estimation;
   nlohmann::json doc = LoadCaseDocument(file, overrides);
   double hook_force_N = 0;
@@ -321,20 +388,35 @@ int Estimate(const std::string& file, const std::string& recording_file, const s
   }
   drillwave::cases::ParseCase(doc);  // validates every field (InputError names its path)
   const es::EstimatorModel model = es::EstimatorModelFromCase(doc, hook_force_N);
-  const auto recording = drillwave::diagnosis::LoadRecording(recording_file);
-  const es::SurfaceSignals signals = es::SignalsFromRecording(recording, es::ParseSurfaceChannels(from, recording));
   es::ScoreWindow score;
-  if (!window.empty()) std::tie(score.begin_s, score.end_s) = Window(window);
-  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
-  const es::BitEstimate e = es::EstimateBit(model, signals, options);
+  if (!a.window.empty()) std::tie(score.begin_s, score.end_s) = Window(a.window);
+  drillwave::io::OutputDirectory::CheckReplaceable(a.out);
+  drillwave::diagnosis::Recording recording;
+  es::BitEstimate e;
+  double estimating_s = 0;  // the estimator's own time (reading and writing aside), for its throughput
+  if (a.follow) {
+    e = FollowRecording(model, options, a, recording_file, recording, estimating_s);
+  } else {
+    recording = drillwave::diagnosis::LoadRecording(recording_file);
+    const es::SurfaceSignals signals =
+        es::SignalsFromRecording(recording, es::ParseSurfaceChannels(a.from, recording));
+    const auto begin = std::chrono::steady_clock::now();
+    e = es::EstimateBit(model, signals, options);
+    estimating_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  }
   const nlohmann::json summary = es::EstimateSummary(recording, e, score);
-  es::WriteEstimate(recording, e, summary, out_dir);
-  std::cout << "drillwave: estimated the bit from " << from << " (" << e.method << "), latency " << e.latency_s
-            << " s\n";
+  es::WriteEstimate(recording, e, summary, a.out);
+  std::ostream& report = a.follow ? std::cerr : std::cout;  // with --follow, standard output carries the rows
+  report << "drillwave: estimated the bit from " << a.from << " (" << e.method << "), latency " << e.latency_s
+         << " s\n";
   for (const auto& [key, value] : summary.at("errors").items())
-    if (value.is_object()) std::cout << "  " << key << ": " << value.dump() << "\n";
-  std::cout << "wrote " << std::filesystem::absolute(out_dir).string() << "/estimate.csv, estimate.json, plot.svg"
-            << std::endl;
+    if (value.is_object()) report << "  " << key << ": " << value.dump() << "\n";
+  const double span_s = recording.time_s.size() > 1 ? recording.time_s.back() - recording.time_s.front() : 0.0;
+  report << "  throughput: " << recording.time_s.size() << " samples in " << estimating_s << " s of estimating, "
+         << static_cast<double>(recording.time_s.size()) / std::max(estimating_s, 1e-9) << " samples/s, "
+         << span_s / std::max(estimating_s, 1e-9) << " times real time\n";
+  report << "wrote " << std::filesystem::absolute(a.out).string() << "/estimate.csv, estimate.json, plot.svg"
+         << std::endl;
   return 0;
 }
 
@@ -643,14 +725,21 @@ int main(int argc, char** argv) {
   auto* estimate = app.add_subcommand(
       "estimate", "a virtual downhole sensor: the bit's speed, torque, weight on bit and stuck flag estimated from "
                   "surface channels only, scored against the recording's downhole channels where it has them");
-  std::string estimate_out = "drillwave-estimate", estimate_from, estimate_window;
+  EstimateArguments estimate_args;
   estimate->add_option("case", case_file, "case JSON file (two_mass or axial_torsional; e.g. diagnose's fitted-case.json)")
       ->required();
   estimate->add_option("recording", recording_file, "recording CSV file")->required();
   estimate->add_option("--sidecar", sidecar_file, "a synthetic recording's operator sidecar (as for diagnose)");
-  estimate->add_option("--from", estimate_from, "surface channels, e.g. top_rpm,top_torque_kNm,hookload_kN")->required();
-  estimate->add_option("--window", estimate_window, "begin,end [s] of the error figures (default: all)");
-  estimate->add_option("--out,-o", estimate_out, "output folder (written all or nothing)");
+  estimate->add_option("--from", estimate_args.from, "surface channels, e.g. top_rpm,top_torque_kNm,hookload_kN")
+      ->required();
+  estimate->add_option("--window", estimate_args.window, "begin,end [s] of the error figures (default: all)");
+  estimate->add_option("--out,-o", estimate_args.out, "output folder (written all or nothing)");
+  estimate->add_flag("--follow", estimate_args.follow,
+                     "read the recording while it is written (a growing file, or - for standard input) and print "
+                     "each estimate row to standard output as soon as the latency allows; the folder at the end");
+  estimate->add_option("--follow-idle", estimate_args.follow_idle_s,
+                       "with --follow on a file: end after this many seconds without a new line (default 10)")
+      ->check(CLI::PositiveNumber);
   estimate->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 
   auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
@@ -683,7 +772,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (estimate->parsed())
-      return Estimate(case_file, recording_file, sidecar_file, overrides, estimate_from, estimate_window, estimate_out);
+      return Estimate(case_file, recording_file, sidecar_file, overrides, estimate_args);
     if (diagnose->parsed())
       return Diagnose(case_file, recording_file, sidecar_file, overrides, maps, diagnose_args, diagnose_out);
     if (fit->parsed())

@@ -1,7 +1,12 @@
 // The virtual downhole sensor (issue 34): the continuation is exact on a lossless string, the estimators recover the
 // bit of drillwave's own runs from their top signals, and the observer forgets a wrong start.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <memory>
 
 #include <gtest/gtest.h>
 
@@ -10,6 +15,8 @@
 #include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/estimation/estimate.hpp"
+#include "drillwave/estimation/follow.hpp"
+#include "drillwave/estimation/hybrid_observer.hpp"
 #include "drillwave/estimation/lumped_observer.hpp"
 #include "drillwave/estimation/metrics.hpp"
 #include "drillwave/estimation/recording_estimate.hpp"
@@ -144,6 +151,141 @@ TEST(LumpedObserver, ConvergesFromAWrongStartToTheSimulatedBit) {
   EXPECT_GT(stuck_samples, 100);  // the run sticks
   const es::StuckScore stuck = es::ScoreStuck(e.time_s, e.bit_speed_rad_s, e.stuck, bit, 0.05 * 12.33, 2, 10);
   EXPECT_GT(stuck.f1, 0.8);
+}
+
+// The rig's pendulum as `drillwave diagnose json-cases/ufrj-rig.json ... --fit-window 2,20` fits it (fitted-case.json,
+// rounded): a droop drive (kp 0.2204 N m s/rad towards 18.30 rad/s, no integral action), Stribeck friction (static
+// 3.447 N m, kinetic 1.888 N m at 570 N).
+nlohmann::json FittedRigCase(double duration_s) {
+  nlohmann::json doc = nlohmann::json::parse(R"({
+    "name": "ufrj-rig-fitted", "model": {"kind": "two_mass",
+      "string": {"stiffness_Nm_per_rad": 2.9, "damping_Nms_per_rad": 0.06},
+      "top": {"type": "top_drive", "inertia_kgm2": 0.001, "kp_Nms_per_rad": 0.2204, "ki_Nm_per_rad": 0,
+              "speed_rad_s": 18.30, "damping_Nms_per_rad": 0},
+      "bit": {"inertia_kgm2": 0.0026, "nominal_weight_on_bit_N": 570, "damping_Nms_per_rad": 0,
+              "friction": {"law": "stribeck", "W_N": 570, "R_m": 1, "mu_c": 0.0033115, "mu_s": 0.0060467,
+                           "gamma_b": 1, "nu_f_rad_s": 5, "c_b_Nms_per_rad": 0}}},
+    "simulation": {"output_interval_s": 0.001, "abs_tol": 1e-8, "rel_tol": 1e-8}})");
+  doc["simulation"]["duration_s"] = duration_s;
+  doc["statistics"]["window_s"] = {0, duration_s};
+  return doc;
+}
+
+struct OwnRun {
+  es::SurfaceSignals surface;
+  std::vector<double> bit_speed_rad_s;
+};
+
+OwnRun RunTwoMass(const nlohmann::json& doc) {
+  const auto run = drillwave::cases::RunCase(drillwave::cases::ParseCase(doc));
+  OwnRun r;
+  r.surface.time_s = run.result.time_s;
+  r.surface.top_speed_rad_s = Rad(run.result.channel("top_rpm").values);
+  r.bit_speed_rad_s = Rad(run.result.channel("bit_rpm").values);
+  return r;
+}
+
+// drillwave's own run of the fitted rig sticks and slips; the hybrid observer, started 95 rpm and 0.5 rad (1.45 N m)
+// wrong, finds its bit, the stuck phases included, from the top speed alone.
+TEST(HybridObserver, RecoversTheStuckPhasesOfDrillwavesOwnRigRunFromAWrongStart) {
+  const nlohmann::json doc = FittedRigCase(12);
+  const OwnRun run = RunTwoMass(doc);
+  const es::EstimatorModel model = es::EstimatorModelFromCase(doc);
+  ASSERT_TRUE(es::HasInvertibleDrive(model.lumped));
+  const double threshold = 0.05 * 8.0;  // about 5 % of the run's median top speed, the rule of EstimateBit
+  es::HybridObserverOptions o;
+  o.initial_bit_speed_rad_s = run.bit_speed_rad_s[0] + 10;
+  o.initial_twist_rad = 0.5;
+  const es::BitEstimate e = es::EstimateHybrid(model.lumped, run.surface, threshold, o);
+  const es::SeriesError start = es::CompareSeries(e.time_s, e.bit_speed_rad_s, run.bit_speed_rad_s, 0, 0.05);
+  const es::SeriesError late = es::CompareSeries(e.time_s, e.bit_speed_rad_s, run.bit_speed_rad_s, 2, 12);
+  EXPECT_GT(start.rms, 2.0) << "it does start wrong";
+  // Exact top speed and model: what is left is the low-pass (three boxes of 23 ms round the stops' corners where
+  // the regime does not take over) and the release, which waits for the inverted speed to pass the stuck threshold.
+  // Measured: 3.1 rpm, 4.8 % of the mean; F1 0.907 (21 % of the samples stuck).
+  EXPECT_LT(late.rms, 0.06 * late.measured_mean) << "RMS " << late.rms / kRpm << " rpm of " << late.measured_mean / kRpm;
+  const es::StuckScore stuck = es::ScoreStuck(e.time_s, e.bit_speed_rad_s, e.stuck, run.bit_speed_rad_s, threshold, 2, 12);
+  EXPECT_GT(stuck.measured_stuck, 1000u) << "the run sticks";
+  EXPECT_GT(stuck.f1, 0.88) << "precision " << stuck.precision << " recall " << stuck.recall;
+}
+
+// The real rig from its top speed alone (issue 34's target: <= 15 rpm, F1 >= 0.8 on 20-30 s). The figures measured
+// with these settings, chosen on 0-20 s (README, docs/results.md), with a margin.
+TEST(UfrjRig, TopSpeedAloneGivesTheBitOnTheLast10Seconds) {
+  const std::string file = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/ufrj-rig/rig-0-30s.csv";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is absent (the rig's recording is not in the repository)";
+  const auto rec = drillwave::diagnosis::LoadRecording(file);
+  const es::SurfaceSignals s = es::SignalsFromRecording(rec, es::ParseSurfaceChannels("top_rpm", rec));
+  const es::BitEstimate e = es::EstimateBit(es::EstimatorModelFromCase(FittedRigCase(30)), s, {});
+  const nlohmann::json late = es::EstimateSummary(rec, e, {20, 30})["errors"];
+  const nlohmann::json fit = es::EstimateSummary(rec, e, {2, 20})["errors"];
+  EXPECT_LT(late["bit_rpm"]["rms"].get<double>(), 12.5) << late.dump();        // measured 10.5 rpm
+  EXPECT_GT(late["stuck"]["f1"].get<double>(), 0.85) << late.dump();           // measured 0.89
+  EXPECT_LT(fit["bit_rpm"]["rms"].get<double>(), 11.5) << fit.dump();          // measured 9.7 rpm
+  EXPECT_GT(fit["stuck"]["f1"].get<double>(), 0.70) << fit.dump();             // measured 0.75
+  EXPECT_LT(e.latency_s, 0.4);
+}
+
+// A recording written in pieces (lines cut anywhere) and read as it grows: every estimate is given out within the
+// latency and a stretch of it, and equals the batch estimate (the observer forgets the sliding window's start within
+// its warm-up: measured 4e-12 rad/s RMS apart).
+TEST(Follow, AFileWrittenInPiecesGivesTheBatchEstimateWithinTheLatency) {
+  const OwnRun run = RunTwoMass(FittedRigCase(12));
+  std::ostringstream text;
+  text << "time_s,top_rpm,bit_rpm\n";
+  text.precision(12);
+  for (std::size_t i = 0; i < run.surface.time_s.size(); ++i)
+    text << run.surface.time_s[i] << "," << run.surface.top_speed_rad_s[i] / kRpm << ","
+         << run.bit_speed_rad_s[i] / kRpm << "\n";
+  const std::string all = text.str();
+  const std::string path = (std::filesystem::temp_directory_path() / "drillwave-follow-test.csv").string();
+  std::ofstream(path, std::ios::trunc).close();
+  es::GrowingCsv csv(path);
+  const es::EstimatorModel model = es::EstimatorModelFromCase(FittedRigCase(12));
+  std::unique_ptr<es::LiveEstimator> live;
+  std::vector<es::EstimateRow> given;
+  std::ofstream writer(path, std::ios::app);
+  double worst_wait = 0;
+  for (std::size_t at = 0, piece = 0; at < all.size(); ++piece) {
+    const std::size_t length = std::min(all.size() - at, std::size_t{4000 + 997 * (piece % 7)});  // cuts mid-line
+    writer << all.substr(at, length) << std::flush;
+    at += length;
+    std::vector<std::vector<double>> rows;
+    EXPECT_TRUE(csv.Read(rows, 0));
+    if (!live && !csv.names().empty()) {
+      drillwave::diagnosis::Recording header;
+      header.names = csv.names();
+      live = std::make_unique<es::LiveEstimator>(model, es::EstimateOptions{}, csv.names(),
+                                                 es::ParseSurfaceChannels("top_rpm", header));
+    }
+    if (!live || rows.empty()) continue;
+    const double newest = rows.back()[0];
+    for (const es::EstimateRow& r : live->Push(rows)) given.push_back(r);
+    if (!given.empty() && live->latency_s() > 0) worst_wait = std::max(worst_wait, newest - given.back().time_s);
+  }
+  const std::size_t before_end = given.size();
+  for (const es::EstimateRow& r : live->Finish()) given.push_back(r);
+  std::remove(path.c_str());
+  ASSERT_EQ(given.size(), run.surface.time_s.size());
+  EXPECT_GT(before_end, given.size() - 600) << "all but the last latency and stretch given out while reading";
+  // A piece is up to 10 000 characters, about 0.2 s of this recording: the newest row given out is at most the
+  // latency, a stretch (0.1 s) and a piece behind the newest row read.
+  EXPECT_LT(worst_wait, live->latency_s() + 0.1 + 0.25);
+  es::EstimateOptions fixed;
+  fixed.stuck_threshold_rad_s = live->stuck_threshold_rad_s();
+  const es::BitEstimate batch = es::EstimateBit(model, run.surface, fixed);
+  double sum2 = 0;
+  std::size_t count = 0, agree = 0;
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    EXPECT_DOUBLE_EQ(given[i].time_s, run.surface.time_s[i]);
+    if (!std::isfinite(batch.bit_speed_rad_s[i])) continue;
+    sum2 += std::pow(given[i].bit_speed_rad_s - batch.bit_speed_rad_s[i], 2);
+    agree += given[i].stuck == (batch.stuck[i] != 0);
+    ++count;
+  }
+  ASSERT_GT(count, 11000u);
+  EXPECT_LT(std::sqrt(sum2 / static_cast<double>(count)), 1e-3) << "live against batch [rad/s]";
+  EXPECT_EQ(agree, count);
 }
 
 TEST(EstimatorModel, RefusesKindsWithoutAnEstimatorNamingTheField) {

@@ -5,6 +5,7 @@
 
 #include "drillwave/core/error.hpp"
 #include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/estimation/hybrid_observer.hpp"
 #include "drillwave/estimation/lumped_observer.hpp"
 #include "drillwave/estimation/wave_string_estimator.hpp"
 
@@ -138,9 +139,15 @@ BitEstimate EstimateBit(const EstimatorModel& model, const SurfaceSignals& signa
     throw InputError("--from", "the estimator needs the top speed at every sample of the recording (8 at least)");
   // Stuck: |bit speed| below a fraction of the nominal speed, the median top speed (the set-point may be a droop
   // drive's no-load speed, far from the speed it turns at).
-  const double threshold = options.stuck_fraction * MedianAbs(signals.top_speed_rad_s);
+  const double threshold = options.stuck_threshold_rad_s > 0
+                               ? options.stuck_threshold_rad_s
+                               : options.stuck_fraction * MedianAbs(signals.top_speed_rad_s);
   BitEstimate e;
-  if (model.kind == "two_mass") {
+  if (model.kind == "two_mass" && HasInvertibleDrive(model.lumped)) {
+    HybridObserverOptions o;
+    o.model_time_offset_s = options.model_time_offset_s;
+    e = EstimateHybrid(model.lumped, signals, threshold, o);
+  } else if (model.kind == "two_mass") {
     LumpedObserverOptions o;
     o.smoothing_lag_s = options.smoothing_lag_s;
     o.model_time_offset_s = options.model_time_offset_s;

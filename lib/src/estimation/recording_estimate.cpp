@@ -56,6 +56,8 @@ nlohmann::json ErrorJson(const SeriesError& e, double unit) {
 
 }  // namespace
 
+double SiFactor(const std::string& channel) { return RoleOf(channel).second; }
+
 SurfaceChannels ParseSurfaceChannels(const std::string& from, const diagnosis::Recording& recording) {
   SurfaceChannels c;
   std::stringstream in(from);

@@ -4,8 +4,10 @@
 //  - a wave string (kind axial_torsional), top speed and top torque measured: downward continuation of the torsional
 //    waves (wave_continuation.hpp) gives the bit's speed exactly, one travel time late; the axial channel likewise
 //    from the hook load. No state to converge: an error in the start does not exist, noise is propagated.
-//  - a lumped pendulum (kind two_mass), top speed measured: an extended Kalman filter on the pendulum with its
-//    set-valued bit friction, smoothed over a fixed lag (lumped_observer.hpp).
+//  - a lumped pendulum (kind two_mass), top speed measured: with a drive whose law gives its torque (a droop drive,
+//    a torque drive) a hybrid observer, the drive law inverted for the bit with the stick-slip regimes
+//    (hybrid_observer.hpp); with a PI drive an extended Kalman filter on the pendulum with its set-valued bit
+//    friction, smoothed over a fixed lag (lumped_observer.hpp).
 // Downhole channels are never read here: the metrics (metrics.hpp) compare afterwards.
 #include <string>
 #include <vector>
@@ -71,6 +73,7 @@ EstimatorModel EstimatorModelFromCase(const nlohmann::json& case_document, doubl
 struct EstimateOptions {
   // |bit speed| below this fraction of the nominal speed counts as stuck (the same rule for the measurement).
   double stuck_fraction = 0.05;
+  double stuck_threshold_rad_s = -1;  // > 0: this threshold instead (a live estimate holds the one it read first)
   // Lumped observer: the smoother's fixed lag [s]; the estimate for time t is ready at t + lag.
   double smoothing_lag_s = -1;  // < 0: the observer's own, from the model (lumped_observer.hpp)
   // The recording's time where the model's time 0 falls (a sidecar's warm-up: the case's schedules run 30 s earlier).

@@ -22,6 +22,9 @@ struct SurfaceChannels {
 // with bit_, tob or wob: the estimate never reads them).
 SurfaceChannels ParseSurfaceChannels(const std::string& from, const diagnosis::Recording& recording);
 
+// The factor to SI units of a channel by its name's suffix (_rpm, _rad_s, _kNm, _Nm, _kN, _N); 0 if unknown.
+double SiFactor(const std::string& channel);
+
 // The named channels in SI units on the recording's grid (InputError naming time_s if it is not uniform).
 SurfaceSignals SignalsFromRecording(const diagnosis::Recording& recording, const SurfaceChannels& channels);
 
