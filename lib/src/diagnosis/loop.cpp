@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -112,6 +113,73 @@ void Adopt(const Judged& j, Recording& model, FeatureSet& fit, FeatureSet& held_
   fit_error = j.fit_error, held_out_error = j.held_out_error;
 }
 
+// A calibrated base before effects: the base's uncertain parameters, within their prior ranges, fitted to the
+// recording's gross features on the fit window (the levels and the period; what no effect is needed for). `base` and
+// loop.baseline_document become the calibrated case where that brings the base closer on the whole fit window.
+void CalibrateBase(const ModelRuns& runner, const LoopOptions& o, const std::function<void(const std::string&)>& say,
+                   nlohmann::json& base, DiagnosisLoop& loop) {
+  const double fit_duration = runner.FitDuration();
+  const std::vector<Effect> calibrations = BaseCalibrations(base);
+  if (calibrations.empty()) return;
+  FeatureSet gross = loop.recording_fit;
+  const auto not_gross = [](const Feature& f) {
+    const std::string mean = " mean";
+    const bool is_mean =
+        f.name.size() > mean.size() && f.name.compare(f.name.size() - mean.size(), mean.size(), mean) == 0;
+    return !(is_mean || f.name == "period_s");
+  };
+  gross.features.erase(std::remove_if(gross.features.begin(), gross.features.end(), not_gross), gross.features.end());
+  const auto fit_window_error = [&](const nlohmann::json& doc, const FeatureSet& target) {
+    return FeatureDistance(runner.FitFeatures(runner.Run(doc, fit_duration, ModelRuns::Tolerance::kFit)), target);
+  };
+  std::vector<const Effect*> calibrated_effects;
+  for (const Effect& e : calibrations) calibrated_effects.push_back(&e);
+  auto calibrated = [&](const std::vector<double>& u) { return Applied(base, calibrated_effects, u); };
+  const std::vector<double> start = StartOf(calibrated_effects);
+  auto objective = [&](const std::vector<double>& u) {
+    try {
+      return fit_window_error(calibrated(u), gross);
+    } catch (const InputError&) {
+    } catch (const NumericalError&) {
+    }
+    return kFailedRun;
+  };
+  MinimizeOptions mo;
+  mo.max_evaluations = o.screening_evaluations_per_parameter * static_cast<int>(start.size()) + 3;
+  mo.starts = 1;
+  mo.seed = o.seed;
+  const MinimizeResult best = MinimizeInUnitCube(objective, start, mo);
+  loop.model_runs += best.evaluations;
+  std::size_t k = 0;
+  std::string moved;
+  for (const Effect& e : calibrations)
+    for (const EffectParameter& p : e.parameters) {
+      const double value = FromUnit(p, best.best[k++]);
+      loop.calibration.push_back({e.name, p.name, p.unit, value, p.start, p.lower, p.upper});
+      moved += (moved.empty() ? "" : ", ") + p.name + " " + Significant(p.start, 4) + " -> " +
+               Significant(value, 4) + " (" + Fixed(100 * (value / p.start - 1), 1) + " %)";
+    }
+  // The calibration stands only if it brings the base closer to the recording on the fit window as a whole: levels
+  // fixed at the cost of the motion point to an effect (side friction raising the mean torque, not a softer rock;
+  // dev rec01: sigma*l to its -20 % bound, the fit window's error 84 -> 99).
+  double before = kFailedRun, after = kFailedRun;
+  try {
+    before = fit_window_error(base, loop.recording_fit);
+    after = fit_window_error(calibrated(best.best), loop.recording_fit);
+  } catch (const InputError&) {
+  } catch (const NumericalError&) {
+  }
+  loop.model_runs += 2;
+  loop.calibration_kept = after < before;
+  if (loop.calibration_kept) {
+    base = calibrated(best.best);
+    loop.baseline_document = base;
+  }
+  say("base calibration on the gross features (levels, period) of the fit window: " + moved + "; fit window's error " +
+      Significant(before, 3) + " -> " + Significant(after, 3) +
+      (loop.calibration_kept ? ": kept" : ": not kept (the motion got worse), the case's values stand"));
+}
+
 }  // namespace
 
 LoopOptions DefaultLoopOptions(const cases::Case& c, const Recording& rec, double offset_s, double settle_s) {
@@ -196,68 +264,8 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   runner.SetWorkBudget();
   loop.plain_fit_error = FeatureDistance(runner.FitFeatures(plain), loop.recording_fit);
   loop.plain_held_out_error = FeatureDistance(runner.HeldOutFeatures(plain), loop.recording_held_out);
-  // 2a. A calibrated base before effects: the base's uncertain parameters, within their prior ranges, fitted to the
-  //     recording's gross features on the fit window (the levels and the period; what no effect is needed for).
-  const std::vector<Effect> calibrations = o.max_singles > 0 ? BaseCalibrations(base) : std::vector<Effect>{};
-  if (!calibrations.empty()) {
-    FeatureSet gross = loop.recording_fit;
-    gross.features.erase(std::remove_if(gross.features.begin(), gross.features.end(),
-                                        [](const Feature& f) {
-                                          const std::string mean = " mean";
-                                          const bool is_mean = f.name.size() > mean.size() &&
-                                                               f.name.compare(f.name.size() - mean.size(), mean.size(), mean) == 0;
-                                          return !(is_mean || f.name == "period_s");
-                                        }),
-                         gross.features.end());
-    std::vector<const Effect*> calibrated_effects;
-    for (const Effect& e : calibrations) calibrated_effects.push_back(&e);
-    auto calibrated = [&](const std::vector<double>& u) { return Applied(base, calibrated_effects, u); };
-    const std::vector<double> start = StartOf(calibrated_effects);
-    auto objective = [&](const std::vector<double>& u) {
-      try {
-        return FeatureDistance(runner.FitFeatures(runner.Run(calibrated(u), fit_duration, Tolerance::kFit)), gross);
-      } catch (const InputError&) {
-      } catch (const NumericalError&) {
-      }
-      return kFailedRun;
-    };
-    MinimizeOptions mo;
-    mo.max_evaluations = o.screening_evaluations_per_parameter * static_cast<int>(start.size()) + 3;
-    mo.starts = 1;
-    mo.seed = o.seed;
-    const MinimizeResult best = MinimizeInUnitCube(objective, start, mo);
-    loop.model_runs += best.evaluations;
-    std::size_t k = 0;
-    std::string moved;
-    for (const Effect& e : calibrations)
-      for (const EffectParameter& p : e.parameters) {
-        const double value = FromUnit(p, best.best[k++]);
-        loop.calibration.push_back({e.name, p.name, p.unit, value, p.start, p.lower, p.upper});
-        moved += (moved.empty() ? "" : ", ") + p.name + " " + Significant(p.start, 4) + " -> " +
-                 Significant(value, 4) + " (" + Fixed(100 * (value / p.start - 1), 1) + " %)";
-      }
-    // The calibration stands only if it brings the base closer to the recording on the fit window as a whole: levels
-    // fixed at the cost of the motion point to an effect (side friction raising the mean torque, not a softer rock;
-    // dev rec01: sigma*l to its -20 % bound, the fit window's error 84 -> 99).
-    auto whole_fit_error = [&](const nlohmann::json& doc) {
-      return FeatureDistance(runner.FitFeatures(runner.Run(doc, fit_duration, Tolerance::kFit)), loop.recording_fit);
-    };
-    double before = kFailedRun, after = kFailedRun;
-    try {
-      before = whole_fit_error(base), after = whole_fit_error(calibrated(best.best));
-    } catch (const InputError&) {
-    } catch (const NumericalError&) {
-    }
-    loop.model_runs += 2;
-    loop.calibration_kept = after < before;
-    if (loop.calibration_kept) {
-      base = calibrated(best.best);
-      loop.baseline_document = base;
-    }
-    say("base calibration on the gross features (levels, period) of the fit window: " + moved + "; fit window's error " +
-        Significant(before, 3) + " -> " + Significant(after, 3) +
-        (loop.calibration_kept ? ": kept" : ": not kept (the motion got worse), the case's values stand"));
-  }
+  // 2a. A calibrated base before effects (none where only the case's own errors are asked for).
+  if (o.max_singles > 0) CalibrateBase(runner, o, say, base, loop);
   Draws baseline_draws = runner.RunDraws(base, std::max(1, o.threads));
   // The candidates' work budget: the costliest of the baseline's draws (one that bounces costs more than one that
   // drills).
