@@ -1,9 +1,10 @@
 // drillwave command-line tool: thin layer over the library. Exit codes: 0 success, 1 an expectation failed (--check),
 // 2 bad input (the message names the JSON path or option, the value and what was expected; checked before any work
-// starts), 3 numerical failure (with time and state), 4 internal error (with its message).
+// starts), 3 numerical failure (with time and state), 4 internal error (with its message), 5 the outputs could not be
+// written after the work (disk full, a file-size limit: the file and the cause; the output folder is left as it was).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -25,6 +26,8 @@
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/parallel.hpp"
+#include "drillwave/core/progress.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/diagnosis/loop_report.hpp"
@@ -566,7 +569,17 @@ int Orbits(const std::string& file, const std::string& out_dir, const std::vecto
 
 int main(int argc, char** argv) {
   drillwave::io::InstallTerminationCleanup();  // before any thread exists: SIGTERM/SIGINT remove unfinished outputs
+  // Long work (a many-section string's roots, a huge recording) says how far it is on stderr every 5 s
+  // (DRILLWAVE_PROGRESS_S: another interval; 0: never).
+  {
+    const char* every = std::getenv("DRILLWAVE_PROGRESS_S");
+    const double interval = every && *every ? std::strtod(every, nullptr) : 5.0;
+    if (interval > 0 && std::isfinite(interval))
+      drillwave::SetProgressSink([](const std::string& line) { std::cerr << "drillwave: " << line << std::endl; },
+                                 interval);
+  }
   CLI::App app{"drillwave: drill-string vibration simulation (d'Alembert wave networks, delay equations)"};
+  app.set_version_flag("--version", std::string("drillwave ") + DRILLWAVE_VERSION, "print the version and exit");
   app.require_subcommand(0, 1);
   app.fallthrough();  // options of the tool (--max-samples) may follow the subcommand
   double max_samples = drillwave::cases::MaxSamples();
@@ -591,12 +604,12 @@ int main(int argc, char** argv) {
       "sweep", "run a case once for each value of one parameter (independent runs in parallel): sweep.csv with every "
                "summary statistic per value, bifurcation.svg, report.md");
   std::string sweep_pointer, sweep_values, sweep_out = "drillwave-sweep";
-  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int jobs = drillwave::DefaultThreadCount();  // the CPUs this process may run on (taskset, cpusets)
   sweep->add_option("case", case_file, "case JSON file (default: the embedded default case)");
   sweep->add_option("--param,-p", sweep_pointer, "the parameter's JSON pointer, e.g. /model/upper_disc/input_voltage_V")
       ->required();
   sweep->add_option("--values,-v", sweep_values, "first:last:count (evenly spaced) or v1,v2,...")->required();
-  sweep->add_option("--jobs,-j", jobs, "runs at once (default: the number of cores)");
+  sweep->add_option("--jobs,-j", jobs, "runs at once (default: the CPUs this process may run on)");
   sweep->add_option("--out,-o", sweep_out, "output folder (written all or nothing)");
   sweep->add_option("--set", overrides, "override another parameter by JSON pointer");
 
@@ -642,7 +655,7 @@ int main(int argc, char** argv) {
   stability->add_flag("--no-run", stability_no_run,
                       "one case: do not run it from its start (by default it runs, to tell whether a stable steady "
                       "state coexists with a stick-slip cycle)");
-  stability->add_option("--jobs,-j", jobs, "analyses at once (default: the number of cores)");
+  stability->add_option("--jobs,-j", jobs, "analyses at once (default: the CPUs this process may run on)");
   stability->add_option("--out,-o", stability_out, "output folder (written all or nothing)");
   stability->add_option("--set", overrides, "override a parameter by JSON pointer");
 
@@ -806,6 +819,9 @@ int main(int argc, char** argv) {
   } catch (const drillwave::NumericalError& e) {
     std::cerr << "drillwave: numerical failure: " << e.what() << std::endl;
     return 3;
+  } catch (const drillwave::io::OutputError& e) {
+    std::cerr << "drillwave: cannot write the outputs: " << e.what() << std::endl;
+    return 5;
   } catch (const std::exception& e) {
     std::cerr << "drillwave: internal error: " << e.what() << std::endl;
     return 4;

@@ -408,4 +408,48 @@ TEST_F(Cli, KindsListsFieldsWithUnits) {
     EXPECT_NE(o.output.find(kind), std::string::npos) << kind;
 }
 
+// Issue 41: `stability` on a many-section string and `inspect` on a huge recording said nothing until the end.
+// Long work now says on stderr every 5 s what it does and how far it is; DRILLWAVE_PROGRESS_S shortens the interval
+// here so that short work shows it too (and without it, short work stays quiet).
+TEST_F(Cli, LongWorkSaysWhatItDoesAndHowFarItIs) {
+  nlohmann::json doc = nlohmann::json::parse(
+      std::ifstream(std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/saldivar-collars.json"));
+  doc.erase("expect");
+  nlohmann::json sections = nlohmann::json::array();
+  for (int k = 0; k < 8; ++k)
+    sections.push_back({{"name", "s" + std::to_string(k)}, {"length_m", 150 + 7 * k}, {"shear_modulus_Pa", 79.3e9},
+                        {"density_kg_m3", 8000}, {"polar_moment_m4", 1.19e-5 * (1 + 0.3 * (k % 3))}});
+  doc["model"]["string"]["sections"] = sections;
+  const std::string file = Write(doc.dump());
+  const std::string stability = "stability " + file + " --no-run -o " + (dir_ / "stab").string();
+  Outcome o = drillwave::test_support::RunCommand("DRILLWAVE_PROGRESS_S=0.01 " + std::string(DRILLWAVE_BINARY) + " " +
+                                                  stability);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("drillwave: characteristic roots of a linear system of 17 states: "), std::string::npos)
+      << o.output;
+  o = RunTool(stability);
+  EXPECT_EQ(o.output.find("characteristic roots of"), std::string::npos) << "quiet under 5 s: " << o.output;
+
+  const fs::path csv = dir_ / "wide.csv";
+  {
+    std::ofstream out(csv);
+    out << "time_s,top_rpm,bit_rpm";
+    for (int j = 0; j < 800; ++j) out << ",c" << j;
+    out << "\n";
+    // 3.2 million cells: reading and inspecting them lasts well over the 10-ms interval on any machine (400 rows
+    // were done before the progress thread's first look on an idle one).
+    for (int i = 0; i < 4000; ++i) {
+      out << 0.01 * i << ",60," << (i % 40 < 20 ? 0 : 90);
+      for (int j = 0; j < 800; ++j) out << "," << (i * (j + 3)) % 17;
+      out << "\n";
+    }
+  }
+  o = drillwave::test_support::RunCommand("DRILLWAVE_PROGRESS_S=0.01 " + std::string(DRILLWAVE_BINARY) +
+                                          " inspect " + csv.string() + " -o " + (dir_ / "insp").string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const bool reading = o.output.find("drillwave: reading " + csv.string() + ": ") != std::string::npos;
+  const bool inspecting = o.output.find("drillwave: inspect " + csv.string() + ": ") != std::string::npos;
+  EXPECT_TRUE(reading || inspecting) << o.output.substr(0, 2000);
+}
+
 }  // namespace

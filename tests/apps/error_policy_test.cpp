@@ -1,12 +1,15 @@
-// The error policy (issues 15 and 16) as a user meets it: exit codes 0 / 1 / 2 / 3 / 4, bad input named with its
-// path and value before any work starts, non-finite runs as numerical failures, output folders replaced whole.
+// The error policy (issues 15, 16 and 41) as a user meets it: exit codes 0 / 1 / 2 / 3 / 4 / 5, bad input named with
+// its path and value before any work starts, non-finite runs as numerical failures, output folders replaced whole and
+// only when they hold nothing but drillwave's outputs, write failures after the work named with the file and cause.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -99,6 +102,19 @@ TEST_F(ErrorPolicy, WorkIsEstimatedAndRefusedAboveTheLimit) {
   Expect("validate " + Write(base_) + " --max-samples 0", 2, "--max-samples: expected a finite number >= 1");
 }
 
+TEST_F(ErrorPolicy, AHugeSweepIsRefusedBeforeAnyRun) {
+  // Issue 41: a sweep of 1e6 values allocated 3.8 GB before its first run and ended as an internal error (exit 4).
+  const auto start = std::chrono::steady_clock::now();
+  const Outcome o = drillwave::test_support::RunCommand(
+      "timeout 60 " + std::string(DRILLWAVE_BINARY) + " sweep " + Write(base_) +
+      " -p /model/bit/inertia_kgm2 -v 50:150:1000000" + Out());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--values: 1000000 runs of about"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("raise the limit with --max-samples"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
 TEST_F(ErrorPolicy, NonFiniteOutputsAreANumericalFailureNeverExitZero) {
   // Issue 16: beta = 1e308 wrote 15 852 NaN rows and a summary "stuck 100 % of the time", exit 0.
   auto doc = base_;
@@ -130,9 +146,9 @@ TEST_F(ErrorPolicy, EveryChannelsFirstSampleIsDefined) {
 }
 
 TEST_F(ErrorPolicy, AFailedWriteNeverLeavesAMixedFolder) {
-  // Issue 16's reproduction: a folder where summary.json should go, and an old trajectory.
+  // Issue 16's reproduction: an old trajectory and report (plain files with drillwave's names) are replaced whole.
   const fs::path out = dir_ / "o";
-  fs::create_directories(out / "summary.json");
+  fs::create_directories(out);
   std::ofstream(out / "trajectory.csv") << "OLD\n";
   std::ofstream(out / "report.md") << "OLD\n";
   const Outcome o = RunTool("run " + Write(base_) + " -o " + out.string());
@@ -149,6 +165,93 @@ TEST_F(ErrorPolicy, AFailedWriteNeverLeavesAMixedFolder) {
   EXPECT_EQ(refused.output.find("running case"), std::string::npos) << "checked before the run";
   EXPECT_EQ(Contents(out / "trajectory.csv"), before);
   EXPECT_EQ(Contents(out / "notes.txt"), "mine");
+}
+
+TEST_F(ErrorPolicy, ASubFolderNamedLikeAnOutputIsRefusedBeforeTheRun) {
+  // Issue 41: summary.json/ holding the user's files was replaced with the rest (exit 0, the files gone). Issue 16's
+  // own reproduction had an empty summary.json/ replaced; a sub-folder is refused now, empty or not.
+  const fs::path out = dir_ / "o";
+  fs::create_directories(out / "summary.json");
+  fs::create_directories(out / "report.md");
+  std::ofstream(out / "summary.json" / "mine.txt") << "mine";
+  std::ofstream(out / "trajectory.csv") << "OLD\n";
+  const Outcome o = RunTool("run " + Write(base_) + " -o " + out.string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("holds the sub-folder \"report.md/\""), std::string::npos)
+      << "the first foreign entry in name order: " << o.output;
+  EXPECT_EQ(o.output.find("running case"), std::string::npos) << "checked before the run";
+  EXPECT_EQ(Contents(out / "summary.json" / "mine.txt"), "mine");
+  EXPECT_EQ(Contents(out / "trajectory.csv"), "OLD\n");
+}
+
+TEST_F(ErrorPolicy, ASymbolicLinkAsTheOutputFolderIsRefusedBeforeTheRun) {
+  // Documented in README (Exit codes): -o naming a link is refused, so neither the link nor the folder behind it
+  // is touched; give the folder itself.
+  const fs::path target = dir_ / "target", link = dir_ / "link";
+  ASSERT_EQ(RunTool("run " + Write(base_) + " -o " + target.string()).exit_code, 0);
+  const std::string before = Contents(target / "trajectory.csv");
+  fs::create_directory_symlink(target, link);
+  const Outcome o = RunTool("run " + Write(base_) + " -o " + link.string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(link.string() + " is a symbolic link (to " + target.string() + ")"), std::string::npos)
+      << o.output;
+  EXPECT_EQ(o.output.find("running case"), std::string::npos) << "checked before the run";
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(Contents(target / "trajectory.csv"), before);
+  EXPECT_EQ(RunTool("run " + Write(base_) + " -o " + target.string()).exit_code, 0) << "the folder itself is fine";
+}
+
+TEST_F(ErrorPolicy, AnOutputFolderThatCannotBeWrittenIsFoundBeforeTheRun) {
+  // Issue 41: a read-only parent was found after the whole simulation, as an internal error (exit 4). Root may
+  // write anywhere, so as root the tool runs as nobody (setpriv), for whom the folder is read-only too.
+  const fs::path locked = dir_ / "locked";
+  fs::create_directories(locked);
+  fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                              fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+  std::string as_user;
+  if (::geteuid() == 0) {
+    if (drillwave::test_support::RunCommand("setpriv --version").exit_code != 0)
+      GTEST_SKIP() << "running as root without setpriv: cannot make a folder read-only";
+    as_user = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+  }
+  const std::string file = Write(base_);
+  if (!as_user.empty() && drillwave::test_support::RunCommand(as_user + "test -r " + file).exit_code != 0)
+    GTEST_SKIP() << "nobody cannot read " << file << " (a private temporary folder?)";
+  for (const fs::path& out : {locked / "out", locked / "new" / "out"}) {
+    const Outcome o = drillwave::test_support::RunCommand(as_user + DRILLWAVE_BINARY + " run " + file + " -o " +
+                                                          out.string());
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find("--out: cannot create " + out.string() + ": the folder " + locked.string() +
+                            " is not writable (Permission denied)"),
+              std::string::npos)
+        << o.output;
+    EXPECT_EQ(o.output.find("running case"), std::string::npos) << "checked before the run";
+  }
+  fs::permissions(locked, fs::perms::owner_all);
+  EXPECT_TRUE(fs::is_empty(locked));
+}
+
+TEST_F(ErrorPolicy, AWriteFailureAfterTheRunNamesTheFileAndItsCause) {
+  // Issue 41: a full disk was an internal error (exit 4) naming .drillwave-output. A file-size limit (ulimit -f, in
+  // blocks of 512 bytes) fails the writes the same way, with "File too large" for "No space left on device".
+  const fs::path out = dir_ / "out";
+  const std::string file = Write(base_);
+  ASSERT_EQ(RunTool("run " + file + " -o " + out.string()).exit_code, 0);
+  const std::string before = Contents(out / "trajectory.csv");
+  const Outcome o = drillwave::test_support::RunCommand("trap '' XFSZ; ulimit -f 16; exec " +
+                                                        std::string(DRILLWAVE_BINARY) + " run " + file + " -o " +
+                                                        out.string());
+  EXPECT_EQ(o.exit_code, 5) << o.output;
+  EXPECT_NE(o.output.find("drillwave: cannot write the outputs: cannot write " + (out / "trajectory.csv").string() +
+                          ": File too large"),
+            std::string::npos)
+      << o.output;
+  EXPECT_EQ(o.output.find("internal error"), std::string::npos) << o.output;
+  EXPECT_EQ(Contents(out / "trajectory.csv"), before) << "the old folder is kept whole";
+  std::vector<std::string> entries;
+  for (const auto& e : fs::directory_iterator(dir_)) entries.push_back(e.path().filename().string());
+  std::sort(entries.begin(), entries.end());
+  EXPECT_EQ(entries, (std::vector<std::string>{"case.json", "out"})) << "no staging folder left";
 }
 
 TEST_F(ErrorPolicy, RecordingsAreValidatedByFileLineAndColumn) {

@@ -24,6 +24,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "drillwave/io/output_dir.hpp"
 
 namespace {
 
@@ -377,6 +378,63 @@ TEST_F(Mutations, SidecarsAreNamedByTheirOwnPathAndValue) {
                                                                     "(0, 86400], got -120") != std::string::npos &&
                                       !fs::exists(dir_ / "out"),
                                   o.output);
+  Report(tallies);
+}
+
+// Output folders holding the user's things (issue 41): a sub-folder named like each command's output, a link named
+// like one, the folder itself a link. Each is refused with exit 2 naming it before the run, and left as it was;
+// drillwave only replaces what it wrote. (In-process for the folder shapes, since CheckReplaceable is what every
+// command calls before its work; through the tool once per shape.)
+TEST_F(Mutations, OutputFoldersHoldingTheUsersThingsAreRefusedAndKept) {
+  std::map<std::string, Tally> tallies;
+  const fs::path out = dir_ / "out", mine = dir_ / "mine.txt";
+  std::ofstream(mine) << "mine";
+  auto shaped = [&](const std::string& shape, const std::string& name) {
+    fs::remove_all(out);
+    fs::create_directories(out);
+    std::ofstream(out / "trajectory.csv") << "old";  // a plain output beside it, replaceable on its own
+    fs::remove(out / name);
+    if (shape == "sub-folder") {
+      fs::create_directories(out / name);
+      std::ofstream(out / name / "mine.txt") << "mine";
+      return "the sub-folder \"" + name + "/\"";
+    }
+    fs::create_symlink(mine, out / name);
+    return "the symbolic link \"" + name + "\"";
+  };
+  const std::vector<std::string> names = {
+      ".drillwave-output", "trajectory.csv",    "summary.json",   "plot.svg",        "report.md",      "case.json",
+      "sweep.csv",         "bifurcation.svg",   "stability.json", "roots.csv",       "stability_map.csv",
+      "stability_map.svg", "findings.json",     "comparison.json", "fit.json",       "fitted-case.json",
+      "diagnosis.json",    "report.html",       "orbits.csv",     "orbits.svg",      "edge.json",      "edge_run.csv",
+      "edge.svg",          "prediction.csv"};
+  for (const std::string shape : {"sub-folder", "link"}) {
+    for (const std::string& name : names) {
+      const std::string expected = shaped(shape, name);
+      std::string outcome = "accepted";
+      try {
+        drillwave::io::OutputDirectory::CheckReplaceable(out.string());
+      } catch (const drillwave::InputError& e) {
+        outcome = e.what();
+      }
+      tallies[shape].Add(outcome.find(expected) != std::string::npos, name + ": " + outcome);
+    }
+    const std::string expected = shaped(shape, "summary.json");
+    const Outcome o = RunTool("run " + (kCases / "saldivar-stickslip.json").string() + " -o " + out.string());
+    tallies["through-the-tool"].Add(o.exit_code == 2 && o.output.find(expected) != std::string::npos &&
+                                        o.output.find("running case") == std::string::npos &&
+                                        fs::exists(out / "summary.json") && !fs::is_regular_file(fs::symlink_status(out / "summary.json")),
+                                    shape + ": exit " + std::to_string(o.exit_code) + ": " + o.output);
+  }
+  fs::remove_all(out);
+  fs::create_directories(dir_ / "target");
+  fs::create_directory_symlink(dir_ / "target", out);
+  const Outcome o = RunTool("run " + (kCases / "saldivar-stickslip.json").string() + " -o " + out.string());
+  tallies["through-the-tool"].Add(o.exit_code == 2 && o.output.find("is a symbolic link") != std::string::npos &&
+                                      fs::is_symlink(out) && fs::is_empty(dir_ / "target"),
+                                  "-o a link: exit " + std::to_string(o.exit_code) + ": " + o.output);
+  std::ifstream in(mine);
+  tallies["user-file-kept"].Add(std::string(std::istreambuf_iterator<char>(in), {}) == "mine", "mine.txt changed");
   Report(tallies);
 }
 

@@ -164,5 +164,36 @@ TEST(Jeffcott, TransientsDoFatigueDamage) {
   EXPECT_FALSE(RunCase(ParseCase(doc)).summary.contains("max_bending_stress_Pa"));
 }
 
+// Issue 41: a drive that comes to rest (its speed knots ending at 0) exited 3, because rotor_speed_norm = beta'/theta'
+// divided by the drive's zero speed while the rotor still swung on the shaft. While the drive turns the channel is the
+// seed's ratio; at rest it is the rotor's speed over the speed the drive ran at before it stopped.
+TEST(Jeffcott, ADriveComingToRestIsAValidRun) {
+  constexpr double kPi = 3.14159265358979323846;
+  nlohmann::json doc = Rotor();
+  doc["model"]["drive_speed_rad_s"] = {{"knots", {{0, 0}, {0.2, 100}, {0.3, 100}, {0.35, 0}}}};
+  doc["simulation"] = {{"duration_s", 0.6}, {"output_interval_s", 0.001}};
+  doc["statistics"]["window_s"] = {0, 0.6};
+  doc.erase("expect");
+  CaseRun run;
+  ASSERT_NO_THROW(run = RunCase(ParseCase(doc)));
+  const auto& t = run.result.time_s;
+  const auto& norm = run.result.channel("rotor_speed_norm").values;
+  const auto& rotor_rpm = run.result.channel("bit_rpm").values;
+  const auto& drive_rpm = run.result.channel("top_rpm").values;
+  int at_rest_turning = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(norm[i])) << "t = " << t[i];
+    if (t[i] > 0.01 && t[i] < 0.34) {
+      EXPECT_NEAR(norm[i], rotor_rpm[i] / drive_rpm[i], 1e-12 * std::abs(norm[i])) << "t = " << t[i];
+    }
+    if (t[i] > 0.36) {
+      EXPECT_EQ(drive_rpm[i], 0.0);
+      EXPECT_NEAR(norm[i], rotor_rpm[i] * kPi / 30 / 100, 1e-12) << "t = " << t[i];
+      at_rest_turning += rotor_rpm[i] != 0;
+    }
+  }
+  EXPECT_GT(at_rest_turning, 100) << "the rotor swings on after the drive stopped";
+}
+
 }  // namespace
 }  // namespace drillwave::cases

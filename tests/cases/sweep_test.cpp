@@ -1,5 +1,6 @@
 // Parameter sweeps: value lists, independence of the runs (threads change nothing), bad input before any run,
 // numerical failures recorded per point, and the files written.
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -38,6 +39,33 @@ TEST(SweepValues, RangesAndLists) {
       EXPECT_EQ(e.json_path(), "--values") << bad;
     }
   }
+}
+
+TEST(Sweep, AHugeSweepIsRefusedFromItsWorkEstimateBeforeAnythingElseIsParsed) {
+  // Issue 41: 1e6 values held 3.8 GB of parsed cases before the first run (exit 4 on the command line; the Python
+  // interpreter died). 60 s every 0.01 s is 6000 samples a run, counted as 1e4; the limit is 100 x --max-samples.
+  struct RestoreLimit {
+    double previous = MaxSamples();
+    ~RestoreLimit() { SetMaxSamples(previous); }
+  } restore;
+  SetMaxSamples(1e5);  // a sweep's limit of 1e7: 1000 runs
+  EXPECT_THROW(RunSweep(ShortTwoDisc(), {kVoltage, std::vector<double>(1001, 1.0), 1}, nullptr), InputError);
+  SetMaxSamples(1e7);
+  const std::vector<double> values = ParseSweepValues("0.1:6:1000000", "--values");
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    RunSweep(ShortTwoDisc(), {kVoltage, values, 2}, nullptr);
+    ADD_FAILURE() << "a sweep of 1e6 runs was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "--values");
+    EXPECT_NE(std::string(e.what()).find("--values: 1000000 runs of about 6000 output samples or steps each (each run "
+                                         "counted as at least 10000: 1e+10 in all) are above a sweep's limit of "
+                                         "1000000000 (100 x --max-samples)"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0)
+      << "refused before the values' cases are parsed";
 }
 
 TEST(Sweep, EachPointEqualsASingleRunWhateverTheNumberOfThreads) {

@@ -1,5 +1,7 @@
 // The one thread pool: results in index order whatever the number of threads, and a worker's exception reaches the
 // caller with its type and message (the lowest failing index's, as a serial loop would throw) instead of aborting.
+#include <sched.h>
+
 #include <atomic>
 #include <chrono>
 #include <stdexcept>
@@ -95,6 +97,23 @@ TEST(ParallelMap, AProgressCallbacksExceptionStopsTheMapToo) {
                      if (done == 4) throw std::runtime_error("cancelled");
                    }),
                std::runtime_error);
+}
+
+// Under `taskset -c 0` (or a container's cpuset) the default is the one CPU the process may use, not every CPU of
+// the machine; with the mask restored, every CPU it allows.
+TEST(DefaultThreadCount, IsTheNumberOfCpusTheAffinityMaskAllows) {
+  cpu_set_t original;
+  ASSERT_EQ(sched_getaffinity(0, sizeof original, &original), 0);
+  if (CPU_COUNT(&original) < 2) GTEST_SKIP() << "only one CPU allowed already: a wider default cannot show";
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  for (int cpu = 0; cpu < CPU_SETSIZE && CPU_COUNT(&one) == 0; ++cpu)
+    if (CPU_ISSET(cpu, &original)) CPU_SET(cpu, &one);
+  ASSERT_EQ(sched_setaffinity(0, sizeof one, &one), 0);
+  const int restricted = DefaultThreadCount();
+  ASSERT_EQ(sched_setaffinity(0, sizeof original, &original), 0);
+  EXPECT_EQ(restricted, 1);
+  EXPECT_EQ(DefaultThreadCount(), CPU_COUNT(&original));
 }
 
 }  // namespace

@@ -9,8 +9,11 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include "drillwave/core/error.hpp"
 
@@ -79,7 +82,7 @@ TEST_F(OutputDirectoryTest, WithoutCommitNothingIsLeftBehind) {
 
 TEST_F(OutputDirectoryTest, AnExistingFolderIsUntouchedWithoutCommitAndReplacedAsAWholeWithIt) {
   const fs::path dir = scratch_ / "run";
-  fs::create_directories(dir / "summary.json");  // even a folder where a file will go (issue 16)
+  fs::create_directories(dir);  // (a sub-folder summary.json/ is refused since issue 41: see below)
   std::ofstream(dir / "trajectory.csv") << "old";
   std::ofstream(dir / "report.md") << "old";
   {
@@ -117,6 +120,149 @@ TEST_F(OutputDirectoryTest, AFolderWithFilesDrillwaveDidNotWriteIsRefusedAndKept
   EXPECT_EQ(Contents(dir / "summary.json"), "old");
   EXPECT_EQ(Entries(), std::vector<std::string>{"run"});
   EXPECT_THROW(OutputDirectory(""), InputError);
+}
+
+TEST_F(OutputDirectoryTest, ASubFolderIsRefusedEvenWhenNamedLikeAnOutput) {
+  // Issue 41: the name check looked at top-level names only, so summary.json/ with the user's files in it was
+  // replaced, and the files were gone (exit 0).
+  const fs::path dir = scratch_ / "run";
+  fs::create_directories(dir / "summary.json");
+  std::ofstream(dir / "summary.json" / "mine.txt") << "mine";
+  std::ofstream(dir / "trajectory.csv") << "old";
+  std::ofstream(dir / "report.md") << "old";
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    try {
+      if (attempt == 0) {
+        OutputDirectory::CheckReplaceable(dir.string());
+      } else {
+        OutputDirectory out(dir.string());
+      }
+      ADD_FAILURE() << "accepted a folder holding the sub-folder summary.json/";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("the sub-folder \"summary.json/\""), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(Contents(dir / "summary.json" / "mine.txt"), "mine");
+  EXPECT_EQ(Contents(dir / "trajectory.csv"), "old");
+  fs::remove(dir / "summary.json" / "mine.txt");  // empty, it is still not drillwave's
+  EXPECT_THROW(OutputDirectory::CheckReplaceable(dir.string()), InputError);
+  EXPECT_EQ(Entries(), std::vector<std::string>{"run"});
+}
+
+TEST_F(OutputDirectoryTest, OnlyWhatTheMarkerListsMayBeInSubFoldersAndNoLinkAnywhere) {
+  const fs::path dir = scratch_ / "run";
+  auto write = [&](const std::string& text) {
+    OutputDirectory out(dir.string());
+    out.Open("figures/plot.svg") << text;
+    out.Open("prediction.csv") << text;
+    out.Open("summary.json") << text;
+    out.Commit();
+  };
+  write("first");
+  write("second");  // a folder drillwave wrote, sub-folder included, is replaced
+  EXPECT_EQ(Contents(dir / "figures" / "plot.svg"), "second");
+  std::ofstream(dir / "figures" / "notes.txt") << "mine";  // the user added a file where drillwave writes
+  try {
+    OutputDirectory::CheckReplaceable(dir.string());
+    ADD_FAILURE() << "accepted figures/notes.txt";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"figures/notes.txt\""), std::string::npos) << e.what();
+  }
+  fs::remove(dir / "figures" / "notes.txt");
+  std::ofstream(scratch_ / "data.csv") << "the user's data";
+  fs::remove(dir / "summary.json");
+  fs::create_symlink(scratch_ / "data.csv", dir / "summary.json");  // a link with an output's name
+  try {
+    OutputDirectory out(dir.string());
+    ADD_FAILURE() << "accepted a symbolic link named summary.json";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the symbolic link \"summary.json\""), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(Contents(scratch_ / "data.csv"), "the user's data");
+}
+
+TEST_F(OutputDirectoryTest, ASymbolicLinkAsTheFolderIsRefusedAndLeftAsItIs) {
+  // Documented choice (README, Exit codes): a link is neither replaced by a real folder (what it did, undocumented)
+  // nor written through (what the first version did).
+  const fs::path target = scratch_ / "target", link = scratch_ / "link";
+  {
+    OutputDirectory out(target.string());
+    out.Open("summary.json") << "old";
+    out.Commit();
+  }
+  fs::create_directory_symlink(target, link);
+  for (const fs::path& dir : {link, fs::path(link.string() + "/")}) {
+    try {
+      OutputDirectory out(dir.string());
+      ADD_FAILURE() << "accepted the symbolic link " << dir;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("is a symbolic link (to " + target.string() + ")"), std::string::npos)
+          << e.what();
+    }
+  }
+  fs::create_symlink(scratch_ / "nowhere", scratch_ / "dangling");
+  EXPECT_THROW(OutputDirectory::CheckReplaceable((scratch_ / "dangling").string()), InputError);
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(Contents(target / "summary.json"), "old");
+  EXPECT_EQ(Entries(), (std::vector<std::string>{"dangling", "link", "target"}));
+}
+
+TEST_F(OutputDirectoryTest, AFolderThatCannotBeCreatedIsFoundBeforeAnyWork) {
+  std::ofstream(scratch_ / "a-file") << "x";
+  try {
+    OutputDirectory::CheckReplaceable((scratch_ / "a-file" / "deeper" / "run").string());
+    ADD_FAILURE() << "accepted a folder under a file";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find((scratch_ / "a-file").string() + " is not a folder"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST_F(OutputDirectoryTest, AFailedWriteNamesTheFileThatFailedAndWhy) {
+  // Issue 41: a full disk named .drillwave-output, and said "disk full?" whatever the cause. A file-size limit in a
+  // child process makes the writes fail like a full disk (EFBIG instead of ENOSPC).
+  const fs::path dir = scratch_ / "run";
+  {
+    OutputDirectory out(dir.string());
+    out.Open("summary.json") << "old";
+    out.Commit();
+  }
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe(pipe_fds), 0);
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::close(pipe_fds[0]);
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{16384, 16384};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    std::string message = "no OutputError";
+    try {
+      OutputDirectory out(dir.string());
+      out.Open("a-small.json") << "{}";
+      out.Open("b-large.csv") << std::string(200000, 'x');
+      out.Open("c-large.csv") << std::string(200000, 'y');
+      out.Commit();
+    } catch (const OutputError& e) {
+      message = e.what();
+    } catch (const std::exception& e) {
+      message = std::string("another exception: ") + e.what();
+    }
+    (void)!::write(pipe_fds[1], message.data(), message.size());
+    ::_exit(0);
+  }
+  ASSERT_GT(child, 0);
+  ::close(pipe_fds[1]);
+  std::string message;
+  char buffer[512];
+  for (ssize_t n; (n = ::read(pipe_fds[0], buffer, sizeof buffer)) > 0;) message.append(buffer, n);
+  ::close(pipe_fds[0]);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_NE(message.find("cannot write " + (dir / "b-large.csv").string() + ": File too large"), std::string::npos)
+      << message;
+  EXPECT_EQ(message.find(".drillwave-output"), std::string::npos) << message;
+  EXPECT_EQ(Contents(dir / "summary.json"), "old") << "the old folder is kept whole";
+  EXPECT_EQ(Entries(), std::vector<std::string>{"run"}) << "no staging folder left";
 }
 
 TEST_F(OutputDirectoryTest, StagingFoldersOfDeadProcessesAreRemoved) {

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "drillwave/io/svg_heatmap.hpp"
+
 namespace drillwave::io {
 namespace {
 
@@ -60,7 +62,7 @@ TEST(WriteSvg, IsAnSvgDocumentWithOnePolylinePerSeries) {
   EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
   EXPECT_EQ(Count(svg, "<polyline"), 3u);
   EXPECT_EQ(Count(svg, "<g>"), 2u);
-  EXPECT_EQ(Count(svg, "<g>"), Count(svg, "</g>"));
+  EXPECT_EQ(Count(svg, "<g>") + Count(svg, "<g "), Count(svg, "</g>"));  // panels and legends
   for (const char* text : {">two panels<", ">time [s]<", ">speed [rad/s]<", ">torque [N m]<", ">top<", ">bit<", ">on bit<"})
     EXPECT_NE(svg.find(text), std::string::npos) << text;
   // Two series in one panel get different colours.
@@ -84,6 +86,62 @@ TEST(WriteSvg, EscapesText) {
                 svg.compare(at, 5, "&amp;") == 0 || svg.compare(at, 6, "&quot;") == 0 ||
                 svg.compare(at, 6, "&apos;") == 0)
         << svg.substr(at, 10);
+}
+
+// The number in `attribute="..."` at or after `from`.
+double Attribute(const std::string& svg, const std::string& attribute, std::size_t from) {
+  const std::size_t at = svg.find(attribute + "=\"", from);
+  return at == std::string::npos ? std::nan("") : std::strtod(svg.c_str() + at + attribute.size() + 2, nullptr);
+}
+
+// A legend on the data hides it: every legend starts right of the frame of its panel, inside the picture.
+TEST(WriteSvg, LegendsStandRightOfTheDataInsideThePicture) {
+  const Figure figure{"", "time [s]",
+                      {Panel{"speed [rpm]", {Sine("top_rpm", 200, 1), Sine("a much longer legend entry", 200, 2)}},
+                       Panel{"torque [N m]", {Sine("bit_torque_Nm", 50, 1e4)}}}};
+  const std::string svg = Svg(figure);
+  const std::size_t frame = svg.find("fill=\"none\" stroke=\"#444\"");
+  ASSERT_NE(frame, std::string::npos);
+  const std::size_t frame_tag = svg.rfind("<rect", frame);
+  const double data_right = Attribute(svg, "x", frame_tag) + Attribute(svg, "width", frame_tag);
+  const double picture_width = Attribute(svg, "width", 0);
+  EXPECT_EQ(Count(svg, "<g class=\"legend\">"), 2u);
+  for (std::size_t at = svg.find("<g class=\"legend\">"); at != std::string::npos;
+       at = svg.find("<g class=\"legend\">", at + 1)) {
+    const double left = Attribute(svg, "x", at), width = Attribute(svg, "width", at);
+    EXPECT_GT(left, data_right) << svg.substr(at, 200);
+    EXPECT_LE(left + width, picture_width);
+  }
+}
+
+TEST(WriteSvg, SpansAreShadedInEveryPanelAndLabelledOnce) {
+  Figure figure{"", "time [s]", {Panel{"a", {Sine("a", 100, 1)}}, Panel{"b", {Sine("b", 100, 1)}}}};
+  figure.spans = {{"fit window", 1, 5}, {"held out", 5, 9.9}, {"beyond the data", 20, 30}};
+  const std::string svg = Svg(figure);
+  EXPECT_EQ(Count(svg, "<rect class=\"span\""), 4u);  // two spans in two panels; the third lies past the data
+  EXPECT_EQ(Count(svg, ">fit window<"), 1u);
+  EXPECT_EQ(Count(svg, ">held out<"), 1u);
+  // The fit window begins at x = 1 of [0, 9.9]: 1/9.9 of the data area's width right of its left edge.
+  const std::size_t span = svg.find("<rect class=\"span\"");
+  const double x = Attribute(svg, "x", span), width = Attribute(svg, "width", span);
+  EXPECT_NEAR(x, 80 + 900 / 9.9, 0.01);
+  EXPECT_NEAR(width, 900 * 4 / 9.9, 0.02);
+}
+
+TEST(WriteHeatMapSvg, TheLegendsLongestLabelFitsInThePicture) {
+  HeatMap map;
+  map.x = {1, 2};
+  map.y = {1, 2};
+  map.colours = {"#fff", "#fff", "#fff", "#fff"};
+  const std::string label = "stable (darker: faster decay), a label longer than the old fixed column";
+  map.legend = {{label, "#0a0"}};
+  std::ostringstream out;
+  WriteHeatMapSvg(map, out);
+  const std::string svg = out.str();
+  const std::size_t text = svg.find(">" + label + "<");
+  ASSERT_NE(text, std::string::npos);
+  const double text_x = Attribute(svg, "x", svg.rfind("<text", text));
+  EXPECT_LE(text_x + 7 * static_cast<double>(label.size()), Attribute(svg, "width", 0));
 }
 
 TEST(WriteSvg, NaNBreaksTheLine) {

@@ -1,5 +1,6 @@
 #include "drillwave/analysis/spectrum.hpp"
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/progress.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -66,7 +67,7 @@ Eigen::RowVectorXd LagrangeRow(const ChebyshevGrid& g, double theta) {
 // A wave integral read one short travel time late then costs a few nodes where the longest delay (the cut delay of
 // the coupled model) would cost dozens.
 template <typename NodesFor>
-std::vector<Complex> GeneratorEigenvalues(const LinearDelaySystem& sys, NodesFor nodes_for) {
+std::vector<Complex> GeneratorEigenvalues(const LinearDelaySystem& sys, NodesFor nodes_for, Progress* progress = nullptr) {
   const int n = sys.dimension();
   std::vector<double> history(n, 0.0);
   for (const DelayTerm& d : sys.delays)
@@ -115,6 +116,8 @@ std::vector<Complex> GeneratorEigenvalues(const LinearDelaySystem& sys, NodesFor
         if (b != 0) big.block(offset[i], offset[j], 1, ell.size()) += b * ell_prime;
       }
     }
+  if (progress)
+    progress->Step("eigenvalues of the generator's discretization (" + std::to_string(big.rows()) + " unknowns)");
   const Eigen::EigenSolver<Eigen::MatrixXd> solver(big, false);
   if (solver.info() != Eigen::Success) throw std::runtime_error("eigenvalues of the discretized generator failed");
   const auto ev = solver.eigenvalues();
@@ -488,6 +491,7 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
   if (o.collocation_nodes < 4) throw std::invalid_argument("collocation_nodes must be >= 4");
   Spectrum out;
   out.essential_abscissa = -std::numeric_limits<double>::infinity();
+  Progress progress("characteristic roots of a linear system of " + std::to_string(sys.dimension()) + " states");
 
   // Starting points.
   std::vector<Complex> starts;
@@ -506,14 +510,18 @@ Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o)
     starts = GeneratorEigenvalues(sys, [&](double tau) {
       const double wanted = 0.5 * o.im_max * tau + (tau < tau_max ? 8 : 16);
       return wanted < o.collocation_nodes ? static_cast<int>(std::ceil(wanted)) : o.collocation_nodes;
-    });
+    }, &progress);
   }
+  progress.Step("the essential spectrum of the difference operator");
   out.essential_abscissa = EssentialAbscissa(sys, o, starts);
   out.candidates = static_cast<int>(starts.size());
 
   // Refine, keep those in the region (upper half plane), merge duplicates.
   std::vector<Complex> found;
-  for (Complex s : starts) {
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    progress.Count("Newton's method from each eigenvalue", static_cast<double>(k), static_cast<double>(starts.size()),
+                   "starting points");
+    Complex s = starts[k];
     if (s.imag() < 0) s = std::conj(s);
     if (s.real() < o.re_min - 10 || s.imag() > 1.5 * o.im_max) continue;
     if (!RefineRoot(sys, s, o)) continue;

@@ -10,6 +10,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::cases {
@@ -229,11 +230,8 @@ void WriteCaseOutputs(const Case& c, const CaseRun& run, const std::string& out_
   figure.title = c.name + " (" + c.kind + ")";
   figure.x_label = "time [s]";
   for (const auto& panel_channels : r.plot_panels) {
-    io::Panel panel;
-    for (const std::string& name : panel_channels) {
-      panel.y_label += (panel.y_label.empty() ? "" : ", ") + name;
-      panel.series.push_back({name, r.time_s, r.channel(name).values});
-    }
+    io::Panel panel{io::AxisLabelOfChannels(panel_channels), {}};
+    for (const std::string& name : panel_channels) panel.series.push_back({name, r.time_s, r.channel(name).values});
     figure.panels.push_back(panel);
   }
   io::WriteSvg(figure, out.Open("plot.svg"));

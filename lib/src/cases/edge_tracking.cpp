@@ -10,6 +10,7 @@
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::cases {
@@ -96,7 +97,7 @@ void WriteEdgeOutputs(const nlohmann::json& document, const EdgeSpec& spec, cons
   figure.title = "run at the edge: " + spec.pointer + " = " + Significant(edge.decays, 12);
   figure.x_label = "time [s]";
   const std::vector<double>& values = edge.edge.channel(channel).values;
-  io::Panel panel{channel, {{channel, edge.edge.time_s, values}}};
+  io::Panel panel{io::AxisLabelOfChannels({channel}), {{channel, edge.edge.time_s, values}}};
   if (cycle.found) {  // the shadowed cycle, drawn again over its own stretch
     io::Series marked{"saddle cycle (period " + Significant(cycle.period_s, 5) + " s)", {}, {}};
     for (std::size_t i = 0; i < edge.edge.time_s.size(); ++i) {

@@ -11,6 +11,7 @@
 #include "drillwave/core/format.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::cases {
@@ -129,7 +130,7 @@ void WriteOrbitsOutputs(const nlohmann::json& document, const OrbitsSpec& spec, 
   // orbits, solid lines per stability; the period below.
   io::Figure figure;
   figure.title = document.value("name", std::string("case")) + ": bifurcation diagram over " + spec.pointer;
-  figure.x_label = spec.pointer;
+  figure.x_label = io::AxisLabel(io::QuantityOfPointer(spec.pointer));
   io::Panel state{"last state (bit / lower-disc speed) [rad/s]", {}}, periods{"period [s]", {}};
   for (bool want : {true, false}) {
     io::Series s{std::string(want ? "stable" : "unstable") + " equilibria", {}, {}};

@@ -13,6 +13,7 @@
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::cases {
@@ -205,7 +206,7 @@ void WriteStabilityMap(const nlohmann::json& document, const SweepSpec& spec,
   for (const auto& r : rows) branches = std::max(branches, r.branch + 1);
   io::Figure figure;
   figure.title = document.value("name", std::string("case")) + ": linearized stability against " + spec.pointer;
-  figure.x_label = spec.pointer;
+  figure.x_label = io::AxisLabel(io::QuantityOfPointer(spec.pointer));
   io::Panel speeds{"steady speed [rad/s]", {}}, real_parts{"rightmost Re s [1/s]", {}};
   for (int b = 0; b < branches; ++b)
     for (bool want_stable : {true, false}) {

@@ -14,6 +14,7 @@
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_heatmap.hpp"
 
 namespace drillwave::cases {
@@ -264,8 +265,8 @@ void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec&
   io::HeatMap map;
   map.title = document.value("name", std::string("case")) + ": linear stability" +
               (spec.simulate ? " and the regime simulated from the case's start" : "");
-  map.x_label = spec.x.pointer;
-  map.y_label = spec.y.pointer;
+  map.x_label = io::AxisLabel(io::QuantityOfPointer(spec.x.pointer));
+  map.y_label = io::AxisLabel(io::QuantityOfPointer(spec.y.pointer));
   map.x = spec.x.values;
   map.y = spec.y.values;
   bool any_simulated = false;

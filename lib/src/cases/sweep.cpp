@@ -14,6 +14,7 @@
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::cases {
@@ -64,30 +65,48 @@ std::vector<double> ParseSweepValues(const std::string& text, const std::string&
   return values;
 }
 
+void CheckSweepWork(const Case& first, std::size_t runs) {
+  const RunSettings& s = first.settings;
+  double per_run = s.output_interval_s > 0 ? s.duration_s / s.output_interval_s : 0;
+  if (std::isfinite(s.integrator.max_step)) per_run = std::max(per_run, s.duration_s / s.integrator.max_step);
+  const double work = static_cast<double>(runs) * std::max(per_run, kSweepRunMinimumWork);
+  const double limit = kSweepWorkPerMaxSample * MaxSamples();
+  if (work > limit)
+    throw InputError("--values", std::to_string(runs) + " runs of about " + ReadableNumber(std::round(per_run)) +
+                                     " output samples or steps each (each run counted as at least " +
+                                     ReadableNumber(kSweepRunMinimumWork) + ": " + ReadableNumber(work) +
+                                     " in all) are above a sweep's limit of " + ReadableNumber(limit) + " (" +
+                                     ReadableNumber(kSweepWorkPerMaxSample) + " x --max-samples); sweep fewer "
+                                     "values, or raise the limit with --max-samples");
+}
+
 SweepResult RunSweep(const nlohmann::json& document, const SweepSpec& spec, const SweepProgress& progress) {
   if (spec.values.empty()) throw InputError("--values", "no values to sweep");
   if (spec.jobs < 1) throw InputError("--jobs", std::to_string(spec.jobs) + " is not >= 1");
-  // Everything is parsed first: bad input stops the sweep before any run, naming the value that caused it.
-  std::vector<Case> cases;
-  cases.reserve(spec.values.size());
-  for (double v : spec.values) {
+  auto parse = [&](double v) {
     if (!std::isfinite(v)) throw InputError(spec.pointer, "a sweep value is not finite");
     try {
-      cases.push_back(ParseCase(Variant(document, spec.pointer, v)));
+      return ParseCase(Variant(document, spec.pointer, v));
     } catch (const InputError& e) {
       throw InputError(e.json_path(), std::string(e.what()) + " (sweep value " + spec.pointer + " = " + Significant(v, 10) + ")");
     }
-  }
+  };
+  // The work is estimated from the first value's case before anything else is parsed or allocated (issue 41: 1e6
+  // values held 3.8 GB of parsed cases before the first run and killed the Python interpreter). Then every value is
+  // parsed and checked, so that bad input stops the sweep before any run, naming the value that caused it; the cases
+  // are not kept (each run parses its own again), so memory does not grow with the number of values.
+  CheckSweepWork(parse(spec.values.front()), spec.values.size());
+  for (double v : spec.values) parse(v);
 
   const auto wall_start = std::chrono::steady_clock::now();
   SweepResult result;
   result.points = ParallelMap(
-      cases.size(), spec.jobs,
+      spec.values.size(), spec.jobs,
       [&](std::size_t i) {
         SweepPoint p;
         p.value = spec.values[i];
         try {
-          p.summary = RunCase(cases[i]).summary;
+          p.summary = RunCase(parse(spec.values[i])).summary;
           p.ok = true;
         } catch (const NumericalError& e) {
           p.error = e.what();
@@ -136,7 +155,7 @@ void WriteSweepOutputs(const nlohmann::json& document, const SweepSpec& spec, co
   const std::string name = document.value("name", std::string("case"));
   io::Figure figure;
   figure.title = name + ": sweep of " + spec.pointer;
-  figure.x_label = spec.pointer;
+  figure.x_label = io::AxisLabel(io::QuantityOfPointer(spec.pointer));
   io::Panel speeds{"bit speed over the window [rad/s]", {}};
   for (const char* key : {"bit_speed_max_rad_s", "bit_speed_mean_rad_s", "bit_speed_min_rad_s"})
     if (const auto* c = column(key)) speeds.series.push_back({key, columns[0], *c});

@@ -8,7 +8,20 @@
 #include <system_error>
 #include <thread>
 
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
 namespace drillwave {
+
+int DefaultThreadCount() {
+#if defined(__linux__)
+  cpu_set_t allowed;
+  // Fails (EINVAL) only on machines with more CPUs than a cpu_set_t holds (1024); the count of all CPUs then.
+  if (sched_getaffinity(0, sizeof allowed, &allowed) == 0 && CPU_COUNT(&allowed) > 0) return CPU_COUNT(&allowed);
+#endif
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
 
 void ParallelFor(std::size_t n, int threads, const std::function<void(std::size_t)>& body) {
   if (threads < 1) throw std::invalid_argument("ParallelFor: threads must be >= 1, got " + std::to_string(threads));

@@ -7,6 +7,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::diagnosis {
@@ -241,7 +242,7 @@ io::Figure ComparisonFigure(const Recording& rec, const std::vector<ChannelMap>&
   for (double ti : rec.time_s)
     if (ti >= c.window_begin_s && ti <= c.window_end_s) t.push_back(ti);
   for (std::size_t j = 0; j < maps.size(); ++j) {
-    io::Panel panel{maps[j].recording, {}};
+    io::Panel panel{io::AxisLabelOfChannels({maps[j].recording}), {}};
     panel.series.push_back({maps[j].recording + " (recording, artefacts masked)", t, c.recording.cleaned[j]});
     panel.series.push_back({maps[j].model + " (model)", t, c.model.cleaned[j]});
     figure.panels.push_back(panel);

@@ -10,6 +10,7 @@
 #include "drillwave/diagnosis/minimize.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::diagnosis {
@@ -156,7 +157,7 @@ void WriteFit(const Recording& recording, const FitOptions& o, const std::vector
   for (double ti : recording.time_s)
     if (ti >= r.after.window_begin_s && ti <= r.after.window_end_s) t.push_back(ti);
   for (std::size_t j = 0; j < o.maps.size(); ++j)
-    figure.panels.push_back({o.maps[j].recording,
+    figure.panels.push_back({io::AxisLabelOfChannels({o.maps[j].recording}),
                              {{o.maps[j].recording + " (recording, artefacts masked)", t, r.after.recording.cleaned[j]},
                               {o.maps[j].model + " (fitted model)", t, r.after.model.cleaned[j]}}});
   io::WriteSvg(figure, out.Open("plot.svg"));

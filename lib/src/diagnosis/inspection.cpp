@@ -7,7 +7,9 @@
 
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/progress.hpp"
 #include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::diagnosis {
@@ -38,8 +40,11 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
   const int half_window = std::max(1, static_cast<int>(std::lround(o.hampel_half_window_s / rec.sample_interval_s)));
 
   // Artefacts, channel by channel.
+  Progress progress("inspect " + ReadableText(rec.source, 200));
   std::vector<std::vector<char>> flags;
   for (std::size_t j = 0; j < rec.names.size(); ++j) {
+    progress.Count("artefacts of each channel", static_cast<double>(j), static_cast<double>(rec.names.size()),
+                   "channels");
     const auto& x = rec.channels[j];
     std::vector<double> magnitude(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) magnitude[i] = std::abs(x[i]);
@@ -81,6 +86,7 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
   }
   const std::vector<double>& top = ins.cleaned[index(o.top_speed)];
 
+  progress.Step("the bit's stuck episodes");
   // Stuck episodes of the bit.
   std::vector<double> magnitude(bit.size());
   for (std::size_t i = 0; i < bit.size(); ++i) magnitude[i] = std::abs(bit[i]);
@@ -121,6 +127,7 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
   ins.top_speed_min = *std::min_element(top.begin(), top.end());
   ins.top_speed_max = *std::max_element(top.begin(), top.end());
 
+  progress.Step("the top speed's fluctuation");
   // Top speed: fluctuation about a slow trend (set-point changes are not softness) against the sensor noise.
   {
     const std::size_t n = top.size();
@@ -165,6 +172,7 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
     ins.bit_oscillation_period_s = gaps.empty() ? std::nan("") : Median(gaps);
   }
 
+  progress.Step("which channels move together");
   // Which channels move together: every pair of a few channels; with many, each channel with the two speeds only,
   // so that the cost (and the size of the outputs) grows linearly with the number of channels.
   const std::size_t bit_index = index(o.bit_speed), top_index = index(o.top_speed);
@@ -266,7 +274,7 @@ void WriteInspection(const Recording& rec, const Inspection& ins, const std::str
   for (std::size_t j = 0; j < rec.names.size() && plotted.size() < kPlottedChannels; ++j)
     if (std::find(plotted.begin(), plotted.end(), j) == plotted.end()) plotted.push_back(j);
   for (const std::size_t j : plotted) {
-    io::Panel panel{rec.names[j], {}};
+    io::Panel panel{io::AxisLabelOfChannels({rec.names[j]}), {}};
     panel.series.push_back({rec.names[j] + " (raw)", rec.time_s, rec.channels[j]});
     panel.series.push_back({rec.names[j] + " (artefacts masked)", rec.time_s, ins.cleaned[j]});
     figure.panels.push_back(panel);

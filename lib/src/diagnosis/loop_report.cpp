@@ -7,6 +7,7 @@
 #include "drillwave/core/format.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/output_dir.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::diagnosis {
@@ -21,9 +22,11 @@ io::Figure ChannelsFigure(const DiagnosisLoop& loop, const Recording& rec) {
   io::Figure figure;
   figure.title = "recording, baseline and fitted model (fit window, then held out)";
   figure.x_label = "recording time [s]";
+  figure.spans = {{"fit window", loop.recording_fit.begin_s, loop.recording_fit.end_s},
+                  {"held out", loop.recording_held_out.begin_s, loop.recording_held_out.end_s}};
   const Recording& base = loop.baseline_model;
   for (std::size_t j = 0; j < base.names.size(); ++j) {
-    io::Panel panel{base.names[j], {}};
+    io::Panel panel{io::AxisLabelOfChannels({base.names[j]}), {}};
     std::vector<double> t, y;
     const auto& recorded = rec.Channel(base.names[j]);
     for (std::size_t i = 0; i < rec.time_s.size(); ++i)

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/progress.hpp"
 
 namespace drillwave::io {
 namespace {
@@ -69,6 +70,8 @@ const std::vector<double>& CsvTable::Column(const std::string& name) const {
 
 CsvTable ReadCsv(const std::string& file, const CsvOptions& options) {
   if (file.empty()) throw InputError("", "empty file name; expected the path of a CSV file");
+  Progress progress("reading " + ReadableText(file, 200));
+  progress.Step("loading the file");
   // The whole file in one string, parsed in place with strtod; no stream formatting per cell.
   std::string text;
   {
@@ -133,6 +136,7 @@ CsvTable ReadCsv(const std::string& file, const CsvOptions& options) {
   for (p = end; p < text_end;) {
     ++p;  // past '\n'
     ++line;
+    if (line % 4096 == 0) progress.Count("parsing", static_cast<double>(line), static_cast<double>(rows), "lines");
     end = line_end(p);
     const char *row_begin = p, *row_end = end;
     Trim(row_begin, row_end);

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -13,6 +14,7 @@
 
 #include <fcntl.h>
 #include <pthread.h>
+#include <sys/stat.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -36,15 +38,86 @@ std::set<fs::path>& Registry() {
 }
 
 const char kMarker[] = ".drillwave-output";
+const char kMarkerText[] = "written by drillwave; the whole folder is replaced by the next run into it\n";
+const char kMarkerListing[] = "files:";
 
-// Names drillwave's commands write, so that a folder written before the marker existed can still be replaced.
+// Names drillwave's commands write, so that a folder written before the marker listed its files can still be
+// replaced (plain files at its top level only).
 bool IsOutputName(const std::string& name) {
   static const std::set<std::string> names = {
       kMarker,         "trajectory.csv",  "summary.json",  "plot.svg",         "report.md",        "case.json",
       "sweep.csv",     "bifurcation.svg", "stability.json", "roots.csv",       "stability_map.csv", "stability_map.svg",
       "findings.json", "comparison.json", "fit.json",       "fitted-case.json", "diagnosis.json", "report.html",
-      "orbits.csv",    "orbits.svg",      "edge.json",     "edge_run.csv",     "edge.svg"};
+      "orbits.csv",    "orbits.svg",      "edge.json",     "edge_run.csv",     "edge.svg",          "prediction.csv",
+      "estimate.csv",  "estimate.json"};
   return names.count(name) > 0;
+}
+
+// What the marker of `folder` lists: the files written into it and the sub-folders that hold them ("a/b.svg" adds
+// "a/b.svg" and the folder "a"). Empty for a folder without a marker or with one written before the marker listed
+// files.
+struct Listing {
+  std::set<std::string> files, folders;
+};
+Listing ReadListing(const fs::path& folder) {
+  Listing listing;
+  std::error_code error;
+  if (!fs::is_regular_file(fs::symlink_status(folder / kMarker, error))) return listing;
+  std::ifstream in(folder / kMarker, std::ios::binary);
+  std::string line;
+  bool listed = false;
+  for (int lines = 0; std::getline(in, line) && lines < 100000; ++lines) {
+    if (!listed) {
+      listed = line == kMarkerListing;
+      continue;
+    }
+    if (line.empty()) continue;
+    listing.files.insert(line);
+    for (fs::path p = fs::path(line).parent_path(); !p.empty(); p = p.parent_path())
+      listing.folders.insert(p.generic_string());
+  }
+  return listing;
+}
+
+// The entries of `folder` in name order (so that the first foreign one named is always the same).
+std::vector<fs::directory_entry> SortedEntries(const fs::path& folder, std::error_code& error) {
+  std::vector<fs::directory_entry> entries;
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) entries.push_back(*it);
+  std::sort(entries.begin(), entries.end(),
+            [](const auto& a, const auto& b) { return a.path().filename() < b.path().filename(); });
+  return entries;
+}
+
+// The first entry under `folder` (relative to the output folder: `prefix` + name) that drillwave did not write, with
+// what it is ("the sub-folder ...", "the symbolic link ...", "..."); empty if there is none. `error` is set if a
+// folder cannot be read.
+std::string FirstForeignEntry(const fs::path& folder, const std::string& prefix, const Listing& listing,
+                              std::error_code& error) {
+  for (const fs::directory_entry& entry : SortedEntries(folder, error)) {
+    const std::string name = entry.path().filename().string();
+    const std::string relative = prefix + name;
+    std::error_code status_error;
+    const fs::file_status status = fs::symlink_status(entry.path(), status_error);
+    const std::string shown = "\"" + ReadableText(relative) + "\"";
+    if (fs::is_symlink(status)) return "the symbolic link " + shown;
+    if (fs::is_directory(status)) {
+      if (!listing.folders.count(relative)) return "the sub-folder \"" + ReadableText(relative) + "/\"";
+      const std::string inside = FirstForeignEntry(entry.path(), relative + "/", listing, error);
+      if (!inside.empty() || error) return inside;
+      continue;
+    }
+    if (!fs::is_regular_file(status)) return shown + " (neither a plain file nor a folder)";
+    if (listing.files.count(relative) || (prefix.empty() && IsOutputName(name))) continue;
+    return shown;
+  }
+  return "";
+}
+
+// Whether this process may create and remove entries in `folder`; the cause otherwise.
+bool MayWriteIn(const fs::path& folder, std::string& cause) {
+  if (::faccessat(AT_FDCWD, folder.c_str(), W_OK | X_OK, AT_EACCESS) == 0) return true;
+  cause = std::strerror(errno);
+  return false;
 }
 
 // A relative path that stays inside the folder, in one spelling (so "a/./b.csv" and "a/b.csv" are the same file).
@@ -108,21 +181,113 @@ bool ExchangePaths(const fs::path& a, const fs::path& b) {
 
 }  // namespace
 
+// An output file that remembers why its writing failed (errno of the first failed write), which std::ofstream
+// forgets: a full disk is then reported as "No space left on device" on the file that hit it.
+class OutputFile : public std::ostream {
+ public:
+  OutputFile(const fs::path& path, std::atomic<int>* failures) : std::ostream(nullptr), buffer_(failures) {
+    buffer_.fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (buffer_.fd < 0) buffer_.Fail(errno);
+    rdbuf(&buffer_);
+    if (buffer_.fd < 0) setstate(std::ios::badbit);
+  }
+  ~OutputFile() override { Close(); }
+
+  // Flushes and closes; false if anything failed since the file was opened.
+  bool Close() {
+    if (buffer_.fd >= 0) {
+      buffer_.Drain();
+      if (::close(buffer_.fd) != 0) buffer_.Fail(errno);
+      buffer_.fd = -1;
+    }
+    if (buffer_.error != 0) setstate(std::ios::badbit);
+    return buffer_.error == 0;
+  }
+  int error() const { return buffer_.error; }  // errno of the first failure, 0 if none
+  int order() const { return buffer_.order; }  // when it failed among the folder's files (smaller: earlier)
+
+ private:
+  struct Buffer : std::streambuf {
+    explicit Buffer(std::atomic<int>* failures) : failures(failures) { setp(data, data + sizeof data); }
+    int fd = -1, error = 0, order = 0;
+    std::atomic<int>* failures;
+    char data[1 << 16];
+
+    void Fail(int code) {
+      if (error != 0) return;
+      error = code != 0 ? code : EIO;
+      order = (*failures)++;
+    }
+    // Writes what is buffered; false (and nothing more is written) once a write failed.
+    bool Drain() {
+      const char* p = pbase();
+      while (error == 0 && p < pptr()) {
+        const ssize_t n = ::write(fd, p, static_cast<std::size_t>(pptr() - p));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) Fail(n < 0 ? errno : EIO);
+        else p += n;
+      }
+      setp(data, data + sizeof data);
+      return error == 0;
+    }
+    int_type overflow(int_type c) override {
+      if (fd < 0 || !Drain()) return traits_type::eof();
+      if (!traits_type::eq_int_type(c, traits_type::eof())) {
+        *pptr() = traits_type::to_char_type(c);
+        pbump(1);
+      }
+      return traits_type::not_eof(c);
+    }
+    int sync() override { return fd >= 0 && Drain() ? 0 : -1; }
+  };
+  Buffer buffer_;
+};
+
+namespace {
+
+// "No space left on device" and the like, for a message.
+std::string Cause(int error) { return std::strerror(error); }
+
+}  // namespace
+
 void OutputDirectory::CheckReplaceable(const std::string& dir) {
   const fs::path path = NormalisedFolder(dir);
   std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  if (!fs::exists(status)) return;
-  if (!fs::is_directory(status))
-    throw InputError("--out", path.string() + " exists and is not a folder");
-  for (fs::directory_iterator it(path, error), end; !error && it != end; it.increment(error)) {
-    const std::string name = it->path().filename().string();
-    if (!IsOutputName(name))
-      throw InputError("--out", path.string() + " holds \"" + ReadableText(name) +
-                                    "\", which drillwave did not write; outputs replace the whole folder, so "
-                                    "choose a new or empty folder (or one drillwave wrote)");
+  const fs::file_status link_status = fs::symlink_status(path, error);
+  if (fs::is_symlink(link_status)) {
+    const fs::path target = fs::read_symlink(path, error);
+    throw InputError("--out", path.string() + " is a symbolic link (to " + ReadableText(target.string(), 200) +
+                                  "); drillwave replaces its output folder as a whole and neither replaces a link "
+                                  "nor writes through one: give the folder itself or a new name");
   }
+  std::string cause;
+  if (!fs::exists(link_status)) {
+    // Where the folder will be created: the nearest existing folder above it must be a folder we may write in.
+    fs::path above = path.parent_path();
+    while (above.has_relative_path() && !fs::exists(fs::status(above, error))) above = above.parent_path();
+    if (!fs::is_directory(fs::status(above, error)))
+      throw InputError("--out", "cannot create " + path.string() + ": " + above.string() + " is not a folder");
+    if (!MayWriteIn(above, cause))
+      throw InputError("--out", "cannot create " + path.string() + ": the folder " + above.string() +
+                                    " is not writable (" + cause + ")");
+    return;
+  }
+  if (!fs::is_directory(link_status))
+    throw InputError("--out", path.string() + " exists and is not a folder");
+  const std::string foreign = FirstForeignEntry(path, "", ReadListing(path), error);
   if (error) throw InputError("--out", "cannot read the folder " + path.string() + ": " + error.message());
+  if (!foreign.empty())
+    throw InputError("--out", path.string() + " holds " + foreign +
+                                  ", which drillwave did not write; outputs replace the whole folder, so choose a "
+                                  "new or empty folder (or one drillwave wrote)");
+  // The new folder is staged beside the old one and swapped in by a rename in the parent; the old one's files are
+  // removed after.
+  if (!MayWriteIn(path.parent_path(), cause))
+    throw InputError("--out", "cannot replace " + path.string() + ": its parent folder " +
+                                  path.parent_path().string() + " is not writable (" + cause + ")");
+  if (!MayWriteIn(path, cause))
+    throw InputError("--out", "cannot replace " + path.string() + ": the folder is not writable (" + cause +
+                                  "), so its old files could not be removed");
 }
 
 OutputDirectory::OutputDirectory(std::string dir) {
@@ -146,7 +311,8 @@ OutputDirectory::OutputDirectory(std::string dir) {
   }
   if (error) {
     for (const fs::path& p : created_parents_) fs::remove(p, error);
-    throw std::runtime_error("cannot create the staging folder " + staging_.string() + ": " + error.message());
+    throw OutputError("cannot create the staging folder " + staging_.string() + " for " + dir_.string() + ": " +
+                      error.message());
   }
 }
 
@@ -170,18 +336,33 @@ std::ostream& OutputDirectory::Open(const std::string& file_name) {
   std::error_code error;
   std::lock_guard<std::mutex> lock(registry_mutex);
   fs::create_directories(path.parent_path(), error);
-  auto file = std::make_unique<std::ofstream>(path, std::ios::binary);
-  if (error || !*file) throw std::runtime_error("cannot create " + path.string());
+  if (error) throw OutputError("cannot create the folder for " + PathOf(name) + " (in " + staging_.string() + "): " +
+                               error.message());
+  auto file = std::make_unique<OutputFile>(path, &failures_);
+  if (file->error() != 0)
+    throw OutputError("cannot create " + PathOf(name) + " (in " + staging_.string() + "): " + Cause(file->error()));
   return *(files_[name] = std::move(file));
 }
 
 void OutputDirectory::Commit() {
   if (committed_) throw std::logic_error("OutputDirectory::Commit() called twice");
-  Open(kMarker) << "written by drillwave; the whole folder is replaced by the next run into it\n";
-  for (auto& [name, file] : files_) {
-    file->close();  // flushes
-    if (!*file) throw std::runtime_error("writing " + PathOf(name) + " failed (disk full?)");
+  {
+    std::ostream& marker = Open(kMarker);
+    marker << kMarkerText << kMarkerListing << "\n";
+    for (const auto& item : files_)
+      if (item.first != kMarker && item.first.find('\n') == std::string::npos) marker << item.first << "\n";
   }
+  // Every file is closed; the one that failed first is named (a full disk fails every file written after it).
+  const std::string* failed = nullptr;
+  const OutputFile* failed_file = nullptr;
+  for (auto& [name, file] : files_) {
+    if (file->Close() || (failed_file && failed_file->order() <= file->order())) continue;
+    failed = &name;
+    failed_file = file.get();
+  }
+  if (failed_file)
+    throw OutputError("cannot write " + PathOf(*failed) + ": " + Cause(failed_file->error()) +
+                      "; nothing was changed in " + dir_.string());
   CheckReplaceable(dir_.string());  // again: someone may have put a file there while we worked
   std::error_code error;
   std::unique_lock<std::mutex> lock(registry_mutex);
@@ -199,12 +380,12 @@ void OutputDirectory::Commit() {
       fs::rename(staging_, dir_, error);
       if (error) {
         fs::rename(old, dir_);
-        throw std::runtime_error("cannot move " + staging_.string() + " to " + dir_.string() + ": " + error.message());
+        throw OutputError("cannot move " + staging_.string() + " to " + dir_.string() + ": " + error.message());
       }
       fs::rename(old, staging_);
     } else {
-      throw std::runtime_error("cannot replace " + dir_.string() + " by " + staging_.string() + ": " +
-                               std::error_code(errno, std::generic_category()).message());
+      throw OutputError("cannot replace " + dir_.string() + " by " + staging_.string() + ": " +
+                        std::error_code(errno, std::generic_category()).message());
     }
   }
   committed_ = true;

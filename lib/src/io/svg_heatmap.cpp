@@ -10,7 +10,7 @@
 namespace drillwave::io {
 namespace {
 
-constexpr double kLeft = 90, kTop = 40, kPlot = 600, kLegendWidth = 220, kBottom = 60;
+constexpr double kLeft = 90, kTop = 40, kPlot = 600, kBottom = 60;
 
 std::string Px(double v) {
   char b[32];
@@ -59,6 +59,14 @@ void WriteMarker(Marker m, double cx, double cy, double r, std::ostream& out) {
   }
 }
 
+// The legend column right of the map, wide enough for its longest label (about 7 px a character at 12 px), so that
+// no label is cut off at the picture's edge.
+double LegendWidth(const HeatMap& map) {
+  std::size_t longest = 0;
+  for (const LegendEntry& e : map.legend) longest = std::max(longest, e.label.size());
+  return 20 + 22 + 7 * static_cast<double>(longest) + 20;
+}
+
 }  // namespace
 
 void WriteHeatMapSvg(const HeatMap& map, std::ostream& out) {
@@ -71,7 +79,7 @@ void WriteHeatMapSvg(const HeatMap& map, std::ostream& out) {
   const double y_lo = std::min(ey.front(), ey.back()), y_hi = std::max(ey.front(), ey.back());
   auto px = [&](double x) { return kLeft + (x - x_lo) / (x_hi - x_lo) * kPlot; };
   auto py = [&](double y) { return kTop + kPlot - (y - y_lo) / (y_hi - y_lo) * kPlot; };
-  const double width = kLeft + kPlot + kLegendWidth, height = kTop + kPlot + kBottom;
+  const double width = kLeft + kPlot + LegendWidth(map), height = kTop + kPlot + kBottom;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" viewBox=\"0 0 " << width << " " << height << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n"

@@ -8,15 +8,21 @@
 namespace drillwave::io {
 namespace {
 
-// Layout in px. Inner panels carry no x tick labels (the axis is shared), so they need only a small gap.
-constexpr double kWidth = 1000;
+// Layout in px. Inner panels carry no x tick labels (the axis is shared), so they need only a small gap. The legends
+// stand in a column right of the data, so they hide none of it.
 constexpr double kLeft = 80;    // y tick labels and the rotated y label
-constexpr double kRight = 20;
+constexpr double kPlotWidth = 900;
+constexpr double kRight = 20;   // right of the legends (or of the data, without legends)
+constexpr double kLegendGap = 12;
 constexpr double kTitle = 40;
 constexpr double kPanelHeight = 220;
 constexpr double kPanelGap = 16;
 constexpr double kBottom = 50;  // x tick labels and the x label
-constexpr double kPlotWidth = kWidth - kLeft - kRight;
+constexpr double kLegendRow = 16;
+constexpr double kCharWidth = 7;  // about, at 12 px
+
+// Light fills for spans, behind the data: alternating so that adjacent windows stay apart.
+constexpr const char* kSpanColours[] = {"#fdf1c7", "#dcebfa"};
 
 // Matplotlib's "tab10": distinct, and readable on white.
 constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
@@ -97,26 +103,54 @@ void WriteSeries(const Series& series, const Axes& axes, const char* colour, std
   flush();
 }
 
+// The legend box's width for a panel's labelled series, 0 without any.
+double LegendWidth(const Panel& panel) {
+  std::size_t longest = 0;
+  bool any = false;
+  for (const Series& s : panel.series)
+    if (!s.label.empty()) longest = std::max(longest, s.label.size()), any = true;
+  return any ? 34 + kCharWidth * static_cast<double>(longest) : 0;
+}
+
+double FigureWidth(const Figure& figure) {
+  double legends = 0;
+  for (const Panel& panel : figure.panels) legends = std::max(legends, LegendWidth(panel));
+  return kLeft + kPlotWidth + (legends > 0 ? kLegendGap + legends : 0) + kRight;
+}
+
+// The legend, right of the panel's data area and level with its top.
 void WriteLegend(const Panel& panel, const Axes& axes, std::ostream& out) {
-  std::size_t longest = 0, entries = 0;
-  for (const Series& s : panel.series) {
-    if (s.label.empty()) continue;
-    longest = std::max(longest, s.label.size());
-    ++entries;
-  }
-  if (entries == 0) return;
-  const double row = 16, width = 34 + 7 * static_cast<double>(longest);  // ~7 px per character at 12 px
-  const double left = kLeft + kPlotWidth - width - 8, top = axes.top + 8;
-  out << "<rect x=\"" << Px(left) << "\" y=\"" << Px(top) << "\" width=\"" << Px(width) << "\" height=\""
-      << Px(row * static_cast<double>(entries) + 6) << "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#bbb\"/>\n";
+  const double width = LegendWidth(panel);
+  if (width == 0) return;
+  std::size_t entries = 0;
+  for (const Series& s : panel.series) entries += s.label.empty() ? 0 : 1;
+  const double left = kLeft + kPlotWidth + kLegendGap, top = axes.top;
+  out << "<g class=\"legend\"><rect x=\"" << Px(left) << "\" y=\"" << Px(top) << "\" width=\"" << Px(width)
+      << "\" height=\"" << Px(kLegendRow * static_cast<double>(entries) + 6) << "\" fill=\"white\" stroke=\"#bbb\"/>\n";
   std::size_t k = 0;
   for (std::size_t si = 0; si < panel.series.size(); ++si) {
     if (panel.series[si].label.empty()) continue;
-    const double y = top + 3 + row * (static_cast<double>(k++) + 0.5);
+    const double y = top + 3 + kLegendRow * (static_cast<double>(k++) + 0.5);
     out << "<line x1=\"" << Px(left + 6) << "\" x2=\"" << Px(left + 24) << "\" y1=\"" << Px(y) << "\" y2=\"" << Px(y)
         << "\" stroke=\"" << kColours[si % kColourCount] << "\" stroke-width=\"2\"/>"
         << "<text x=\"" << Px(left + 30) << "\" y=\"" << Px(y + 4) << "\">" << EscapeXml(panel.series[si].label)
         << "</text>\n";
+  }
+  out << "</g>\n";
+}
+
+// The spans' shading (behind everything else of the panel), with their labels in the top panel.
+void WriteSpans(const std::vector<Span>& spans, const Axes& axes, bool top_panel, std::ostream& out) {
+  for (std::size_t k = 0; k < spans.size(); ++k) {
+    const double from = std::max(std::min(spans[k].from, spans[k].to), axes.x_lo);
+    const double to = std::min(std::max(spans[k].from, spans[k].to), axes.x_hi);
+    if (!(from < to)) continue;  // outside the data, or not finite
+    out << "<rect class=\"span\" x=\"" << Px(axes.X(from)) << "\" y=\"" << Px(axes.top) << "\" width=\""
+        << Px(axes.X(to) - axes.X(from)) << "\" height=\"" << kPanelHeight << "\" fill=\"" << kSpanColours[k % 2]
+        << "\"/>\n";
+    if (top_panel && !spans[k].label.empty())
+      out << "<text x=\"" << Px(axes.X((from + to) / 2)) << "\" y=\"" << Px(axes.top + 14)
+          << "\" text-anchor=\"middle\" fill=\"#555\">" << EscapeXml(spans[k].label) << "</text>\n";
   }
 }
 
@@ -207,10 +241,11 @@ void WriteSvg(const Figure& figure, std::ostream& out) {
 
   const double panels = static_cast<double>(figure.panels.size());
   const double height = kTitle + panels * kPanelHeight + std::max(0.0, panels - 1) * kPanelGap + kBottom;
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << Px(height)
-      << "\" viewBox=\"0 0 " << kWidth << " " << Px(height) << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+  const double width = FigureWidth(figure);
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << Px(width) << "\" height=\"" << Px(height)
+      << "\" viewBox=\"0 0 " << Px(width) << " " << Px(height) << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << kWidth / 2 << "\" y=\"25\" text-anchor=\"middle\" font-size=\"15\">"
+      << "<text x=\"" << Px(kLeft + kPlotWidth / 2) << "\" y=\"25\" text-anchor=\"middle\" font-size=\"15\">"
       << EscapeXml(figure.title) << "</text>\n";
 
   for (std::size_t pi = 0; pi < figure.panels.size(); ++pi) {
@@ -224,6 +259,7 @@ void WriteSvg(const Figure& figure, std::ostream& out) {
     const Axes axes{x_range.lo, x_range.hi, y_range.lo - pad, y_range.hi + pad, top, top + kPanelHeight};
 
     out << "<g>\n";
+    WriteSpans(figure.spans, axes, pi == 0, out);
     const std::vector<double> y_ticks = NiceTicks(axes.y_lo, axes.y_hi, 5);
     const double y_step = y_ticks.size() >= 2 ? y_ticks[1] - y_ticks[0] : 1;
     for (double t : y_ticks) {

@@ -6,6 +6,7 @@
 //   SweepSpec spec{"/model/upper_disc/input_voltage_V", {0.1, 0.2, 0.3}, 2};
 //   SweepResult r = RunSweep(document, spec, nullptr);
 //   WriteSweepOutputs(document, spec, r, "out/sweep");
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -13,6 +14,8 @@
 #include <nlohmann/json.hpp>
 
 namespace drillwave::cases {
+
+struct Case;
 
 struct SweepSpec {
   std::string pointer;         // e.g. "/model/upper_disc/input_voltage_V"; must exist in the document
@@ -38,8 +41,17 @@ struct SweepResult {
   double wall_time_s = 0;
 };
 
-// Checks the spec and parses every variant of the document before running anything, so bad input (an unknown
-// pointer, a value out of the field's range) throws InputError naming the pointer and the value and runs nothing.
+// A sweep's work, estimated before anything is parsed or run: the number of runs times the output samples or
+// integration steps of the first value's run (whichever are more; a run counts as at least kSweepRunMinimumWork, its
+// parse, model and summary), refused above kSweepWorkPerMaxSample x MaxSamples() (1e9 by default; --max-samples and
+// the Python module's max_samples raise it) with InputError naming --values and the estimate.
+inline constexpr double kSweepRunMinimumWork = 1e4;
+inline constexpr double kSweepWorkPerMaxSample = 100;
+void CheckSweepWork(const Case& first, std::size_t runs);
+
+// Checks the work (above) and the spec, and parses every variant of the document before running anything, so bad
+// input (an unknown pointer, a value out of the field's range) throws InputError naming the pointer and the value and
+// runs nothing.
 // A run that fails numerically is recorded in its point (ok = false) and the sweep goes on; any other exception
 // stops it and reaches the caller (core/parallel.hpp). `progress`, if given, is called after each run (from one
 // thread at a time) with the point, the number done and the total.

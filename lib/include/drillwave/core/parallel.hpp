@@ -12,6 +12,10 @@
 
 namespace drillwave {
 
+// The thread count when the user names none: the CPUs this process may run on (on Linux its affinity mask, which
+// taskset, cpusets and container runtimes narrow; hardware_concurrency counts every CPU of the machine), at least 1.
+int DefaultThreadCount();
+
 // Calls body(i) for every i in [0, n) on min(threads, n) threads, the caller's among them; threads >= 1
 // (std::invalid_argument otherwise). Items are handed out in index order. When a body throws, no further item is
 // handed out, the items already started finish, every thread is joined, and the exception of the lowest failing

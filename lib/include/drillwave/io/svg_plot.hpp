@@ -18,15 +18,23 @@ struct Panel {
   std::vector<Series> series;
 };
 
-struct Figure {
-  std::string title;
-  std::string x_label;
-  std::vector<Panel> panels;  // top to bottom
+// An interval of x marked in every panel (shaded behind the data), e.g. a fit window and a held-out window.
+struct Span {
+  std::string label;  // written at the top of the top panel
+  double from, to;
 };
 
-// Writes the figure as a standalone SVG document about 1000 px wide. Each series becomes one <polyline> per
-// unbroken stretch of finite points, reduced by DecimateMinMax so that a million samples still make a small file in
-// which stick-slip spikes survive.
+struct Figure {
+  std::string title;
+  std::string x_label;        // the quantity and its unit, e.g. "time [s]" (see axis_label.hpp)
+  std::vector<Panel> panels;  // top to bottom
+  std::vector<Span> spans = {};  // optional: figures written as {title, x_label, panels} have none
+};
+
+// Writes the figure as a standalone SVG document: a data area 900 px wide, and right of it, outside the data, each
+// panel's legend (<g class="legend">). Each series becomes one <polyline> per unbroken stretch of finite points,
+// reduced by DecimateMinMax so that a million samples still make a small file in which stick-slip spikes survive.
+// Spans are <rect class="span"> in each panel.
 void WriteSvg(const Figure& figure, std::ostream& out);
 
 // Text as XML (and HTML) character data or attribute value: markup characters escaped, characters XML 1.0 forbids

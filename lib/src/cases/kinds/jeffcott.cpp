@@ -110,6 +110,20 @@ model::Schedule DriveSpeed(const JsonReader& r, double bending_frequency) {
   return model::Schedule(std::move(knots));
 }
 
+// The drive speed rotor_speed_norm divides the rotor's by while the drive is at rest (the seed's beta'/theta' is
+// undefined there): the speed of the drive's last turning knot up to t, i.e. the speed it ran at before it stopped;
+// before it has turned, the speed of its first turning knot; for a drive that never turns, the bending natural
+// frequency w_b (the seed's scale of drive speeds). Never 0, so a drive coming to rest leaves the channel defined.
+double SpeedAtRest(const model::Schedule& drive, double t, double bending_frequency) {
+  double last = 0, first = 0;
+  for (const auto& [time, value] : drive.knots()) {
+    if (value == 0 || !std::isfinite(value)) continue;
+    if (first == 0) first = value;
+    if (time <= t) last = value;
+  }
+  return last != 0 ? last : first != 0 ? first : bending_frequency;
+}
+
 // The time after which the deflection stays within 2 % of its mean over the window (0 if it always does).
 double SettlingTime(const std::vector<double>& time, const std::vector<double>& deflection, double window_mean) {
   for (std::size_t i = time.size(); i-- > 0;)
@@ -172,7 +186,11 @@ class JeffcottModel : public PreparedModel {
       twist.push_back(s[2]), drive.push_back(omega), rotor.push_back(beta_dot), rotor_angle.push_back(s[6] + s[2]);
       shaft_torque.push_back(r_.torsional_stiffness * s[2] + process.TorsionalDamping() * s[5]);
       torque.push_back(r_.torque.Value(t));
-      normalized.push_back(omega != 0 ? beta_dot / omega : beta_dot == 0 ? 1.0 : std::nan(""));  // at rest: 1
+      // beta'/theta' (the seed's normalized speed); 1 while both rest; relative to SpeedAtRest while only the drive
+      // rests (a drive that comes to rest leaves the rotor turning and swinging on the shaft).
+      const double ratio = omega != 0 ? beta_dot / omega : beta_dot == 0 ? 1.0 : std::nan("");
+      normalized.push_back(std::isfinite(ratio) ? ratio
+                                                : beta_dot / SpeedAtRest(r_.drive_speed, t, r_.bending_frequency()));
     };
     sample(0.0, x);
     const auto observer = integration::SampleEvery(settings.output_interval_s, sample);
