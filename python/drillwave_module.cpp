@@ -2,9 +2,14 @@
 // None (the embedded default case), with --set-style overrides; results as dicts, channels as NumPy arrays.
 // Errors: the library's InputError becomes drillwave.InputError (a ValueError, with .path), its NumericalError
 // drillwave.NumericalError (a RuntimeError, with .time and .state); the messages are the command line's.
+// The arguments are read with the GIL held, the library's work runs without it (WithoutGil), and the results become
+// Python objects with it again: other Python threads, and other drillwave calls, run meanwhile (issue 37).
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <optional>
+#include <shared_mutex>
 #include <string>
 #include <thread>
 #include <utility>
@@ -21,6 +26,7 @@
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/parallel.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/diagnosis/loop.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
@@ -109,7 +115,12 @@ std::string FileName(py::handle file, const std::string& what) {
   if (!py::isinstance<py::str>(file) && !py::hasattr(file, "__fspath__"))
     throw InputError(what, "expected a file name (str or os.PathLike), got a value of type " +
                                std::string(py::str(py::type::of(file).attr("__name__"))));
-  return py::str(py::module_::import("os").attr("fspath")(file)).cast<std::string>();
+  std::string name = py::str(py::module_::import("os").attr("fspath")(file)).cast<std::string>();
+  // A C file name ends at its first NUL byte: the shorter name would be read instead (issue 41).
+  if (const std::size_t nul = name.find('\0'); nul != std::string::npos)
+    throw InputError(what, "the file name " + drillwave::ReadableText(name, 200) + " holds a NUL byte (at offset " +
+                               std::to_string(nul) + "); a file name cannot contain one");
+  return name;
 }
 
 // The case document: a file, a dict or None (the embedded default case), then the overrides: a dict
@@ -144,26 +155,41 @@ json CaseDocument(py::handle case_, py::handle overrides) {
   return doc;
 }
 
-// max_samples for the length of one call (the library's limit is process-wide), then the previous limit again.
-class MaxSamplesScope {
- public:
-  explicit MaxSamplesScope(py::handle limit) : previous_(drillwave::cases::MaxSamples()) {
-    if (limit.is_none()) return;
-    const json value = ToJson(limit, "max_samples");
-    if (!value.is_number())
-      throw InputError("--max-samples", "expected a finite number >= 1, got " + drillwave::ReadableText(value.dump()));
-    drillwave::cases::SetMaxSamples(value.get<double>());
-  }
-  ~MaxSamplesScope() { drillwave::cases::SetMaxSamples(previous_); }
-  MaxSamplesScope(const MaxSamplesScope&) = delete;
-  MaxSamplesScope& operator=(const MaxSamplesScope&) = delete;
+// max_samples as a number (nullopt: None, the process-wide limit as it is); InputError for anything but a number.
+std::optional<double> SampleLimit(py::handle limit) {
+  if (limit.is_none()) return std::nullopt;
+  const json value = ToJson(limit, "max_samples");
+  if (!value.is_number())
+    throw InputError("--max-samples", "expected a finite number >= 1, got " + drillwave::ReadableText(value.dump()));
+  return value.get<double>();
+}
 
- private:
-  double previous_;
-};
+// The library's sample limit is process-wide: a call with its own max_samples holds it alone for its length (and
+// puts the previous limit back), calls without one share it.
+std::shared_mutex sample_limit_mutex;
+
+// Runs work() without the GIL, under the sample limit `limit` (nullopt: the current one), and returns its result.
+// work() must not touch a Python object; nothing in the library calls back into Python (a callback would take the
+// GIL again with py::gil_scoped_acquire). The limit's lock is taken without the GIL, so a call waiting for it never
+// blocks one that holds it and needs the GIL to return. Exceptions reach pybind11 with the GIL held again.
+template <class Work>
+auto WithoutGil(std::optional<double> limit, Work&& work) -> decltype(work()) {
+  const py::gil_scoped_release release;
+  if (!limit) {
+    const std::shared_lock<std::shared_mutex> shared(sample_limit_mutex);
+    return work();
+  }
+  const std::unique_lock<std::shared_mutex> alone(sample_limit_mutex);
+  struct Restore {
+    double previous = drillwave::cases::MaxSamples();
+    ~Restore() { drillwave::cases::SetMaxSamples(previous); }
+  } const restore;
+  drillwave::cases::SetMaxSamples(*limit);  // InputError unless a finite number >= 1
+  return work();
+}
 
 int Jobs(py::handle jobs) {
-  if (jobs.is_none()) return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (jobs.is_none()) return drillwave::DefaultThreadCount();  // the CPUs this process may run on
   const json n = ToJson(jobs, "jobs");
   if (!n.is_number_integer() || n.get<long long>() < 1 || n.get<long long>() > 1024)
     throw InputError("jobs", "expected a whole number in [1, 1024], got " + drillwave::ReadableText(n.dump()));
@@ -189,15 +215,22 @@ std::vector<double> Values(py::handle values) {
 }
 
 py::dict Run(const py::object& case_, const py::object& overrides, const py::object& max_samples) {
-  const MaxSamplesScope limit(max_samples);
-  const drillwave::cases::Case c = drillwave::cases::ParseCase(CaseDocument(case_, overrides));
-  drillwave::cases::CaseRun run = drillwave::cases::RunCase(c);
-  drillwave::cases::AddLinearVerdict(c, run.summary);
+  const std::optional<double> limit = SampleLimit(max_samples);
+  const json doc = CaseDocument(case_, overrides);
+  drillwave::cases::Case c;
+  drillwave::cases::CaseRun run;
+  std::vector<drillwave::cases::ExpectationCheck> checks;
+  WithoutGil(limit, [&] {
+    c = drillwave::cases::ParseCase(doc);
+    run = drillwave::cases::RunCase(c);
+    drillwave::cases::AddLinearVerdict(c, run.summary);
+    checks = drillwave::cases::CheckExpectations(c.expect, run.summary);
+  });
   py::dict channels;
   channels["time_s"] = ToArray(run.result.time_s);
   for (const auto& ch : run.result.channels) channels[py::str(ch.name)] = ToArray(ch.values);
   py::list expectations;
-  for (const auto& e : drillwave::cases::CheckExpectations(c.expect, run.summary))
+  for (const auto& e : checks)
     expectations.append(py::dict(py::arg("key") = e.key, py::arg("passed") = e.passed, py::arg("detail") = e.detail));
   py::dict result;
   result["name"] = c.name;
@@ -211,10 +244,10 @@ py::dict Run(const py::object& case_, const py::object& overrides, const py::obj
 
 py::dict Sweep(const py::object& case_, const std::string& param, const py::object& values,
                const py::object& overrides, const py::object& jobs, const py::object& max_samples) {
-  const MaxSamplesScope limit(max_samples);
+  const std::optional<double> limit = SampleLimit(max_samples);
   const json doc = CaseDocument(case_, overrides);
   const drillwave::cases::SweepSpec spec{param, Values(values), Jobs(jobs)};
-  const auto sweep = drillwave::cases::RunSweep(doc, spec, nullptr);
+  const auto sweep = WithoutGil(limit, [&] { return drillwave::cases::RunSweep(doc, spec, nullptr); });
   py::list points;
   for (const auto& p : sweep.points)
     points.append(py::dict(py::arg("value") = p.value, py::arg("ok") = p.ok, py::arg("summary") = FromJson(p.summary),
@@ -228,20 +261,24 @@ py::dict Sweep(const py::object& case_, const std::string& param, const py::obje
 
 py::dict Stability(const py::object& case_, const py::object& param, const py::object& values,
                    const py::object& overrides, const py::object& jobs, const py::object& max_samples) {
-  const MaxSamplesScope limit(max_samples);
+  const std::optional<double> limit = SampleLimit(max_samples);
   const json doc = CaseDocument(case_, overrides);
   if (param.is_none() != values.is_none())
     throw InputError("param/values", "a stability map needs both param and values");
   if (param.is_none()) {
-    const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
-    py::dict result = FromJson(drillwave::cases::StabilityToJson(drillwave::cases::AnalyzeStability(c)));
+    drillwave::cases::Case c;
+    const json analysis = WithoutGil(limit, [&] {
+      c = drillwave::cases::ParseCase(doc);
+      return drillwave::cases::StabilityToJson(drillwave::cases::AnalyzeStability(c));
+    });
+    py::dict result = FromJson(analysis);
     result["name"] = c.name;
     result["kind"] = c.kind;
     return result;
   }
   const drillwave::cases::SweepSpec spec{param.cast<std::string>(), Values(values), Jobs(jobs)};
   py::list rows;
-  for (const auto& r : drillwave::cases::StabilityMap(doc, spec))
+  for (const auto& r : WithoutGil(limit, [&] { return drillwave::cases::StabilityMap(doc, spec); }))
     rows.append(py::dict(py::arg("value") = r.value, py::arg("branch") = r.branch,
                          py::arg("speed_rad_s") = r.speed_rad_s, py::arg("spectral_abscissa") = r.spectral_abscissa,
                          py::arg("frequency_rad_s") = r.frequency_rad_s,
@@ -252,9 +289,8 @@ py::dict Stability(const py::object& case_, const py::object& param, const py::o
   return result;
 }
 
-// (begin, end) in seconds from a Python pair; InputError naming `name` otherwise.
-std::pair<double, double> WindowArgument(const py::object& window, const std::string& name) {
-  const json w = ToJson(window, name);
+// (begin, end) in seconds from a Python pair (as JSON); InputError naming `name` otherwise.
+std::pair<double, double> WindowArgument(const json& w, const std::string& name) {
   if (!w.is_array() || w.size() != 2 || !w[0].is_number() || !w[1].is_number())
     throw InputError(name, "expected (begin, end) in seconds, got " + drillwave::ReadableText(w.dump()));
   const double begin = w[0].get<double>(), end = w[1].get<double>();
@@ -270,7 +306,8 @@ py::dict Diagnose(const py::object& case_, const py::object& recording_file, con
                   const py::object& overrides, const py::object& map_texts, const py::object& fit_window,
                   const py::object& held_out, double margin, const py::object& jobs, const py::object& max_samples) {
   namespace dg = drillwave::diagnosis;
-  const MaxSamplesScope limit(max_samples);
+  // The Python arguments first, with the GIL; then the work without it, checked in the command line's order.
+  const std::optional<double> limit = SampleLimit(max_samples);
   json doc = CaseDocument(case_, overrides);
   if (!sidecar.is_none()) {
     const bool dict = py::isinstance<py::dict>(sidecar);
@@ -278,30 +315,39 @@ py::dict Diagnose(const py::object& case_, const py::object& recording_file, con
     doc = dg::CaseFromSidecar(dict ? ToJson(sidecar, "") : drillwave::io::LoadJsonFile(source), doc,
                               dg::kSidecarWarmupS, source);
   }
-  const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
-  const dg::Recording recording = dg::LoadRecording(FileName(recording_file, "recording"));
-  dg::LoopOptions o = dg::DefaultLoopOptions(c, recording, sidecar.is_none() ? 0 : dg::kSidecarWarmupS);
-  if (!fit_window.is_none()) std::tie(o.fit_begin_s, o.fit_end_s) = WindowArgument(fit_window, "fit_window");
-  if (!held_out.is_none()) std::tie(o.held_out_begin_s, o.held_out_end_s) = WindowArgument(held_out, "held_out");
-  const double offset = o.model_time_offset_s;
-  dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.fit_begin_s, o.fit_end_s);
-  dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.held_out_begin_s, o.held_out_end_s);
-  if (!(margin >= 0 && margin < 1))
-    throw InputError("margin", "expected a fraction in [0, 1), got " + drillwave::ReadableNumber(margin));
-  o.margin = margin;
-  o.threads = Jobs(jobs);
-  std::vector<std::string> texts;
+  const std::string recording_name = FileName(recording_file, "recording");
+  const json fit_given = fit_window.is_none() ? json() : ToJson(fit_window, "fit_window");
+  const json held_out_given = held_out.is_none() ? json() : ToJson(held_out, "held_out");
+  const int threads = Jobs(jobs);
   const json maps_given = map_texts.is_none() ? json::array() : ToJson(map_texts, "maps");
-  for (const json& m : maps_given.is_array() ? maps_given : json::array({nullptr})) {
-    if (!m.is_string())
-      throw InputError("maps", "expected a list of \"recording_channel=model_channel[*scale]\", got " +
-                                   drillwave::ReadableText(maps_given.dump()));
-    texts.push_back(m.get<std::string>());
-  }
-  o.maps = dg::ResolveChannelMaps(texts, recording, dg::ProbeChannels(c));
-  const dg::DiagnosisLoop loop = dg::RunDiagnosisLoop(doc, recording, o);
-  json result = dg::DiagnosisLoopToJson(loop);
-  result["fitted_case"] = loop.fitted_document;
+  const double warmup_s = sidecar.is_none() ? 0 : dg::kSidecarWarmupS;
+  const json result = WithoutGil(limit, [&] {
+    const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
+    const dg::Recording recording = dg::LoadRecording(recording_name);
+    dg::LoopOptions o = dg::DefaultLoopOptions(c, recording, warmup_s);
+    if (!fit_given.is_null()) std::tie(o.fit_begin_s, o.fit_end_s) = WindowArgument(fit_given, "fit_window");
+    if (!held_out_given.is_null())
+      std::tie(o.held_out_begin_s, o.held_out_end_s) = WindowArgument(held_out_given, "held_out");
+    const double offset = o.model_time_offset_s;
+    dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.fit_begin_s, o.fit_end_s);
+    dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.held_out_begin_s, o.held_out_end_s);
+    if (!(margin >= 0 && margin < 1))
+      throw InputError("margin", "expected a fraction in [0, 1), got " + drillwave::ReadableNumber(margin));
+    o.margin = margin;
+    o.threads = threads;
+    std::vector<std::string> texts;
+    for (const json& m : maps_given.is_array() ? maps_given : json::array({nullptr})) {
+      if (!m.is_string())
+        throw InputError("maps", "expected a list of \"recording_channel=model_channel[*scale]\", got " +
+                                     drillwave::ReadableText(maps_given.dump()));
+      texts.push_back(m.get<std::string>());
+    }
+    o.maps = dg::ResolveChannelMaps(texts, recording, dg::ProbeChannels(c));
+    const dg::DiagnosisLoop loop = dg::RunDiagnosisLoop(doc, recording, o);
+    json out = dg::DiagnosisLoopToJson(loop);
+    out["fitted_case"] = loop.fitted_document;
+    return out;
+  });
   return FromJson(result);
 }
 
@@ -324,6 +370,12 @@ void TranslateErrors(std::exception_ptr p) {
   }
 }
 
+py::object Document(const py::object& case_, const py::object& overrides) {
+  return FromJson(CaseDocument(case_, overrides));
+}
+
+std::vector<double> SweepValues(const py::object& values) { return Values(values); }
+
 py::dict Kinds() {
   py::dict kinds;
   for (const auto& kind : drillwave::cases::AllKinds())
@@ -335,7 +387,10 @@ py::dict Kinds() {
 }  // namespace
 
 PYBIND11_MODULE(drillwave, m) {
-  m.doc() = "drillwave: drill-string vibration simulation (d'Alembert wave networks, delay equations)";
+  m.doc() =
+      "drillwave: drill-string vibration simulation (d'Alembert wave networks, delay equations). The calls release "
+      "Python's GIL while they work, so Python threads (and Dask's threaded workers) run them side by side; "
+      "drillwave_dask submits them to a Dask cluster.";
   m.attr("__version__") = DRILLWAVE_VERSION;
 
   // Created once and never destroyed: the translator may run until the interpreter exits.
@@ -356,9 +411,10 @@ Raises drillwave.InputError (a ValueError naming the JSON path) for bad input, d
   m.def("sweep", &Sweep, py::arg("case"), py::arg("param"), py::arg("values"), py::arg("set") = py::none(),
         py::arg("jobs") = py::none(), py::arg("max_samples") = py::none(),
         R"(Runs a case once for each value of the parameter at the JSON pointer `param` (in parallel on `jobs`
-threads, default: every core). values: "first:last:count", "v1,v2,..." or a sequence of numbers.
+threads, default: every CPU this process may run on). values: "first:last:count", "v1,v2,..." or a sequence of numbers.
 Returns {"param", "points": [{"value", "ok", "summary", "error"}], "wall_time_s"}; a run that fails
-numerically has ok False and its message in "error".)");
+numerically has ok False and its message in "error". Raises drillwave.InputError before anything runs when the
+work (runs x the first run's samples, each at least 1e4) is above 100 x max_samples (1e9 by default).)");
   m.def("stability", &Stability, py::arg("case") = py::none(), py::arg("param") = py::none(),
         py::arg("values") = py::none(), py::arg("set") = py::none(), py::arg("jobs") = py::none(),
         py::arg("max_samples") = py::none(),
@@ -376,5 +432,11 @@ kept when the held-out error falls by the margin. recording: a CSV file with tim
 recording's operator sidecar (file or dict). maps: ["recording_channel=model_channel[*scale]", ...]; fit_window,
 held_out: (begin, end) in recording time [s] (default: the usable recording's halves). Returns diagnosis.json's
 content ("hypotheses", "held_out", "fit", "candidates", "fitted_parameters", ...) and "fitted_case".)");
+  m.def("case_document", &Document, py::arg("case") = py::none(), py::arg("set") = py::none(),
+        R"(The case document as the other calls read it (a file, a dict or None for the embedded default case, with the
+overrides `set` applied), as a dict; nothing is checked beyond the JSON and the pointers. drillwave_dask sends it
+to its workers instead of a file name.)");
+  m.def("sweep_values", &SweepValues, py::arg("values"),
+        R"(The values a sweep takes for "first:last:count", "v1,v2,..." or a sequence of numbers, as a list of floats.)");
   m.def("kinds", &Kinds, "The model kinds: {kind: {\"description\", \"fields\": {field: description}}}.");
 }

@@ -2,11 +2,13 @@
 is missing (Debian: apt-get install python3-pytest python3-numpy)."""
 import sys
 
-try:
-    import numpy  # noqa: F401  (the module returns NumPy arrays)
-    import pytest
-except ImportError as e:
-    print(f"python tests skipped: {e}", file=sys.stderr)
-    sys.exit(77)
+# Under the guard: the Dask tests' worker processes are spawned, and import this script again without running it.
+if __name__ == "__main__":
+    try:
+        import numpy  # noqa: F401  (the module returns NumPy arrays)
+        import pytest
+    except ImportError as e:
+        print(f"python tests skipped: {e}", file=sys.stderr)
+        sys.exit(77)
 
-sys.exit(pytest.main(["-q", "-p", "no:cacheprovider", *sys.argv[1:]]))
+    sys.exit(pytest.main(["-q", "-p", "no:cacheprovider", *sys.argv[1:]]))

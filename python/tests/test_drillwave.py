@@ -150,7 +150,40 @@ def test_diagnose_a_recording_of_the_model_itself(tmp_path):
         drillwave.diagnose(CASE, str(recording), set=SHORT, maps=["bit_rpm=no_such"])
 
 
+def test_a_file_name_with_a_nul_byte_is_refused_not_cut(tmp_path):
+    # Issue 41: "case.json\0.bak" was cut at the NUL and case.json read instead.
+    with pytest.raises(drillwave.InputError, match=r"^case: the file name .*holds a NUL byte \(at offset") as e:
+        drillwave.run(CASE + "\0.bak")
+    assert e.value.path == "case"
+    recording = tmp_path / "recording.csv"
+    recording.write_text("time_s,bit_rpm\n0,1\n")
+    with pytest.raises(drillwave.InputError, match=r"holds a NUL byte") as e:
+        drillwave.diagnose(CASE, str(recording) + "\0x", set=SHORT)
+    assert e.value.path == "recording"
+    with pytest.raises(drillwave.InputError, match=r"holds a NUL byte") as e:
+        drillwave.diagnose(CASE, str(recording), sidecar=str(tmp_path / "s.json") + "\0", set=SHORT)
+    assert e.value.path == "sidecar"
+
+
+def test_a_huge_sweep_raises_input_error_before_allocating():
+    # Issue 41: 1e6 values allocated GBs of parsed cases and killed the interpreter; the work is estimated first.
+    with pytest.raises(drillwave.InputError, match=r"^--values: 1000000 runs of about .* above a sweep's limit") as e:
+        drillwave.sweep(CASE, "/model/top/speed_rad_s/knots/1/1", "1:12:1000000", set=SHORT)
+    assert e.value.path == "--values"
+
+
 def test_kinds_lists_every_kind_with_its_fields():
     kinds = drillwave.kinds()
     assert {"two_mass", "two_disc", "torsional_wave"} <= set(kinds)
     assert "bit/inertia_kgm2" in json.dumps(kinds["two_mass"]["fields"])
+
+
+def test_version_is_the_projects_and_the_command_lines():
+    # The one version: project(drillwave VERSION ...) in CMakeLists.txt, which `drillwave --version` prints too.
+    import re
+    with open(os.path.join(SOURCE, "CMakeLists.txt")) as f:
+        version = re.search(r"project\(drillwave VERSION ([0-9.]+)", f.read()).group(1)
+    assert drillwave.__version__ == version
+    if CLI:
+        out = subprocess.run([CLI, "--version"], capture_output=True, text=True, check=True).stdout
+        assert out == f"drillwave {version}\n"
