@@ -171,19 +171,23 @@ void WriteEstimate(const diagnosis::Recording& r, const BitEstimate& e, const nl
   io::Figure figure;
   figure.title = "Bit estimated from the surface (" + e.method + ")";
   figure.x_label = "time [s]";
-  auto band = [&](const std::vector<double>& x, const std::vector<double>& b, double sign, double unit) {
-    std::vector<double> y(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) y[i] = (x[i] + sign * b[i]) / unit;
-    return y;
+  // The band's two edges as one series (a NaN between them breaks the line), so that both wear its legend colour;
+  // the measurement first, the estimate drawn last, on top.
+  auto band = [&](const std::vector<double>& x, const std::vector<double>& b, double unit) {
+    io::Series s{"band (2 sigma)", {}, {}};
+    for (double sign : {1.0, -1.0}) {
+      for (std::size_t i = 0; i < x.size(); ++i) s.x.push_back(e.time_s[i]), s.y.push_back((x[i] + sign * b[i]) / unit);
+      s.x.push_back(std::nan("")), s.y.push_back(std::nan(""));
+    }
+    return s;
   };
   auto panel = [&](const std::string& label, const std::vector<double>& est, const std::vector<double>& b,
                    double unit, const std::vector<std::string>& measured_names) {
     io::Panel p{label, {}};
-    p.series.push_back({"estimate", e.time_s, Scaled(est, 1 / unit)});
-    p.series.push_back({"band (2 sigma)", e.time_s, band(est, b, 1, unit)});
-    p.series.push_back({"", e.time_s, band(est, b, -1, unit)});
     const auto [name, measured] = Downhole(r, measured_names);
     if (!measured.empty()) p.series.push_back({"measured " + name, r.time_s, Scaled(measured, 1 / unit)});
+    p.series.push_back(band(est, b, unit));
+    p.series.push_back({"estimate", e.time_s, Scaled(est, 1 / unit)});
     figure.panels.push_back(p);
   };
   panel("bit speed [rpm]", e.bit_speed_rad_s, e.bit_speed_band_rad_s, kRpm, {"bit_rpm", "bit_rad_s"});
