@@ -5,6 +5,7 @@
 
 #include "drillwave/core/error.hpp"
 #include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/estimation/smoothing.hpp"
 #include "drillwave/estimation/hybrid_observer.hpp"
 #include "drillwave/estimation/lumped_observer.hpp"
 #include "drillwave/estimation/wave_string_estimator.hpp"
@@ -107,13 +108,6 @@ WaveStringModel WaveFromCase(const json& model, double hook_force_N) {
   m.weight_on_bit_N = Number(hoist, "weight_on_bit_N", 0);
   m.hook_force_N = hook_force_N;
   return m;
-}
-
-double MedianAbs(const std::vector<double>& x) {
-  std::vector<double> a;
-  for (double v : x)
-    if (std::isfinite(v)) a.push_back(std::abs(v));
-  return a.empty() ? 0.0 : diagnosis::Median(a);
 }
 
 }  // namespace

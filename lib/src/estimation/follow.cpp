@@ -15,6 +15,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/estimation/smoothing.hpp"
 
 namespace drillwave::estimation {
 namespace {
@@ -39,13 +40,6 @@ std::string Trimmed(std::string s) {
   std::size_t first = 0;
   while (first < s.size() && s[first] == ' ') ++first;
   return s.substr(first);
-}
-
-double MedianAbs(const std::vector<double>& x) {
-  std::vector<double> a;
-  for (double v : x)
-    if (std::isfinite(v)) a.push_back(std::abs(v));
-  return a.empty() ? 0.0 : diagnosis::Median(a);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "drillwave/diagnosis/signals.hpp"
+
 namespace drillwave::estimation {
 
 Smoothed SmoothQuadratic(const std::vector<double>& x, double dt, int half_width) {
@@ -49,6 +51,13 @@ double NoiseStd(const std::vector<double>& x) {
   if (d.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
   return 1.4826 * d[d.size() / 2] / std::sqrt(2.0);
+}
+
+double MedianAbs(const std::vector<double>& x) {
+  std::vector<double> a;
+  for (double v : x)
+    if (std::isfinite(v)) a.push_back(std::abs(v));
+  return a.empty() ? 0.0 : diagnosis::Median(a);
 }
 
 }  // namespace drillwave::estimation

@@ -19,4 +19,7 @@ Smoothed SmoothQuadratic(const std::vector<double>& x, double dt, int half_width
 // differences over sqrt 2), which the signal's own motion barely moves when it is sampled well above its bandwidth.
 double NoiseStd(const std::vector<double>& x);
 
+// The median of |x| over its finite samples (0 if none): the level a stuck threshold is a fraction of.
+double MedianAbs(const std::vector<double>& x);
+
 }  // namespace drillwave::estimation
