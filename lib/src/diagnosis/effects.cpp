@@ -47,17 +47,26 @@ double FromUnit(const EffectParameter& p, double u) {
   return p.log_scale ? p.lower * std::pow(p.upper / p.lower, u) : p.lower + u * (p.upper - p.lower);
 }
 
-std::vector<Effect> BaseCalibrations(const nlohmann::json& doc) {
-  std::vector<Effect> calibrations;
+std::vector<Calibration> BaseCalibrations(const nlohmann::json& doc) {
+  std::vector<Calibration> calibrations;
   if (doc.value("/model/kind"_json_pointer, std::string()) != "axial_torsional") return calibrations;
-  // Only what the gross features identify: the contact stress sets the friction's share of the bit torque, and so the
-  // mean torque (T = a W / (2 zeta) + a^2 sigma l (gamma mu - 1 / zeta) / 2 in steady drilling). The rock's intrinsic
-  // specific energy moves only the depth of cut (no channel reads it) and the stability: left to the effects' fits.
+  // The contact stress sets the friction's share of the bit torque, and so the mean torque (T = a W / (2 zeta) +
+  // a^2 sigma l (gamma mu - 1 / zeta) / 2 in steady drilling): the levels read it.
   const double sigma_l = Number(doc, "/model/rock/sigma_l_N_per_m", 450000);
-  Effect e{"contact_stress", "the wear-flat contact stress sigma*l of the rock (base calibration)", {}, nullptr, 0, ""};
-  e.parameters = {{"sigma_l_N_per_m", "N/m", 0.8 * sigma_l, 1.2 * sigma_l, false, sigma_l}};
-  e.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["rock"]["sigma_l_N_per_m"] = v[0]; };
-  calibrations.push_back(e);
+  Effect contact{"contact_stress", "the wear-flat contact stress sigma*l of the rock (base calibration)", {}, nullptr, 0, ""};
+  contact.parameters = {{"sigma_l_N_per_m", "N/m", 0.8 * sigma_l, 1.2 * sigma_l, false, sigma_l}};
+  contact.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["rock"]["sigma_l_N_per_m"] = v[0]; };
+  calibrations.push_back({contact, CalibrationTarget::kLevels});
+  // The intrinsic specific energy: the cut's torque and weight keep the ratio a / (2 zeta) whatever eps is, so no
+  // level reads it; it sets the depth of cut a weight makes and with it the regenerative gain (n a zeta eps), which
+  // decides how strongly steady drilling is unstable: the stick fraction, the spreads, the axial motion read it.
+  const double eps = Number(doc, "/model/rock/intrinsic_specific_energy_Pa", 5e7);
+  Effect strength{"rock_strength", "the rock's intrinsic specific energy eps (base calibration)", {}, nullptr, 0, ""};
+  strength.parameters = {{"intrinsic_specific_energy_Pa", "Pa", 0.8 * eps, 1.2 * eps, false, eps}};
+  strength.apply = [](nlohmann::json& d, const std::vector<double>& v) {
+    d["model"]["rock"]["intrinsic_specific_energy_Pa"] = v[0];
+  };
+  calibrations.push_back({strength, CalibrationTarget::kMotion});
   return calibrations;
 }
 

@@ -47,11 +47,19 @@ struct Effect {
 std::vector<Effect> ProposeEffects(const nlohmann::json& document, const FeatureSet& model, const FeatureSet& recording);
 
 // The base model's uncertain parameters, each within its stated prior range, as calibrations (no evidence; their
-// apply sets the parameter): fitted to the recording's gross features (levels, period) before any effect, so that
-// effects are fitted on a calibrated base rather than asked to make up for a wrong one. axial_torsional: the
-// wear-flat contact stress sigma*l within +-20 % of the case's (formations vary; the mean torque reads it). Empty for
-// other kinds (the rig's disc inertia is among its effects).
-std::vector<Effect> BaseCalibrations(const nlohmann::json& document);
+// apply sets the parameter), fitted in order before any effect so that effects are fitted on a calibrated base rather
+// than asked to make up for a wrong one. What a calibration is fitted to follows from what its parameter moves: a
+// level (the fit window's means and period) or the motion (every feature of the fit window).
+enum class CalibrationTarget { kLevels, kMotion };
+struct Calibration {
+  Effect parameters;  // name, parameters with their prior ranges, apply
+  CalibrationTarget target = CalibrationTarget::kLevels;
+};
+// axial_torsional: first the wear-flat contact stress sigma*l within +-20 % of the case's (the mean torque reads it),
+// then the rock's intrinsic specific energy eps within +-20 % (no level reads it: it sets the regenerative coupling's
+// gain and so how unstable steady drilling is). Formations vary by that much between wells. Empty for other kinds
+// (the rig's disc inertia is among its effects).
+std::vector<Calibration> BaseCalibrations(const nlohmann::json& document);
 
 // The effects of a laboratory rig modelled as a two-inertia pendulum (kind two_mass; rig_effects.cpp), to which
 // ProposeEffects hands a two_mass document. Its disc's inertia is one of them ("bit_inertia"), fitted with the others.

@@ -50,6 +50,8 @@ struct LoopOptions {
   // over the whole span; the max_singles best screened are fitted in full, and pairs and extensions come from these.
   int screening_evaluations_per_parameter = 4;
   int max_singles = 4;  // 0: the case's own errors only (no base calibration, screening or fits)
+  bool calibrate_base = true;  // the base's uncertain parameters fitted first (effects.hpp: BaseCalibrations)
+  bool fit_effects = true;     // false: the (calibrated) base judged, no effect screened or fitted
   int max_effects = 3;            // forward selection stops at this many effects
   // The fits' runs use at most this tolerance's accuracy (rel and abs; 0: the case's); candidates are judged by runs
   // at the case's own tolerance. The features do not move with the tolerance up to 1e-4; at 1e-3 they did for
@@ -85,6 +87,8 @@ struct FittedParameter {
 struct CalibratedParameter {  // a base parameter fitted before the effects (effects.hpp: BaseCalibrations)
   std::string calibration, name, unit;
   double value = 0, case_value = 0, lower = 0, upper = 0;
+  bool kept = false;  // judged over draws it brought the base closer (the fit window better, the held-out window
+                      // no worse beyond chance): the base uses it
 };
 
 struct Candidate {
@@ -126,7 +130,7 @@ struct DiagnosisLoop {
   double baseline_aic = 0;
   std::vector<Effect> proposals;  // every effect with its evidence (strength 0: no evidence)
   std::vector<CalibratedParameter> calibration;  // the base's parameters as calibrated (empty: none for this kind)
-  bool calibration_kept = false;  // the calibration brought the base closer on the whole fit window: the base uses it
+  bool calibration_kept = false;  // a calibration was kept (CalibratedParameter::kept): the base differs from the case
   double plain_fit_error = 0, plain_held_out_error = 0;  // the case as given, before calibration (draw 0)
   std::vector<Candidate> screening;  // every modelable effect's cheap fit (one draw judged), in proposal order
   std::vector<Candidate> candidates;
