@@ -3,7 +3,7 @@
 // Closed form: the string seen from the top is an impedance (torque over speed in the Laplace domain). A bit of
 // inertia I and damping c is Z_L = I s + c; a section (impedance Z, travel time tau) above a load Z_L presents
 // Z (Z_L cosh s tau + Z sinh s tau) / (Z cosh s tau + Z_L sinh s tau). The top closes the loop: Z_top + Z_in = 0, with
-// Z_top = J s + kp + ki / s for a PI top drive, beta for a dissipative top, and Z_in's denominator = 0 for an imposed
+// Z_top = J s + kp + ki / s for a PI top drive (with torque feedback see TopImpedance), beta for a dissipative top, and Z_in's denominator = 0 for an imposed
 // speed. Written as numerator and denominator this is an entire function whose zeros must be the spectrum's roots.
 #include <algorithm>
 #include <cmath>
@@ -46,6 +46,16 @@ waves::Node PiTop(double speed, double inertia, double kp, double ki) {
   top.setpoint = model::Schedule(speed);
   return top;
 }
+
+// The soft-torque family (waves::TorqueFeedback): a stiff PI top drive whose speed command is corrected by the string
+// torque, high-passed with the time constant tau_f. Z-Torque: gain 1 / Z of the pipe.
+waves::Node StiffPiTop(double speed) { return PiTop(speed, 500, 5000, 5000); }
+waves::Node SoftTorqueTop(double speed, double gain, double time_constant) {
+  waves::Node top = StiffPiTop(speed);
+  top.torque_feedback = {gain, time_constant};
+  return top;
+}
+waves::Node ZTorqueTop(double speed) { return SoftTorqueTop(speed, 1 / kPipe.impedance, 5); }
 
 // The rig's two-mass top (json-cases/rig-two-mass.json): the PI acts on the motor's speed behind an 8:1 gear.
 waves::Node CompliantGearTop(double speed) {
@@ -123,7 +133,8 @@ struct Fraction {
 // adds n^2 J_m to the top's inertia J. PI: J s + kp + ki / s. DC motor under a PI in volts, torque n k I with
 // (L s + R) I = -(kp + ki / s + n k) w: J s + n k (kp + ki / s + n k) / (L s + R). A PI on the motor behind a
 // compliant gear: the gear's K = k / s + c in series with the motor side M = J_r s + kp + ki / s,
-// Y = J s + K M / (K + M).
+// Y = J s + K M / (K + M). A PI with torque feedback tracks -g H T - v, H = tau_f s / (1 + tau_f s) the high-pass: with
+// C = kp + ki / s and the string torque T = Z_in v, J s v = -T - C (g H T + v), so Y = (J s + C) / (1 + g C H).
 Fraction TopImpedance(const waves::Node& top, Complex s) {
   const double j = top.LumpedInertia();
   const Complex pi_poly = top.pi.kp * s + top.pi.ki;  // s (kp + ki / s)
@@ -134,7 +145,11 @@ Fraction TopImpedance(const waves::Node& top, Complex s) {
   }
   switch (top.drive) {
     case waves::Drive::kSpeedDashpot: return {top.drive_damping, 1.0};
-    case waves::Drive::kPiSpeedController: return {j * s * s + pi_poly, s};
+    case waves::Drive::kPiSpeedController: {
+      const double g = top.torque_feedback.gain, tf = top.torque_feedback.time_constant_s;
+      if (g == 0) return {j * s * s + pi_poly, s};
+      return {(j * s * s + pi_poly) * (1.0 + tf * s), s * (1.0 + tf * s) + g * pi_poly * tf * s};
+    }
     case waves::Drive::kDcMotorSpeed: {
       const waves::DcMotor& m = top.motor;
       const double k = top.gear.ratio * m.motor_constant;
@@ -214,6 +229,14 @@ TEST(NetworkStability, RootsAreTheZerosOfTheTransferMatrixClosedForm) {
   ExpectRootsOfClosedForm(Chain(DissipativeTop(10), {kPipe, kCollars}, DampedBit(50)), 50, "dissipative top, pipe + collars");
   // One section with a PI top drive.
   ExpectRootsOfClosedForm(Chain(PiTop(10, 500, 1000, 300), {kPipe}, DampedBit(50)), 50, "PI top, one section");
+}
+
+// SoftTorque and Z-Torque tops: the torque feedback's filter joins the states, the string torque enters through the
+// arriving waves (neutral terms in the speed, integral and filter rows).
+TEST(NetworkStability, TorqueFeedbackTopsRootsAreTheZerosOfTheTransferMatrixClosedForm) {
+  ExpectRootsOfClosedForm(Chain(SoftTorqueTop(10, 1e-3, 5), {kPipe}, DampedBit(50)), 50, "SoftTorque top, one section");
+  ExpectRootsOfClosedForm(Chain(ZTorqueTop(10), {kPipe}, DampedBit(50)), 50, "Z-Torque top, one section");
+  ExpectRootsOfClosedForm(Chain(ZTorqueTop(10), {kPipe, kCollars}, DampedBit(50)), 50, "Z-Torque top, pipe + collars");
 }
 
 // The rig's two-mass top (a PI on the motor speed behind a compliant gear) and a DC motor through a rigid gear with
@@ -515,6 +538,91 @@ TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedPiTopDrive) {
                                 "PI top at 4 rad/s");
   ExpectGrowthRatesOfSimulation(Chain(PiTop(12, 500, 1000, 300), {kPipe}, StribeckBit()), 1e-3, 5, 40,
                                 "PI top at 12 rad/s");
+}
+
+// The soft-torque family on the velocity-weakening bit: a weak feedback (gain 3e-4 rad/s per N m) where the stick-slip
+// mode still grows, a stronger one (1e-3) and Z-Torque (1 / Z = 3.3e-3) where everything decays; and with Kelvin-Voigt
+// dashpots, whose torque the top measures too (at the growing point: where everything decays, the filter's real root
+// at -0.21 1/s decays slowest and its leakage through the window swamps the faster oscillating modes).
+TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedSoftTorqueTop) {
+  ExpectGrowthRatesOfSimulation(Chain(SoftTorqueTop(4, 3e-4, 5), {kPipe}, StribeckBit()), 1e-6, 5, 30,
+                                "SoftTorque top (g 3e-4) at 4 rad/s", 1);
+  ExpectGrowthRatesOfSimulation(Chain(SoftTorqueTop(6, 1e-3, 5), {kPipe}, StribeckBit()), 1e-3, 5, 40,
+                                "SoftTorque top (g 1e-3) at 6 rad/s");
+  ExpectGrowthRatesOfSimulation(WithKelvinVoigt(Chain(SoftTorqueTop(4, 3e-4, 5), {kPipe}, StribeckBit()), 10, 0.01),
+                                1e-6, 5, 30, "Kelvin-Voigt string under a SoftTorque top (g 3e-4) at 4 rad/s", 1);
+}
+
+TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedZTorqueTop) {
+  ExpectGrowthRatesOfSimulation(Chain(ZTorqueTop(4), {kPipe}, StribeckBit()), 1e-3, 2, 30, "Z-Torque top at 4 rad/s");
+  ExpectGrowthRatesOfSimulation(Chain(ZTorqueTop(7), {kPipe, kCollars}, StribeckBit()), 1e-3, 2, 30,
+                                "Z-Torque top, pipe + collars at 7 rad/s");
+}
+
+// An actuator delay d of the PI top's torque (waves::Node::actuator_delay_s): retarded terms at d, the string torque's
+// arriving waves neutral at tau + d. Behind the stiff PI (kp = 5000 = 17 Z, bandwidth kp / J = 10 rad/s) 50 ms already
+// make the string's harmonics grow under Z-Torque at 4 rad/s, and 100 ms under the plain stiff PI at 6 rad/s (stable
+// without delay); with 20 ms the SoftTorque top's modes below 30 rad/s still decay (a harmonic at 59 rad/s grows).
+// Kicked by 1e-9 where the growth is fast, so that it stays linear over the window.
+TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedDelayedTopDrive) {
+  waves::Node z_torque = ZTorqueTop(4);
+  z_torque.actuator_delay_s = 0.05;
+  ExpectGrowthRatesOfSimulation(Chain(z_torque, {kPipe}, StribeckBit()), 1e-9, 1, 11,
+                                "Z-Torque top, 50 ms delay, 4 rad/s", 1);
+  waves::Node stiff = StiffPiTop(6);
+  stiff.actuator_delay_s = 0.1;
+  ExpectGrowthRatesOfSimulation(Chain(stiff, {kPipe}, StribeckBit()), 1e-9, 1, 21,
+                                "stiff PI top, 100 ms delay, 6 rad/s", 1);
+  waves::Node soft = SoftTorqueTop(6, 3e-4, 5);
+  soft.actuator_delay_s = 0.02;
+  ExpectGrowthRatesOfSimulation(Chain(soft, {kPipe, kCollars}, StribeckBit()), 1e-3, 2, 30,
+                                "SoftTorque top, 20 ms delay, pipe + collars at 6 rad/s");
+}
+
+// The largest real part among the roots of the band 1 < Im s < 30 (the stick-slip mode and the string's first
+// harmonics; above, the inertial top's chain creeps to the axis whatever the law).
+double BandAbscissa(const Spectrum& sp) {
+  double largest = -INFINITY;
+  for (const CharacteristicRoot& r : sp.roots)
+    if (r.s.imag() > 1 && r.s.imag() < 30) largest = std::max(largest, r.s.real());
+  return largest;
+}
+
+// The Saldivar string (json-cases/saldivar-stickslip.json) under a 500 kg m^2 top drive at 4 rad/s: with the stiff PI
+// (kp = ki = 5000) the stick-slip mode grows; SoftTorque (g = 1e-3, tau_f = 5 s) and Z-Torque move every root left of
+// the axis (verdict marginal, not stable: an inertial top reflects like a fixed end at high frequency, so the string's
+// harmonics approach the axis under every law). The SoftSpeed tuning of the PI alone (kp = Z, ki = J w^2 at the stiff
+// PI's stick-slip frequency w) slows the growth but leaves the point unstable.
+TEST(NetworkStability, TorqueFeedbackStabilizesTheStiffPiStickSlipPoint) {
+  auto spectrum = [](const waves::Node& top) {
+    const waves::Network net = Chain(top, {kPipe}, StribeckBit());
+    const auto points = NetworkSteadyStates(net);
+    EXPECT_EQ(points.size(), 1u);
+    return ComputeSpectrum(LinearizeNetwork(net, points.at(0)).system);
+  };
+  const Spectrum stiff = spectrum(StiffPiTop(4));
+  const CharacteristicRoot& stick_slip = stiff.roots.front();
+  const double w = stick_slip.s.imag();
+  const waves::Node tuned = PiTop(4, 500, kPipe.impedance, 500 * w * w);
+  const Spectrum soft_speed = spectrum(tuned), soft_torque = spectrum(SoftTorqueTop(4, 1e-3, 5)),
+                 z_torque = spectrum(ZTorqueTop(4));
+  std::printf("[ measured ] Saldivar string at 4 rad/s, rightmost root / largest Re s in 1 < Im s < 30: stiff PI "
+              "%.5f%+.5fi / %.5f (%s); SoftSpeed-tuned PI (kp %.1f, ki %.1f) %.5f / %.5f (%s); SoftTorque %.5f / %.5f "
+              "(%s); Z-Torque %.5f / %.5f (%s)\n",
+              stick_slip.s.real(), stick_slip.s.imag(), BandAbscissa(stiff), VerdictName(stiff.verdict), tuned.pi.kp,
+              tuned.pi.ki, soft_speed.spectral_abscissa, BandAbscissa(soft_speed), VerdictName(soft_speed.verdict),
+              soft_torque.spectral_abscissa, BandAbscissa(soft_torque), VerdictName(soft_torque.verdict),
+              z_torque.spectral_abscissa, BandAbscissa(z_torque), VerdictName(z_torque.verdict));
+  EXPECT_GT(stick_slip.s.real(), 0.1);
+  EXPECT_LT(stick_slip.s.imag(), 5.0);  // the stick-slip mode, not a harmonic
+  EXPECT_EQ(stiff.verdict, Spectrum::Verdict::kUnstable);
+  for (const Spectrum* sp : {&soft_torque, &z_torque}) {
+    EXPECT_LT(sp->spectral_abscissa, 0);
+    EXPECT_LT(BandAbscissa(*sp), -0.05);
+    EXPECT_EQ(sp->verdict, Spectrum::Verdict::kMarginal);
+  }
+  EXPECT_GT(soft_speed.spectral_abscissa, 0);
+  EXPECT_LT(soft_speed.spectral_abscissa, stick_slip.s.real());
 }
 
 // The motor tops: the induction motor's fluxes (open loop through a rigid gear; under slip-frequency control behind

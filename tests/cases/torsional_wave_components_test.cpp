@@ -1,10 +1,12 @@
 // The optional string and bit components of the torsional_wave kind: Kelvin-Voigt damping and the BHA mass unbalance
 // (the physics is checked on the network in tests/waves/kelvin_voigt_test.cpp and jeffcott_bit_test.cpp; here what
 // the kind builds from its fields, and how it refuses bad input).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -89,6 +91,94 @@ TEST(TorsionalWaveComponents, BadInputNamesTheField) {
   doc["model"]["bit"]["inertia_kgm2"] = 0;
   EXPECT_EQ(RefusedPath(doc), "/model/bit/inertia_kgm2");
 
+}
+
+// The soft-torque family of tops (waves::TorqueFeedback). The SoftSpeed tuning is the PI with kp = Z of the top
+// section, ki = J (2 pi / P)^2, and a z_torque top's default impedance is that Z: the runs with those gains written
+// out are the same run (to rounding of the gains). Bad values and combinations are refused with their paths.
+TEST(TorsionalWaveSoftTorque, TuningsAreTheGainsTheyStand) {
+  nlohmann::json tuned = Load("saldivar-soft-torque");
+  tuned["simulation"]["duration_s"] = 8;
+  tuned["statistics"]["window_s"] = {4, 8};
+  nlohmann::json& top = tuned["model"]["top"];
+  const auto& pipe = tuned["model"]["string"]["sections"][0];
+  const double z = pipe["polar_moment_m4"].get<double>() *
+                   std::sqrt(pipe["shear_modulus_Pa"].get<double>() * pipe["density_kg_m3"].get<double>());
+  const double period = 2.5, omega = 2 * M_PI / period, inertia = top["inertia_kgm2"].get<double>();
+  top.erase("kp_Nms_per_rad"), top.erase("ki_Nm_per_rad");
+  top["tuning_period_s"] = period;
+  nlohmann::json explicit_gains = tuned;
+  explicit_gains["model"]["top"].erase("tuning_period_s");
+  explicit_gains["model"]["top"]["kp_Nms_per_rad"] = z;
+  explicit_gains["model"]["top"]["ki_Nm_per_rad"] = inertia * omega * omega;
+  nlohmann::json z_default = Load("saldivar-z-torque");
+  z_default["simulation"] = tuned["simulation"];
+  z_default["statistics"] = tuned["statistics"];
+  nlohmann::json z_explicit = z_default;
+  z_explicit["model"]["top"]["impedance_Nms_per_rad"] = z;
+  for (const auto& [a, b] : {std::pair{tuned, explicit_gains}, std::pair{z_default, z_explicit}}) {
+    const CaseRun run_a = RunCase(ParseCase(a)), run_b = RunCase(ParseCase(b));
+    const std::vector<double>& x = Channel(run_a, "bit_rpm");
+    const std::vector<double>& y = Channel(run_b, "bit_rpm");
+    ASSERT_EQ(x.size(), y.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(x[i] - y[i]));
+    std::printf("[ measured ] %s: largest bit-speed difference to the gains written out %.2e rpm\n",
+                a["model"]["top"]["type"].get<std::string>().c_str(), worst);
+    EXPECT_LT(worst, 1e-6);
+  }
+}
+
+// Behind an actuator delay the set-point's knots are breakpoints again one delay later (the ramp's end at 2 s, at
+// 2.05 s): stepped onto once each, although 2.05 - 0.05 rounds below 2.
+TEST(TorsionalWaveSoftTorque, DelayedSetPointKnotsAreSteppedOntoOnce) {
+  nlohmann::json doc = Load("saldivar-z-torque");
+  doc["model"]["top"]["actuator_delay_s"] = 0.05;
+  doc["simulation"]["duration_s"] = 4;
+  doc["statistics"]["window_s"] = {3, 4};
+  const CaseRun run = RunCase(ParseCase(doc));
+  const int breakpoints = run.summary["breakpoints"].get<int>();
+  std::printf("[ measured ] Z-Torque top with a 50 ms delay, 4 s from rest: %d breakpoints, %d steps\n", breakpoints,
+              run.summary["steps"].get<int>());
+  EXPECT_LT(breakpoints, 30);
+  ASSERT_FALSE(run.result.time_s.empty());
+  EXPECT_NEAR(run.result.time_s.back(), 4.0, 1e-9);
+}
+
+TEST(TorsionalWaveSoftTorque, BadInputNamesTheField) {
+  auto with = [](const char* name, const char* key, const nlohmann::json& value) {
+    nlohmann::json doc = Load(name);
+    doc["model"]["top"][key] = value;
+    return doc;
+  };
+  EXPECT_EQ(RefusedPath(with("saldivar-soft-torque", "feedback_gain_rad_per_Nms", -1e-3)),
+            "/model/top/feedback_gain_rad_per_Nms");
+  EXPECT_EQ(RefusedPath(with("saldivar-soft-torque", "feedback_time_constant_s", 0)),
+            "/model/top/feedback_time_constant_s");
+  EXPECT_EQ(RefusedPath(with("saldivar-soft-torque", "tuning_period_s", 2.5)), "/model/top/kp_Nms_per_rad");
+  EXPECT_EQ(RefusedPath(with("saldivar-z-torque", "impedance_Nms_per_rad", 0)), "/model/top/impedance_Nms_per_rad");
+  EXPECT_EQ(RefusedPath(with("saldivar-z-torque", "feedback_gain_rad_per_Nms", 1e-3)),
+            "/model/top/feedback_gain_rad_per_Nms");  // z_torque's gain is 1 / Z
+  nlohmann::json doc = Load("saldivar-soft-torque");
+  doc["model"]["top"].erase("feedback_time_constant_s");  // needed with a gain
+  EXPECT_EQ(RefusedPath(doc), "/model/top/feedback_time_constant_s");
+  doc["model"]["top"].erase("feedback_gain_rad_per_Nms");  // without feedback: a PI top drive
+  EXPECT_EQ(RefusedPath(doc, true), "");
+  doc = with("saldivar-z-torque", "gear", {{"ratio", 8}, {"stiffness_Nm_per_rad", 3e5}});
+  doc["model"]["top"]["motor_inertia_kgm2"] = 10;
+  EXPECT_EQ(RefusedPath(doc), "/model/top/gear");
+  EXPECT_EQ(RefusedPath(Load("saldivar-z-torque"), true), "");
+  // The actuator delay: in [0, 10] s, on a PI top without Kelvin-Voigt damping (the delayed controller reads the
+  // string torque from the arriving wave alone).
+  EXPECT_EQ(RefusedPath(with("saldivar-z-torque", "actuator_delay_s", -0.05)), "/model/top/actuator_delay_s");
+  EXPECT_EQ(RefusedPath(with("saldivar-z-torque", "actuator_delay_s", 11)), "/model/top/actuator_delay_s");
+  EXPECT_EQ(RefusedPath(with("saldivar-z-torque", "actuator_delay_s", 0.1), true), "");
+  doc = with("saldivar-z-torque", "actuator_delay_s", 0.1);
+  doc["model"]["string"]["kelvin_voigt_s"] = 0.01;
+  EXPECT_EQ(RefusedPath(doc), "/model/top");
+  doc = Load("saldivar-stickslip");  // a dissipative top has no controller to delay
+  doc["model"]["top"]["actuator_delay_s"] = 0.1;
+  EXPECT_EQ(RefusedPath(doc), "/model/top/actuator_delay_s");
 }
 
 // The kind's whirl: the mean radius over the window against m e w^2 / sqrt((k - (M + m) w^2)^2 + (c w)^2) at the

@@ -227,14 +227,18 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
     return i == 0 ? std::string("top") : i == nodes - 1 ? std::string("bit") : "node" + std::to_string(i);
   };
   // Node states in the simulation's order: speeds of inertial nodes, integrals of speed controllers with an integral
-  // gain, DC currents, induction fluxes, then behind a compliant gear the motor's speed (referred to the node) and
-  // the gear's twist.
-  std::vector<int> speed(nodes, -1), integral(nodes, -1), current(nodes, -1), flux(nodes, -1), motor(nodes, -1);
+  // gain, torque-feedback filters (the low-passed string torque), DC currents, induction fluxes, then behind a
+  // compliant gear the motor's speed (referred to the node) and the gear's twist.
+  std::vector<int> speed(nodes, -1), integral(nodes, -1), filter(nodes, -1), current(nodes, -1), flux(nodes, -1),
+      motor(nodes, -1);
   for (int i = 0; i < nodes; ++i)
     if (!net.nodes[i].massless()) speed[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_speed_rad_s");
   for (int i = 0; i < nodes; ++i)
     if (net.nodes[i].has_speed_integral() && net.nodes[i].pi.ki > 0)
       integral[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_speed_error_integral_rad");
+  for (int i = 0; i < nodes; ++i)
+    if (net.nodes[i].has_torque_feedback())
+      filter[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_low_passed_string_torque_Nm");
   for (int i = 0; i < nodes; ++i)
     if (net.nodes[i].has_dc_motor()) current[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_current_A");
   for (int i = 0; i < nodes; ++i)
@@ -329,6 +333,14 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
         speed_form[i].wave = solved.block(unknown[i], n, 1, n);
       }
   }
+  // The delay term at tau, added (with zero matrices) if there is none yet: an actuator delay's.
+  auto delay_term = [&](double tau) -> DelayTerm& {
+    auto it = std::find_if(sys.delays.begin(), sys.delays.end(), [&](const DelayTerm& d) { return d.tau == tau; });
+    if (it == sys.delays.end()) it = sys.delays.insert(sys.delays.end(), {tau, {}, Eigen::MatrixXd::Zero(n, n)});
+    if (it->retarded.size() == 0) it->retarded = Eigen::MatrixXd::Zero(n, n);
+    if (it->neutral.size() == 0) it->neutral = Eigen::MatrixXd::Zero(n, n);
+    return *it;
+  };
   // factor * (speed of node i) into row `row`.
   auto add_speed = [&](int row, int i, double factor) {
     sys.a0.row(row) += factor * speed_form[i].state;
@@ -356,12 +368,45 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
       const double f0 = SteadySupplyHz(node, point.top_setpoint, w0, point.top_torque_Nm);
       induction = LinearizeInductionMotor(node.induction, f0, n_gear * w0);
     }
+    // What a PI top's controller reads (its speed and the string torque) it reads an actuator delay late: those terms
+    // are retarded by the delay, and the arriving waves in the string torque neutral at travel time + delay.
+    const double late = node.drive == Drive::kPiSpeedController ? node.actuator_delay_s : 0.0;
+    auto add_read_speed = [&](int row, double value) {
+      if (late == 0) sys.a0(row, vd) += value;
+      else delay_term(late).retarded(row, vd) += value;
+    };
+    // factor * (the torque the node feeds into the string, as the controller reads it) into row `row`: minus the
+    // string's force on it, sum Z (v - 2 w_in) and the dashpots' kv (v - v_neighbour) (no delay with dashpots).
+    auto add_string_torque = [&](int row, double factor) {
+      for (const Arrival& a : arrivals(i)) {
+        const double wave = -factor * 2 * a.impedance;
+        if (late == 0) {
+          sys.a0(row, v) += factor * a.impedance;
+          sys.delays[a.section].neutral(row, a.column) += wave;
+        } else {
+          delay_term(late).retarded(row, v) += factor * a.impedance;
+          delay_term(net.sections[a.section].travel_time_s + late).neutral(row, a.column) += wave;
+        }
+        const double kv = net.sections[a.section].dashpot;
+        if (kv == 0) continue;
+        sys.a0(row, v) += factor * kv;
+        add_speed(row, a.section == i ? i + 1 : i - 1, -factor * kv);
+      }
+    };
+    // factor * (the PI's speed command less the set-point) into row `row`: -gain (T - T_lp) with torque feedback.
+    auto add_command = [&](int row, double factor) {
+      if (filter[i] < 0) return;
+      const double gain = node.torque_feedback.gain;
+      add_string_torque(row, -factor * gain);
+      sys.a0(row, filter[i]) += factor * gain;
+    };
     // factor * (the drive's torque on the node's side) into row `row`.
     auto add_drive_torque = [&](int row, double factor) {
       switch (node.drive) {
         case Drive::kSpeedDashpot: sys.a0(row, vd) -= factor * node.drive_damping; break;
         case Drive::kPiSpeedController:
-          sys.a0(row, vd) -= factor * node.pi.kp;
+          add_read_speed(row, -factor * node.pi.kp);
+          add_command(row, factor * node.pi.kp);
           if (integral[i] >= 0) sys.a0(row, integral[i]) += factor * node.pi.ki;
           break;
         case Drive::kDcMotorVoltage:
@@ -399,7 +444,16 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
     } else {
       add_drive_torque(v, 1 / inertia);
     }
-    if (integral[i] >= 0) sys.a0(integral[i], vd) = -1;  // d/dt integral of (set-point - drive speed)
+    if (integral[i] >= 0) {  // d/dt integral of (command - drive speed)
+      if (node.drive == Drive::kPiSpeedController) add_read_speed(integral[i], -1);
+      else sys.a0(integral[i], vd) = -1;
+      add_command(integral[i], 1.0);
+    }
+    if (filter[i] >= 0) {  // T_lp' = (T - T_lp) / time constant
+      const double rate = 1 / node.torque_feedback.time_constant_s;
+      add_string_torque(filter[i], rate);
+      sys.a0(filter[i], filter[i]) -= rate;
+    }
     if (current[i] >= 0) {  // L I' = V - R I - n k w_d, V = the set-point or kp (set - w_d) + ki integral
       const waves::DcMotor& m = node.motor;
       const int c = current[i];

@@ -29,6 +29,28 @@ double OscillationPeriod(const std::vector<double>& t, const std::vector<double>
   return crossings.size() >= 2 ? (crossings.back() - crossings.front()) / (crossings.size() - 1) : nan;
 }
 
+double Median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// (max - min) / (2 mean) of the speed over [a, b].
+double WindowSeverity(const std::vector<double>& t, const std::vector<double>& v, const std::vector<double>& angle,
+                      double a, double b) {
+  double max = -std::numeric_limits<double>::infinity(), min = -max, sum = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < a || t[i] > b) continue;
+    max = std::max(max, v[i]), min = std::min(min, v[i]), sum += v[i], ++n;
+  }
+  if (n == 0) return std::numeric_limits<double>::quiet_NaN();
+  const double mean =
+      angle.empty() ? sum / n : (InterpolateSampled(t, angle, b) - InterpolateSampled(t, angle, a)) / (b - a);
+  return mean > 0 ? (max - min) / (2 * mean) : std::numeric_limits<double>::quiet_NaN();
+}
+
 nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 }  // namespace
@@ -40,7 +62,24 @@ nlohmann::json StickSlipStatistics::ToJson() const {
           {"stick_fraction", stick_fraction},
           {"bit_speed_max_rad_s", speed_max},
           {"bit_speed_min_rad_s", speed_min},
-          {"bit_speed_mean_rad_s", speed_mean}};
+          {"bit_speed_mean_rad_s", speed_mean},
+          {"stick_slip_severity", NumberOrNull(severity)},
+          {"stick_slip_severity_windows", severity_windows}};
+}
+
+double StickSlipSeverity(const std::vector<double>& time_s, const std::vector<double>& speed_rad_s,
+                         const std::vector<double>& angle_rad, double begin, double end, int* windows) {
+  const double length = end - begin;
+  const int count = std::max(1, static_cast<int>(std::floor(length / kSeverityWindowS * (1 + 1e-12))));
+  const double width = count == 1 ? length : kSeverityWindowS;
+  std::vector<double> per_window;
+  for (int k = 0; k < count && length > 0; ++k) {
+    const double s = WindowSeverity(time_s, speed_rad_s, angle_rad, begin + k * width, begin + (k + 1) * width);
+    if (std::isnan(s)) return std::numeric_limits<double>::quiet_NaN();  // a window that does not turn forward
+    per_window.push_back(s);
+  }
+  if (windows) *windows = static_cast<int>(per_window.size());
+  return Median(per_window);
 }
 
 StickSlipStatistics ComputeStickSlipStatistics(const std::vector<StuckInterval>& stuck,
@@ -70,6 +109,7 @@ StickSlipStatistics ComputeStickSlipStatistics(const std::vector<StuckInterval>&
   }
   if (!angle_rad.empty() && length > 0)
     s.speed_mean = (InterpolateSampled(time_s, angle_rad, window_end_s) - InterpolateSampled(time_s, angle_rad, window_begin_s)) / length;
+  s.severity = StickSlipSeverity(time_s, speed_rad_s, angle_rad, window_begin_s, window_end_s, &s.severity_windows);
   s.oscillation_period_s =
       OscillationPeriod(time_s, speed_rad_s, window_begin_s, window_end_s, s.speed_mean, s.speed_max, s.speed_min);
   return s;

@@ -48,8 +48,9 @@ ChainSpec ChainOf(const Network& net) {
 // The mutable side of a run: the string's waves (a WaveChain: the inner nodes are massless, their waves stored split
 // at the kinks and jumps that arrive there), the ends' friction regimes, the breakpoints pending at the ends.
 // State layout: the bit angle (for statistics and, later, the cut-depth delay), then the speeds of the ends with
-// inertia, then PI integrals, DC motor currents, induction motor fluxes (4 each), for an end behind a compliant
-// gear its motor's speed (referred to the node) and the gear's twist, the bit's lateral BHA (x, y, x', y'), and with
+// inertia, then PI integrals, a PI top's torque-feedback filter (the low-passed string torque), DC motor currents,
+// induction motor fluxes (4 each), for an end behind a compliant gear its motor's speed (referred to the node) and
+// the gear's twist, the bit's lateral BHA (x, y, x', y'), and with
 // Kelvin-Voigt damping and record_energy the energy the dashpots have dissipated. The top's angle is not integrated:
 // nothing reads it.
 class NetworkProcess {
@@ -64,6 +65,7 @@ class NetworkProcess {
     int next = 1;  // index 0: bit angle
     speed_index_.assign(num_nodes_, kNone);
     integral_index_.assign(num_nodes_, kNone);
+    filter_index_.assign(num_nodes_, kNone);
     current_index_.assign(num_nodes_, kNone);
     flux_index_.assign(num_nodes_, kNone);
     motor_speed_index_.assign(num_nodes_, kNone);
@@ -73,6 +75,8 @@ class NetworkProcess {
       if (!net.nodes[i].massless()) speed_index_[i] = next++;
     for (int i : ends)
       if (net.nodes[i].has_speed_integral()) integral_index_[i] = next++;
+    for (int i : ends)
+      if (net.nodes[i].has_torque_feedback()) filter_index_[i] = next++;
     for (int i : ends)
       if (net.nodes[i].has_dc_motor()) current_index_[i] = next++;
     for (int i : ends)
@@ -86,7 +90,12 @@ class NetworkProcess {
     for (int i : ends)
       if (net.nodes[i].has_set_valued_friction()) frictional_nodes_.push_back(i);
     steady_torque_ = net_.SteadyTopTorque();
-    read_back_ = 2.0 * net.LargestTravelTime() + 1.0;  // what the delays can still reach, and output look-ups
+    delay_ = net.top().actuator_delay_s;
+    if (delay_ > 0)  // the top's speed as its delayed controller reads it; steady before the start
+      top_speed_history_.emplace(1, [v0 = net.initial.speed_rad_s](double, double* value, double* rate) {
+        *value = v0, *rate = 0;
+      });
+    read_back_ = 2.0 * net.LargestTravelTime() + 1.0 + delay_;  // what the delays can still reach, output look-ups
     if (!kelvin_voigt_) {
       if (!KnownSpeed(0)) top_end_.emplace(*this, 0, -slopes_.top_top);
       if (!KnownSpeed(bit_)) bit_end_.emplace(*this, bit_, -slopes_.bit_bit);
@@ -97,7 +106,9 @@ class NetworkProcess {
   NetworkProcess& operator=(const NetworkProcess&) = delete;
 
   int Dimension() const { return dimension_; }
-  double MaxStep() const { return net_.SmallestTravelTime(); }
+  double MaxStep() const {
+    return delay_ > 0 ? std::min(net_.SmallestTravelTime(), delay_) : net_.SmallestTravelTime();
+  }
   void BeginStep(double t0) { step_start_ = t0; }
 
   State InitialState() const {
@@ -128,6 +139,8 @@ class NetworkProcess {
           held = n * node.induction.TorqueDemandFor(supply, n * v0);
       }
       if (integral_index_[i] != kNone) x[integral_index_[i]] = node.pi.IntegralHolding(held);
+      // The filter has settled on the steady string torque: no correction of the set-point at the start.
+      if (filter_index_[i] != kNone) x[filter_index_[i]] = steady_torque_ - node.SteadyLoad(v0);
       if (motor_speed_index_[i] != kNone) {
         x[motor_speed_index_[i]] = v0;
         x[motor_speed_index_[i] + 1] = steady_torque_ / node.gear.stiffness;
@@ -165,7 +178,12 @@ class NetworkProcess {
       const Node& node = net_.nodes[i];
       if (speed_index_[i] == kNone) continue;  // drives, motors and gears sit on ends with inertia (Validate)
       const double vi = i == 0 ? v.top : v.bit, vd = DriveSpeed(i, x, vi);
-      if (integral_index_[i] != kNone) dxdt[integral_index_[i]] = Setpoint(node, t, side) - vd;
+      if (integral_index_[i] != kNone || filter_index_[i] != kNone) {
+        const ControllerInput in = ReadController(i, x, vd, t, side);
+        if (integral_index_[i] != kNone) dxdt[integral_index_[i]] = in.command - in.speed;
+        if (filter_index_[i] != kNone)
+          dxdt[filter_index_[i]] = (in.torque - x[filter_index_[i]]) / node.torque_feedback.time_constant_s;
+      }
       if (current_index_[i] != kNone) {
         const DcMotor& m = node.motor;
         const double current = x[current_index_[i]];
@@ -225,6 +243,12 @@ class NetworkProcess {
     chain_.Commit(p.t0, p.t1, read_back_, arriving_);
     for (double t : arriving_)
       if (t < t_end_) end_breaks_.push(t);
+    if (top_speed_history_) {
+      const int v = speed_index_[0];
+      top_speed_history_->Append(p.t0, &p.x0[v], &p.f0[v], p.t1, &p.x1[v], &p.f1[v], &p.x_mid[v], restarted_);
+      top_speed_history_->DiscardBefore(p.t1 - read_back_);
+    }
+    restarted_ = false;
   }
 
   int NumWitnesses() const { return 2 * static_cast<int>(frictional_nodes_.size()); }
@@ -246,19 +270,29 @@ class NetworkProcess {
     if (after == Turn::kStuck || before == Turn::kStuck) x[speed_index_[i]] = 0;
     changes_.push_back({t, i, before, after});
     chain_.ForgetStart();  // the end's waves kink here
+    restarted_ = true;
     return after != before;
   }
 
-  // Breakpoints: the knots of the ends' input schedules (a repeated knot is a jump), and the kinks and jumps that the
-  // chain reports on their way to an end. The start needs none: the chain finds where the first waves leave the
-  // steady prehistory (a string at rest under a top speed that starts at 20 rad/s).
+  // Breakpoints: the knots of the ends' input schedules (a repeated knot is a jump; behind an actuator delay also one
+  // delay later), and the kinks and jumps that the chain reports on their way to an end. Not the kinks a delayed
+  // controller reads one delay after they arrived: the loop smooths them (a slope jump of the torque read is a jump of
+  // the top's curvature), which the step control resolves. The start needs none: the chain finds where the first
+  // waves leave the steady prehistory (a string at rest under a top speed that starts at 20 rad/s).
   double NextBreakpoint() const {
     double next = end_breaks_.empty() ? kInf : end_breaks_.top();
     for (int i : {0, bit_}) next = std::min(next, net_.nodes[i].setpoint.NextKnotAfter(passed_));
+    if (delay_ > 0) {  // passed_ - delay_ may round below the knot just passed a delay late: skip it
+      const model::Schedule& setpoint = net_.top().setpoint;
+      double knot = setpoint.NextKnotAfter(passed_ - delay_);
+      while (knot + delay_ <= passed_) knot = setpoint.NextKnotAfter(knot);
+      next = std::min(next, knot + delay_);
+    }
     return next;
   }
   void OnBreakpoint(double t) {
     passed_ = t;
+    restarted_ = true;
     chain_.ForgetStart();
     while (!end_breaks_.empty() && end_breaks_.top() <= t + 1e-12 * std::max(1.0, std::abs(t))) end_breaks_.pop();
   }
@@ -351,11 +385,37 @@ class NetworkProcess {
     return 0;
   }
 
-  // The PI speed controller of node i at drive speed v: kp (setpoint - v) + ki * integral. A torque for the PI top
-  // drive and the induction motor's demand, a voltage for the DC motor's speed loop.
+  // The PI speed controller of node i at drive speed v: kp (command - speed) + ki * integral, as the controller reads
+  // them. A torque for the PI top drive and the induction motor's demand, a voltage for the DC motor's speed loop.
   double SpeedControllerOutput(int i, const State& x, double v, double t, Side side) const {
+    const ControllerInput in = ReadController(i, x, v, t, side);
+    return net_.nodes[i].pi.Output(in.command, in.speed, x[integral_index_[i]]);
+  }
+  // What node i's speed controller reads at time t with the drive turning at vd: the speed it tracks (the set-point,
+  // less the torque feedback's gain times the high-passed string torque, TorqueFeedback), the drive's speed and the
+  // string torque at the top; with an actuator delay all as they were one delay earlier (the top's speed from its own
+  // history, the string torque from the wave that arrived then).
+  struct ControllerInput {
+    double command, speed, torque;
+  };
+  ControllerInput ReadController(int i, const State& x, double vd, double t, Side side) const {
     const Node& node = net_.nodes[i];
-    return node.pi.Output(Setpoint(node, t, side), v, x[integral_index_[i]]);
+    ControllerInput in{0.0, vd, 0.0};
+    double when = t;
+    if (top_speed_history_ && i == 0) when = t - delay_, in.speed = top_speed_history_->Value(when, 0, side);
+    in.command = Setpoint(node, when, side);
+    if (filter_index_[i] != kNone) {
+      in.torque = TopStringTorque(x, when, side, in.speed);
+      in.command -= node.torque_feedback.gain * (in.torque - x[filter_index_[i]]);
+    }
+    return in;
+  }
+  // The torque the top feeds into the string at time t turning at v (what a torque sub there measures): minus the
+  // string's force on it. Without dashpots that force reads only the wave arriving at the top; with them both ends'
+  // speeds at the state's own time (Network::Validate refuses a delay there).
+  double TopStringTorque(const State& x, double t, Side side, double v) const {
+    if (!kelvin_voigt_) return -chain_.TopForce(t, side, {v, 0.0});
+    return -chain_.EndForces(t, side, EndSpeeds(x, t, side, Massless::kBit)).top;
   }
 
   // An induction motor's supply: the setpoint (open loop), or the supply for the PI's torque demand at the drive's
@@ -558,7 +618,7 @@ class NetworkProcess {
   int dimension_ = 0;
   WaveChain chain_;
   WaveChain::EndSlopes slopes_;
-  std::vector<int> speed_index_, integral_index_, current_index_, flux_index_, motor_speed_index_;
+  std::vector<int> speed_index_, integral_index_, filter_index_, current_index_, flux_index_, motor_speed_index_;
   std::vector<int> frictional_nodes_;
   std::vector<Turn> regime_;
   std::vector<RegimeChange> changes_;
@@ -569,6 +629,9 @@ class NetworkProcess {
   double steady_torque_ = 0;
   double read_back_ = 0;
   double t_end_ = kInf;
+  double delay_ = 0;  // the top's actuator delay
+  std::optional<integration::HermiteHistory> top_speed_history_;  // with a delay
+  bool restarted_ = true;  // the next committed piece starts after an event or a breakpoint
   int lateral_index_ = kNone;  // the bit's lateral BHA
   bool kelvin_voigt_ = false;
   int dissipated_index_ = kNone;

@@ -19,10 +19,22 @@ struct StickSlipStatistics {
   int stick_onsets = 0;
   double stick_fraction = 0;       // time stuck / window length
   double speed_max = 0, speed_min = 0, speed_mean = 0;  // rad/s
+  // The industry's stick-slip severity: (max - min) / (2 mean) of the speed over each 20-s window laid from the start
+  // of the statistics window (the whole window if it is shorter), the median over those windows. 0 for a steady
+  // speed, 1 for a full stick-slip swing from rest to twice the mean. NaN where a window's mean speed is not > 0.
+  double severity = 0;
+  int severity_windows = 0;
   nlohmann::json ToJson() const;   // NaN -> null
 };
 
 // speed samples (time, value) give max/min; the mean speed is exact from the angle at the window ends.
+constexpr double kSeverityWindowS = 20;
+
+// The severity above over [begin, end], from speed samples; the mean of each window is exact from the angle when it is
+// given (non-empty), else the mean of the samples.
+double StickSlipSeverity(const std::vector<double>& time_s, const std::vector<double>& speed_rad_s,
+                         const std::vector<double>& angle_rad, double begin, double end, int* windows = nullptr);
+
 StickSlipStatistics ComputeStickSlipStatistics(const std::vector<StuckInterval>& stuck,
                                                const std::vector<double>& time_s,
                                                const std::vector<double>& speed_rad_s,
