@@ -116,6 +116,10 @@ void Adopt(const Judged& j, Recording& model, FeatureSet& fit, FeatureSet& held_
   fit_error = j.fit_error, held_out_error = j.held_out_error;
 }
 
+// How much a held-out error moves by chance: for a model within its features' noise the error (the mean of K squared
+// differences in scales) varies by sqrt(2 / K) from one window to the next.
+double ErrorChance(const FeatureSet& held_out) { return std::sqrt(2.0 / std::max(1.0, FeatureCount(held_out))); }
+
 // A calibrated base before effects: the base's uncertain parameters, within their prior ranges, fitted in order, each
 // to what it moves (a level: the fit window's means and period; the motion: all its features). `base` and
 // loop.baseline_document take each calibration that, judged over draws through both windows, brings the base closer
@@ -148,7 +152,7 @@ void CalibrateBase(const ModelRuns& runner, const LoopOptions& o, const std::fun
     loop.model_runs += static_cast<int>(draws.models.size()) + draws.failed;
     return runner.Judge(std::move(draws));
   };
-  const double chance = std::sqrt(2.0 / std::max(1.0, FeatureCount(loop.recording_held_out)));
+  const double chance = ErrorChance(loop.recording_held_out);
   Judged current = judge(base);
   for (const Calibration& calibration : calibrations) {
     const bool motion = calibration.target == CalibrationTarget::kMotion;
@@ -190,15 +194,13 @@ void CalibrateBase(const ModelRuns& runner, const LoopOptions& o, const std::fun
     // cost of the motion point to an effect (side friction raising the mean torque, not a softer rock; dev rec01:
     // sigma*l to its -20 % bound, the fit window's error 84 -> 99), and a rock that matches the fit window's transient
     // may leave the recording's regime later (train rec13: eps -10 %, the fit window 16.8 -> 0.44, held out 0.41 -> 20).
-    Judged after;
-    bool judged = false;
+    std::optional<Judged> after;
     try {
       after = judge(calibrated(best.best));
-      judged = true;
     } catch (const NumericalError&) {
     }
-    const bool kept = judged && after.fit_error < current.fit_error &&
-                      after.held_out_error < current.held_out_error + chance;
+    const bool kept = after && after->fit_error < current.fit_error &&
+                      after->held_out_error < current.held_out_error + chance;
     std::size_t k = 0;
     std::string moved;
     for (const EffectParameter& p : calibration.parameters.parameters) {
@@ -210,15 +212,15 @@ void CalibrateBase(const ModelRuns& runner, const LoopOptions& o, const std::fun
     say("base calibration on the fit window's " + std::string(motion ? "motion (every feature" : "levels (means, period") +
         (draws > 1 ? ", " + std::to_string(draws) + " draws)" : ")") + ": " + moved + "; judged over " +
         std::to_string(o.draws) + " draws: fit window's error " + Significant(current.fit_error, 3) + " -> " +
-        (judged ? Significant(after.fit_error, 3) + ", held out " + Significant(current.held_out_error, 3) + " -> " +
-                      Significant(after.held_out_error, 3)
+        (after ? Significant(after->fit_error, 3) + ", held out " + Significant(current.held_out_error, 3) + " -> " +
+                     Significant(after->held_out_error, 3)
                 : std::string("a failed run")) +
         (kept ? ": kept" : ": not kept, the case's value stands"));
     if (kept) {
       base = calibrated(best.best);
       loop.baseline_document = base;
       loop.calibration_kept = true;
-      current = std::move(after);
+      current = std::move(*after);
     }
   }
 }
@@ -474,7 +476,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   //    AIC on the fit window. Each feature's difference is counted in the spread between two runs of the same
   //    physics, so for a model that matches, the error (the mean of K squared differences) is about 1 and varies by
   //    sqrt(2 / K) from one window to the next: a smaller gain is not evidence, whatever the relative margin says.
-  loop.error_chance = std::sqrt(2.0 / std::max(1.0, FeatureCount(loop.recording_held_out)));
+  loop.error_chance = ErrorChance(loop.recording_held_out);
   auto qualifies = [&](const Candidate& c, double reference_error, double reference_aic) {
     return c.failure.empty() && c.held_out_error < (1 - o.margin) * reference_error &&
            reference_error - c.held_out_error > loop.error_chance && c.aic < reference_aic;
