@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "drillwave/core/median.hpp"
 #include "drillwave/core/sampled.hpp"
 
 namespace drillwave::cases {
@@ -27,13 +28,6 @@ double OscillationPeriod(const std::vector<double>& t, const std::vector<double>
     }
   }
   return crossings.size() >= 2 ? (crossings.back() - crossings.front()) / (crossings.size() - 1) : nan;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
 // (max - min) / (2 mean) of the speed over [a, b].

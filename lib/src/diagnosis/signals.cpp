@@ -21,20 +21,6 @@ double Std(const std::vector<double>& v) {
 }
 
 namespace {
-// The median of v, reordering v (the Hampel filter's windows: no copy per sample).
-double MedianInPlace(std::vector<double>& v) {
-  if (v.empty()) return std::nan("");
-  const std::size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
-  if (v.size() % 2 == 1) return v[mid];
-  const double upper = v[mid];
-  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
-}
-}  // namespace
-
-double Median(std::vector<double> v) { return MedianInPlace(v); }
-
-namespace {
 // The median of a sorted window and the median of its absolute deviations from it (the MAD), by walking outwards from
 // the middle: the deviations below and above the median are each sorted already.
 std::pair<double, double> MedianAndMad(const std::vector<double>& sorted) {

@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "drillwave/core/median.hpp"
 #include "drillwave/diagnosis/recording.hpp"
 
 namespace drillwave::diagnosis {
@@ -58,7 +59,7 @@ std::vector<Interval> Runs(const std::vector<double>& time_s, const std::vector<
 // Pearson correlation of two equally long series (NaN if either is constant).
 double Correlation(const std::vector<double>& a, const std::vector<double>& b);
 
-double Median(std::vector<double> v);
+using drillwave::Median;  // core/median.hpp
 
 // Mean and population standard deviation (NaN for an empty series).
 double Mean(const std::vector<double>& v);
