@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/controller_comparison.hpp"
 #include "drillwave/cases/edge_tracking.hpp"
 #include "drillwave/cases/orbits.hpp"
 #include "drillwave/cases/stability.hpp"
@@ -565,6 +566,58 @@ int Orbits(const std::string& file, const std::string& out_dir, const std::vecto
   return 0;
 }
 
+// compare-controllers' options as given (NaN, empty: not given, the library's defaults).
+struct ControllersArguments {
+  double handover_s = std::nan(""), after_s = std::nan(""), tuning_period_s = std::nan("");
+  std::string stiff_pi;  // "J,kp,ki"
+};
+std::optional<double> GivenOrNot(double v) { return std::isnan(v) ? std::nullopt : std::optional<double>(v); }
+
+// The case's string under each top-drive law, each taking over at the same instant of the stiff PI's stick-slip.
+int CompareControllers(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
+                       const ControllersArguments& args) {
+  const nlohmann::json doc = LoadCaseDocument(file, overrides);
+  drillwave::cases::ControllerComparisonSpec spec;
+  spec.handover_s = GivenOrNot(args.handover_s);
+  spec.after_s = GivenOrNot(args.after_s).value_or(spec.after_s);
+  spec.tuning_period_s = GivenOrNot(args.tuning_period_s);
+  if (spec.tuning_period_s && !(*spec.tuning_period_s > 0))
+    throw drillwave::InputError("--tuning-period",
+                                "expected a period > 0 s, got " + drillwave::Significant(args.tuning_period_s, 6));
+  if (!args.stiff_pi.empty()) {
+    const std::vector<double> v = drillwave::cases::ParseSweepValues(args.stiff_pi, "--stiff-pi");
+    if (v.size() != 3)
+      throw drillwave::InputError("--stiff-pi", "expected J,kp,ki (three numbers), got " + args.stiff_pi);
+    spec.stiff_pi = drillwave::cases::StiffPi{v[0], v[1], v[2]};
+  }
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
+  std::cout << "drillwave: top-drive laws on '" << doc.value("name", std::string("case")) << "' (stiff PI, SoftSpeed, "
+            << "Z-Torque), each from the same stick-slip" << std::endl;
+  drillwave::cases::ControllerComparison c;
+  try {
+    c = drillwave::cases::CompareControllers(doc, spec);
+  } catch (const drillwave::InputError& e) {  // the spec's fields are this command's options
+    const std::string& field = e.json_path();
+    const std::string option = field == "handover_s" ? "--handover" : field == "after_s" ? "--after"
+                               : field == "tuning_period_s" ? "--tuning-period" : "";
+    if (option.empty()) throw;
+    throw drillwave::InputError(option, std::string(e.what()).substr(field.size() + 2));
+  }
+  drillwave::cases::WriteControllerComparison(doc, c, out_dir);
+  for (const auto& r : c.laws) {
+    const std::string suppression =
+        r.suppressed_after_s ? "stick-slip suppressed after " + drillwave::Significant(*r.suppressed_after_s, 3) + " s"
+                             : std::string("not suppressed");
+    std::cout << "  " << r.law << ": " << r.verdict << " (rightmost Re s " << drillwave::Significant(r.rightmost_re, 4)
+              << " 1/s), severity " << drillwave::Significant(r.severity, 3) << ", top torque std "
+              << drillwave::Significant(r.torque_std_Nm, 4) << " N m (reduction "
+              << drillwave::Significant(r.torque_reduction_pct, 3) << " %), " << suppression << std::endl;
+  }
+  std::cout << "wrote " << std::filesystem::absolute(out_dir).string()
+            << "/controllers.csv, controllers.md, controllers.svg, case.json" << std::endl;
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -755,6 +808,26 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   estimate->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 
+  auto* controllers = app.add_subcommand(
+      "compare-controllers", "run a case's string under each top-drive law against stick-slip (the stiff PI as given, "
+                             "SoftSpeed tuned to its stick-slip period, Z-Torque matched to the pipe), each taking "
+                             "over at the same instant of the stiff PI's stick-slip: controllers.csv, controllers.md "
+                             "(verdict, severity, torque fluctuation, time to suppress), controllers.svg");
+  ControllersArguments controllers_args;
+  std::string controllers_out = "drillwave-controllers";
+  controllers->add_option("case", case_file, "case JSON file with a PI top drive (or give --stiff-pi)")->required();
+  controllers->add_option("--handover", controllers_args.handover_s,
+                          "when the laws take over [s] (default: the start of the case's statistics window)");
+  controllers->add_option("--after", controllers_args.after_s,
+                          "the runs end this long after it [s] (default 60, >= 20)");
+  controllers->add_option("--tuning-period", controllers_args.tuning_period_s,
+                          "SoftSpeed's stick-slip period [s] (default: the stiff PI's after the handover)");
+  controllers->add_option("--stiff-pi", controllers_args.stiff_pi,
+                          "J,kp,ki: the stiff PI top drive (inertia, gains) replacing the case's top (needed for a "
+                          "top that is not a PI top drive, e.g. dissipative)");
+  controllers->add_option("--out,-o", controllers_out, "output folder (written all or nothing)");
+  controllers->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
+
   auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
 
   try {
@@ -791,6 +864,7 @@ int main(int argc, char** argv) {
     if (fit->parsed())
       return Fit(case_file, recording_file, sidecar_file, overrides, maps, window, fit_params, fit_features,
                  max_evaluations, fit_out);
+    if (controllers->parsed()) return CompareControllers(case_file, controllers_out, overrides, controllers_args);
     if (compare->parsed()) return Compare(case_file, recording_file, sidecar_file, overrides, maps, window, compare_out);
     if (inspect->parsed()) return Inspect(recording_file, inspect_out, bit_channel, top_channel);
     if (stability->parsed()) {

@@ -52,7 +52,7 @@ waves::Node PiTop(double speed, double inertia, double kp, double ki) {
 waves::Node StiffPiTop(double speed) { return PiTop(speed, 500, 5000, 5000); }
 waves::Node SoftTorqueTop(double speed, double gain, double time_constant) {
   waves::Node top = StiffPiTop(speed);
-  top.torque_feedback = {gain, time_constant};
+  top.law.torque_feedback = {gain, time_constant};
   return top;
 }
 waves::Node ZTorqueTop(double speed) { return SoftTorqueTop(speed, 1 / kPipe.impedance, 5); }
@@ -146,7 +146,7 @@ Fraction TopImpedance(const waves::Node& top, Complex s) {
   switch (top.drive) {
     case waves::Drive::kSpeedDashpot: return {top.drive_damping, 1.0};
     case waves::Drive::kPiSpeedController: {
-      const double g = top.torque_feedback.gain, tf = top.torque_feedback.time_constant_s;
+      const double g = top.law.torque_feedback.gain, tf = top.law.torque_feedback.time_constant_s;
       if (g == 0) return {j * s * s + pi_poly, s};
       return {(j * s * s + pi_poly) * (1.0 + tf * s), s * (1.0 + tf * s) + g * pi_poly * tf * s};
     }
@@ -559,22 +559,22 @@ TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedZTorqueTop) {
                                 "Z-Torque top, pipe + collars at 7 rad/s");
 }
 
-// An actuator delay d of the PI top's torque (waves::Node::actuator_delay_s): retarded terms at d, the string torque's
+// An actuator delay d of the PI top's torque (TopDriveLaw::actuator_delay_s): retarded terms at d, the string torque's
 // arriving waves neutral at tau + d. Behind the stiff PI (kp = 5000 = 17 Z, bandwidth kp / J = 10 rad/s) 50 ms already
 // make the string's harmonics grow under Z-Torque at 4 rad/s, and 100 ms under the plain stiff PI at 6 rad/s (stable
 // without delay); with 20 ms the SoftTorque top's modes below 30 rad/s still decay (a harmonic at 59 rad/s grows).
 // Kicked by 1e-9 where the growth is fast, so that it stays linear over the window.
 TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedDelayedTopDrive) {
   waves::Node z_torque = ZTorqueTop(4);
-  z_torque.actuator_delay_s = 0.05;
+  z_torque.law.actuator_delay_s = 0.05;
   ExpectGrowthRatesOfSimulation(Chain(z_torque, {kPipe}, StribeckBit()), 1e-9, 1, 11,
                                 "Z-Torque top, 50 ms delay, 4 rad/s", 1);
   waves::Node stiff = StiffPiTop(6);
-  stiff.actuator_delay_s = 0.1;
+  stiff.law.actuator_delay_s = 0.1;
   ExpectGrowthRatesOfSimulation(Chain(stiff, {kPipe}, StribeckBit()), 1e-9, 1, 21,
                                 "stiff PI top, 100 ms delay, 6 rad/s", 1);
   waves::Node soft = SoftTorqueTop(6, 3e-4, 5);
-  soft.actuator_delay_s = 0.02;
+  soft.law.actuator_delay_s = 0.02;
   ExpectGrowthRatesOfSimulation(Chain(soft, {kPipe, kCollars}, StribeckBit()), 1e-3, 2, 30,
                                 "SoftTorque top, 20 ms delay, pipe + collars at 6 rad/s");
 }

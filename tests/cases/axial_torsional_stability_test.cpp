@@ -5,9 +5,11 @@
 // channel is one uniform section of impedance Z and travel time tau. Seen from the bit it pulls with -Z g(s) v_b,
 //   g(s) = (1 - R e^{-2 s tau}) / (1 + R e^{-2 s tau}),  R = (Z - Y_top) / (Z + Y_top)
 // (Aarsnes & Aamo 2016's g with R in place of -eta), Y_top = J s + kp + ki / s for the PI top drive and M_h s for the
-// hoist under a constant hook force. With D_t = J_b s + Z_t g_t, D_a = M_b s + Z_a g_a, E = n (1 - e^{-s t_n0}) / s
-// and delta d = E (v_b - (V0 / Omega0) w_b), the bit's two equations D_t w_b + (a^2 eps / 2) delta d = 0 and
-// D_a v_b + a zeta eps delta d = 0 have the determinant
+// hoist under a constant hook force. A top-drive law (model::TopDriveLaw) makes the top's (J s + C L) / (1 + g C H L):
+// the PI's C = kp + ki / s behind the actuator delay L = e^{-s d}, tracking the set-point less g times the string
+// torque high-passed by H = s tau_f / (1 + s tau_f). With D_t = J_b s + Z_t g_t, D_a = M_b s + Z_a g_a,
+// E = n (1 - e^{-s t_n0}) / s and delta d = E (v_b - (V0 / Omega0) w_b), the bit's two equations
+// D_t w_b + (a^2 eps / 2) delta d = 0 and D_a v_b + a zeta eps delta d = 0 have the determinant
 //   F(s) = D_t D_a + E (a zeta eps D_t - (a^2 eps / 2) (V0 / Omega0) D_a),
 // whose zeros must be the spectrum's roots.
 #include <algorithm>
@@ -53,6 +55,7 @@ struct ClosedForm {
   double gear_ratio = 1, gear_k = 0, gear_c = 0, j_motor = 0, dc_k = 0, dc_r = 0, dc_l = 0;  // optional top parts
   double rig_m1 = 0, rig_m2 = 0, rig_g1 = 0, rig_g2 = 0, rig_k01 = 0, rig_k12 = 0;            // optional hoisting rig
   double hoist_c = 0;                                                                          // optional hoist dashpot
+  double feedback_gain = 0, feedback_tau = 0, delay = 0;                                       // optional top-drive law
   int pieces = 1;
   double kv_t = 0, kv_a = 0;  // optional Kelvin-Voigt dashpots eta K / piece length across each piece
   explicit ClosedForm(const nlohmann::json& doc) {
@@ -87,6 +90,10 @@ struct ClosedForm {
       rig_g1 = r["derrick_damping_Ns_per_m"], rig_g2 = r["block_damping_Ns_per_m"];
       rig_k01 = r["ground_stiffness_N_per_m"], rig_k12 = r["cable_stiffness_N_per_m"];
     }
+    const std::string type = top.value("type", std::string("top_drive"));
+    if (type == "soft_torque") feedback_gain = top.value("feedback_gain_rad_per_Nms", 0.0);
+    if (type == "z_torque") feedback_gain = 1 / top.value("impedance_Nms_per_rad", zt);
+    feedback_tau = top.value("feedback_time_constant_s", 0.0), delay = top.value("actuator_delay_s", 0.0);
     if (top.contains("motor")) {
       dc_k = gear_ratio * top["motor"]["motor_constant_Nm_per_A"].get<double>();
       dc_r = top["motor"]["resistance_ohm"], dc_l = top["motor"]["inductance_H"];
@@ -99,6 +106,10 @@ struct ClosedForm {
   Complex TopImpedance(Complex s) const {
     const Complex drive = dc_k > 0 ? (dc_r * (kp + ki / s) + dc_k * dc_k) / (dc_l * s + dc_r) : kp + ki / s;
     const double j_referred = gear_ratio * gear_ratio * j_motor;
+    if (feedback_gain > 0 || delay > 0) {  // a law: rigid gear, no motor
+      const Complex late = drive * std::exp(-s * delay), high_pass = s * feedback_tau / (1.0 + s * feedback_tau);
+      return ((j_top + j_referred) * s + late) / (1.0 + feedback_gain * late * high_pass);
+    }
     if (gear_k == 0) return (j_top + j_referred) * s + drive;
     const Complex motor = j_referred * s + drive, gear = gear_k / s + gear_c;
     return j_top * s + gear * motor / (gear + motor);
@@ -208,6 +219,24 @@ TEST(AxialTorsionalStability, GearedAndMotorTopsAreTheZerosOfTheClosedForm) {
   ExpectRootsAreTheZerosOfTheClosedForm(dc, "undamped string in 2 pieces, DC motor through a rigid gear");
 }
 
+// The top-drive laws of issue 35 on the coupled string: SoftTorque with explicit gains, Z-Torque matched to the
+// pipe, and Z-Torque behind a 20 ms actuator delay (its retarded terms carried into the coupled system; 50 ms make the
+// stiff speed loop, kp / J = 40 1/s, itself unstable with a root near 14 + 38i from which Newton on F, whose value
+// there is 4e-8 of its size 0.01 away, leaves).
+TEST(AxialTorsionalStability, TopDriveLawsAreTheZerosOfTheClosedForm) {
+  nlohmann::json soft = Undamped(2);
+  soft["model"]["top"]["type"] = "soft_torque";
+  soft["model"]["top"]["feedback_gain_rad_per_Nms"] = 2e-4;
+  soft["model"]["top"]["feedback_time_constant_s"] = 5;
+  ExpectRootsAreTheZerosOfTheClosedForm(soft, "undamped string in 2 pieces, SoftTorque top");
+  nlohmann::json z = Undamped(2);
+  z["model"]["top"]["type"] = "z_torque";
+  z["model"]["top"]["feedback_time_constant_s"] = 5;
+  ExpectRootsAreTheZerosOfTheClosedForm(z, "undamped string in 2 pieces, Z-Torque top");
+  z["model"]["top"]["actuator_delay_s"] = 0.02;
+  ExpectRootsAreTheZerosOfTheClosedForm(z, "undamped string in 2 pieces, Z-Torque top behind 20 ms");
+}
+
 // The hoist's dashpot to the block paying out at the steady rate (hoist/damping_Ns_per_m), matched to the axial
 // impedance: Y_top = M_h s + c_h.
 TEST(AxialTorsionalStability, HoistDashpotIsTheZeroOfTheClosedForm) {
@@ -262,11 +291,13 @@ TEST(AxialTorsionalStability, HeavyHoistingRigRingsAtItsTwoMassFrequencies) {
 }
 
 // Growth rate of a channel's component at angular frequency omega over [t0, t1]: the Hann-windowed Fourier amplitude
-// over windows of four periods centred every 0.05 s, least-squares slope of the logs. A mode e^{(sigma + i omega) t}
-// gives sigma; the other modes leak little through the window.
-double ModeGrowthRate(const RunResult& run, const std::string& channel, double omega, double t0, double t1) {
+// over windows of four periods (or `window` s) centred every 0.05 s, least-squares slope of the logs. A mode
+// e^{(sigma + i omega) t} gives sigma; the other modes leak little through the window (a string's harmonics, about
+// pi / tau apart, need a window of a few 2 tau).
+double ModeGrowthRate(const RunResult& run, const std::string& channel, double omega, double t0, double t1,
+                      double window = 0) {
   const std::vector<double>& x = run.channel(channel).values;
-  const double window = 8 * M_PI / omega;
+  if (window == 0) window = 8 * M_PI / omega;
   double sx = 0, sy = 0, sxx = 0, sxy = 0, mean = 0;
   for (double v : x) mean += v / x.size();
   int n = 0;
@@ -428,6 +459,56 @@ TEST(AxialTorsionalStability, UnbalancedBhaModesDecayAsSimulated) { ExpectUnbala
 
 TEST(AxialTorsionalStability, UnbalancedBhaModesDecayAsSimulatedAtALargeWhirl) {
   ExpectUnbalancedModesDecayAsSimulated(12, 300);
+}
+
+// The top-drive laws on the coupled kind's torsion, with the Stribeck rock of json-cases/baseline-stribeck.json at
+// 60 rpm and no axial coupling (whose regenerative mode would swamp the torsional ones): velocity weakening makes the
+// stiff PI's stick-slip mode grow; SoftTorque (g = 5e-4 rad/s per N m, tau_f = 5 s) damps it, also behind a 20 ms
+// actuator delay, which makes a harmonic of the string grow instead (the rightmost root, near 69 rad/s); Z-Torque damps
+// the stick-slip mode fast and leaves the harmonics near 183 rad/s the slowest to decay. After a set-point blip the
+// bit speed's component at each root's frequency grows or decays at the root's real part: the run and the
+// linearization `stability` uses agree with the law, its filter and its delay in the loop. The harmonics, 5 rad/s
+// apart (pi / tau), are read through 3-s windows. Held to 3 % + 3e-3 1/s; the relative errors are printed.
+TEST(AxialTorsionalStability, TopDriveLawsModesGrowOrDecayAsSimulated) {
+  const nlohmann::json stribeck =
+      io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-stribeck.json");
+  const double w = 2 * M_PI;
+  struct Law {
+    const char* what;
+    nlohmann::json top;  // fields set on the case's top
+    double blip, im_min, im_max, t0, t1, window;
+  };
+  const nlohmann::json soft = {{"type", "soft_torque"}, {"feedback_gain_rad_per_Nms", 5e-4},
+                               {"feedback_time_constant_s", 5}};
+  nlohmann::json delayed = soft;
+  delayed["actuator_delay_s"] = 0.02;
+  const nlohmann::json z = {{"type", "z_torque"}, {"feedback_time_constant_s", 5}};
+  const Law laws[] = {{"stiff PI, stick-slip mode", {{"type", "top_drive"}}, 1e-6, 1, 3, 5, 30, 0},
+                      {"SoftTorque, stick-slip mode", soft, 1e-3, 1, 3, 5, 30, 0},
+                      {"SoftTorque behind 20 ms, stick-slip mode", delayed, 1e-3, 1, 3, 5, 30, 0},
+                      {"SoftTorque behind 20 ms, rightmost root", delayed, 1e-6, 60, 75, 2, 15, 3},
+                      {"Z-Torque, rightmost root", z, 1e-3, 175, 190, 1, 15, 3}};
+  for (const Law& law : laws) {
+    nlohmann::json doc = stribeck;
+    doc["model"]["top"].update(law.top);
+    const Case c = UncoupledRun(doc, {{"knots", {{0, w}, {0.05, w + law.blip}, {0.1, w}}}});
+    const auto points = c.model->Linearize();
+    ASSERT_EQ(points.size(), 1u) << law.what;
+    analysis::SpectrumOptions o;
+    o.im_max = 200;
+    const analysis::Spectrum sp = analysis::ComputeSpectrum(points[0].system, o);
+    const auto r = std::find_if(sp.roots.begin(), sp.roots.end(), [&](const analysis::CharacteristicRoot& x) {
+      return x.s.imag() > law.im_min && x.s.imag() < law.im_max;
+    });
+    ASSERT_NE(r, sp.roots.end()) << law.what;
+    const CaseRun run = RunCase(c);
+    const double measured = ModeGrowthRate(run.result, "bit_rpm", r->s.imag(), law.t0, law.t1, law.window);
+    std::printf("[ measured ] %s at 60 rpm, no axial coupling: root %.6f%+.6fi, simulated growth at its frequency over "
+                "[%.0f, %.0f] s %.6f 1/s (relative error %.1e); rightmost root %.6f%+.6fi\n", law.what, r->s.real(),
+                r->s.imag(), law.t0, law.t1, measured, std::abs(measured - r->s.real()) / std::abs(r->s.real()),
+                sp.roots.front().s.real(), sp.roots.front().s.imag());
+    EXPECT_NEAR(measured, r->s.real(), 0.03 * std::abs(r->s.real()) + 3e-3) << law.what;
+  }
 }
 
 }  // namespace

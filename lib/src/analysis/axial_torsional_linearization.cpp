@@ -2,6 +2,7 @@
 
 #include "drillwave/analysis/bha_whirl_linearization.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -39,6 +40,7 @@ waves::Network ChannelNetwork(const WaveChannel& ch, const AxialTorsionalString*
     top.motor = top_drive->dc_motor;
     top.induction = top_drive->induction_motor;
     top.gear = top_drive->gear;
+    top.law = top_drive->top_law;
     top.setpoint = model::Schedule(speed);
   }
   net.nodes.back().name = "bit";
@@ -128,17 +130,22 @@ NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string,
   };
   sys.a0 = scatter(ts.a0, map_t) + scatter(as.a0, map_a);
   // One term per distinct travel time (the pieces of a channel share theirs): the characteristic matrix then costs a
-  // few matrix sums instead of one per piece.
-  auto add_neutral = [&](double tau, const Eigen::MatrixXd& b) {
-    for (DelayTerm& d : sys.delays)
-      if (d.tau == tau) {
-        d.neutral += b;
-        return;
-      }
-    sys.delays.push_back({tau, {}, b});
+  // few matrix sums instead of one per piece. The top drive's actuator delay brings retarded terms too.
+  auto add_delay = [&](const DelayTerm& term, auto map) {
+    const Eigen::MatrixXd b = scatter(term.neutral, map);
+    auto it = std::find_if(sys.delays.begin(), sys.delays.end(), [&](const DelayTerm& d) { return d.tau == term.tau; });
+    if (it == sys.delays.end()) {
+      sys.delays.push_back({term.tau, {}, b});
+      it = sys.delays.end() - 1;
+    } else {
+      it->neutral += b;
+    }
+    if (term.retarded.size() == 0) return;
+    if (it->retarded.size() == 0) it->retarded = Eigen::MatrixXd::Zero(n, n);
+    it->retarded += scatter(term.retarded, map);
   };
-  for (const DelayTerm& d : ts.delays) add_neutral(d.tau, scatter(d.neutral, map_t));
-  for (const DelayTerm& d : as.delays) add_neutral(d.tau, scatter(d.neutral, map_a));
+  for (const DelayTerm& d : ts.delays) add_delay(d, map_t);
+  for (const DelayTerm& d : as.delays) add_delay(d, map_a);
   if (string.rig) {
     const model::HoistRig& r = *string.rig;
     const int y1 = rig, y1d = rig + 1, stretch = rig + 2, hoist = map_a(IndexOf(axial.state_names, "top_speed_rad_s"));

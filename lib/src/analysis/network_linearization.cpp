@@ -63,8 +63,8 @@ double Supply(const Node& top, double set, double w, bool& saturated) {
     case Drive::kTorque: return set;
     case Drive::kPiSpeedController:
       u = top.pi.Proportional(set, w);
-      saturated = top.torque_limit > 0 && std::abs(u) >= top.torque_limit;
-      return Clamp(u, top.torque_limit);
+      saturated = top.law.torque_limit > 0 && std::abs(u) >= top.law.torque_limit;
+      return Clamp(u, top.law.torque_limit);
     case Drive::kDcMotorVoltage:
     case Drive::kDcMotorSpeed: {
       const double k = ReferredMotorConstant(top);
@@ -113,7 +113,7 @@ NetworkOperatingPoint PointAt(const Network& net, double set, double w) {
 // induction motor below its pull-out torque (SteadySupplyFrequency throws beyond it).
 bool CanHold(const Node& top, const NetworkOperatingPoint& p) {
   const waves::DcMotor& m = top.motor;
-  if (top.drive == Drive::kPiSpeedController && top.torque_limit > 0 && p.top_torque_Nm >= top.torque_limit)
+  if (top.drive == Drive::kPiSpeedController && top.law.torque_limit > 0 && p.top_torque_Nm >= top.law.torque_limit)
     return false;
   if (top.has_dc_motor() && m.voltage_limit > 0) {
     const double k = ReferredMotorConstant(top);
@@ -370,7 +370,7 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
     }
     // What a PI top's controller reads (its speed and the string torque) it reads an actuator delay late: those terms
     // are retarded by the delay, and the arriving waves in the string torque neutral at travel time + delay.
-    const double late = node.drive == Drive::kPiSpeedController ? node.actuator_delay_s : 0.0;
+    const double late = node.drive == Drive::kPiSpeedController ? node.law.actuator_delay_s : 0.0;
     auto add_read_speed = [&](int row, double value) {
       if (late == 0) sys.a0(row, vd) += value;
       else delay_term(late).retarded(row, vd) += value;
@@ -396,7 +396,7 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
     // factor * (the PI's speed command less the set-point) into row `row`: -gain (T - T_lp) with torque feedback.
     auto add_command = [&](int row, double factor) {
       if (filter[i] < 0) return;
-      const double gain = node.torque_feedback.gain;
+      const double gain = node.law.torque_feedback.gain;
       add_string_torque(row, -factor * gain);
       sys.a0(row, filter[i]) += factor * gain;
     };
@@ -450,7 +450,7 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
       add_command(integral[i], 1.0);
     }
     if (filter[i] >= 0) {  // T_lp' = (T - T_lp) / time constant
-      const double rate = 1 / node.torque_feedback.time_constant_s;
+      const double rate = 1 / node.law.torque_feedback.time_constant_s;
       add_string_torque(filter[i], rate);
       sys.a0(filter[i], filter[i]) -= rate;
     }

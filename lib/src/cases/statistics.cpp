@@ -61,14 +61,20 @@ nlohmann::json StickSlipStatistics::ToJson() const {
           {"stick_slip_severity_windows", severity_windows}};
 }
 
-double StickSlipSeverity(const std::vector<double>& time_s, const std::vector<double>& speed_rad_s,
-                         const std::vector<double>& angle_rad, double begin, double end, int* windows) {
+std::vector<std::pair<double, double>> SeverityWindows(double begin, double end) {
   const double length = end - begin;
   const int count = std::max(1, static_cast<int>(std::floor(length / kSeverityWindowS * (1 + 1e-12))));
   const double width = count == 1 ? length : kSeverityWindowS;
+  std::vector<std::pair<double, double>> windows;
+  for (int k = 0; k < count && length > 0; ++k) windows.emplace_back(begin + k * width, begin + (k + 1) * width);
+  return windows;
+}
+
+double StickSlipSeverity(const std::vector<double>& time_s, const std::vector<double>& speed_rad_s,
+                         const std::vector<double>& angle_rad, double begin, double end, int* windows) {
   std::vector<double> per_window;
-  for (int k = 0; k < count && length > 0; ++k) {
-    const double s = WindowSeverity(time_s, speed_rad_s, angle_rad, begin + k * width, begin + (k + 1) * width);
+  for (const auto& [a, b] : SeverityWindows(begin, end)) {
+    const double s = WindowSeverity(time_s, speed_rad_s, angle_rad, a, b);
     if (std::isnan(s)) return std::numeric_limits<double>::quiet_NaN();  // a window that does not turn forward
     per_window.push_back(s);
   }

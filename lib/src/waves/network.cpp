@@ -38,17 +38,22 @@ void Network::Validate() const {
       throw std::invalid_argument("node '" + n.name + "': set-valued friction needs an inertia > 0");
     if (n.drive == Drive::kPiSpeedController && n.massless())
       throw std::invalid_argument("node '" + n.name + "': a PI speed controller needs an inertia > 0");
-    if (n.torque_feedback.active() &&
-        (n.drive != Drive::kPiSpeedController || n.gear.compliant() || &n != &nodes.front() ||
-         !std::isfinite(n.torque_feedback.gain) || !(n.torque_feedback.time_constant_s > 0) ||
-         !std::isfinite(n.torque_feedback.time_constant_s)))
+    const model::TopDriveLaw& law = n.law;
+    const bool pi_top = n.drive == Drive::kPiSpeedController && &n == &nodes.front();
+    if (law.torque_feedback.active() &&
+        (!pi_top || n.gear.compliant() || !std::isfinite(law.torque_feedback.gain) ||
+         !(law.torque_feedback.time_constant_s > 0) || !std::isfinite(law.torque_feedback.time_constant_s)))
       throw std::invalid_argument("node '" + n.name + "': torque feedback belongs to a PI top drive without a compliant "
                                   "gear, with a finite gain and a filter time constant > 0");
-    if (n.actuator_delay_s != 0 &&
-        (n.drive != Drive::kPiSpeedController || n.gear.compliant() || &n != &nodes.front() || HasKelvinVoigt() ||
-         !(n.actuator_delay_s > 0) || !std::isfinite(n.actuator_delay_s)))
+    if (law.actuator_delay_s != 0 &&
+        (!pi_top || n.gear.compliant() || HasKelvinVoigt() || !(law.actuator_delay_s > 0) ||
+         !std::isfinite(law.actuator_delay_s)))
       throw std::invalid_argument("node '" + n.name + "': an actuator delay (finite, > 0) belongs to a PI top drive "
                                   "without a compliant gear, on a string without Kelvin-Voigt dashpots");
+    if (law.handover.time_s != 0 && (!pi_top || !(law.handover.time_s > 0) || !std::isfinite(law.handover.time_s) ||
+                                     !(n.pi.ki > 0)))
+      throw std::invalid_argument("node '" + n.name + "': a handover (at a finite time > 0) belongs to a PI top drive "
+                                  "whose integral gain ki > 0 takes the integral torque over");
     if (n.has_dc_motor() && (n.massless() || !(n.motor.motor_constant > 0) || !(n.motor.armature_resistance > 0) ||
                              !(n.motor.armature_inductance > 0) || !(n.motor.voltage_limit >= 0)))
       throw std::invalid_argument("node '" + n.name + "': a DC motor needs an inertia, a motor constant, armature "

@@ -11,7 +11,7 @@
 
 #include <boost/math/tools/roots.hpp>
 
-#include "drillwave/integration/hermite_history.hpp"
+#include "drillwave/dynamics/pi_top_drive.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/waves/wave_chain.hpp"
 
@@ -48,7 +48,8 @@ ChainSpec ChainOf(const Network& net) {
 // The mutable side of a run: the string's waves (a WaveChain: the inner nodes are massless, their waves stored split
 // at the kinks and jumps that arrive there), the ends' friction regimes, the breakpoints pending at the ends.
 // State layout: the bit angle (for statistics and, later, the cut-depth delay), then the speeds of the ends with
-// inertia, then PI integrals, a PI top's torque-feedback filter (the low-passed string torque), DC motor currents,
+// inertia, then PI integrals, a PI top's torque-feedback filter (the low-passed string torque; the speed controllers
+// themselves are dynamics::PiTopDrive components), DC motor currents,
 // induction motor fluxes (4 each), for an end behind a compliant gear its motor's speed (referred to the node) and
 // the gear's twist, the bit's lateral BHA (x, y, x', y'), and with
 // Kelvin-Voigt damping and record_energy the energy the dashpots have dissipated. The top's angle is not integrated:
@@ -90,12 +91,12 @@ class NetworkProcess {
     for (int i : ends)
       if (net.nodes[i].has_set_valued_friction()) frictional_nodes_.push_back(i);
     steady_torque_ = net_.SteadyTopTorque();
-    delay_ = net.top().actuator_delay_s;
-    if (delay_ > 0)  // the top's speed as its delayed controller reads it; steady before the start
-      top_speed_history_.emplace(1, [v0 = net.initial.speed_rad_s](double, double* value, double* rate) {
-        *value = v0, *rate = 0;
-      });
-    read_back_ = 2.0 * net.LargestTravelTime() + 1.0 + delay_;  // what the delays can still reach, output look-ups
+    controllers_.resize(num_nodes_);
+    for (int i : ends)
+      if (net.nodes[i].has_speed_integral())
+        controllers_[i].emplace(net.nodes[i].pi, net.nodes[i].law, net.nodes[i].setpoint, net.initial.speed_rad_s);
+    // What the delays can still reach, output look-ups.
+    read_back_ = 2.0 * net.LargestTravelTime() + 1.0 + net.top().law.actuator_delay_s;
     if (!kelvin_voigt_) {
       if (!KnownSpeed(0)) top_end_.emplace(*this, 0, -slopes_.top_top);
       if (!KnownSpeed(bit_)) bit_end_.emplace(*this, bit_, -slopes_.bit_bit);
@@ -107,7 +108,7 @@ class NetworkProcess {
 
   int Dimension() const { return dimension_; }
   double MaxStep() const {
-    return delay_ > 0 ? std::min(net_.SmallestTravelTime(), delay_) : net_.SmallestTravelTime();
+    return controllers_[0] ? controllers_[0]->MaxStep(net_.SmallestTravelTime()) : net_.SmallestTravelTime();
   }
   void BeginStep(double t0) { step_start_ = t0; }
 
@@ -138,7 +139,7 @@ class NetworkProcess {
         if (node.drive == Drive::kInductionMotorSpeed)  // the demand that asks for this supply
           held = n * node.induction.TorqueDemandFor(supply, n * v0);
       }
-      if (integral_index_[i] != kNone) x[integral_index_[i]] = node.pi.IntegralHolding(held);
+      if (integral_index_[i] != kNone) x[integral_index_[i]] = controllers_[i]->InitialIntegral(held);
       // The filter has settled on the steady string torque: no correction of the set-point at the start.
       if (filter_index_[i] != kNone) x[filter_index_[i]] = steady_torque_ - node.SteadyLoad(v0);
       if (motor_speed_index_[i] != kNone) {
@@ -178,11 +179,10 @@ class NetworkProcess {
       const Node& node = net_.nodes[i];
       if (speed_index_[i] == kNone) continue;  // drives, motors and gears sit on ends with inertia (Validate)
       const double vi = i == 0 ? v.top : v.bit, vd = DriveSpeed(i, x, vi);
-      if (integral_index_[i] != kNone || filter_index_[i] != kNone) {
-        const ControllerInput in = ReadController(i, x, vd, t, side);
-        if (integral_index_[i] != kNone) dxdt[integral_index_[i]] = in.command - in.speed;
-        if (filter_index_[i] != kNone)
-          dxdt[filter_index_[i]] = (in.torque - x[filter_index_[i]]) / node.torque_feedback.time_constant_s;
+      if (const auto& controller = controllers_[i]) {
+        const Reading in = ReadController(i, x, vd, t, side);
+        dxdt[integral_index_[i]] = controller->IntegralRate(in);
+        if (filter_index_[i] != kNone) dxdt[filter_index_[i]] = controller->FilterRate(in, x[filter_index_[i]]);
       }
       if (current_index_[i] != kNone) {
         const DcMotor& m = node.motor;
@@ -243,12 +243,8 @@ class NetworkProcess {
     chain_.Commit(p.t0, p.t1, read_back_, arriving_);
     for (double t : arriving_)
       if (t < t_end_) end_breaks_.push(t);
-    if (top_speed_history_) {
-      const int v = speed_index_[0];
-      top_speed_history_->Append(p.t0, &p.x0[v], &p.f0[v], p.t1, &p.x1[v], &p.f1[v], &p.x_mid[v], restarted_);
-      top_speed_history_->DiscardBefore(p.t1 - read_back_);
-    }
-    restarted_ = false;
+    for (int i : {0, bit_})
+      if (controllers_[i]) controllers_[i]->Commit(p, speed_index_[i], read_back_);
   }
 
   int NumWitnesses() const { return 2 * static_cast<int>(frictional_nodes_.size()); }
@@ -270,29 +266,29 @@ class NetworkProcess {
     if (after == Turn::kStuck || before == Turn::kStuck) x[speed_index_[i]] = 0;
     changes_.push_back({t, i, before, after});
     chain_.ForgetStart();  // the end's waves kink here
-    restarted_ = true;
+    for (auto& controller : controllers_)
+      if (controller) controller->MarkRestart();
     return after != before;
   }
 
   // Breakpoints: the knots of the ends' input schedules (a repeated knot is a jump; behind an actuator delay also one
-  // delay later), and the kinks and jumps that the chain reports on their way to an end. Not the kinks a delayed
-  // controller reads one delay after they arrived: the loop smooths them (a slope jump of the torque read is a jump of
-  // the top's curvature), which the step control resolves. The start needs none: the chain finds where the first
-  // waves leave the steady prehistory (a string at rest under a top speed that starts at 20 rad/s).
+  // delay later), a controller's handover, and the kinks and jumps that the chain reports on their way to an end. Not
+  // the kinks a delayed controller reads one delay after they arrived: the loop smooths them (a slope jump of the
+  // torque read is a jump of the top's curvature), which the step control resolves. The start needs none: the chain
+  // finds where the first waves leave the steady prehistory (a string at rest under a top speed that starts at 20
+  // rad/s).
   double NextBreakpoint() const {
     double next = end_breaks_.empty() ? kInf : end_breaks_.top();
-    for (int i : {0, bit_}) next = std::min(next, net_.nodes[i].setpoint.NextKnotAfter(passed_));
-    if (delay_ > 0) {  // passed_ - delay_ may round below the knot just passed a delay late: skip it
-      const model::Schedule& setpoint = net_.top().setpoint;
-      double knot = setpoint.NextKnotAfter(passed_ - delay_);
-      while (knot + delay_ <= passed_) knot = setpoint.NextKnotAfter(knot);
-      next = std::min(next, knot + delay_);
+    for (int i : {0, bit_}) {
+      next = std::min(next, net_.nodes[i].setpoint.NextKnotAfter(passed_));
+      if (controllers_[i]) next = std::min(next, controllers_[i]->NextBreakpoint(passed_));
     }
     return next;
   }
-  void OnBreakpoint(double t) {
+  void OnBreakpoint(double t, State& x) {
     passed_ = t;
-    restarted_ = true;
+    for (int i : {0, bit_})
+      if (controllers_[i]) controllers_[i]->OnBreakpoint(t, x[integral_index_[i]]);
     chain_.ForgetStart();
     while (!end_breaks_.empty() && end_breaks_.top() <= t + 1e-12 * std::max(1.0, std::abs(t))) end_breaks_.pop();
   }
@@ -373,10 +369,8 @@ class NetworkProcess {
       case Drive::kPrescribedSpeed: return 0;
       case Drive::kSpeedDashpot: return node.drive_damping * (Setpoint(node, t, side) - v);
       case Drive::kTorque: return Setpoint(node, t, side);
-      case Drive::kPiSpeedController: {
-        const double u = SpeedControllerOutput(i, x, v, t, side);
-        return node.torque_limit > 0 ? std::clamp(u, -node.torque_limit, node.torque_limit) : u;
-      }
+      case Drive::kPiSpeedController: return controllers_[i]->Torque(t, side, ReadController(i, x, v, t, side),
+                                                                     x[integral_index_[i]]);
       case Drive::kDcMotorVoltage:
       case Drive::kDcMotorSpeed: return node.gear.ratio * node.motor.motor_constant * x[current_index_[i]];
       case Drive::kInductionMotor:
@@ -388,27 +382,15 @@ class NetworkProcess {
   // The PI speed controller of node i at drive speed v: kp (command - speed) + ki * integral, as the controller reads
   // them. A torque for the PI top drive and the induction motor's demand, a voltage for the DC motor's speed loop.
   double SpeedControllerOutput(int i, const State& x, double v, double t, Side side) const {
-    const ControllerInput in = ReadController(i, x, v, t, side);
-    return net_.nodes[i].pi.Output(in.command, in.speed, x[integral_index_[i]]);
+    return controllers_[i]->Output(t, side, ReadController(i, x, v, t, side), x[integral_index_[i]]);
   }
-  // What node i's speed controller reads at time t with the drive turning at vd: the speed it tracks (the set-point,
-  // less the torque feedback's gain times the high-passed string torque, TorqueFeedback), the drive's speed and the
-  // string torque at the top; with an actuator delay all as they were one delay earlier (the top's speed from its own
-  // history, the string torque from the wave that arrived then).
-  struct ControllerInput {
-    double command, speed, torque;
-  };
-  ControllerInput ReadController(int i, const State& x, double vd, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    ControllerInput in{0.0, vd, 0.0};
-    double when = t;
-    if (top_speed_history_ && i == 0) when = t - delay_, in.speed = top_speed_history_->Value(when, 0, side);
-    in.command = Setpoint(node, when, side);
-    if (filter_index_[i] != kNone) {
-      in.torque = TopStringTorque(x, when, side, in.speed);
-      in.command -= node.torque_feedback.gain * (in.torque - x[filter_index_[i]]);
-    }
-    return in;
+  // What node i's speed controller reads at time t with the drive turning at vd (dynamics::PiTopDrive::Read): with an
+  // actuator delay the top's speed from the controller's history, the string torque from the wave that arrived then.
+  using Reading = dynamics::PiTopDrive::Reading;
+  Reading ReadController(int i, const State& x, double vd, double t, Side side) const {
+    const double low_passed = filter_index_[i] != kNone ? x[filter_index_[i]] : 0.0;
+    return controllers_[i]->Read(t, side, vd, low_passed,
+                                 [&](double when, double speed) { return TopStringTorque(x, when, side, speed); });
   }
   // The torque the top feeds into the string at time t turning at v (what a torque sub there measures): minus the
   // string's force on it. Without dashpots that force reads only the wave arriving at the top; with them both ends'
@@ -629,9 +611,7 @@ class NetworkProcess {
   double steady_torque_ = 0;
   double read_back_ = 0;
   double t_end_ = kInf;
-  double delay_ = 0;  // the top's actuator delay
-  std::optional<integration::HermiteHistory> top_speed_history_;  // with a delay
-  bool restarted_ = true;  // the next committed piece starts after an event or a breakpoint
+  std::vector<std::optional<dynamics::PiTopDrive>> controllers_;  // per node: the ends' speed controllers
   int lateral_index_ = kNone;  // the bit's lateral BHA
   bool kelvin_voigt_ = false;
   int dissipated_index_ = kNone;

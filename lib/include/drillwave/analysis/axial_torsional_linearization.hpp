@@ -5,7 +5,8 @@
 //
 // Each channel is a chain of wave pieces between massless nodes (network_linearization.hpp builds its equations, with
 // the Kelvin-Voigt dashpots across the pieces): the torsional one between a top drive under a PI speed controller (its
-// output the torque, a DC motor's voltage or an induction motor's torque demand, through a rigid or compliant gear)
+// output the torque, with its law against stick-slip, or a DC motor's voltage or an induction motor's torque demand,
+// through a rigid or compliant gear)
 // and the bit's inertia, the axial one between the hoist's mass (under a constant hook force: no linear term; or
 // hanging from the hoisting rig) and the bit's mass. The bit-rock law couples them
 // through the depth of cut d = n (U(t) - U(t - t_n)), t_n solving Phi(t) - Phi(t - t_n) = 2 pi / n. About steady
@@ -25,6 +26,7 @@
 #include "drillwave/model/hoist_rig.hpp"
 #include "drillwave/model/jeffcott_bha.hpp"
 #include "drillwave/model/pi_controller.hpp"
+#include "drillwave/model/top_drive_law.hpp"
 
 namespace drillwave::analysis {
 
@@ -52,6 +54,9 @@ struct AxialTorsionalString {
   waves::DcMotor dc_motor{};
   model::InductionMotor induction_motor{};
   model::Gear gear{};
+  // The PI top drive's law (kPiSpeedController only): its torque feedback's filter joins the states, an actuator delay
+  // makes the controller's terms retarded (network_linearization.hpp).
+  model::TopDriveLaw top_law{};
   // The two-mass hoisting rig above the hoist (model::HoistRig, chapter eq. 2.22; absent: a constant hook force). The
   // hoist's mass then carries the block's too, the block's damper acts on the hoist's speed, and the derrick's
   // displacement and speed and the cable's stretch join the states: about steady drilling (constant pay-out)

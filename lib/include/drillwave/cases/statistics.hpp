@@ -1,5 +1,6 @@
 #pragma once
 // Stick–slip statistics over a time window, shared by every kind whose bit (or disc) can stick.
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -29,6 +30,10 @@ struct StickSlipStatistics {
 
 // speed samples (time, value) give max/min; the mean speed is exact from the angle at the window ends.
 constexpr double kSeverityWindowS = 20;
+
+// The windows of the severity over [begin, end]: 20 s each from begin (the part left over at the end is left out),
+// or [begin, end] whole if it is shorter; none if it is empty.
+std::vector<std::pair<double, double>> SeverityWindows(double begin, double end);
 
 // The severity above over [begin, end], from speed samples; the mean of each window is exact from the angle when it is
 // given (non-empty), else the mean of the samples.

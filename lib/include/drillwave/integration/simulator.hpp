@@ -17,7 +17,8 @@
 //                                      // (or from exactly 0 to < 0)
 //   bool OnEvent(int i, double t, std::vector<double>& x);  // apply the event; true if mode or state changed
 //   double NextBreakpoint() const;     // +inf if none
-//   void OnBreakpoint(double t);       // the loop has stepped exactly onto NextBreakpoint()
+//   void OnBreakpoint(double t);       // the loop has stepped exactly onto NextBreakpoint(); or instead
+//   void OnBreakpoint(double t, std::vector<double>& x);  // ... and may set the state there (a controller's handover)
 // and optionally (detected at compile time; a process without them is integrated exactly as before)
 //   bool ReadsAhead() const;           // a look-up since BeginStep/SetTrial asked for a time after the step start
 //   void SetTrial(const Piece& trial); // serve such look-ups from this trial of the current step
@@ -50,6 +51,11 @@ template <class P>
 struct ReadsItsOwnStep<P, std::void_t<decltype(std::declval<const P&>().ReadsAhead()),
                                       decltype(std::declval<P&>().SetTrial(std::declval<const Piece&>()))>>
     : std::true_type {};
+template <class P, class = void>
+struct SetsStateAtBreakpoints : std::false_type {};
+template <class P>
+struct SetsStateAtBreakpoints<P, std::void_t<decltype(std::declval<P&>().OnBreakpoint(
+                                     0.0, std::declval<std::vector<double>&>()))>> : std::true_type {};
 template <class P, class = void>
 struct CutsSteps : std::false_type {};
 template <class P>
@@ -151,6 +157,12 @@ class Simulator {
   // Trials of one step reading its own interpolant: at most this many, settled at this change (tolerance units).
   static constexpr int kMaxTrials = 12;
   static constexpr double kTrialTolerance = 0.05;
+
+  // The process's OnBreakpoint, with the state where it takes one (the loop restarts from x after it either way).
+  void PassBreakpoint(double t, State& x) {
+    if constexpr (detail::SetsStateAtBreakpoints<Process>::value) process_.OnBreakpoint(t, x);
+    else process_.OnBreakpoint(t);
+  }
 
   Process& process_;
   IntegratorOptions options_;
@@ -299,7 +311,7 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
     const double t_stop = std::min(process_.NextBreakpoint(), t_end);
     if (t_stop <= t + 1e-13 * std::max(1.0, std::abs(t))) {  // standing on a breakpoint
       if (t_stop >= t_end) break;
-      process_.OnBreakpoint(t_stop);
+      PassBreakpoint(t_stop, x);
       ++stats_.breakpoints;
       restart = true;
       continue;
@@ -465,7 +477,7 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
     std::swap(f0, f1);  // the last stage is the next step's first (first same as last)
     g0.swap(g1);
     if (on_stop && t < t_end) {
-      process_.OnBreakpoint(t_stop);
+      PassBreakpoint(t_stop, x);
       ++stats_.breakpoints;
       restart = true;
     }

@@ -13,6 +13,7 @@
 #include "drillwave/model/jeffcott_bha.hpp"
 #include "drillwave/model/pi_controller.hpp"
 #include "drillwave/model/schedule.hpp"
+#include "drillwave/model/top_drive_law.hpp"
 
 namespace drillwave::waves {
 
@@ -58,19 +59,6 @@ struct DcMotor {
   double voltage_limit = 0;        // [V], 0: unlimited
 };
 
-// Torque feedback into a PI top drive's speed loop (the soft-torque family of stick-slip mitigation): the speed the PI
-// tracks is the set-point corrected by the string torque the top measures, high-pass filtered by a first-order filter,
-//   r = setpoint - gain * T_hp,   T_hp = T - T_lp,   T_lp' = (T - T_lp) / time_constant_s,
-// T the torque the top feeds into the string. In steady rotation T_hp = 0: the set-point speed is held. Over the band
-// where the PI is stiff and T_hp ~ T, the top takes T ~ (setpoint - v) / gain: gain = 1 / Z matches the pipe's
-// impedance (Z-Torque). Only on a top without a compliant gear.
-struct TorqueFeedback {
-  double gain = 0;             // [rad/s per N·m]; 0: none
-  double time_constant_s = 0;  // of the high-pass filter, > 0 with a gain
-
-  bool active() const { return gain != 0; }
-};
-
 struct Node {
   std::string name;                  // e.g. "top", "junction", "bit": used in messages and outputs
   double inertia = 0;                // kg·m^2; 0 makes the node massless (algebraic)
@@ -79,12 +67,9 @@ struct Node {
   model::Schedule setpoint;          // speed [rad/s] or torque [N·m], by drive
   double drive_damping = 0;          // beta of kSpeedDashpot [N·m·s/rad]
   model::PiController pi;            // kPiSpeedController gains [N·m·s/rad], [N·m/rad]
-  double torque_limit = 0;           // 0: unlimited
-  TorqueFeedback torque_feedback;    // kPiSpeedController only: SoftTorque / Z-Torque set-point correction
-  // kPiSpeedController at the top, rigid gear, no Kelvin-Voigt dashpots: the drive's torque acts this pure delay [s]
-  // after the controller computes it (0: none). Simulated as the same delay on the controller's inputs (set-point,
-  // speed, string torque), which gives the same torque for a linear controller; the clamp commutes with the delay.
-  double actuator_delay_s = 0;
+  // kPiSpeedController: its torque limit; at the top also its law against stick-slip (model::TopDriveLaw): torque
+  // feedback (rigid gear), actuator delay (rigid gear, no Kelvin-Voigt dashpots), handover.
+  model::TopDriveLaw law;
   DcMotor motor;                     // kDcMotorVoltage, kDcMotorSpeed; kp [V·s/rad], ki [V/rad] for the latter
   model::InductionMotor induction;   // kInductionMotor
   // Between the drive (PI, DC or induction motor) and the node. The drive's speed, torque and gains are referred to
@@ -101,7 +86,7 @@ struct Node {
   bool has_speed_integral() const {
     return drive == Drive::kPiSpeedController || drive == Drive::kDcMotorSpeed || drive == Drive::kInductionMotorSpeed;
   }
-  bool has_torque_feedback() const { return drive == Drive::kPiSpeedController && torque_feedback.active(); }
+  bool has_torque_feedback() const { return drive == Drive::kPiSpeedController && law.torque_feedback.active(); }
   bool has_set_valued_friction() const { return friction && friction->IsSetValued(); }
   bool has_compliant_gear() const { return gear.compliant(); }
   // The inertia the node's own speed carries: with a rigid gear the motor's too, with a lateral BHA the unbalance's

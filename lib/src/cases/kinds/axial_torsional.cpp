@@ -80,6 +80,31 @@ struct StringSpec {
   double side_torque_per_m = 0, side_from = 0, side_to = 0;
 };
 
+// The torsional impedance G J / c = J sqrt(G rho) of a section's pieces.
+double TorsionalImpedance(const StringSpec& sp, const Section& section) {
+  return section.Polar() * std::sqrt(sp.g_mod * sp.rho);
+}
+
+// What this kind's top-drive law may not be: behind a motor the PI gives a voltage or a torque demand, not the top's
+// torque; a delayed controller reads the string torque from the wave arriving at the top alone (neither a
+// compliant gear's twist nor Kelvin-Voigt dashpots), as in the torsional_wave kind.
+void CheckTopDriveLaw(const JsonReader& top, const std::string& type, const StringSpec& string, const Model& md) {
+  const model::TopDriveLaw& law = md.law;
+  if (md.motor.on || md.induction_on) {
+    const char* field = type != "top_drive" ? "type" : law.torque_limit > 0 ? "torque_limit_Nm" : nullptr;
+    if (!field && law.actuator_delay_s > 0) field = "actuator_delay_s";
+    if (field)
+      throw InputError(top.PathOf(field), std::string("the PI drives ") + (md.motor.on ? "a DC motor (top/motor)" :
+                                          "an induction motor (top/induction_motor)") + " here, not the top's torque: "
+                                          "expected top/type top_drive without torque_limit_Nm or actuator_delay_s");
+  }
+  if (law.actuator_delay_s > 0 && (md.gear.compliant() || string.eta_t > 0)) {
+    const std::string with = md.gear.compliant() ? "a compliant gear" : "string/kelvin_voigt_s > 0";
+    throw InputError(top.PathOf("actuator_delay_s"), "the delayed controller reads the string torque from the wave "
+                                                     "arriving at the top alone: expected 0 with " + with);
+  }
+}
+
 // One section below the pipe (the BHA, or a part of it: heavy-weight pipe, collars, ...).
 Section ReadBha(const JsonReader& c, const Section& pipe, double string_length) {
   Section bha;
@@ -167,7 +192,7 @@ void BuildChannels(const StringSpec& sp, double g, Model& md) {
   for (const Section& section : sp.sections) {
     const double piece = section.length / section.pieces, weight_per_m = (sp.rho - sp.rho_mud) * section.Area() * g;
     for (int i = 0; i < section.pieces; ++i, ++k, depth += piece) {
-      md.torsion.z[k] = section.Polar() * std::sqrt(sp.g_mod * sp.rho);
+      md.torsion.z[k] = TorsionalImpedance(sp, section);
       md.torsion.tau[k] = piece / std::sqrt(sp.g_mod / sp.rho);
       md.axial.z[k] = section.Area() * std::sqrt(sp.e_mod * sp.rho);
       md.axial.tau[k] = piece / std::sqrt(sp.e_mod / sp.rho);
@@ -223,6 +248,7 @@ analysis::WaveChannel LinearChannel(const Channel& ch, double top_inertia, doubl
 // own K, which the network refers again.
 void DescribeTopDrive(const Model& md, analysis::AxialTorsionalString& string) {
   string.gear = md.gear;
+  string.top_law = md.law;
   if (md.motor.on) {
     string.top_drive = waves::Drive::kDcMotorSpeed;
     string.dc_motor = {md.motor.k / md.gear.ratio, md.motor.resistance, md.motor.inductance, 0};
@@ -276,6 +302,7 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   // The steady whirl of an unbalanced BHA costs the bit a torque too.
   const double whirl_drag = md_.unbalance ? md_.unbalance->SteadyDragTorque(omega) : 0.0;
   const double top_torque = SteadyTopTorque(md_.torsion, s.tob + whirl_drag, omega);
+  if (md_.law.torque_limit > 0 && top_torque >= md_.law.torque_limit) return {};  // the drive cannot hold the speed
   // Stribeck: d mu / dw = -(mu_s - mu) / w_s e^{-w / w_s} while turning forward.
   const double mu_slope = md_.stribeck_speed > 0 ? -(md_.static_mu - md_.mu) / md_.stribeck_speed *
                                                        std::exp(-omega / md_.stribeck_speed)
@@ -312,8 +339,9 @@ class AxialTorsionalKind : public ModelKind {
   std::string name() const override { return "axial_torsional"; }
   std::string description() const override {
     return "coupled axial-torsional waves in a pipe with a lumped bit and the Richard-Germay-Detournay bit-rock law "
-           "(state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); PI top drive, hoist "
-           "under constant hook force; optional BHA section, Kelvin-Voigt damping, Stribeck bit friction, DC motor, "
+           "(state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); PI top drive (stiff, "
+           "SoftTorque/SoftSpeed or Z-Torque, with torque limit and actuator delay), hoist under constant hook force; "
+           "optional BHA section, Kelvin-Voigt damping, Stribeck bit friction, DC motor, "
            "BHA mass unbalance (Jeffcott rotor at the bit), two-mass hoisting rig, axial coupling off";
   }
   nlohmann::json FieldSchema() const override {
@@ -345,7 +373,9 @@ class AxialTorsionalKind : public ModelKind {
             {"bit/mass_kg", "M_b > 0"},
             {"axial_coupling", "boolean, default true; false: no axial dynamics, weight on bit held at W0 and depth "
                                "of cut at its steady value"},
-            {"top/type", "top_drive (a PI speed controller, the only top of this kind; optional)"},
+            {"top/type", "top_drive (default: the stiff PI speed controller) | soft_torque (the PI tracking the "
+                         "set-point less the high-passed string torque; kp/ki or tuning_period_s) | z_torque (the same "
+                         "matched to the pipe's impedance); the two laws drive the top's torque (no motor)"},
             {"top/inertia_kgm2", "J_td > 0"},
             {"top/kp_Nms_per_rad", ">= 0"},
             {"top/ki_Nm_per_rad", ">= 0; the run starts, and `stability` linearizes, in steady drilling at the "
@@ -378,6 +408,7 @@ class AxialTorsionalKind : public ModelKind {
                                                  "[[t, v], ...]}, default 0 (u_F0: the tension of steady drilling)"},
             {"gravity_m_s2", "> 0, default 9.81"}};
     fields.update(TopComponentFields("top"));
+    fields.update(PiTopDriveLawFields("top"));
     fields.update(StringComponentFields("string", "bit"));
     fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() +
                                       "; with side_friction the nodes tied by the dashpots are held by it where it "
@@ -404,10 +435,10 @@ class AxialTorsionalKind : public ModelKind {
     bitrock::ReadRgdRock(r.Object("rock"), md);
     r.RefuseRenamed("top_drive", "/model/top");
     const JsonReader td = r.Object("top");
-    td.String("type", {"top_drive"}, "top_drive");
-    md.top_inertia = td.Number("inertia_kgm2", Range::Positive());
-    md.pi = ReadPiController(td);
-    md.top_speed = model::Schedule::FromJson(td.Raw("speed_rad_s"), td.PathOf("speed_rad_s"));
+    const std::string type = td.String("type", {"top_drive", "soft_torque", "z_torque"}, "top_drive");
+    PiTopDriveSpec drive = ReadPiTopDrive(td, type, TorsionalImpedance(string, string.sections[0]));
+    md.top_inertia = drive.inertia;
+    md.top_speed = drive.speed;
     if (td.Has("motor")) {
       const JsonReader mo = td.Object("motor");
       md.motor.on = true;
@@ -417,6 +448,10 @@ class AxialTorsionalKind : public ModelKind {
       mo.Finish();
     }
     ReadTopMotorAndGear(td, md);
+    FinishPiTopDrive(td, type, md.gear, md.TopInertia(), drive);
+    md.pi = drive.pi;
+    md.law = drive.law;
+    CheckTopDriveLaw(td, type, string, md);
     td.Finish();
     if (!(md.top_speed.Value(0.0) > 0))
       throw InputError(td.PathOf("speed_rad_s"), "the run starts in steady drilling: the set-point at t = 0 must be > 0");

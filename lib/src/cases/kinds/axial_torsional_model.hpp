@@ -8,7 +8,9 @@
 // sub-sections (the pipe's, then the BHA's) joined by massless nodes, with viscous damping, buoyant weight, side
 // friction and Kelvin-Voigt damping as that chain carries them; this kind assembles the two chains with the top, the
 // hoist and the bit.
-// Top: a top drive of inertia J_td under a PI speed controller; a hoist of mass M_td held by the hook force H: constant,
+// Top: a top drive of inertia J_td under a PI speed controller, with a law against stick-slip (model::TopDriveLaw:
+// torque limit, SoftTorque / Z-Torque feedback of the string torque at the top, actuator delay, handover), run by
+// dynamics::PiTopDrive as the torsional_wave kind's top is; a hoist of mass M_td held by the hook force H: constant,
 // set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)); or, with
 // hoist/rig, hanging from the two-mass hoisting rig of eq. 2.22 (model::HoistRig: rigid hook, constant pay-out).
 // Under the hook force the hoist may also have a dashpot c_h to the travelling block, which pays out line at the
@@ -52,6 +54,7 @@
 #include "drillwave/model/jeffcott_bha.hpp"
 #include "drillwave/model/pi_controller.hpp"
 #include "drillwave/model/schedule.hpp"
+#include "drillwave/model/top_drive_law.hpp"
 #include "drillwave/waves/wave_chain.hpp"
 
 namespace drillwave::cases::axial_torsional {
@@ -83,6 +86,7 @@ struct Model : bitrock::RgdLaw {
   double top_inertia = 0, hoist_mass = 0, bit_inertia = 0, bit_mass = 0;
   double hoist_damping = 0;  // c_h [N s/m]: the hoist's dashpot to the block paying out at the steady V0
   model::PiController pi;
+  model::TopDriveLaw law;     // with a DC or induction motor: the plain PI (the reader refuses the rest)
   model::Schedule top_speed;  // rad/s
   model::Schedule hook_force;  // H(t) [N], up
   double weight_on_bit = 0;    // W0 of steady drilling at t = 0 [N] (the target the hook force is set for, or H(0)'s)

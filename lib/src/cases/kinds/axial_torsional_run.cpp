@@ -13,6 +13,7 @@
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/dynamics/pi_top_drive.hpp"
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/simulator.hpp"
 
@@ -28,7 +29,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // with a motor 7 its current; with an unbalance 8-11 the BHA's lateral x, y, x', y' (and 7 unused, held at 0); with
 // an induction motor or a compliant gear 12-15 the motor's fluxes and 16-17 the motor's speed (referred to the top
 // drive) and the gear's twist; with a hoisting rig 18-20 its derrick displacement and speed and the cable's stretch
-// (the unused ones held at 0).
+// (the unused ones held at 0). With torque feedback the top drive's low-passed string torque follows them all.
 enum Index {
   kPhi = 0, kU, kWtop, kWbit, kVtop, kVbit, kZ, kDim, kCurrent = kDim, kX, kY, kXd, kYd, kFullDim,
   kFlux = kFullDim, kMotorSpeed = kFlux + 4, kTwist, kTopDim, kRig = kTopDim, kRigDim = kRig + 3
@@ -39,8 +40,10 @@ class Process {
   using State = std::vector<double>;
   explicit Process(const Model& md)
       : md_(md), steady_(SteadyDrilling(md, md.top_speed.Value(0.0))),
-        cut_(md.blades, steady_.omega, steady_.rop, md.surface_passes, md.bottom_roughness) {
+        cut_(md.blades, steady_.omega, steady_.rop, md.surface_passes, md.bottom_roughness),
+        top_drive_(md.pi, md.law, md.top_speed, steady_.omega) {
     InitializeWaves();
+    if (top_drive_.has_filter()) filter_index_ = LayoutDimension();
     // Throws std::domain_error when the motor cannot carry the steady torque (below its pull-out torque).
     if (md.induction_on)
       steady_supply_hz_ =
@@ -48,12 +51,10 @@ class Process {
   }
 
   // --- Simulator interface --------------------------------------------------------------------------------
-  int Dimension() const {
-    if (md_.rig) return kRigDim;
-    if (md_.induction_on || md_.gear.compliant()) return kTopDim;
-    return md_.unbalance.has_value() ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
+  int Dimension() const { return filter_index_ >= 0 ? filter_index_ + 1 : LayoutDimension(); }
+  double MaxStep() const {
+    return top_drive_.MaxStep(std::min(md_.torsion.ShortestPiece(), md_.axial.ShortestPiece()));
   }
-  double MaxStep() const { return std::min(md_.torsion.ShortestPiece(), md_.axial.ShortestPiece()); }
   void BeginStep(double t0) { step_start_ = t0; }
 
   State InitialState() const {
@@ -63,14 +64,16 @@ class Process {
     x[kVtop] = x[kVbit] = steady_.rop;
     // The PI holds the steady top torque with its integral part, the motor with its steady current (DC) or fluxes
     // (induction: at the supply frequency that gives the steady torque), the gear with its twist.
-    x[kZ] = md_.pi.IntegralHolding(top_torque0_);
+    x[kZ] = top_drive_.InitialIntegral(top_torque0_);
     if (md_.motor.on) x[kCurrent] = top_torque0_ / md_.motor.k;
     if (md_.induction_on) {
       const auto psi = md_.induction.SteadyFluxes(steady_supply_hz_, md_.gear.ratio * steady_.omega);
       std::copy(psi.begin(), psi.end(), x.begin() + kFlux);
       const double n = md_.gear.ratio, u = n * md_.induction.TorqueDemandFor(steady_supply_hz_, n * steady_.omega);
-      x[kZ] = md_.pi.IntegralHolding(u);
+      x[kZ] = top_drive_.InitialIntegral(u);
     }
+    // The torque feedback's filter has settled on the steady string torque: the set-point is not corrected.
+    if (filter_index_ >= 0) x[filter_index_] = top_torque0_ - md_.torsion.damping[0] * steady_.omega;
     if (md_.gear.compliant()) {
       x[kMotorSpeed] = steady_.omega;
       x[kTwist] = top_torque0_ / md_.gear.stiffness;
@@ -87,11 +90,12 @@ class Process {
     dx[kU] = rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : x[kVbit];
     // Top drive (with its motor and gear) and hoist. States a component does not use stay at 0.
     if (Dimension() >= kTopDim) std::fill(dx.begin() + kDim, dx.end(), 0.0);
-    const double vd = DriveSpeed(x), u = TopTorque(x, omega_ref);
+    const Reading in = ReadController(x, t, side);
+    const double vd = DriveSpeed(x), u = TopTorque(x, t, side, in);
     if (md_.motor.on)
-      dx[kCurrent] = md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, omega_ref), omega_ref), vd, x[kCurrent]);
+      dx[kCurrent] = md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, t, side, in), omega_ref), vd, x[kCurrent]);
     if (md_.induction_on) {
-      const auto rates = md_.induction.FluxRates(Fluxes(x), md_.SupplyFrequency(PiOutput(x, omega_ref), vd),
+      const auto rates = md_.induction.FluxRates(Fluxes(x), md_.SupplyFrequency(PiOutput(x, t, side, in), vd),
                                                  md_.gear.ratio * vd);
       std::copy(rates.begin(), rates.end(), dx.begin() + kFlux);
     }
@@ -111,7 +115,8 @@ class Process {
     } else {
       dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first - HoistDashpot(x)) / md_.hoist_mass;
     }
-    dx[kZ] = omega_ref - vd;
+    dx[kZ] = top_drive_.IntegralRate(in);
+    if (filter_index_ >= 0) dx[filter_index_] = top_drive_.FilterRate(in, x[filter_index_]);
     // Bit.
     dx[kWbit] = rg_.turn == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
     dx[kVbit] = rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : (f.drive_force - f.weight) / md_.bit_mass;
@@ -141,7 +146,8 @@ class Process {
   void Commit(const integration::Piece& p) {
     // A node's waves are read one piece's travel time later, never earlier: keeping two of the longest makes the
     // histories a few dozen pieces each, which stay in cache.
-    const double read_back = 2 * std::max(md_.torsion.LongestPiece(), md_.axial.LongestPiece());
+    // A delayed controller reads the top's arriving wave one delay later still.
+    const double read_back = 2 * std::max(md_.torsion.LongestPiece(), md_.axial.LongestPiece()) + top_drive_.delay();
     // The kinks just stored next to the top and the bit reach them one piece later: the steps stop there, as at a
     // breakpoint (the state's own dense output is then smooth within each step, and the end waves too).
     while (!end_kinks_.empty() && end_kinks_.top() < p.t1) end_kinks_.pop();
@@ -151,6 +157,7 @@ class Process {
     const double keep = 2 * std::max(md_.torsion.travel_time(), md_.axial.travel_time()) + 1.0;
     cut_.Commit(p, kPhi, kU, rg_.contact, rg_.last_contact_change, keep);
     held_phi_ = p.x1[kPhi], held_u_ = p.x1[kU];
+    top_drive_.Commit(p, kWtop, read_back);
   }
 
   // Witnesses: bitrock::RgdRegimes's (0, 1 rotation; 2, 3 axial; 4 contact).
@@ -166,6 +173,7 @@ class Process {
   bool OnEvent(int k, double t, State& x) {
     const Side side = Side::kLeft;
     for (waves::WaveChain& chain : chains_) chain.ForgetStart();  // the regime (and the bit's waves) may change here
+    top_drive_.MarkRestart();
     const Turn turn_before = rg_.turn;
     const bool changed =
         rg_.OnEvent(k, t, x[kWbit], x[kVbit], md_.ContactForceAt(x[kU]), [&] { return Forces(x, t, side); });
@@ -178,11 +186,13 @@ class Process {
 
   double NextBreakpoint() const {
     const double rig = md_.rig ? md_.rig->tension_change.NextKnotAfter(passed_) : kInf;
-    const double input = std::min({md_.top_speed.NextKnotAfter(passed_), md_.hook_force.NextKnotAfter(passed_), rig});
+    const double input = std::min({md_.top_speed.NextKnotAfter(passed_), md_.hook_force.NextKnotAfter(passed_), rig,
+                                   top_drive_.NextBreakpoint(passed_)});
     return end_kinks_.empty() ? input : std::min(input, end_kinks_.top());
   }
-  void OnBreakpoint(double t) {
+  void OnBreakpoint(double t, State& x) {
     passed_ = t;
+    top_drive_.OnBreakpoint(t, x[kZ]);
     for (waves::WaveChain& chain : chains_) chain.ForgetStart();  // an input may jump here, or a kink arrive at an end
     while (!end_kinks_.empty() && end_kinks_.top() <= t + 1e-12 * std::max(1.0, std::abs(t))) end_kinks_.pop();
   }
@@ -203,11 +213,11 @@ class Process {
   Sample Sampled(double t, const State& x, const State& dx) const {
     const Side side = Side::kLeft;
     const BitForces f = Forces(x, t, side);
-    const auto omega_ref = md_.top_speed.Value(t);
     Sample s;
     s.top_speed = x[kWtop];
     s.bit_speed = rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
-    s.top_torque = TopTorque(x, omega_ref);
+    // The controller as the derivatives at the sample read it (the right limits of a step starting there).
+    s.top_torque = TopTorque(x, t, Side::kRight, ReadController(x, t, Side::kRight));
     s.bit_torque = rg_.turn == Turn::kStuck ? f.drive_torque : f.torque;
     s.wob = f.weight;
     s.hookload = md_.hook_force.Value(t) + HoistDashpot(x) + md_.hoist_mass * dx[kVtop];
@@ -282,15 +292,37 @@ class Process {
   }
 
   // --- Top drive and BHA components ---------------------------------------------------------------------------
-  double PiOutput(const State& x, double omega_ref) const {
-    return md_.pi.Output(omega_ref, DriveSpeed(x), x[kZ]);
+  // The layout's dimension without the torque feedback's filter.
+  int LayoutDimension() const {
+    if (md_.rig) return kRigDim;
+    if (md_.induction_on || md_.gear.compliant()) return kTopDim;
+    return md_.unbalance.has_value() ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
   }
-  // Torque of the drive (on the top drive's side): the PI's output, or the motor's K I when a DC motor sits between
-  // them, or n T_e of an induction motor. It turns the top drive, or the motor behind a compliant gear.
-  double TopTorque(const State& x, double omega_ref) const {
+  // What the top drive's controller reads at t (dynamics::PiTopDrive::Read), and its output.
+  using Reading = dynamics::PiTopDrive::Reading;
+  Reading ReadController(const State& x, double t, Side side) const {
+    const double low_passed = filter_index_ >= 0 ? x[filter_index_] : 0.0;
+    return top_drive_.Read(t, side, DriveSpeed(x), low_passed,
+                           [&](double when, double speed) { return TopStringTorque(x, when, side, speed); });
+  }
+  double PiOutput(const State& x, double t, Side side, const Reading& in) const {
+    return top_drive_.Output(t, side, in, x[kZ]);
+  }
+  // The torque the top feeds into the top piece at time t turning at `speed` (what a torque sub there measures): minus
+  // the chain's force on the top node without that node's own share of the pipe's damping, as the network's
+  // linearization reads it.
+  double TopStringTorque(const State& x, double t, Side side, double speed) const {
+    waves::ChainEnds v = EndSpeeds(0, x);
+    v.top = speed;
+    return -(chains_[0].TopForce(t, side, v) + md_.torsion.damping[0] * speed);
+  }
+  // Torque of the drive (on the top drive's side): the PI's output (clamped to its limit), or the motor's K I when a
+  // DC motor sits between them, or n T_e of an induction motor. It turns the top drive, or the motor behind a
+  // compliant gear.
+  double TopTorque(const State& x, double t, Side side, const Reading& in) const {
     if (md_.motor.on) return md_.motor.k * x[kCurrent];
     if (md_.induction_on) return md_.gear.ratio * md_.induction.Torque(Fluxes(x));
-    return PiOutput(x, omega_ref);
+    return top_drive_.Torque(t, side, in, x[kZ]);
   }
   // The speed the PI and the motor see (on the top drive's side): the top drive's, or the motor's behind a compliant
   // gear.
@@ -326,6 +358,8 @@ class Process {
   Steady steady_;
   std::vector<waves::WaveChain> chains_;  // torsion, axial
   bitrock::CutProfile cut_;
+  dynamics::PiTopDrive top_drive_;
+  int filter_index_ = -1;  // the torque feedback's low-passed string torque
   double top_torque0_ = 0;
   double steady_supply_hz_ = 0;  // induction motor: the supply frequency of steady drilling
   bitrock::RgdRegimes rg_;

@@ -1,5 +1,7 @@
 #include "top_components.hpp"
 
+#include <cmath>
+
 #include "drillwave/core/error.hpp"
 
 namespace drillwave::cases {
@@ -43,6 +45,110 @@ model::PiController ReadPiController(const JsonReader& top, const char* kp_key, 
   pi.kp = top.Number(kp_key, Range::NonNegative());
   pi.ki = top.Number(ki_key, Range::NonNegative());
   return pi;
+}
+
+namespace {
+
+// The speed loop of a soft-torque top: explicit PI gains, or tuned to a stick-slip period P (Kyllingstad & Nessjoen
+// 2009, SoftSpeed): the top's impedance J s + kp + ki / s is then real at s = i 2 pi / P (ki = J (2 pi / P)^2, the
+// inertia resonating with the integral's spring) and equal to the pipe's Z (kp = Z), so a wave arriving at the top at
+// that frequency is absorbed, not reflected. The inertia is the top's lumped one, known after its gear is read.
+void ReadSoftTorqueSpeedLoop(const JsonReader& r, double pipe_impedance, PiTopDriveSpec& drive) {
+  if (!r.Has("tuning_period_s")) {
+    drive.pi = ReadPiController(r);
+    return;
+  }
+  for (const char* key : {"kp_Nms_per_rad", "ki_Nm_per_rad"})
+    if (r.Has(key))
+      throw InputError(r.PathOf(key), "a soft_torque top takes either tuning_period_s (the SoftSpeed tuning) or "
+                                      "kp_Nms_per_rad and ki_Nm_per_rad, not both");
+  drive.tuning_period_s = r.Number("tuning_period_s", Range::Positive());
+  drive.pi.kp = pipe_impedance;
+}
+
+// The torque feedback's high-pass filter time constant, required with a feedback gain.
+double ReadFeedbackTimeConstant(const JsonReader& r) { return r.Number("feedback_time_constant_s", Range::Positive()); }
+
+// top/handover: the stiff PI the law takes over from, and when.
+model::Handover ReadHandover(const JsonReader& h) {
+  model::Handover handover;
+  handover.time_s = h.Number("time_s", Range::Positive());
+  handover.before = ReadPiController(h);
+  h.Finish();
+  return handover;
+}
+
+}  // namespace
+
+bool IsPiTopDriveType(const std::string& type) {
+  return type == "top_drive" || type == "soft_torque" || type == "z_torque";
+}
+
+PiTopDriveSpec ReadPiTopDrive(const JsonReader& r, const std::string& type, double pipe_impedance) {
+  PiTopDriveSpec drive;
+  drive.inertia = r.Number("inertia_kgm2", Range::Positive());
+  if (type == "top_drive") {
+    drive.pi = ReadPiController(r);
+    drive.law.torque_limit = r.Number("torque_limit_Nm", Range::NonNegative(), 0.0);
+    drive.speed = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
+    return drive;  // the stiff PI itself: a handover is an unknown field here
+  }
+  // A PI top drive whose speed command is corrected by the high-passed string torque (model::TorqueFeedback).
+  model::TorqueFeedback& feedback = drive.law.torque_feedback;
+  drive.law.torque_limit = r.Number("torque_limit_Nm", Range::NonNegative(), 0.0);
+  drive.speed = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
+  if (type == "soft_torque") {
+    ReadSoftTorqueSpeedLoop(r, pipe_impedance, drive);
+    feedback.gain = r.Number("feedback_gain_rad_per_Nms", Range::NonNegative(), 0.0);
+    if (feedback.active() || r.Has("feedback_time_constant_s")) feedback.time_constant_s = ReadFeedbackTimeConstant(r);
+  } else {  // Z-Torque: a stiff speed loop made as soft as the pipe, 1 / gain = Z
+    drive.pi = ReadPiController(r);
+    feedback.gain = 1 / r.Number("impedance_Nms_per_rad", Range::Positive(), pipe_impedance);
+    feedback.time_constant_s = ReadFeedbackTimeConstant(r);
+  }
+  if (r.Has("handover")) drive.law.handover = ReadHandover(r.Object("handover"));
+  return drive;
+}
+
+void FinishPiTopDrive(const JsonReader& r, const std::string& type, const model::Gear& gear, double lumped_inertia,
+                      PiTopDriveSpec& drive) {
+  drive.law.actuator_delay_s = r.Number("actuator_delay_s", Range::Between(0, 10), 0.0);
+  if (drive.law.torque_feedback.active() && gear.compliant())
+    throw InputError(r.PathOf("gear"), "the torque feedback of a " + type + " top reads the string torque at a top "
+                                       "driven directly: expected a rigid gear (no stiffness_Nm_per_rad)");
+  if (drive.tuning_period_s > 0) {
+    const double omega = 2 * M_PI / drive.tuning_period_s;
+    drive.pi.ki = lumped_inertia * omega * omega;
+  }
+  if (drive.law.handover.active() && !(drive.pi.ki > 0))
+    throw InputError(r.PathOf("handover"), "the handover carries the integral torque over to the law's integral "
+                                           "gain: expected ki_Nm_per_rad > 0 (or tuning_period_s)");
+}
+
+nlohmann::json PiTopDriveLawFields(const std::string& top) {
+  return {
+      {top + "/torque_limit_Nm", "top_drive, soft_torque, z_torque: >= 0, 0 = unlimited"},
+      {top + "/actuator_delay_s", "top_drive, soft_torque, z_torque: pure delay [s] in [0, 10] of the drive's torque "
+                                  "behind its controller, default 0; not with a compliant gear or Kelvin-Voigt "
+                                  "damping"},
+      {top + "/tuning_period_s", "soft_torque: the stick-slip period P [s] > 0 the speed loop is tuned to instead of "
+                                 "kp/ki (SoftSpeed, Kyllingstad & Nessjoen 2009): kp = Z of the top section, "
+                                 "ki = J (2 pi / P)^2, J the top's inertia with its rigid gear's motor"},
+      {top + "/feedback_gain_rad_per_Nms", "soft_torque: torque feedback g [rad/s per N·m] >= 0, default 0: the PI "
+                                           "tracks speed_rad_s - g T_hp, T_hp the string torque at the top high-passed "
+                                           "by feedback_time_constant_s"},
+      {top + "/feedback_time_constant_s", "soft_torque with a feedback gain, z_torque: time constant [s] > 0 of the "
+                                          "first-order high-pass filter on the string torque (the mean speed returns "
+                                          "to the set-point on this scale)"},
+      {top + "/impedance_Nms_per_rad", "z_torque: the impedance Z [N·m·s/rad] > 0 the top is matched to, default the "
+                                       "top section's G J / c; the PI tracks speed_rad_s - T_hp / Z"},
+      {top + "/handover/time_s", "soft_torque, z_torque: optional block; the law takes over at this time [s] > 0 from "
+                                 "the plain PI of the handover's gains (no torque feedback before it; the integral "
+                                 "torque carries over to the law's ki > 0): a drive switched on while the bit sticks "
+                                 "and slips"},
+      {top + "/handover/kp_Nms_per_rad", "the PI before the handover: proportional gain >= 0"},
+      {top + "/handover/ki_Nm_per_rad", "the PI before the handover: integral gain >= 0"},
+  };
 }
 
 nlohmann::json TopComponentFields(const std::string& top) {

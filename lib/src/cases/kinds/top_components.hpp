@@ -1,13 +1,18 @@
 #pragma once
 // Readers of the top-of-string components that more than one kind offers (chapter §2.5-2.6): the induction motor on
-// a V/f supply, the gear between a motor and the top drive (rigid, or compliant: the rig's two-mass model) and the PI
-// speed controller's gains, with their field documentation for `drillwave kinds`.
+// a V/f supply, the gear between a motor and the top drive (rigid, or compliant: the rig's two-mass model), the PI
+// speed controller's gains and the PI top drive with its law against stick-slip (issue 35), with their field
+// documentation for `drillwave kinds`.
+#include <string>
+
 #include <nlohmann/json.hpp>
 
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/model/gear.hpp"
 #include "drillwave/model/induction_motor.hpp"
 #include "drillwave/model/pi_controller.hpp"
+#include "drillwave/model/schedule.hpp"
+#include "drillwave/model/top_drive_law.hpp"
 
 namespace drillwave::cases {
 
@@ -21,5 +26,26 @@ model::PiController ReadPiController(const io::JsonReader& top, const char* kp_k
                                      const char* ki_key = "ki_Nm_per_rad");
 // Field documentation of the induction motor and the gear, keyed by their paths below the top block (e.g. "top").
 nlohmann::json TopComponentFields(const std::string& top);
+
+// A PI top drive whose output is its torque, with its law (top/type top_drive: the stiff PI; soft_torque: the PI
+// tracking the set-point less the high-passed string torque, its gains given or SoftSpeed-tuned; z_torque: the same
+// matched to the pipe's impedance), read alike by every kind that has one.
+struct PiTopDriveSpec {
+  double inertia = 0;  // the top drive's own, kg m^2
+  model::Schedule speed;
+  model::PiController pi;
+  model::TopDriveLaw law;
+  double tuning_period_s = 0;  // SoftSpeed: ki is set by FinishPiTopDrive once the lumped inertia is known
+};
+bool IsPiTopDriveType(const std::string& type);
+// The drive's fields up to its gear, for top/type `type` (IsPiTopDriveType); pipe_impedance is Z = G J / c of the top
+// section, the SoftSpeed kp and Z-Torque's default impedance.
+PiTopDriveSpec ReadPiTopDrive(const io::JsonReader& top, const std::string& type, double pipe_impedance);
+// After the gear: the actuator delay, the torque feedback refused behind a compliant gear, the SoftSpeed ki from
+// the inertia the top's speed carries (with a rigid gear's motor), the handover's integral gain.
+void FinishPiTopDrive(const io::JsonReader& top, const std::string& type, const model::Gear& gear,
+                      double lumped_inertia, PiTopDriveSpec& drive);
+// Field documentation of the law's fields (torque limit, delay, tuning, feedback, impedance, handover).
+nlohmann::json PiTopDriveLawFields(const std::string& top);
 
 }  // namespace drillwave::cases

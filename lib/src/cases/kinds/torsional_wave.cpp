@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "drillwave/analysis/network_linearization.hpp"
 #include "drillwave/analysis/torsional_linearization.hpp"
@@ -91,37 +92,12 @@ void ReadMotorCommand(const JsonReader& r, const MotorCommand& c, waves::Node& t
   }
 }
 
-// The speed loop of a soft-torque top: explicit PI gains, or tuned to a stick-slip period P (Kyllingstad & Nessjoen
-// 2009, SoftSpeed): the top's impedance J s + kp + ki / s is then real at s = i 2 pi / P (ki = J (2 pi / P)^2, the
-// inertia resonating with the integral's spring) and equal to the pipe's Z (kp = Z), so a wave arriving at the top at
-// that frequency is absorbed, not reflected. The inertia is the top's lumped one, known after its gear is read.
-struct SpeedLoopTuning {
-  double period_s = 0;  // 0: explicit gains
-};
-SpeedLoopTuning ReadSoftTorqueSpeedLoop(const JsonReader& r, double pipe_impedance, waves::Node& top) {
-  SpeedLoopTuning tuning;
-  if (!r.Has("tuning_period_s")) {
-    top.pi = ReadPiController(r);
-    return tuning;
-  }
-  for (const char* key : {"kp_Nms_per_rad", "ki_Nm_per_rad"})
-    if (r.Has(key))
-      throw InputError(r.PathOf(key), "a soft_torque top takes either tuning_period_s (the SoftSpeed tuning) or "
-                                      "kp_Nms_per_rad and ki_Nm_per_rad, not both");
-  tuning.period_s = r.Number("tuning_period_s", Range::Positive());
-  top.pi.kp = pipe_impedance;
-  return tuning;
-}
-
-// The torque feedback's high-pass filter time constant, required with a feedback gain.
-double ReadFeedbackTimeConstant(const JsonReader& r) { return r.Number("feedback_time_constant_s", Range::Positive()); }
-
 waves::Node ReadTop(const JsonReader& r, const waves::Section& top_section) {
   waves::Node top;
   top.name = "top";
   const std::string type = r.String("type", {"prescribed_speed", "dissipative", "top_drive", "soft_torque", "z_torque",
                                              "torque", "dc_motor", "induction_motor"});
-  SpeedLoopTuning tuning;
+  std::optional<PiTopDriveSpec> pi_top;  // top_drive, soft_torque, z_torque (top_components.hpp)
   if (type == "prescribed_speed") {
     top.drive = waves::Drive::kPrescribedSpeed;
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
@@ -129,28 +105,11 @@ waves::Node ReadTop(const JsonReader& r, const waves::Section& top_section) {
     top.drive = waves::Drive::kSpeedDashpot;
     top.drive_damping = r.Number("beta_Nms_per_rad", Range::Positive());
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
-  } else if (type == "top_drive") {
+  } else if (IsPiTopDriveType(type)) {
+    pi_top = ReadPiTopDrive(r, type, top_section.impedance);
     top.drive = waves::Drive::kPiSpeedController;
-    top.inertia = r.Number("inertia_kgm2", Range::Positive());
-    top.pi = ReadPiController(r);
-    top.torque_limit = r.Number("torque_limit_Nm", Range::NonNegative(), 0.0);
-    top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
-  } else if (type == "soft_torque" || type == "z_torque") {
-    // A PI top drive whose speed command is corrected by the high-passed string torque (waves::TorqueFeedback).
-    top.drive = waves::Drive::kPiSpeedController;
-    top.inertia = r.Number("inertia_kgm2", Range::Positive());
-    top.torque_limit = r.Number("torque_limit_Nm", Range::NonNegative(), 0.0);
-    top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
-    if (type == "soft_torque") {
-      tuning = ReadSoftTorqueSpeedLoop(r, top_section.impedance, top);
-      top.torque_feedback.gain = r.Number("feedback_gain_rad_per_Nms", Range::NonNegative(), 0.0);
-      if (top.torque_feedback.active() || r.Has("feedback_time_constant_s"))
-        top.torque_feedback.time_constant_s = ReadFeedbackTimeConstant(r);
-    } else {  // Z-Torque: a stiff speed loop made as soft as the pipe, 1 / gain = Z
-      top.pi = ReadPiController(r);
-      top.torque_feedback.gain = 1 / r.Number("impedance_Nms_per_rad", Range::Positive(), top_section.impedance);
-      top.torque_feedback.time_constant_s = ReadFeedbackTimeConstant(r);
-    }
+    top.inertia = pi_top->inertia;
+    top.setpoint = pi_top->speed;
   } else if (type == "dc_motor") {
     top.inertia = r.Number("inertia_kgm2", Range::Positive());
     for (const char* moved : {"motor_constant_Nm_per_A", "resistance_ohm", "inductance_H"})
@@ -179,14 +138,10 @@ waves::Node ReadTop(const JsonReader& r, const waves::Section& top_section) {
       throw InputError(r.PathOf(key), "a gear and a motor inertia belong to a motor drive: expected top/type top_drive, "
                                       "soft_torque, z_torque, dc_motor or induction_motor, got " + type);
   top.gear = ReadGear(r);
-  if (top.drive == waves::Drive::kPiSpeedController)
-    top.actuator_delay_s = r.Number("actuator_delay_s", Range::Between(0, 10), 0.0);
-  if (top.torque_feedback.active() && top.gear.compliant())
-    throw InputError(r.PathOf("gear"), "the torque feedback of a " + type + " top reads the string torque at a top "
-                                       "driven directly: expected a rigid gear (no stiffness_Nm_per_rad)");
-  if (tuning.period_s > 0) {
-    const double omega = 2 * M_PI / tuning.period_s;
-    top.pi.ki = top.LumpedInertia() * omega * omega;
+  if (pi_top) {
+    FinishPiTopDrive(r, type, top.gear, top.LumpedInertia(), *pi_top);
+    top.pi = pi_top->pi;
+    top.law = pi_top->law;
   }
   r.Finish();
   return top;
@@ -369,20 +324,6 @@ class TorsionalWaveKind : public ModelKind {
                                "slip held below pull-out)"},
         {"top/ki_Nm_per_rad", "top_drive, soft_torque, z_torque, induction_motor with speed_rad_s: integral gain "
                               ">= 0"},
-        {"top/torque_limit_Nm", "top_drive, soft_torque, z_torque: >= 0, 0 = unlimited"},
-        {"top/actuator_delay_s", "top_drive, soft_torque, z_torque: pure delay [s] in [0, 10] of the drive's torque "
-                                 "behind its controller, default 0; not with a compliant gear or Kelvin-Voigt damping"},
-        {"top/tuning_period_s", "soft_torque: the stick-slip period P [s] > 0 the speed loop is tuned to instead of "
-                                "kp/ki (SoftSpeed, Kyllingstad & Nessjoen 2009): kp = Z of the top section, "
-                                "ki = J (2 pi / P)^2, J the top's inertia with its rigid gear's motor"},
-        {"top/feedback_gain_rad_per_Nms", "soft_torque: torque feedback g [rad/s per N·m] >= 0, default 0: the PI "
-                                          "tracks speed_rad_s - g T_hp, T_hp the string torque at the top high-passed "
-                                          "by feedback_time_constant_s"},
-        {"top/feedback_time_constant_s", "soft_torque with a feedback gain, z_torque: time constant [s] > 0 of the "
-                                         "first-order high-pass filter on the string torque (the mean speed returns "
-                                         "to the set-point on this scale)"},
-        {"top/impedance_Nms_per_rad", "z_torque: the impedance Z [N·m·s/rad] > 0 the top is matched to, default the "
-                                      "top section's G J / c; the PI tracks speed_rad_s - T_hp / Z"},
         {"top/torque_Nm", "torque top: schedule [N·m]"},
         {"top/damping_Nms_per_rad", "local damper at the top, >= 0, default 0"},
         {"bit/inertia_kgm2", "bit (BHA) inertia, >= 0 (0: massless bit, smooth friction only)"},
@@ -392,6 +333,7 @@ class TorsionalWaveKind : public ModelKind {
         {"friction laws", bitrock::FrictionLaw::Schema()},
     };
     fields.update(TopComponentFields("top"));
+    fields.update(PiTopDriveLawFields("top"));
     fields.update(StringComponentFields("string", "bit"));
     fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() +
                                       " (string/damping_subsections parts per section); with a massless bit its "

@@ -1,0 +1,68 @@
+#pragma once
+// `drillwave compare-controllers` (issue 35): one string under each top-drive law against stick-slip, side by side.
+// The laws: the stiff PI as the case gives it; SoftSpeed, a soft_torque top whose PI is tuned to the stick-slip
+// period the stiff PI shows (kp = Z, ki = J (2 pi / P)^2); Z-Torque, the stiff PI tracking the set-point less the
+// high-passed string torque over the top section's impedance Z. Each law takes over from the stiff PI at the same
+// instant of its stick-slip (model::Handover), so every law starts from the same stick-slip state; the stiff PI runs
+// on unchanged. Per law: the linear verdict and rightmost root at the operating point, and over the 20-s windows
+// after the handover the median stick-slip severity and the median standard deviation of the top torque, its
+// reduction against the stiff PI's, and how long the stick-slip takes to die out.
+//
+//   ControllerComparison c = CompareControllers(document, {});  // handover at the case's statistics window
+//   WriteControllerComparison(document, c, "out/controllers");   // controllers.csv, .md, .svg, case.json
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace drillwave::cases {
+
+// A PI top drive that replaces a case's top of another kind (dissipative, prescribed speed): its inertia and gains.
+struct StiffPi {
+  double inertia_kgm2 = 0, kp_Nms_per_rad = 0, ki_Nm_per_rad = 0;
+};
+
+struct ControllerComparisonSpec {
+  std::optional<double> handover_s;        // > 0; default: the start of the case's statistics window
+  double after_s = 60;                     // >= 20 s (a severity window): the runs end this long after the handover
+  std::optional<double> tuning_period_s;   // SoftSpeed's P; default: the stiff PI's stick-slip period after handover
+  std::optional<StiffPi> stiff_pi;         // needed for a top that is not a PI top drive (top_drive, soft_torque, ...)
+};
+
+struct ControllerResult {
+  std::string law;               // "stiff PI", "SoftSpeed", "Z-Torque"
+  nlohmann::json top;            // the /model/top block it ran with
+  std::string verdict;           // stable | marginal | unstable | no steady state
+  double rightmost_re = 0, rightmost_im = 0;  // the rightmost characteristic root [1/s, rad/s] (NaN: none)
+  double severity = 0;           // median over the 20-s windows after the handover (NaN: the bit turned backwards)
+  double stick_fraction = 0;     // over the same span
+  double period_s = 0;           // of the stick-slip (its onsets) or else of the oscillation over it; NaN: none
+  // The median over the windows of the standard deviation of the kind's top_torque_Nm: the torque the top feeds into
+  // the string in torsional_wave, the drive's torque (which also turns the top drive's inertia) in axial_torsional.
+  double torque_std_Nm = 0;
+  double torque_reduction_pct = 0;  // 100 (1 - torque_std / the stiff PI's)
+  std::optional<double> suppressed_after_s;  // handover to the end of the last stick; none: the bit still sticks
+                                             // in the last 20 s (not suppressed)
+  std::vector<double> time_s, bit_rpm, top_torque_Nm;  // the run from 10 s before the handover, for the figure
+};
+
+struct ControllerComparison {
+  double handover_s = 0, end_s = 0;
+  double tuning_period_s = 0;          // SoftSpeed's P
+  double feedback_time_constant_s = 0; // Z-Torque's high-pass filter
+  std::vector<ControllerResult> laws;  // the stiff PI first
+};
+
+// Throws InputError for a top that has no stiff PI to compare with (naming /model/top/type, unless spec.stiff_pi
+// gives one), a handover not > 0 or after_s below 20 s (naming the spec's field, handover_s or after_s), and where the
+// stiff PI shows no stick-slip period to tune SoftSpeed to (naming tuning_period_s, which gives one); NumericalError
+// from a run.
+ControllerComparison CompareControllers(const nlohmann::json& document, const ControllerComparisonSpec& spec);
+
+// controllers.csv (a row per law), controllers.md (the table and how it was made), controllers.svg (bit speed and
+// surface torque of every law around the handover) and case.json into out_dir, all or nothing.
+void WriteControllerComparison(const nlohmann::json& document, const ControllerComparison& comparison,
+                               const std::string& out_dir);
+
+}  // namespace drillwave::cases

@@ -1,0 +1,90 @@
+#pragma once
+// A PI speed controller with its law against stick-slip (model::TopDriveLaw) as a component of a process: what the
+// controller reads (an actuator delay late), the speed it tracks, its torque and the rates of its two states (the
+// integral of the speed error and, with torque feedback, the low-passed string torque). The first component of the
+// dynamics layer issue 36 asks for: the wave network's process (torsional_wave, every PI speed loop of its ends) and
+// the coupled kind's (axial_torsional) both run their top's controller through it, so a law written here works in
+// both. It depends on model and integration only; the process keeps the state slots and tells it the string torque.
+#include <optional>
+
+#include "drillwave/integration/hermite_history.hpp"
+#include "drillwave/integration/options.hpp"
+#include "drillwave/model/pi_controller.hpp"
+#include "drillwave/model/schedule.hpp"
+#include "drillwave/model/top_drive_law.hpp"
+
+namespace drillwave::dynamics {
+
+class PiTopDrive {
+ public:
+  using Side = integration::Side;
+  // What the controller reads at one instant: the speed it tracks (the set-point less the torque feedback), the
+  // drive's speed and the string torque at the top (0 without feedback), all one actuator delay late.
+  struct Reading {
+    double command, speed, torque;
+  };
+
+  // The controller of a drive turning steadily at initial_speed before the start (what a delayed controller reads
+  // then). The references must outlive it.
+  PiTopDrive(const model::PiController& pi, const model::TopDriveLaw& law, const model::Schedule& setpoint,
+             double initial_speed);
+
+  bool has_filter() const { return law_.torque_feedback.active(); }
+  double delay() const { return law_.actuator_delay_s; }
+
+  // The reading at time t for a drive now turning at drive_speed, the filter's state low_passed (ignored without
+  // feedback); string_torque(when, speed) is the torque the top feeds into the string at `when` turning at `speed`
+  // (asked only with feedback).
+  template <class StringTorque>
+  Reading Read(double t, Side side, double drive_speed, double low_passed, const StringTorque& string_torque) const {
+    Reading in{0.0, drive_speed, 0.0};
+    double when = t;
+    if (speed_history_) when = t - delay(), in.speed = speed_history_->Value(when, 0, side);
+    in.command = Setpoint(when, side);
+    if (has_filter()) {
+      in.torque = string_torque(when, in.speed);
+      if (Engaged(t, side)) in.command = law_.Command(in.command, in.torque, low_passed);
+    }
+    return in;
+  }
+  // The PI's output for the reading (a torque, or a motor's voltage or torque demand), with the gains in force at t.
+  double Output(double t, Side side, const Reading& in, double integral) const {
+    return PiAt(t, side).Output(in.command, in.speed, integral);
+  }
+  // The output as the drive's torque: clamped to the torque limit.
+  double Torque(double t, Side side, const Reading& in, double integral) const {
+    return law_.Clamp(Output(t, side, in, integral));
+  }
+  static double IntegralRate(const Reading& in) { return in.command - in.speed; }
+  double FilterRate(const Reading& in, double low_passed) const { return law_.FilterRate(in.torque, low_passed); }
+  // Steady start: the integral that holds `held` with no speed error (the gains in force at 0).
+  double InitialIntegral(double held) const { return PiAt(0.0, Side::kRight).IntegralHolding(held); }
+
+  // The process's step cap, lowered to the delay (delayed look-ups come from committed history).
+  double MaxStep(double process_max_step) const;
+  // Breakpoints of its own after `passed`: the set-point's knots one delay late, the handover.
+  double NextBreakpoint(double passed) const;
+  // At every breakpoint the process passes: at the handover the integral of the speed error is rescaled so that the
+  // integral torque carries over.
+  void OnBreakpoint(double t, double& integral);
+  // A restart of the process's steps (an event, a breakpoint): the drive's speed may kink there.
+  void MarkRestart() { restarted_ = true; }
+  // The drive's speed (component speed_index of the piece) into the delayed controller's history, kept read_back.
+  void Commit(const integration::Piece& piece, int speed_index, double read_back);
+
+ private:
+  bool Engaged(double t, Side side) const;
+  const model::PiController& PiAt(double t, Side side) const { return Engaged(t, side) ? pi_ : law_.handover.before; }
+  double Setpoint(double t, Side side) const {
+    return side == Side::kLeft ? setpoint_.ValueBefore(t) : setpoint_.Value(t);
+  }
+
+  const model::PiController& pi_;
+  const model::TopDriveLaw& law_;
+  const model::Schedule& setpoint_;
+  std::optional<integration::HermiteHistory> speed_history_;  // with a delay
+  bool restarted_ = true;    // the next committed piece starts after an event or a breakpoint
+  bool handed_over_ = false;
+};
+
+}  // namespace drillwave::dynamics

@@ -1,0 +1,181 @@
+// compare-controllers: the laws' top blocks written from the case's top, their runs and what is measured on them
+// (the outputs: controller_comparison_report.cpp).
+#include "drillwave/cases/controller_comparison.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/stability.hpp"
+#include "drillwave/cases/statistics.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
+#include "drillwave/core/median.hpp"
+
+namespace drillwave::cases {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kFigureLeadS = 10;  // the figure shows the stiff PI's stick-slip this long before the handover
+
+bool IsPiTop(const std::string& type) { return type == "top_drive" || type == "soft_torque" || type == "z_torque"; }
+
+// The case's top as every law keeps it (inertia, set-point, torque limit, actuator delay, gear, dampers), and the
+// stiff PI's gains.
+struct StiffTop {
+  nlohmann::json drive;
+  nlohmann::json kp, ki;
+};
+StiffTop StiffTopOf(const nlohmann::json& top, const std::optional<StiffPi>& given) {
+  const std::string type = top.value("type", std::string("top_drive"));
+  if (!IsPiTop(type) && !given)
+    throw InputError("/model/top/type", "compare-controllers compares the laws of a PI top drive (top_drive, "
+                                        "soft_torque or z_torque), got " + type + ": give the stiff PI that replaces "
+                                        "it (inertia, kp, ki)");
+  if (!top.contains("speed_rad_s"))
+    throw InputError("/model/top/speed_rad_s", "the laws track a speed set-point: expected one in the case's top");
+  StiffTop stiff;
+  if (IsPiTop(type)) {
+    stiff.drive = top;
+    for (const char* law_field : {"type", "kp_Nms_per_rad", "ki_Nm_per_rad", "tuning_period_s",
+                                  "feedback_gain_rad_per_Nms", "feedback_time_constant_s", "impedance_Nms_per_rad",
+                                  "handover"})
+      stiff.drive.erase(law_field);
+  } else {  // a top of another kind: only its set-point carries over
+    stiff.drive = {{"speed_rad_s", top["speed_rad_s"]}};
+  }
+  if (given) {
+    stiff.drive["inertia_kgm2"] = given->inertia_kgm2;
+    stiff.kp = given->kp_Nms_per_rad, stiff.ki = given->ki_Nm_per_rad;
+  } else if (top.contains("kp_Nms_per_rad") && top.contains("ki_Nm_per_rad")) {
+    stiff.kp = top["kp_Nms_per_rad"], stiff.ki = top["ki_Nm_per_rad"];
+  } else {
+    throw InputError("/model/top/kp_Nms_per_rad", "the stiff PI's gains: expected kp_Nms_per_rad and ki_Nm_per_rad "
+                                                  "in the case's top (not a SoftSpeed tuning), or a stiff PI given");
+  }
+  return stiff;
+}
+
+nlohmann::json WithTop(const nlohmann::json& base, const nlohmann::json& drive, const nlohmann::json& law) {
+  nlohmann::json doc = base;
+  doc["model"]["top"] = drive;
+  doc["model"]["top"].update(law);
+  return doc;
+}
+
+// The linear verdict at the operating point (the first steady state) and its rightmost root.
+void LinearVerdict(const Case& c, ControllerResult& r) {
+  r.rightmost_re = r.rightmost_im = kNaN;
+  std::vector<OperatingPointStability> points;
+  try {
+    points = AnalyzeStability(c);
+  } catch (const InputError&) {  // a kind or string without a linearization
+    r.verdict = "no linearization";
+    return;
+  }
+  if (points.empty()) {
+    r.verdict = "no steady state";
+    return;
+  }
+  const analysis::Spectrum& sp = points.front().spectrum;
+  r.verdict = analysis::VerdictName(sp.verdict);
+  if (!sp.roots.empty()) r.rightmost_re = sp.roots.front().s.real(), r.rightmost_im = sp.roots.front().s.imag();
+}
+
+// The median over the severity's windows of the standard deviation of `values` in each.
+double MedianWindowStd(const std::vector<double>& t, const std::vector<double>& values, double begin, double end) {
+  std::vector<double> stds;
+  for (const auto& [a, b] : SeverityWindows(begin, end)) {
+    double sum = 0, squares = 0;
+    int n = 0;
+    for (std::size_t i = 0; i < t.size(); ++i)
+      if (t[i] >= a && t[i] <= b) sum += values[i], squares += values[i] * values[i], ++n;
+    if (n > 1) stds.push_back(std::sqrt(std::max(0.0, (squares - sum * sum / n) / (n - 1))));
+  }
+  return Median(stds);
+}
+
+// The time from the handover to the end of the last stick after it (0 without one); none if the bit still sticks
+// within the last severity window of the run.
+std::optional<double> SuppressedAfter(const std::vector<double>& t, const std::vector<double>& stuck, double handover,
+                                      double end) {
+  double last = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= handover && stuck[i] > 0.5) last = t[i];
+  if (last >= end - kSeverityWindowS) return std::nullopt;
+  return last < handover ? 0.0 : last - handover;
+}
+
+double NumberOr(const nlohmann::json& summary, const char* key, double otherwise) {
+  const auto it = summary.find(key);
+  return it != summary.end() && it->is_number() ? it->get<double>() : otherwise;
+}
+
+ControllerResult Evaluate(const std::string& law, const nlohmann::json& doc, double handover, double end) {
+  ControllerResult r;
+  r.law = law;
+  r.top = doc["model"]["top"];
+  const Case c = ParseCase(doc);
+  LinearVerdict(c, r);
+  const CaseRun run = RunCase(c);
+  r.severity = NumberOr(run.summary, "stick_slip_severity", kNaN);
+  r.stick_fraction = NumberOr(run.summary, "stick_fraction", kNaN);
+  r.period_s = NumberOr(run.summary, "stick_slip_period_s", NumberOr(run.summary, "oscillation_period_s", kNaN));
+  const std::vector<double>& t = run.result.time_s;
+  const std::vector<double>& torque = run.result.channel("top_torque_Nm").values;
+  const std::vector<double>& bit = run.result.channel("bit_rpm").values;
+  r.torque_std_Nm = MedianWindowStd(t, torque, handover, end);
+  r.suppressed_after_s = SuppressedAfter(t, run.result.channel("bit_stuck").values, handover, end);
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= handover - kFigureLeadS)
+      r.time_s.push_back(t[i]), r.bit_rpm.push_back(bit[i]), r.top_torque_Nm.push_back(torque[i]);
+  return r;
+}
+
+}  // namespace
+
+ControllerComparison CompareControllers(const nlohmann::json& document, const ControllerComparisonSpec& spec) {
+  const Case given = ParseCase(document);
+  ControllerComparison out;
+  out.handover_s = spec.handover_s.value_or(given.settings.window_begin_s);
+  if (!(out.handover_s > 0) || !std::isfinite(out.handover_s))
+    throw InputError("handover_s", "the laws take over from the stiff PI's stick-slip at a time > 0, got " +
+                                       Significant(out.handover_s, 6) + " s (by default the start of the case's "
+                                       "statistics window)");
+  if (!(spec.after_s >= kSeverityWindowS) || !std::isfinite(spec.after_s))
+    throw InputError("after_s", "the runs go on at least one severity window (" + Significant(kSeverityWindowS, 3) +
+                                    " s) after the handover, got " + Significant(spec.after_s, 6) + " s");
+  out.end_s = out.handover_s + spec.after_s;
+  nlohmann::json base = document;
+  base.erase("expect");  // the case's expectations are its own law's
+  base["simulation"]["duration_s"] = out.end_s;
+  base["statistics"]["window_s"] = {out.handover_s, out.end_s};
+  const StiffTop stiff = StiffTopOf(document["model"]["top"], spec.stiff_pi);
+
+  const nlohmann::json stiff_law = {{"type", "top_drive"}, {"kp_Nms_per_rad", stiff.kp}, {"ki_Nm_per_rad", stiff.ki}};
+  out.laws.push_back(Evaluate("stiff PI", WithTop(base, stiff.drive, stiff_law), out.handover_s, out.end_s));
+  // SoftSpeed is tuned to the stick-slip the stiff PI keeps up (its period over the same span).
+  out.tuning_period_s = spec.tuning_period_s.value_or(out.laws.front().period_s);
+  if (!(out.tuning_period_s > 0))
+    throw InputError("tuning_period_s", "the stiff PI shows no stick-slip period over [" +
+                                            Significant(out.handover_s, 6) + ", " + Significant(out.end_s, 6) +
+                                            "] s to tune SoftSpeed to: give the period");
+  const nlohmann::json& top = document["model"]["top"];
+  out.feedback_time_constant_s = top.contains("feedback_time_constant_s") && top["feedback_time_constant_s"].is_number()
+                                     ? top["feedback_time_constant_s"].get<double>()
+                                     : 2 * out.tuning_period_s;  // passes the stick-slip mode: tau_f w = 4 pi
+  const nlohmann::json handover = {
+      {"time_s", out.handover_s}, {"kp_Nms_per_rad", stiff.kp}, {"ki_Nm_per_rad", stiff.ki}};
+  const nlohmann::json soft_speed = {{"type", "soft_torque"}, {"tuning_period_s", out.tuning_period_s},
+                                     {"handover", handover}};
+  nlohmann::json z_torque = stiff_law;
+  z_torque.update({{"type", "z_torque"}, {"feedback_time_constant_s", out.feedback_time_constant_s},
+                   {"handover", handover}});
+  out.laws.push_back(Evaluate("SoftSpeed", WithTop(base, stiff.drive, soft_speed), out.handover_s, out.end_s));
+  out.laws.push_back(Evaluate("Z-Torque", WithTop(base, stiff.drive, z_torque), out.handover_s, out.end_s));
+  const double reference = out.laws.front().torque_std_Nm;
+  for (ControllerResult& r : out.laws) r.torque_reduction_pct = 100 * (1 - r.torque_std_Nm / reference);
+  return out;
+}
+
+}  // namespace drillwave::cases
