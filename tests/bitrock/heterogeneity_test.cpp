@@ -68,6 +68,32 @@ TEST(StrengthHeterogeneity, ASeedReproducesTheFieldAndAnotherDoesNot) {
   }
 }
 
+// Deviation keeps each thread's last answer (a state asks for one depth several times): asked at one depth in turn,
+// fields answer for themselves, a copy as its original, and a field built where a destroyed one stood (the same
+// address, likely) with another seed does not answer with the old field's value.
+TEST(StrengthHeterogeneity, ItsLastAnswerIsOnlyEverItsOwn) {
+  const double z = 0.0123;
+  const StrengthHeterogeneity a(kStd, kCorrelation, 3, 64), b(kStd, kCorrelation, 4, 64);
+  const double a_z = a.Deviation(z), b_z = b.Deviation(z);
+  EXPECT_NE(a_z, b_z);
+  EXPECT_EQ(a.Deviation(z), a_z);
+  EXPECT_EQ(b.Deviation(z), b_z);
+  const StrengthHeterogeneity copy = a;
+  EXPECT_EQ(copy.Deviation(z), a_z);
+  double first = 0, second = 0;
+  {
+    const StrengthHeterogeneity gone(kStd, kCorrelation, 5, 64);
+    first = gone.Deviation(z);
+  }
+  {
+    const StrengthHeterogeneity next(kStd, kCorrelation, 6, 64);
+    second = next.Deviation(z);
+  }
+  EXPECT_EQ(first, StrengthHeterogeneity(kStd, kCorrelation, 5, 64).Deviation(z));
+  EXPECT_EQ(second, StrengthHeterogeneity(kStd, kCorrelation, 6, 64).Deviation(z));
+  EXPECT_NE(first, second);
+}
+
 TEST(StrengthHeterogeneity, ZeroStdIsHomogeneousRockAndBadParametersAreRefused) {
   const StrengthHeterogeneity zero(0, kCorrelation, 5, 64);
   EXPECT_FALSE(zero.on());

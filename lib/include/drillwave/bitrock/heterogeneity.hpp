@@ -28,6 +28,7 @@ class StrengthHeterogeneity {
   double Multiplier(double z) const { return on() ? 1.0 + Deviation(z) : 1.0; }
 
  private:
+  std::uint64_t id_ = 0;  // this field's own number (its copies share it): the key of Deviation's last answer
   double std_ = 0;
   double amplitude_ = 0;                    // c
   std::vector<double> wavenumbers_, phases_;  // kappa_k [1/m], phi_k
