@@ -3,9 +3,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -50,6 +54,71 @@ TEST(WriteCsv, WritesHeaderAndTenSignificantDigits) {
   WriteCsv(out, {"time_s", "v"},
            {{0.0, 0.5, 1e-12}, {1.234567890123, std::nan(""), -std::numeric_limits<double>::infinity()}});
   EXPECT_EQ(out.str(), "time_s,v\n0,1.23456789\n0.5,nan\n1e-12,-inf\n");
+}
+
+// The formatting WriteCsv had before std::to_chars (issue 40), which it must keep byte for byte.
+std::string PrintfText(double v) {
+  if (std::isnan(v)) return "nan";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+std::string CsvText(double v) {
+  std::string text;
+  AppendCsvNumber(text, v);
+  return text;
+}
+
+TEST(AppendCsvNumber, IsPrintfsTextOnTrickyValues) {
+  using limits = std::numeric_limits<double>;
+  const double tricky[] = {
+      0.0, -0.0, 1e-300, -1e-300, 1e300, -1e300, limits::denorm_min(), limits::min(), limits::max(), -limits::max(),
+      limits::infinity(), -limits::infinity(), 0.1, -0.1, 1.0 / 3, 2.0 / 3, 123456789.123456789, 1e-5, 1e-4,
+      9.99999999995e-5,                           // rounds up into fixed notation's range
+      1e9, 1e10, 9999999999.4, 9999999999.5,       // fixed up to 10 digits; the last rounds up to 1e+10
+      123456789.25, 123456789.75, 1234567890.5,    // exact ties, broken to the even digit
+      1234567891.5, 12345678905.0, 12345678915.0,  // the same at other places
+      0.5, 1.5, 2.5, 9.9999999995, 9.99999999949999, 1e-320, 5e-324, 1e308, 1.7976931348623157e308,
+      6.02214076e23, -273.15, 1e21, 1e22, 4.35, 0.3};
+  for (const double v : tricky) EXPECT_EQ(CsvText(v), PrintfText(v)) << std::hexfloat << v;
+  EXPECT_EQ(CsvText(0.0), "0");
+  EXPECT_EQ(CsvText(-0.0), "-0");
+  EXPECT_EQ(CsvText(1e-300), "1e-300");
+  EXPECT_EQ(CsvText(123456789.123456789), "123456789.1");
+  EXPECT_EQ(CsvText(-limits::infinity()), "-inf");
+  EXPECT_EQ(CsvText(std::nan("")), "nan");
+  EXPECT_EQ(CsvText(-std::nan("")), "nan") << "never -nan";
+  std::string row = "a,";
+  AppendCsvNumber(row, 0.25);
+  EXPECT_EQ(row, "a,0.25") << "appends";
+}
+
+TEST(AppendCsvNumber, IsPrintfsTextOnRandomValues) {
+  std::mt19937_64 random(40);
+  auto expect_same = [](double v) {
+    const std::string text = CsvText(v);
+    ASSERT_EQ(text, PrintfText(v)) << std::hexfloat << v;
+  };
+  // Any bit pattern: every exponent, subnormals, infinities and NaNs with any sign and payload.
+  for (int i = 0; i < 50000; ++i) {
+    const std::uint64_t bits = random();
+    double v;
+    std::memcpy(&v, &bits, sizeof v);
+    expect_same(v);
+  }
+  // 11-digit integers ending in 5 are exact ties of rounding to 10 digits; scaled by powers of ten, near-ties.
+  std::uniform_int_distribution<std::int64_t> tie(1000000000, 9999999999);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  for (int i = 0; i < 50000; ++i) {
+    const double v = static_cast<double>(10 * tie(random) + 5);
+    expect_same(v);
+    expect_same(-v * std::pow(10.0, exponent(random)));
+  }
+  // Binary fractions have exact decimal expansions, some of them ties at the 11th digit.
+  std::uniform_int_distribution<std::int64_t> mantissa(1, std::int64_t{1} << 40);
+  std::uniform_int_distribution<int> shift(1, 40);
+  for (int i = 0; i < 50000; ++i) expect_same(std::ldexp(static_cast<double>(mantissa(random)), -shift(random)));
 }
 
 TEST(WriteCsv, RejectsMismatchedColumns) {

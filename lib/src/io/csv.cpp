@@ -1,8 +1,8 @@
 #include "drillwave/io/csv.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -27,6 +27,18 @@ void Trim(const char*& begin, const char*& end) {
 
 }  // namespace
 
+void AppendCsvNumber(std::string& text, double v) {
+  if (std::isnan(v)) {
+    text += "nan";  // not "-nan", which some readers reject
+    return;
+  }
+  // to_chars with a precision is specified as printf's "%.10g" in the C locale, so the text is the same, and it is
+  // 3 to 4 times faster (printf was half of a long run's time). The longest text, "-1.234567891e-308", has 17 chars.
+  char number[32];
+  const std::to_chars_result end = std::to_chars(number, number + sizeof number, v, std::chars_format::general, 10);
+  text.append(number, end.ptr);
+}
+
 void WriteCsv(std::ostream& out, const std::vector<std::string>& header,
               const std::vector<std::vector<double>>& columns) {
   if (header.size() != columns.size())
@@ -42,20 +54,13 @@ void WriteCsv(std::ostream& out, const std::vector<std::string>& header,
       throw std::invalid_argument("WriteCsv: column name " + name + " would need CSV quoting");
   for (std::size_t j = 0; j < header.size(); ++j) out << (j ? "," : "") << header[j];
   out << '\n';
-  // One string per row, formatted with snprintf: several times faster than streaming each double.
-  char number[32];
+  // One string per row: several times faster than streaming each double.
   std::string line;
   for (std::size_t i = 0; i < rows; ++i) {
     line.clear();
     for (std::size_t j = 0; j < columns.size(); ++j) {
       if (j) line += ',';
-      const double v = columns[j][i];
-      if (std::isnan(v)) {
-        line += "nan";  // not "-nan", which some readers reject
-      } else {
-        std::snprintf(number, sizeof number, "%.10g", v);
-        line += number;
-      }
+      AppendCsvNumber(line, columns[j][i]);
     }
     line += '\n';
     out.write(line.data(), static_cast<std::streamsize>(line.size()));

@@ -12,6 +12,10 @@ namespace drillwave::io {
 void WriteCsv(std::ostream& out, const std::vector<std::string>& header,
               const std::vector<std::vector<double>>& columns);
 
+// Appends one number as WriteCsv writes it: printf's "%.10g" text ("0.1", "-0", "1e-300", "1.234567891e+300", "inf",
+// "-inf"), any NaN as "nan".
+void AppendCsvNumber(std::string& text, double v);
+
 struct CsvTable {
   std::vector<std::string> header;
   std::vector<std::vector<double>> columns;  // columns[j] belongs to header[j]
