@@ -201,34 +201,65 @@ TEST_F(ErrorPolicy, ASymbolicLinkAsTheOutputFolderIsRefusedBeforeTheRun) {
   EXPECT_EQ(RunTool("run " + Write(base_) + " -o " + target.string()).exit_code, 0) << "the folder itself is fine";
 }
 
-TEST_F(ErrorPolicy, AnOutputFolderThatCannotBeWrittenIsFoundBeforeTheRun) {
-  // Issue 41: a read-only parent was found after the whole simulation, as an internal error (exit 4). Root may
-  // write anywhere, so as root the tool runs as nobody (setpriv), for whom the folder is read-only too.
-  const fs::path locked = dir_ / "locked";
-  fs::create_directories(locked);
-  fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
-                              fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
-  std::string as_user;
-  if (::geteuid() == 0) {
-    if (drillwave::test_support::RunCommand("setpriv --version").exit_code != 0)
-      GTEST_SKIP() << "running as root without setpriv: cannot make a folder read-only";
-    as_user = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+// A folder this process may read but not write in (mode 555). Root may write anywhere, so for root the tool is run
+// as nobody (setpriv), for whom the folder is read-only too.
+class ReadOnlyFolder : public ErrorPolicy {
+ protected:
+  void Lock(const fs::path& folder) {
+    fs::permissions(folder, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
   }
-  const std::string file = Write(base_);
-  if (!as_user.empty() && drillwave::test_support::RunCommand(as_user + "test -r " + file).exit_code != 0)
-    GTEST_SKIP() << "nobody cannot read " << file << " (a private temporary folder?)";
-  for (const fs::path& out : {locked / "out", locked / "new" / "out"}) {
-    const Outcome o = drillwave::test_support::RunCommand(as_user + DRILLWAVE_BINARY + " run " + file + " -o " +
-                                                          out.string());
+  // Why a read-only folder cannot be had here (the test is then skipped); empty if it can.
+  std::string WhyNoReadOnlyFolder(const std::string& case_file) {
+    if (::geteuid() != 0) return "";
+    if (drillwave::test_support::RunCommand("setpriv --version").exit_code != 0)
+      return "running as root without setpriv: cannot make a folder read-only";
+    as_user_ = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+    if (drillwave::test_support::RunCommand(as_user_ + "test -r " + case_file).exit_code != 0)
+      return "nobody cannot read " + case_file + " (a private temporary folder?)";
+    return "";
+  }
+  // Expects `run case_file -o out` to exit 2 with `message`, before the run.
+  void ExpectRefusedBeforeTheRun(const std::string& case_file, const fs::path& out, const std::string& message) {
+    const Outcome o =
+        drillwave::test_support::RunCommand(as_user_ + DRILLWAVE_BINARY + " run " + case_file + " -o " + out.string());
     EXPECT_EQ(o.exit_code, 2) << o.output;
-    EXPECT_NE(o.output.find("--out: cannot create " + out.string() + ": the folder " + locked.string() +
-                            " is not writable (Permission denied)"),
-              std::string::npos)
-        << o.output;
+    EXPECT_NE(o.output.find(message), std::string::npos) << o.output;
     EXPECT_EQ(o.output.find("running case"), std::string::npos) << "checked before the run";
   }
+
+  std::string as_user_;
+};
+
+TEST_F(ReadOnlyFolder, AnOutputFolderThatCannotBeCreatedIsFoundBeforeTheRun) {
+  // Issue 41: a read-only parent was found after the whole simulation, as an internal error (exit 4).
+  const fs::path locked = dir_ / "locked";
+  fs::create_directories(locked);
+  Lock(locked);
+  const std::string file = Write(base_), why = WhyNoReadOnlyFolder(file);
+  if (!why.empty()) GTEST_SKIP() << why;
+  for (const fs::path& out : {locked / "out", locked / "new" / "out"})
+    ExpectRefusedBeforeTheRun(file, out, "--out: cannot create " + out.string() + ": the folder " + locked.string() +
+                                             " is not writable (Permission denied)");
   fs::permissions(locked, fs::perms::owner_all);
   EXPECT_TRUE(fs::is_empty(locked));
+}
+
+TEST_F(ReadOnlyFolder, AnOutputFolderThatCannotBeReplacedIsFoundBeforeTheRun) {
+  // An earlier run's folder, writable itself, in a parent made read-only since: the new folder is swapped in by a
+  // rename in the parent, which would fail after the whole run. Checked before it (exit 2, naming the parent).
+  const fs::path locked = dir_ / "locked", out = locked / "out";
+  const std::string file = Write(base_);
+  ASSERT_EQ(RunTool("run " + file + " -o " + out.string()).exit_code, 0);
+  fs::permissions(out, fs::perms::all);  // so that only the parent stands in the way, for nobody too
+  const std::string before = Contents(out / "trajectory.csv");
+  Lock(locked);
+  const std::string why = WhyNoReadOnlyFolder(file);
+  if (!why.empty()) GTEST_SKIP() << why;
+  ExpectRefusedBeforeTheRun(file, out, "--out: cannot replace " + out.string() + ": its parent folder " +
+                                           locked.string() + " is not writable (Permission denied)");
+  fs::permissions(locked, fs::perms::owner_all);
+  EXPECT_EQ(Contents(out / "trajectory.csv"), before);
 }
 
 TEST_F(ErrorPolicy, AWriteFailureAfterTheRunNamesTheFileAndItsCause) {

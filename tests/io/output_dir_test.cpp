@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <algorithm>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <iterator>
 #include <stdexcept>
 #include <string>
@@ -263,6 +265,40 @@ TEST_F(OutputDirectoryTest, AFailedWriteNamesTheFileThatFailedAndWhy) {
   EXPECT_EQ(message.find(".drillwave-output"), std::string::npos) << message;
   EXPECT_EQ(Contents(dir / "summary.json"), "old") << "the old folder is kept whole";
   EXPECT_EQ(Entries(), std::vector<std::string>{"run"}) << "no staging folder left";
+}
+
+// The message of the OutputError `work` throws; a failure if it throws none.
+std::string OutputErrorOf(const std::function<void()>& work) {
+  try {
+    work();
+  } catch (const OutputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no OutputError";
+  return "";
+}
+
+TEST_F(OutputDirectoryTest, AFolderChangedDuringTheWorkIsAnOutputFailureNotBadInput) {
+  // Issue 41: the tool checks the folder before the work (CheckReplaceable), the constructor again after it, and
+  // Commit() once more after writing. Failing then is the environment changed meanwhile (OutputError, exit 5), not
+  // bad input (exit 2, "checked before any work starts"); the folder is left as it is.
+  const fs::path after_the_work = scratch_ / "checked", while_writing = scratch_ / "written";
+  OutputDirectory::CheckReplaceable(after_the_work.string());
+  for (const fs::path& dir : {after_the_work, while_writing}) {
+    const std::string message = OutputErrorOf([&] {
+      std::unique_ptr<OutputDirectory> out;
+      if (dir == while_writing) out = std::make_unique<OutputDirectory>(dir.string());
+      fs::create_directories(dir);
+      std::ofstream(dir / "notes.txt") << "mine";
+      if (!out) out = std::make_unique<OutputDirectory>(dir.string());
+      out->Open("summary.json") << "{}";
+      out->Commit();
+    });
+    EXPECT_NE(message.find(dir.string() + " holds \"notes.txt\""), std::string::npos) << message;
+    EXPECT_NE(message.find("found after the work"), std::string::npos) << message;
+    EXPECT_EQ(Contents(dir / "notes.txt"), "mine");
+  }
+  EXPECT_EQ(Entries(), (std::vector<std::string>{"checked", "written"})) << "no staging folder left";
 }
 
 TEST_F(OutputDirectoryTest, StagingFoldersOfDeadProcessesAreRemoved) {

@@ -248,10 +248,15 @@ namespace {
 // "No space left on device" and the like, for a message.
 std::string Cause(int error) { return std::strerror(error); }
 
-}  // namespace
+// Folders that passed CheckReplaceable (before the work), until an OutputDirectory for them is made (after it): if
+// the folder fails the check then, it changed while we worked.
+std::set<fs::path>& CheckedBeforeTheWork() {
+  static std::set<fs::path> checked;
+  return checked;
+}
 
-void OutputDirectory::CheckReplaceable(const std::string& dir) {
-  const fs::path path = NormalisedFolder(dir);
+// OutputDirectory::CheckReplaceable's checks of the normalised folder `path`.
+void CheckFolder(const fs::path& path) {
   std::error_code error;
   const fs::file_status link_status = fs::symlink_status(path, error);
   if (fs::is_symlink(link_status)) {
@@ -290,10 +295,24 @@ void OutputDirectory::CheckReplaceable(const std::string& dir) {
                                   "), so its old files could not be removed");
 }
 
+}  // namespace
+
+void OutputDirectory::CheckReplaceable(const std::string& dir) {
+  const fs::path path = NormalisedFolder(dir);
+  CheckFolder(path);
+  std::lock_guard<std::mutex> lock(registry_mutex);
+  CheckedBeforeTheWork().insert(path);
+}
+
 OutputDirectory::OutputDirectory(std::string dir) {
   // "out/", "./out" and "out" name the same folder; its staging folder must be a sibling, never inside it.
   dir_ = NormalisedFolder(dir);
-  CheckReplaceable(dir_.string());
+  bool checked_before_the_work;
+  {
+    std::lock_guard<std::mutex> lock(registry_mutex);
+    checked_before_the_work = CheckedBeforeTheWork().erase(dir_) > 0;
+  }
+  CheckAgain(checked_before_the_work);
 
   std::error_code error;
   const fs::path parent = dir_.parent_path();
@@ -363,7 +382,7 @@ void OutputDirectory::Commit() {
   if (failed_file)
     throw OutputError("cannot write " + PathOf(*failed) + ": " + Cause(failed_file->error()) +
                       "; nothing was changed in " + dir_.string());
-  CheckReplaceable(dir_.string());  // again: someone may have put a file there while we worked
+  CheckAgain(true);  // someone may have put a file there, or made the parent read-only, since the constructor
   std::error_code error;
   std::unique_lock<std::mutex> lock(registry_mutex);
   fs::rename(staging_, dir_, error);  // dir_ does not exist (or is an empty folder): the new one appears at once
@@ -376,13 +395,16 @@ void OutputDirectory::Commit() {
       // A file system without an atomic exchange: two renames, with the old folder put back if the second fails.
       // Only between the two is dir_ missing (never mixed).
       const fs::path old = staging_.string() + "-old";
-      fs::rename(dir_, old);
+      fs::rename(dir_, old, error);
+      if (error) throw OutputError("cannot move " + dir_.string() + " aside to replace it: " + error.message());
       fs::rename(staging_, dir_, error);
       if (error) {
-        fs::rename(old, dir_);
+        std::error_code ignored;  // the first error is the one to report
+        fs::rename(old, dir_, ignored);
         throw OutputError("cannot move " + staging_.string() + " to " + dir_.string() + ": " + error.message());
       }
-      fs::rename(old, staging_);
+      fs::rename(old, staging_, error);  // removed below as the staging folder, or here if it cannot be moved
+      if (error) fs::remove_all(old, error);
     } else {
       throw OutputError("cannot replace " + dir_.string() + " by " + staging_.string() + ": " +
                         std::error_code(errno, std::generic_category()).message());
@@ -393,6 +415,18 @@ void OutputDirectory::Commit() {
   fs::remove_all(staging_, error);  // the old folder, if there was one
   std::lock_guard<std::mutex> relock(registry_mutex);
   Registry().erase(staging_);
+}
+
+void OutputDirectory::CheckAgain(bool passed_before) const {
+  try {
+    CheckFolder(dir_);
+  } catch (const InputError& e) {
+    // A folder that passed the check and fails it now was changed meanwhile (a file put there, the parent made
+    // read-only): the environment kept the outputs from being written (exit 5), not bad input.
+    if (!passed_before) throw;
+    throw OutputError(std::string(e.what()) + " (found after the work: the folder or its parent changed meanwhile); "
+                      "nothing was changed in " + dir_.string());
+  }
 }
 
 std::string OutputDirectory::PathOf(const std::string& file_name) const { return (dir_ / file_name).string(); }

@@ -43,8 +43,9 @@ class OutputFile;
 //   out.Commit();
 class OutputDirectory {
  public:
-  // Creates the staging folder. Throws InputError where CheckReplaceable does; OutputError if the staging folder
-  // cannot be created all the same.
+  // Creates the staging folder. Throws InputError where CheckReplaceable does, but OutputError (with the same
+  // message) for a folder that passed CheckReplaceable since the last OutputDirectory for it (the tool's check before
+  // the work), and so changed while drillwave worked; OutputError if the staging folder cannot be created.
   explicit OutputDirectory(std::string dir);
   ~OutputDirectory();
   OutputDirectory(const OutputDirectory&) = delete;
@@ -56,7 +57,8 @@ class OutputDirectory {
   std::ostream& Open(const std::string& file_name);
 
   // Flushes and closes every file (OutputError naming the first file whose writing failed and why, e.g. "No space
-  // left on device", leaving `dir` untouched), then replaces `dir` by the staging folder as a whole (see above).
+  // left on device", leaving `dir` untouched), checks `dir` again as CheckReplaceable does (OutputError with its
+  // message if it changed since the constructor), then replaces `dir` by the staging folder as a whole (see above).
   void Commit();
 
   // Where `file_name` ends up after Commit().
@@ -75,10 +77,14 @@ class OutputDirectory {
   //    like an output, "summary.json/"), a symbolic link, a file the marker does not list inside a sub-folder, a
   //    file with another name.
   // The command-line tool calls it before any work starts, so that no run is wasted on a folder it may not replace
-  // or cannot write.
+  // or cannot write; a folder that passes is remembered until an OutputDirectory for it is made, so that failing
+  // the check after the work is told apart (see the constructor).
   static void CheckReplaceable(const std::string& dir);
 
  private:
+  // CheckReplaceable's checks once more; an InputError becomes an OutputError if `dir` passed them before.
+  void CheckAgain(bool passed_before) const;
+
   std::filesystem::path dir_;      // absolute, normalised
   std::filesystem::path staging_;  // sibling of dir_
   std::vector<std::filesystem::path> created_parents_;  // parents of dir_ we created, deepest first
