@@ -28,6 +28,9 @@ const json kStribeck = {{"law", "stribeck"}, {"W_N", 97347},    {"R_m", 0.155575
 const json kHumped = {{"law", "humped"},           {"T_sl_Nm", 0.3},           {"T_1_Nm", -0.2},
                       {"T_2_Nm", 0.15},            {"omega_1_s_per_rad", 2.0}, {"omega_2_s_per_rad", 0.3},
                       {"b_l_Nms_per_rad", 0.01},   {"delta_T_sl_Nm", 0.02}};
+// The UFRJ rig's disc (torque on bit 2.7 N m near rest falling by 0.08 N m per rad/s), with a floor beyond 27.5 rad/s.
+const json kLinearWeakening = {{"law", "linear_weakening"}, {"T_0_Nm", 2.7},     {"T_s_Nm", 3.0},
+                               {"weakening_Nms_per_rad", 0.08}, {"T_min_Nm", 0.5}, {"c_Nms_per_rad", 0.01}};
 const json kUpperDisc = {{"law", "asymmetric_coulomb_viscous"}, {"T_s_Nm", 0.3212}, {"delta_T_s_Nm", 0.0095},
                          {"b_Nms_per_rad", 1.9833}, {"delta_b_Nms_per_rad", 0.0167}};
 
@@ -44,6 +47,7 @@ std::vector<json> EveryLaw() {
       kUpperDisc,
       {{"law", "tanh_hump_printed"}, {"amplitude_Nm", 100.0}, {"beta", 1.0}, {"gamma1", 2.0}, {"gamma2", 0.5}},
       {{"law", "squared_sqrt_cutting"}, {"a4_N", 2e5}, {"depth_of_cut_m", 0.001}, {"alpha", 1.5}, {"epsilon_rad_s", 0.2}},
+      kLinearWeakening,
   };
 }
 
@@ -154,6 +158,23 @@ TEST(FrictionLaw, SquaredSqrtCuttingMatchesHandValues) {
   EXPECT_EQ(f.SlipTorque(0.0), 0.0);
   EXPECT_EQ(f.SlipTorqueDerivative(0.0), 0.0);  // F^2 ~ w^2: no torque slope at rest
   EXPECT_NEAR(f.SlipTorqueDerivative(0.2), 450.0 * 2 * 0.2 * 0.04 / (0.08 * 0.08), 1e-9);
+}
+
+// Slip T = max(T_0 - s |w|, T_min) sign w + c w: the linear fall, the floor, stiction above the slip branch.
+TEST(FrictionLaw, LinearWeakeningFallsLinearlyToItsFloor) {
+  const FrictionLaw f = Law(kLinearWeakening);
+  EXPECT_TRUE(f.IsSetValued());
+  EXPECT_DOUBLE_EQ(f.StaticPositive(), 3.0);
+  EXPECT_DOUBLE_EQ(f.StaticNegative(), 3.0);
+  EXPECT_NEAR(f.SlipTorque(1e-12), 2.7, 1e-11);  // the slip branch starts below the static level
+  EXPECT_NEAR(f.SlipTorque(10.0), 2.7 - 0.8 + 0.1, 1e-14);
+  EXPECT_NEAR(f.SlipTorque(-10.0), -(2.7 - 0.8 + 0.1), 1e-14);
+  EXPECT_NEAR(f.SlipTorqueDerivative(10.0), -0.08 + 0.01, 1e-15);
+  EXPECT_NEAR(f.SlipTorque(40.0), 0.5 + 0.4, 1e-14);  // on the floor (beyond 27.5 rad/s): only c w still grows
+  EXPECT_NEAR(f.SlipTorqueDerivative(40.0), 0.01, 1e-15);
+  const FrictionLaw defaults = Law({{"law", "linear_weakening"}, {"T_0_Nm", 2.0}, {"weakening_Nms_per_rad", 0.1}});
+  EXPECT_EQ(defaults.StaticPositive(), 2.0);   // T_s defaults to T_0
+  EXPECT_EQ(defaults.SlipTorque(30.0), 0.0);   // the floor defaults to 0: never a torque that drives the disc
 }
 
 TEST(FrictionLaw, HumpedLowerDiscLaw) {
@@ -328,6 +349,10 @@ TEST(FrictionLaw, BadInputNamesTheFieldTheValueAndTheRange) {
   ExpectRejected(With(kStribeck, "mu_s", 0.4), p + "mu_s", {"got 0.4", ">= mu_c", "0.5"});
   ExpectRejected(With(kStribeck, "nu_f_rad_s", 0), p + "nu_f_rad_s", {"got 0", "> 0"});
   ExpectRejected(With(kStribeck, "W_N", std::strtod("1e999", nullptr)), p + "W_N", {"finite", "inf"});
+  ExpectRejected(With(kLinearWeakening, "T_min_Nm", 2.8), p + "T_min_Nm", {"got 2.8", "[0, T_0_Nm]", "2.7"});
+  ExpectRejected(With(kLinearWeakening, "T_min_Nm", -0.1), p + "T_min_Nm", {"got -0.1", "[0, T_0_Nm]"});
+  ExpectRejected(With(kLinearWeakening, "T_s_Nm", 2.0), p + "T_s_Nm", {"got 2", ">= T_0_Nm"});
+  ExpectRejected(With(kLinearWeakening, "weakening_Nms_per_rad", -0.1), p + "weakening_Nms_per_rad", {">= 0"});
   ExpectRejected(With(kStribeck, "mu_c", -std::numeric_limits<double>::infinity()), p + "mu_c", {"finite"});
   ExpectRejected(With(kStribeck, "gamma_b", std::nan("")), p + "gamma_b", {"finite"});
   ExpectRejected(With(kStribeck, "gamma_b", true), p + "gamma_b", {"boolean"});
@@ -354,7 +379,9 @@ TEST(FrictionLaw, HumpedStepsMayBeNegative) {
 
 // Every field of every law: missing (unless optional), a string, or infinite is an error at that field.
 TEST(FrictionLaw, EveryFieldIsChecked) {
-  const std::set<std::string> optional = {"coulomb/T_s_Nm", "coulomb/c_Nms_per_rad", "humped/delta_T_sl_Nm"};
+  const std::set<std::string> optional = {"coulomb/T_s_Nm",           "coulomb/c_Nms_per_rad",
+                                          "humped/delta_T_sl_Nm",     "linear_weakening/T_s_Nm",
+                                          "linear_weakening/T_min_Nm", "linear_weakening/c_Nms_per_rad"};
   for (const json& j : EveryLaw()) {
     const std::string kind = j.at("law");
     for (const auto& item : j.items()) {

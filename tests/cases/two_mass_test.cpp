@@ -63,6 +63,7 @@ struct Variant {
   const char* base_case;
   const char* top;       // JSON of the top block, or "" to keep the case's
   const char* friction;  // JSON of the bit friction law, or "" to keep the case's
+  const char* bit = "";  // JSON of fields merged into the bit block, or ""
 };
 
 class TwoMassEnergy : public ::testing::TestWithParam<Variant> {};
@@ -80,6 +81,9 @@ TEST_P(TwoMassEnergy, WorkInEqualsDissipationPlusStoredEnergy) {
   nlohmann::json doc = LoadCase(v.base_case);
   if (*v.top) ReplaceDrive(doc, nlohmann::json::parse(v.top));
   if (*v.friction) doc["model"]["bit"]["friction"] = nlohmann::json::parse(v.friction);
+  if (*v.bit) doc["model"]["bit"].update(nlohmann::json::parse(v.bit));
+  doc.erase("expect");
+  doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-9;  // the bound below is the integrator's at 1e-9
   doc["simulation"]["duration_s"] = 120;
   doc["simulation"]["output_interval_s"] = 1e-3;
   doc["statistics"]["window_s"] = {60, 120};
@@ -111,7 +115,20 @@ INSTANTIATE_TEST_SUITE_P(
                 R"({"law": "sqrt_regularized", "amplitude_Nm": 9000, "alpha": 1, "epsilon_rad_s": 0.5})"},
         Variant{"pi_humped", "two-mass-pi-coulomb", "",
                 R"({"law": "humped", "T_sl_Nm": 9000, "T_1_Nm": -4000, "omega_1_s_per_rad": 0.5, "T_2_Nm": 1000,
-                    "omega_2_s_per_rad": 5, "b_l_Nms_per_rad": 100})"}),
+                    "omega_2_s_per_rad": 5, "b_l_Nms_per_rad": 100})"},
+        // The UFRJ rig's laws (issue 32): a droop drive whose torque limit acts in the stick phases, friction that
+        // falls linearly with speed, and the same under a normal load that follows the torque on bit.
+        Variant{"rig_torque_limit_linear", "ufrj-rig",
+                R"({"type": "top_drive", "kp_Nms_per_rad": 0.22, "ki_Nm_per_rad": 0, "speed_rad_s": 18.3,
+                    "torque_limit_Nm": 3.0})",
+                R"({"law": "linear_weakening", "T_s_Nm": 2.9, "T_0_Nm": 2.75, "weakening_Nms_per_rad": 0.09})"},
+        // (Its load raises the break-away torque to 2.9 x 444 / 396 = 3.25 N m: a limit of 3.0 would stall it.)
+        Variant{"rig_normal_load", "ufrj-rig",
+                R"({"type": "top_drive", "kp_Nms_per_rad": 0.22, "ki_Nm_per_rad": 0, "speed_rad_s": 18.3,
+                    "torque_limit_Nm": 3.5})",
+                R"({"law": "linear_weakening", "T_s_Nm": 2.9, "T_0_Nm": 2.75, "weakening_Nms_per_rad": 0.09})",
+                R"({"normal_load": {"torque_gain_N_per_Nm": 60, "reference_torque_Nm": 2.1,
+                                    "time_constant_s": 0.02}})"}),
     [](const ::testing::TestParamInfo<Variant>& info) { return std::string(info.param.name); });
 
 TEST(TwoMass, SteadyStateUnderConstantTorqueWithViscousBit) {

@@ -1,5 +1,6 @@
 #include "drillwave/bitrock/friction.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -22,7 +23,8 @@ using nlohmann::json;
 // Field tables. Each law lists its fields once; reading, writing, validation, scaling and the schema all walk
 // that list, so they cannot disagree about a key, a unit or a range.
 
-enum class Bound { kAny, kNonNegative, kPositive, kAtLeastOther, kWithinOther };  // kWithinOther: |x| <= other
+// kWithinOther: |x| <= other; kUpToOther: 0 <= x <= other.
+enum class Bound { kAny, kNonNegative, kPositive, kAtLeastOther, kWithinOther, kUpToOther };
 enum class Absent { kRequired, kZero, kOther };                                   // what a missing key means
 
 template <class L>
@@ -40,6 +42,7 @@ struct Field {
   constexpr Field Positive() const { return With(Bound::kPositive, nullptr); }
   constexpr Field AtLeast(double L::*o) const { return With(Bound::kAtLeastOther, o); }
   constexpr Field Within(double L::*o) const { return With(Bound::kWithinOther, o); }
+  constexpr Field UpTo(double L::*o) const { return With(Bound::kUpToOther, o); }
   constexpr Field TorqueLevel() const {
     Field f = *this;
     f.is_torque_level = true;
@@ -322,6 +325,35 @@ double Slope(const SquaredSqrtCutting& l, double w) {
   return l.a4 * l.depth * 2 * std::abs(Slip(CuttingFunction(l), w)) * Slope(CuttingFunction(l), w);
 }
 
+template <>
+struct Traits<LinearWeakening> {
+  static constexpr const char* kKind = "linear_weakening";
+  static constexpr const char* kTorque = "T = max(T_0 - s |w|, T_min) sign w + c w";
+  static constexpr const char* kStatic = "T in [-T_s, T_s]";
+  static constexpr const char* kSource =
+      "the UFRJ rig's torque on bit against its disc's speed, binned (falls almost linearly, issue 32)";
+  using F = Field<LinearWeakening>;
+  static constexpr F kFields[] = {
+      F{"T_0_Nm", &LinearWeakening::t_0, "slip torque as the speed leaves zero T_0 [N·m]"}.NonNegative().TorqueLevel(),
+      F{"T_s_Nm", &LinearWeakening::t_s, "static friction torque T_s [N·m]"}
+          .AtLeast(&LinearWeakening::t_0).TorqueLevel().DefaultTo(&LinearWeakening::t_0),
+      F{"weakening_Nms_per_rad", &LinearWeakening::slope, "fall of the slip torque per speed s [N·m·s/rad]"}
+          .NonNegative().TorqueLevel(),
+      F{"T_min_Nm", &LinearWeakening::t_min, "floor of the fall T_min [N·m]"}
+          .UpTo(&LinearWeakening::t_0).TorqueLevel().DefaultZero(),
+      F{"c_Nms_per_rad", &LinearWeakening::c, "viscous coefficient c [N·m·s/rad]"}
+          .NonNegative().TorqueLevel().DefaultZero(),
+  };
+};
+double Slip(const LinearWeakening& l, double w) {
+  return std::max(l.t_0 - l.slope * std::abs(w), l.t_min) * Sign(w) + l.c * w;
+}
+double Slope(const LinearWeakening& l, double w) {  // d/dw of F(|w|) sign w is F'(|w|)
+  return (l.t_0 - l.slope * std::abs(w) > l.t_min ? -l.slope : 0.0) + l.c;
+}
+double StaticUp(const LinearWeakening& l) { return l.t_s; }
+double StaticDown(const LinearWeakening& l) { return l.t_s; }
+
 template <class L>
 constexpr bool IsSetValuedLaw() {
   return Traits<L>::kStatic != nullptr;
@@ -390,6 +422,7 @@ std::string RangeText(const Field<L>& f) {
     case Bound::kPositive: return "a number > 0";
     case Bound::kAtLeastOther: return "a number >= " + KeyOf(f.other);
     case Bound::kWithinOther: return "a number in [-" + KeyOf(f.other) + ", " + KeyOf(f.other) + "]";
+    case Bound::kUpToOther: return "a number in [0, " + KeyOf(f.other) + "]";
   }
   return "";
 }
@@ -411,6 +444,7 @@ bool InRange(const Field<L>& f, const L& law) {
     case Bound::kPositive: return x > 0;
     case Bound::kAtLeastOther: return x >= law.*f.other;
     case Bound::kWithinOther: return std::abs(x) <= law.*f.other;
+    case Bound::kUpToOther: return x >= 0 && x <= law.*f.other;
   }
   return false;
 }

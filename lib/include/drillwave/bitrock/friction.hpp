@@ -99,10 +99,21 @@ struct SquaredSqrtCutting {
   double epsilon;      // epsilon_rad_s > 0
 };
 
+// Friction that weakens linearly with speed down to a floor, with stiction (the UFRJ rig's disc: its torque on bit
+// falls almost linearly from 2.7 N m near rest to 1.0 N m at 190 rpm, where a Stribeck exponential falls too fast
+// and levels off too high): slip T = max(T_0 - s |w|, T_min) sign w + c w; stuck |T| <= T_s.
+struct LinearWeakening {
+  double t_0;    // T_0_Nm >= 0, the slip torque as the speed leaves zero
+  double t_s;    // T_s_Nm >= T_0 (optional, default T_0), the static level
+  double slope;  // weakening_Nms_per_rad >= 0, the fall s per rad/s
+  double t_min;  // T_min_Nm in [0, T_0] (optional, default 0), the floor the fall stops at
+  double c;      // c_Nms_per_rad >= 0 (optional, default 0)
+};
+
 class FrictionLaw {
  public:
   using Law = std::variant<Viscous, Coulomb, Stribeck, SqrtRegularized, TanhHump, Rational, Humped,
-                           AsymmetricCoulombViscous, TanhHumpPrinted, SquaredSqrtCutting>;
+                           AsymmetricCoulombViscous, TanhHumpPrinted, SquaredSqrtCutting, LinearWeakening>;
 
   // Checks the parameters against the ranges listed by Schema(); throws std::invalid_argument naming the field.
   explicit FrictionLaw(const Law& law);

@@ -44,7 +44,10 @@ class ChainField : public analysis::PiecewiseSmoothField {
       dx[speed_index_[i]] =
           r == 0 ? 0.0 : (Unbalanced(mode, i, x, v) - Friction(i, v, r)) / c_.inertias[i].inertia_kgm2;
     }
-    if (integral_ >= 0) dx[integral_] = u_ - Speed(mode, 0, x);
+    if (integral_ >= 0) {
+      const double error = u_ - Speed(mode, 0, x);
+      dx[integral_] = c_.DriveIntegralHeld(c_.pi.Output(u_, Speed(mode, 0, x), x[integral_]), error) ? 0.0 : error;
+    }
     return dx;
   }
 
@@ -142,7 +145,7 @@ class ChainField : public analysis::PiecewiseSmoothField {
     double torque = -c_.inertias[i].damping_Nms_per_rad * v;
     if (i == 0) {
       if (c_.drive == Drive::kTorque) torque += c_.torque_gain * u_;
-      if (c_.drive == Drive::kPiSpeed) torque += c_.pi.Output(u_, v, x[integral_]);
+      if (c_.drive == Drive::kPiSpeed) torque += c_.ClampedDriveTorque(c_.pi.Output(u_, v, x[integral_]));
     }
     if (i > 0) {
       const Coupling& cp = c_.couplings[i - 1];

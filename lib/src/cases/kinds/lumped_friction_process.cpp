@@ -36,12 +36,16 @@ class ChainProcess {
   int Integral() const { return 3 * n_ - 1; }
   int Work() const { return 3 * n_; }
   int Dissipated() const { return 3 * n_ + 1; }
-  int Dimension() const { return 3 * n_ + 2; }
+  int Load(int i) const { return 3 * n_ + 2 + i; }  // the friction scale of an inertia with a normal load
+  int Dimension() const { return 4 * n_ + 2; }
 
   State InitialState(double t0) {
     State x(Dimension(), 0.0);
     if (Prescribed()) x[SpeedIndex(0)] = c_.setpoint.Value(t0);
     step_start_ = t0;
+    // The load starts where the torque at rest, 0, puts it.
+    for (int i = 0; i < n_; ++i)
+      if (const auto& load = Inertia(i).normal_load) x[Load(i)] = LoadTarget(*load, Applied(i, t0), 0.0);
     // An inertia at rest sticks unless the torque on it already exceeds its static range.
     for (int i : frictional_) {
       regime_[i] = Turn::kStuck;
@@ -74,7 +78,15 @@ class ChainProcess {
       const double dv = Speed(j, x, t) - Speed(j + 1, x, t);
       dissipated += c_.couplings[j].damping_Nms_per_rad * dv * dv;
     }
-    dx[Integral()] = c_.drive == Drive::kPiSpeed ? Setpoint(t).first - Speed(0, x, t) : 0.0;
+    for (int i = 0; i < n_; ++i)
+      if (const auto& load = Inertia(i).normal_load)
+        dx[Load(i)] = (LoadTarget(*load, Applied(i, t), FrictionTorque(i, x, t)) - x[Load(i)]) / load->time_constant_s;
+    dx[Integral()] = 0.0;
+    if (c_.drive == Drive::kPiSpeed) {
+      const double error = Setpoint(t).first - Speed(0, x, t);
+      if (!c_.DriveIntegralHeld(c_.pi.Output(Setpoint(t).first, Speed(0, x, t), x[Integral()]), error))
+        dx[Integral()] = error;
+    }
     dx[Work()] = DriveTorque(x, t) * Speed(0, x, t);
     dx[Dissipated()] = dissipated;
   }
@@ -130,7 +142,7 @@ class ChainProcess {
     const auto& law = Inertia(i).friction;
     if (!law) return 0;
     if (regime_[i] == Turn::kStuck) return DrivingTorqueAtRest(i, x, t);
-    const double v = Speed(i, x, t), s = Scale(i, t);
+    const double v = Speed(i, x, t), s = Scale(i, x, t);
     if (c_.friction_smoothing_rad_s > 0)
       return v == 0 ? 0.0 : s * law->SlipTorque(v) * std::tanh(std::abs(v) / c_.friction_smoothing_rad_s);
     if (!law->IsSetValued()) return s * law->SlipTorque(v);
@@ -147,6 +159,10 @@ class ChainProcess {
   }
 
   bool Stuck(int i) const { return regime_[i] == Turn::kStuck; }
+  // The scale of inertia i's friction law: its schedule, or the state of its normal load (never below 0).
+  double Scale(int i, const State& x, double t) const {
+    return Inertia(i).normal_load ? std::max(x[Load(i)], 0.0) : Applied(i, t);
+  }
   const std::vector<std::vector<StuckInterval>>& stuck_intervals() const { return stuck_; }
 
  private:
@@ -159,13 +175,16 @@ class ChainProcess {
   // Inputs on the side of the current step: right limits at its start, left limits inside and at its end (a step
   // never crosses a knot, so a jump or kink at the step's end belongs to the next step).
   std::pair<double, double> Setpoint(double t) const { return c_.setpoint.Evaluate(t, t > step_start_); }
-  double Scale(int i, double t) const { return Inertia(i).friction_scale.Evaluate(t, t > step_start_).first; }
+  double Applied(int i, double t) const { return Inertia(i).friction_scale.Evaluate(t, t > step_start_).first; }
+  static double LoadTarget(const NormalLoad& load, double applied, double torque) {
+    return applied + load.gain_per_Nm * (torque - load.reference_Nm);
+  }
 
   double DriveTorqueAt(const State& x, double t, double v0) const {
     const double u = Setpoint(t).first;
     switch (c_.drive) {
       case Drive::kTorque: return c_.torque_gain * u;
-      case Drive::kPiSpeed: return c_.pi.Output(u, v0, x[Integral()]);
+      case Drive::kPiSpeed: return c_.ClampedDriveTorque(c_.pi.Output(u, v0, x[Integral()]));
       case Drive::kPrescribedSpeed: break;
     }
     return 0;
@@ -190,7 +209,7 @@ class ChainProcess {
   // The torque on inertia i held at rest and the static range of its (scaled) friction.
   bitrock::AtRest AtRest(int i, const State& x, double t) const {
     const auto& f = *Inertia(i).friction;
-    const double s = Scale(i, t);
+    const double s = Scale(i, x, t);
     return {DrivingTorqueAtRest(i, x, t), {s * f.StaticPositive(), s * f.StaticNegative()}};
   }
 
@@ -221,6 +240,29 @@ void Chain::Validate() const {
   if (drive == Drive::kPrescribedSpeed && inertias[0].friction)
     throw std::invalid_argument("a prescribed-speed end takes no friction law (its drive torque covers it)");
   if (!(friction_smoothing_rad_s >= 0)) throw std::invalid_argument("friction smoothing must be >= 0");
+  if (!(drive_torque_limit_Nm >= 0)) throw std::invalid_argument("the drive's torque limit must be >= 0");
+  for (const auto& in : inertias) {
+    if (!in.normal_load) continue;
+    const NormalLoad& load = *in.normal_load;
+    if (!in.friction) throw std::invalid_argument("a normal load needs a friction law to scale");
+    if (!(load.time_constant_s > 0) || !(load.gain_per_Nm >= 0) || !std::isfinite(load.reference_Nm))
+      throw std::invalid_argument("a normal load needs a time constant > 0, a gain >= 0 and a finite reference");
+    if (!(load.gain_per_Nm * in.friction->StaticPositive() < 1))
+      throw std::invalid_argument("a normal load's gain times the static friction level must stay below 1");
+  }
+}
+
+double Chain::ClampedDriveTorque(double output) const {
+  return drive_torque_limit_Nm > 0 ? std::clamp(output, -drive_torque_limit_Nm, drive_torque_limit_Nm) : output;
+}
+
+bool Chain::DriveIntegralHeld(double output, double speed_error) const {
+  return drive_torque_limit_Nm > 0 && ((output > drive_torque_limit_Nm && speed_error > 0) ||
+                                       (output < -drive_torque_limit_Nm && speed_error < 0));
+}
+
+bool Chain::HasNormalLoad() const {
+  return std::any_of(inertias.begin(), inertias.end(), [](const Inertia& in) { return in.normal_load.has_value(); });
 }
 
 ChainRun RunChain(const Chain& chain, const RunSettings& settings) {
@@ -232,6 +274,7 @@ ChainRun RunChain(const Chain& chain, const RunSettings& settings) {
 
   ChainRun run;
   run.speed_rad_s.resize(n), run.angle_rad.resize(n), run.friction_Nm.resize(n), run.stuck.resize(n);
+  run.friction_scale.resize(n);
   run.coupling_torque_Nm.resize(n - 1);
   auto sample = [&](double t, const std::vector<double>& s) {
     run.time_s.push_back(t);
@@ -240,6 +283,7 @@ ChainRun RunChain(const Chain& chain, const RunSettings& settings) {
       run.angle_rad[i].push_back(s[process.AngleIndex(i)]);
       run.friction_Nm[i].push_back(process.FrictionTorque(i, s, t));
       run.stuck[i].push_back(process.Stuck(i) ? 1.0 : 0.0);
+      run.friction_scale[i].push_back(process.Scale(i, s, t));
     }
     for (int j = 0; j + 1 < n; ++j) run.coupling_torque_Nm[j].push_back(process.CouplingTorque(j, s, t));
     run.drive_torque_Nm.push_back(process.DriveTorque(s, t));
@@ -343,6 +387,8 @@ std::vector<LinearizedOperatingPoint> LinearizeChain(const Chain& c) {
   std::vector<LinearizedOperatingPoint> points;
   const bool prescribed = c.drive == Drive::kPrescribedSpeed, pi = c.drive == Drive::kPiSpeed;
   for (double w : speeds) {
+    // A steady state whose torque lies beyond the drive's limit is not one the limited drive can hold.
+    if (c.drive == Drive::kPiSpeed && c.drive_torque_limit_Nm > 0 && total(w) > c.drive_torque_limit_Nm) continue;
     // State indices: twists 0..n-2, then the speeds of the inertias that move freely, then the PI integral.
     std::vector<int> speed_index(n, -1);
     std::vector<std::string> names;

@@ -25,11 +25,23 @@ namespace drillwave::cases::lumped {
 
 enum class Drive { kPrescribedSpeed, kPiSpeed, kTorque };
 
+// A normal load the friction is proportional to that follows the friction torque T itself (the UFRJ rig's weight on
+// bit rises with its torque on bit, wob ~ 388 + 84 tob N, 20 ms behind it): the friction scale s is a state with
+//   time_constant_s s' = applied(t) + gain_per_Nm (T - reference_Nm) - s,
+// applied(t) the inertia's friction_scale schedule; while stuck T is the torque that holds the inertia. The loop
+// through T = s law(w) stays stable while gain_per_Nm times the law's static level is below 1.
+struct NormalLoad {
+  double gain_per_Nm = 0;      // scale per N m of friction torque, >= 0
+  double reference_Nm = 0;     // the torque at which the load is the applied one
+  double time_constant_s = 0;  // > 0
+};
+
 struct Inertia {
   double inertia_kgm2 = 1;  // > 0
   double damping_Nms_per_rad = 0;  // damper to ground, >= 0
   std::optional<bitrock::FrictionLaw> friction;
   model::Schedule friction_scale{1.0};  // multiplies every torque level of the law (e.g. weight on bit / nominal)
+  std::optional<NormalLoad> normal_load;  // with a friction law: the scale follows the torque (above)
 };
 
 struct Coupling {
@@ -44,11 +56,19 @@ struct Chain {
   model::Schedule setpoint;  // speed [rad/s] (prescribed, PI) or the input of the torque drive
   double torque_gain = 1;    // torque drive: torque = torque_gain * setpoint (e.g. motor constant * voltage)
   model::PiController pi;    // PI drive
+  // PI drive: its torque clamped to +-drive_torque_limit_Nm (0: none), the integral held while the clamp acts against
+  // the speed error (no wind-up): a motor drive's current limit, which holds a stalled string at a fixed torque.
+  double drive_torque_limit_Nm = 0;
   // > 0: every friction law with sign(w) replaced by tanh(w / eps) (a smooth reference model without stick phases).
   double friction_smoothing_rad_s = 0;
 
   // Throws std::invalid_argument for an inconsistent chain (sizes, a friction law on a prescribed-speed end, ...).
   void Validate() const;
+  // The PI drive's torque for its unclamped output, and whether its integral is held there (the clamp acts and the
+  // speed error would drive the output further beyond it).
+  double ClampedDriveTorque(double output) const;
+  bool DriveIntegralHeld(double output, double speed_error) const;
+  bool HasNormalLoad() const;
 };
 
 // A run sampled at the output interval (or at every step if the interval is <= 0).
@@ -59,6 +79,7 @@ struct ChainRun {
   std::vector<std::vector<double>> speed_rad_s, angle_rad, friction_Nm, stuck;
   std::vector<std::vector<double>> coupling_torque_Nm;  // per coupling: k (phi_j - phi_{j+1}) + c (w_j - w_{j+1})
   std::vector<double> drive_torque_Nm;                  // torque the drive puts into inertia 0
+  std::vector<std::vector<double>> friction_scale;      // per inertia: the scale of its friction law (the normal load)
   // Work in - dissipated - (stored - stored at start), from the integrated energy states; 0 up to the tolerance.
   std::vector<double> energy_residual_J;
   std::vector<std::vector<StuckInterval>> stuck_intervals;  // per inertia, from the events

@@ -2,7 +2,9 @@
 // three-state form x = (phi_top - phi_bit, phi_top', phi_bit') of eq. 2.3: top and bit inertias with local
 // dampers, a shaft of stiffness k and damping c, the top driven by a prescribed speed, a PI speed controller or a
 // torque, the bit by any friction law (set-valued ones with real stick phases), scaled by the weight on bit
-// (Psi = H u in eq. 2.2). Work in and dissipation are integrated alongside, so the energy balance can be checked.
+// (Psi = H u in eq. 2.2) or by a simulated normal load that follows the torque on bit (the UFRJ rig, issue 32), the
+// PI drive's torque optionally limited. Work in and dissipation are integrated alongside, so the energy balance can be
+// checked.
 // The integration is the shared lumped chain (lumped_friction_process.hpp), a chain of two here.
 #include <algorithm>
 #include <cmath>
@@ -24,20 +26,62 @@ using Range = io::Range;
 // The pendulum as a lumped chain of two: 0 the top, 1 the bit.
 class TwoMassModel : public PreparedModel {
  public:
-  explicit TwoMassModel(lumped::Chain chain) : chain_(std::move(chain)) {}
+  TwoMassModel(lumped::Chain chain, double nominal_weight_N)
+      : chain_(std::move(chain)), nominal_weight_N_(nominal_weight_N) {}
 
   RunResult Run(const RunSettings& settings) const override {
-    return lumped::ChainResult(lumped::RunChain(chain_, settings), settings);
+    const lumped::ChainRun run = lumped::RunChain(chain_, settings);
+    RunResult result = lumped::ChainResult(run, settings);
+    // The simulated normal load in newtons, named apart from a recording's wob_N so that diagnose compares the two only
+    // where a --map asks it to.
+    if (chain_.HasNormalLoad()) {
+      std::vector<double> load = run.friction_scale[1];
+      for (double& w : load) w *= nominal_weight_N_;
+      result.channels.push_back({"normal_load_N", std::move(load)});
+      result.plot_panels.push_back({"normal_load_N"});
+    }
+    return result;
   }
 
-  std::vector<LinearizedOperatingPoint> Linearize() const override { return lumped::LinearizeChain(chain_); }
+  std::vector<LinearizedOperatingPoint> Linearize() const override {
+    RefuseNormalLoad();
+    return lumped::LinearizeChain(chain_);
+  }
   std::shared_ptr<const analysis::PiecewiseSmoothField> OrbitField() const override {
+    RefuseNormalLoad();
     return lumped::ChainOrbitField(chain_);
   }
 
  private:
+  // The load is a state of its own that the linearization and the orbit field do not carry (yet).
+  void RefuseNormalLoad() const {
+    if (chain_.HasNormalLoad())
+      throw InputError("/model/bit/normal_load", "stability and periodic orbits of two_mass do not include the "
+                                                 "simulated normal load yet: remove it to analyse the case");
+  }
+
   lumped::Chain chain_;
+  double nominal_weight_N_;
 };
+
+// bit/normal_load: the friction's scale as a simulated normal load W that follows the torque on bit T,
+// time_constant W' = W_applied(t) + gain (T - reference) - W (lumped::NormalLoad), in the scale of the nominal weight.
+lumped::NormalLoad ReadNormalLoad(const JsonReader& load, double nominal_N, const bitrock::FrictionLaw& law) {
+  lumped::NormalLoad n;
+  const double gain_N_per_Nm = load.Number("torque_gain_N_per_Nm", Range::NonNegative());
+  // Above nominal / T_s the load and the torque it makes raise each other without bound.
+  const double runaway = nominal_N / law.StaticPositive();
+  if (!(gain_N_per_Nm < runaway))
+    throw InputError(load.PathOf("torque_gain_N_per_Nm"),
+                     "expected a gain below nominal_weight_on_bit_N / the friction's static level = " +
+                         ReadableNumber(runaway) + " N per N m (beyond it the load and the torque it makes grow "
+                         "without bound), got " + ReadableNumber(gain_N_per_Nm));
+  n.gain_per_Nm = gain_N_per_Nm / nominal_N;
+  n.reference_Nm = load.Number("reference_torque_Nm", Range::NonNegative(), 0.0);
+  n.time_constant_s = load.Number("time_constant_s", Range::Positive());
+  load.Finish();
+  return n;
+}
 
 class TwoMassKind : public ModelKind {
  public:
@@ -53,6 +97,8 @@ class TwoMassKind : public ModelKind {
             {"top/torque_Nm", "schedule (torque)"},
             {"top/kp_Nms_per_rad", "top_drive: >= 0"},
             {"top/ki_Nm_per_rad", "top_drive: >= 0"},
+            {"top/torque_limit_Nm",
+             "top_drive: >= 0, default 0 (none); the drive's torque clamped to +-limit, its integral held meanwhile"},
             {"string/stiffness_Nm_per_rad", "shaft k > 0"},
             {"string/damping_Nms_per_rad", "shaft c >= 0, default 0"},
             {"bit/inertia_kgm2", "> 0"},
@@ -60,6 +106,11 @@ class TwoMassKind : public ModelKind {
             {"bit/friction", "friction law (see torsional_wave)"},
             {"bit/weight_on_bit_N", "schedule scaling the bit friction relative to nominal_weight_on_bit_N (default: nominal)"},
             {"bit/nominal_weight_on_bit_N", "> 0, the weight the friction law's levels refer to"},
+            {"bit/normal_load/torque_gain_N_per_Nm",
+             "a simulated normal load W following the torque on bit T, the friction scaled by W / nominal: >= 0 and "
+             "below nominal / the law's static level"},
+            {"bit/normal_load/reference_torque_Nm", ">= 0, default 0: W = weight_on_bit_N + gain (T - reference)"},
+            {"bit/normal_load/time_constant_s", "> 0, the lag of W behind its target"},
             {"friction_smoothing_rad_s",
              "0 (default) or >= 1e-6 rad/s; > 0 replaces sign(w) by tanh(w / eps) in the bit law (smooth reference, no stick phases)"}};
   }
@@ -96,6 +147,7 @@ class TwoMassKind : public ModelKind {
       m.setpoint = model::Schedule::FromJson(top.Raw("speed_rad_s"), top.PathOf("speed_rad_s"));
       if (type == "top_drive") {
         m.pi = ReadPiController(top);
+        m.drive_torque_limit_Nm = top.Number("torque_limit_Nm", Range::NonNegative(), 0.0);
       }
     }
     top.Finish();
@@ -114,9 +166,14 @@ class TwoMassKind : public ModelKind {
       scale.emplace_back(t, w / nominal);
     }
     bit_inertia.friction_scale = model::Schedule(scale);
+    if (bit.Has("normal_load")) {
+      if (!bit_inertia.friction)
+        throw InputError(bit.PathOf("normal_load"), "a normal load needs bit/friction to scale");
+      bit_inertia.normal_load = ReadNormalLoad(bit.Object("normal_load"), nominal, *bit_inertia.friction);
+    }
     bit.Finish();
     r.Finish();
-    return std::make_unique<TwoMassModel>(std::move(m));
+    return std::make_unique<TwoMassModel>(std::move(m), nominal);
   }
 };
 
