@@ -46,6 +46,9 @@ OrbitsSpec ParseContinueOption(const std::string& text, const nlohmann::json& do
       throw InputError("--continue", "'" + text + "': " + e.json_path() + ": " + e.what());
     }
   }
+  nlohmann::json first = document;
+  io::SetByPointer(first, spec.pointer, spec.grid.front());
+  CheckPointsWork(ParseCase(first), static_cast<double>(spec.grid.size()), false, "--continue");
   return spec;
 }
 

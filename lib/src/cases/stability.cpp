@@ -153,6 +153,7 @@ std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const 
   if (spec.jobs < 1) throw InputError("--jobs", std::to_string(spec.jobs) + " is not >= 1");
   std::vector<Case> cases;
   for (double v : spec.values) {
+    if (cases.size() == 1) CheckPointsWork(cases.front(), static_cast<double>(spec.values.size()), false, "--values");
     nlohmann::json doc = document;
     io::SetByPointer(doc, spec.pointer, v);
     try {

@@ -65,10 +65,29 @@ std::vector<double> ParseSweepValues(const std::string& text, const std::string&
   return values;
 }
 
+namespace {
+// A run's output samples or its fewest integration steps, whichever are more.
+double RunWork(const RunSettings& s) {
+  double work = s.output_interval_s > 0 ? s.duration_s / s.output_interval_s : 0;
+  if (std::isfinite(s.integrator.max_step)) work = std::max(work, s.duration_s / s.integrator.max_step);
+  return work;
+}
+}  // namespace
+
+void CheckPointsWork(const Case& first, double points, bool runs_each, const std::string& option) {
+  const double per_point = kSweepRunMinimumWork + (runs_each ? RunWork(first.settings) : 0.0);
+  const double work = points * per_point, limit = kSweepWorkPerMaxSample * MaxSamples();
+  if (work > limit)
+    throw InputError(option, ReadableNumber(points) + " points of about " + ReadableNumber(std::round(per_point)) +
+                                 " work units each (" + ReadableNumber(kSweepRunMinimumWork) + " for its analysis" +
+                                 (runs_each ? std::string(", the rest its run's output samples or steps") : "") +
+                                 ": " + ReadableNumber(work) + " in all) are above the limit of " +
+                                 ReadableNumber(limit) + " (" + ReadableNumber(kSweepWorkPerMaxSample) +
+                                 " x --max-samples); ask for fewer points, or raise the limit with --max-samples");
+}
+
 void CheckSweepWork(const Case& first, std::size_t runs) {
-  const RunSettings& s = first.settings;
-  double per_run = s.output_interval_s > 0 ? s.duration_s / s.output_interval_s : 0;
-  if (std::isfinite(s.integrator.max_step)) per_run = std::max(per_run, s.duration_s / s.integrator.max_step);
+  const double per_run = RunWork(first.settings);
   const double work = static_cast<double>(runs) * std::max(per_run, kSweepRunMinimumWork);
   const double limit = kSweepWorkPerMaxSample * MaxSamples();
   if (work > limit)

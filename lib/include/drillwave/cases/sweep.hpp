@@ -48,6 +48,11 @@ struct SweepResult {
 inline constexpr double kSweepRunMinimumWork = 1e4;
 inline constexpr double kSweepWorkPerMaxSample = 100;
 void CheckSweepWork(const Case& first, std::size_t runs);
+// The work of an analysis over many points of one case (a stability map, orbits' grid of steady states), estimated
+// the same way before anything else is parsed: each point counted as kSweepRunMinimumWork (its parse, linearization
+// and roots, or a steady state), plus its run's output samples or steps where it also runs the case (`runs_each`);
+// refused above kSweepWorkPerMaxSample x MaxSamples() with InputError naming `option` and the estimate.
+void CheckPointsWork(const Case& first, double points, bool runs_each, const std::string& option);
 
 // Checks the work (above) and the spec, and parses every variant of the document before running anything, so bad
 // input (an unknown pointer, a value out of the field's range) throws InputError naming the pointer and the value and
