@@ -20,6 +20,7 @@
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/controller_comparison.hpp"
+#include "drillwave/cases/controller_envelope.hpp"
 #include "drillwave/cases/edge_tracking.hpp"
 #include "drillwave/cases/orbits.hpp"
 #include "drillwave/cases/stability.hpp"
@@ -569,13 +570,44 @@ int Orbits(const std::string& file, const std::string& out_dir, const std::vecto
 // compare-controllers' options as given (NaN, empty: not given, the library's defaults).
 struct ControllersArguments {
   double handover_s = std::nan(""), after_s = std::nan(""), tuning_period_s = std::nan("");
-  std::string stiff_pi;  // "J,kp,ki"
+  double torque_limit_Nm = std::nan("");
+  std::string stiff_pi;                // "J,kp,ki"
+  std::vector<std::string> envelope;   // two map axes
+  std::string actuator_delays;         // "d1,d2,..."
 };
 std::optional<double> GivenOrNot(double v) { return std::isnan(v) ? std::nullopt : std::optional<double>(v); }
 
+// --actuator-delays: delays [s] in [0, 10] (the top's actuator_delay_s range); none if not given.
+std::vector<double> ActuatorDelays(const std::string& text) {
+  if (text.empty()) return {};
+  const std::vector<double> delays = drillwave::cases::ParseSweepValues(text, "--actuator-delays");
+  for (double d : delays)
+    if (!(d >= 0 && d <= 10))
+      throw drillwave::InputError("--actuator-delays", "expected delays in [0, 10] s, got " +
+                                                           drillwave::Significant(d, 6) + " in '" + text + "'");
+  return delays;
+}
+
+void PrintLaws(const drillwave::cases::ControllerComparison& c) {
+  for (const auto& r : c.laws) {
+    std::cout << "  " << r.law << ": " << r.verdict << " (rightmost Re s " << drillwave::Significant(r.rightmost_re, 4)
+              << " 1/s), ";
+    if (!r.run_failure.empty()) {
+      std::cout << "the run blew up: " << r.run_failure << std::endl;
+      continue;
+    }
+    const std::string suppression =
+        r.suppressed_after_s ? "stick-slip suppressed after " + drillwave::Significant(*r.suppressed_after_s, 3) + " s"
+                             : std::string("not suppressed");
+    std::cout << "severity " << drillwave::Significant(r.severity, 3) << ", top torque std "
+              << drillwave::Significant(r.torque_std_Nm, 4) << " N m (reduction "
+              << drillwave::Significant(r.torque_reduction_pct, 3) << " %), " << suppression << std::endl;
+  }
+}
+
 // The case's string under each top-drive law, each taking over at the same instant of the stiff PI's stick-slip.
 int CompareControllers(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
-                       const ControllersArguments& args) {
+                       const ControllersArguments& args, int jobs) {
   const nlohmann::json doc = LoadCaseDocument(file, overrides);
   drillwave::cases::ControllerComparisonSpec spec;
   spec.handover_s = GivenOrNot(args.handover_s);
@@ -590,11 +622,27 @@ int CompareControllers(const std::string& file, const std::string& out_dir, cons
       throw drillwave::InputError("--stiff-pi", "expected J,kp,ki (three numbers), got " + args.stiff_pi);
     spec.stiff_pi = drillwave::cases::StiffPi{v[0], v[1], v[2]};
   }
-  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
-  std::cout << "drillwave: top-drive laws on '" << doc.value("name", std::string("case")) << "' (stiff PI, SoftSpeed, "
-            << "Z-Torque), each from the same stick-slip" << std::endl;
+  if (!std::isnan(args.torque_limit_Nm)) {
+    if (!(args.torque_limit_Nm > 0) || !std::isfinite(args.torque_limit_Nm))
+      throw drillwave::InputError("--torque-limit", "expected a torque > 0 N m, got " +
+                                                        drillwave::Significant(args.torque_limit_Nm, 6));
+    spec.torque_limit_Nm = args.torque_limit_Nm;
+  }
+  const std::vector<double> delays = ActuatorDelays(args.actuator_delays);
+  if (jobs < 1) throw drillwave::InputError("-j", "expected a whole number >= 1, got " + std::to_string(jobs));
   drillwave::cases::ControllerComparison c;
+  std::optional<std::pair<drillwave::cases::MapAxis, drillwave::cases::MapAxis>> envelope;
   try {
+    if (!args.envelope.empty()) {  // the axes address the laws' cases, checked on the stiff PI's before any run
+      if (args.envelope.size() != 2)
+        throw drillwave::InputError("--envelope", "expected two axes, POINTER1=first:last:n POINTER2=first:last:n");
+      const nlohmann::json stiff = drillwave::cases::StiffPiCase(doc, spec);
+      envelope.emplace(drillwave::cases::ParseMapAxis(args.envelope[0], stiff, "--envelope"),
+                       drillwave::cases::ParseMapAxis(args.envelope[1], stiff, "--envelope"));
+    }
+    drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
+    std::cout << "drillwave: top-drive laws on '" << doc.value("name", std::string("case")) << "' (stiff PI, "
+              << "SoftSpeed, Z-Torque), each from the same stick-slip" << std::endl;
     c = drillwave::cases::CompareControllers(doc, spec);
   } catch (const drillwave::InputError& e) {  // the spec's fields are this command's options
     const std::string& field = e.json_path();
@@ -603,18 +651,34 @@ int CompareControllers(const std::string& file, const std::string& out_dir, cons
     if (option.empty()) throw;
     throw drillwave::InputError(option, std::string(e.what()).substr(field.size() + 2));
   }
-  drillwave::cases::WriteControllerComparison(doc, c, out_dir);
-  for (const auto& r : c.laws) {
-    const std::string suppression =
-        r.suppressed_after_s ? "stick-slip suppressed after " + drillwave::Significant(*r.suppressed_after_s, 3) + " s"
-                             : std::string("not suppressed");
-    std::cout << "  " << r.law << ": " << r.verdict << " (rightmost Re s " << drillwave::Significant(r.rightmost_re, 4)
-              << " 1/s), severity " << drillwave::Significant(r.severity, 3) << ", top torque std "
-              << drillwave::Significant(r.torque_std_Nm, 4) << " N m (reduction "
-              << drillwave::Significant(r.torque_reduction_pct, 3) << " %), " << suppression << std::endl;
+  PrintLaws(c);
+  drillwave::cases::ControllerStudies studies;
+  std::optional<drillwave::cases::ControllerEnvelopes> envelopes;
+  if (envelope) {
+    std::cout << "envelopes: " << envelope->first.values.size() << " x " << envelope->second.values.size()
+              << " grid points per law, each analysed and run" << std::endl;
+    envelopes = drillwave::cases::MapControllerEnvelopes(c, envelope->first, envelope->second, jobs);
+    for (const auto& e : envelopes->laws)
+      std::cout << "  " << e.law << ": free of stick-slip at " << e.linear_free << " points by the linear verdict, "
+                << e.simulated_free << " by simulation; simulation agrees at " << e.boundary_agreeing << " of "
+                << e.boundary << " boundary points (" << drillwave::Significant(e.map.linear_wall_time_s, 3)
+                << " s linear, " << drillwave::Significant(e.map.simulation_wall_time_s, 3) << " s runs)"
+                << std::endl;
+    studies.envelopes = &*envelopes;
   }
+  if (!delays.empty()) {
+    std::cout << "actuator delays: every law at " << args.actuator_delays << " s" << std::endl;
+    studies.delays = drillwave::cases::CompareUnderActuatorDelays(doc, spec, c, delays);
+    for (const auto& at_delay : studies.delays) {
+      std::cout << "  delay " << drillwave::Significant(at_delay.actuator_delay_s, 3) << " s:" << std::endl;
+      PrintLaws(at_delay);
+    }
+  }
+  drillwave::cases::WriteControllerComparison(doc, c, out_dir, studies);
   std::cout << "wrote " << std::filesystem::absolute(out_dir).string()
-            << "/controllers.csv, controllers.md, controllers.svg, case.json" << std::endl;
+            << "/controllers.csv, controllers.md, controllers.svg, case.json"
+            << (envelope ? ", envelopes.csv, envelopes.svg" : "") << (delays.empty() ? "" : ", delays.csv")
+            << std::endl;
   return 0;
 }
 
@@ -812,7 +876,9 @@ int main(int argc, char** argv) {
       "compare-controllers", "run a case's string under each top-drive law against stick-slip (the stiff PI as given, "
                              "SoftSpeed tuned to its stick-slip period, Z-Torque matched to the pipe), each taking "
                              "over at the same instant of the stiff PI's stick-slip: controllers.csv, controllers.md "
-                             "(verdict, severity, torque fluctuation, time to suppress), controllers.svg");
+                             "(verdict, severity, torque fluctuation, time to suppress), controllers.svg; with "
+                             "--envelope each law's stick-slip-free region, with --actuator-delays each law under "
+                             "delay");
   ControllersArguments controllers_args;
   std::string controllers_out = "drillwave-controllers";
   controllers->add_option("case", case_file, "case JSON file with a PI top drive (or give --stiff-pi)")->required();
@@ -825,6 +891,15 @@ int main(int argc, char** argv) {
   controllers->add_option("--stiff-pi", controllers_args.stiff_pi,
                           "J,kp,ki: the stiff PI top drive (inertia, gains) replacing the case's top (needed for a "
                           "top that is not a PI top drive, e.g. dissipative)");
+  controllers->add_option("--envelope", controllers_args.envelope,
+                          "POINTER1=first:last:n POINTER2=first:last:n: each law, tuned at the case's point, mapped "
+                          "over the grid (linear verdict and a run per point): envelopes.csv, envelopes.svg")
+      ->expected(2);
+  controllers->add_option("--actuator-delays", controllers_args.actuator_delays,
+                          "d1,d2,... [s]: every law again with each actuator delay of the drive (delays.csv)");
+  controllers->add_option("--torque-limit", controllers_args.torque_limit_Nm,
+                          "the drive's torque limit [N m] > 0 for every law and run");
+  controllers->add_option("--jobs,-j", jobs, "envelope points at once (default: the CPUs this process may run on)");
   controllers->add_option("--out,-o", controllers_out, "output folder (written all or nothing)");
   controllers->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 
@@ -864,7 +939,7 @@ int main(int argc, char** argv) {
     if (fit->parsed())
       return Fit(case_file, recording_file, sidecar_file, overrides, maps, window, fit_params, fit_features,
                  max_evaluations, fit_out);
-    if (controllers->parsed()) return CompareControllers(case_file, controllers_out, overrides, controllers_args);
+    if (controllers->parsed()) return CompareControllers(case_file, controllers_out, overrides, controllers_args, jobs);
     if (compare->parsed()) return Compare(case_file, recording_file, sidecar_file, overrides, maps, window, compare_out);
     if (inspect->parsed()) return Inspect(recording_file, inspect_out, bit_channel, top_channel);
     if (stability->parsed()) {

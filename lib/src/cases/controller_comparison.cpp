@@ -11,6 +11,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/median.hpp"
+#include "drillwave/core/progress.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -111,13 +112,24 @@ double NumberOr(const nlohmann::json& summary, const char* key, double otherwise
   return it != summary.end() && it->is_number() ? it->get<double>() : otherwise;
 }
 
-ControllerResult Evaluate(const std::string& law, const nlohmann::json& doc, double handover, double end) {
+// A run's blow-up is recorded (run_failure) unless the comparison needs the run: the stiff PI's when SoftSpeed is
+// tuned to its period.
+ControllerResult Evaluate(const std::string& law, const nlohmann::json& doc, double handover, double end,
+                          bool needed = false) {
   ControllerResult r;
   r.law = law;
-  r.top = doc["model"]["top"];
+  r.document = doc;
   const Case c = ParseCase(doc);
   LinearVerdict(c, r);
-  const CaseRun run = RunCase(c);
+  CaseRun run;
+  try {
+    run = RunCase(c);
+  } catch (const NumericalError& e) {  // a law driven unstable (by a delay, say) grows without bound: a result
+    if (needed) throw;
+    r.run_failure = e.what();
+    r.severity = r.stick_fraction = r.period_s = r.torque_std_Nm = kNaN;
+    return r;
+  }
   r.severity = NumberOr(run.summary, "stick_slip_severity", kNaN);
   r.stick_fraction = NumberOr(run.summary, "stick_fraction", kNaN);
   r.period_s = NumberOr(run.summary, "stick_slip_period_s", NumberOr(run.summary, "oscillation_period_s", kNaN));
@@ -132,28 +144,53 @@ ControllerResult Evaluate(const std::string& law, const nlohmann::json& doc, dou
   return r;
 }
 
-}  // namespace
-
-ControllerComparison CompareControllers(const nlohmann::json& document, const ControllerComparisonSpec& spec) {
+// What every law shares: the span of the runs, the case they run (without its expectations, to the end, its
+// statistics over the span after the handover) and the drive.
+struct Protocol {
+  double handover_s = 0, end_s = 0;
+  nlohmann::json base;
+  StiffTop stiff;
+  nlohmann::json stiff_law;  // the stiff PI's type and gains on the drive
+};
+Protocol ProtocolOf(const nlohmann::json& document, const ControllerComparisonSpec& spec) {
   const Case given = ParseCase(document);
-  ControllerComparison out;
-  out.handover_s = spec.handover_s.value_or(given.settings.window_begin_s);
-  if (!(out.handover_s > 0) || !std::isfinite(out.handover_s))
+  Protocol p;
+  p.handover_s = spec.handover_s.value_or(given.settings.window_begin_s);
+  if (!(p.handover_s > 0) || !std::isfinite(p.handover_s))
     throw InputError("handover_s", "the laws take over from the stiff PI's stick-slip at a time > 0, got " +
-                                       Significant(out.handover_s, 6) + " s (by default the start of the case's "
+                                       Significant(p.handover_s, 6) + " s (by default the start of the case's "
                                        "statistics window)");
   if (!(spec.after_s >= kSeverityWindowS) || !std::isfinite(spec.after_s))
     throw InputError("after_s", "the runs go on at least one severity window (" + Significant(kSeverityWindowS, 3) +
                                     " s) after the handover, got " + Significant(spec.after_s, 6) + " s");
-  out.end_s = out.handover_s + spec.after_s;
-  nlohmann::json base = document;
-  base.erase("expect");  // the case's expectations are its own law's
-  base["simulation"]["duration_s"] = out.end_s;
-  base["statistics"]["window_s"] = {out.handover_s, out.end_s};
-  const StiffTop stiff = StiffTopOf(document["model"]["top"], spec.stiff_pi);
+  p.end_s = p.handover_s + spec.after_s;
+  p.base = document;
+  p.base.erase("expect");  // the case's expectations are its own law's
+  p.base["simulation"]["duration_s"] = p.end_s;
+  p.base["statistics"]["window_s"] = {p.handover_s, p.end_s};
+  p.stiff = StiffTopOf(document["model"]["top"], spec.stiff_pi);
+  if (spec.actuator_delay_s) p.stiff.drive["actuator_delay_s"] = *spec.actuator_delay_s;
+  if (spec.torque_limit_Nm) p.stiff.drive["torque_limit_Nm"] = *spec.torque_limit_Nm;
+  p.stiff_law = {{"type", "top_drive"}, {"kp_Nms_per_rad", p.stiff.kp}, {"ki_Nm_per_rad", p.stiff.ki}};
+  return p;
+}
 
-  const nlohmann::json stiff_law = {{"type", "top_drive"}, {"kp_Nms_per_rad", stiff.kp}, {"ki_Nm_per_rad", stiff.ki}};
-  out.laws.push_back(Evaluate("stiff PI", WithTop(base, stiff.drive, stiff_law), out.handover_s, out.end_s));
+}  // namespace
+
+nlohmann::json StiffPiCase(const nlohmann::json& document, const ControllerComparisonSpec& spec) {
+  const Protocol p = ProtocolOf(document, spec);
+  return WithTop(p.base, p.stiff.drive, p.stiff_law);
+}
+
+ControllerComparison CompareControllers(const nlohmann::json& document, const ControllerComparisonSpec& spec) {
+  const Protocol p = ProtocolOf(document, spec);
+  const StiffTop& stiff = p.stiff;
+  ControllerComparison out;
+  out.handover_s = p.handover_s, out.end_s = p.end_s;
+  out.actuator_delay_s = stiff.drive.value("actuator_delay_s", 0.0);
+  out.laws.push_back(
+      Evaluate("stiff PI", WithTop(p.base, stiff.drive, p.stiff_law), out.handover_s, out.end_s,
+               !spec.tuning_period_s));
   // SoftSpeed is tuned to the stick-slip the stiff PI keeps up (its period over the same span).
   out.tuning_period_s = spec.tuning_period_s.value_or(out.laws.front().period_s);
   if (!(out.tuning_period_s > 0))
@@ -168,13 +205,32 @@ ControllerComparison CompareControllers(const nlohmann::json& document, const Co
       {"time_s", out.handover_s}, {"kp_Nms_per_rad", stiff.kp}, {"ki_Nm_per_rad", stiff.ki}};
   const nlohmann::json soft_speed = {{"type", "soft_torque"}, {"tuning_period_s", out.tuning_period_s},
                                      {"handover", handover}};
-  nlohmann::json z_torque = stiff_law;
+  nlohmann::json z_torque = p.stiff_law;
   z_torque.update({{"type", "z_torque"}, {"feedback_time_constant_s", out.feedback_time_constant_s},
                    {"handover", handover}});
-  out.laws.push_back(Evaluate("SoftSpeed", WithTop(base, stiff.drive, soft_speed), out.handover_s, out.end_s));
-  out.laws.push_back(Evaluate("Z-Torque", WithTop(base, stiff.drive, z_torque), out.handover_s, out.end_s));
+  out.laws.push_back(Evaluate("SoftSpeed", WithTop(p.base, stiff.drive, soft_speed), out.handover_s, out.end_s));
+  out.laws.push_back(Evaluate("Z-Torque", WithTop(p.base, stiff.drive, z_torque), out.handover_s, out.end_s));
   const double reference = out.laws.front().torque_std_Nm;
   for (ControllerResult& r : out.laws) r.torque_reduction_pct = 100 * (1 - r.torque_std_Nm / reference);
+  return out;
+}
+
+std::vector<ControllerComparison> CompareUnderActuatorDelays(const nlohmann::json& document,
+                                                             ControllerComparisonSpec spec,
+                                                             const ControllerComparison& nominal,
+                                                             const std::vector<double>& delays_s) {
+  spec.tuning_period_s = nominal.tuning_period_s;
+  std::vector<ControllerComparison> out;
+  Progress progress("compare-controllers under actuator delays");
+  for (double delay : delays_s) {
+    progress.Count("every law at " + Significant(delay, 3) + " s delay", out.size(), delays_s.size(), "delays");
+    if (delay == nominal.actuator_delay_s) {
+      out.push_back(nominal);
+      continue;
+    }
+    spec.actuator_delay_s = delay;
+    out.push_back(CompareControllers(document, spec));
+  }
   return out;
 }
 

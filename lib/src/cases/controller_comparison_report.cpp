@@ -1,10 +1,12 @@
 // compare-controllers' outputs: the table as CSV and Markdown, and the figure of every law around the handover.
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <ostream>
 #include <string>
 
 #include "drillwave/cases/controller_comparison.hpp"
+#include "drillwave/cases/controller_envelope.hpp"
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -15,6 +17,7 @@ namespace {
 
 std::string Number(double v, int digits = 4) { return std::isfinite(v) ? Significant(v, digits) : "nan"; }
 std::string Suppression(const ControllerResult& r) {
+  if (!r.run_failure.empty()) return "run blew up";
   return r.suppressed_after_s ? Number(*r.suppressed_after_s, 3) : "not suppressed";
 }
 
@@ -39,13 +42,42 @@ const Column kColumns[] = {
     {"time_to_suppress_s", "time to suppress [s]", Suppression},
 };
 
-void WriteCsvTable(const ControllerComparison& c, std::ostream& out) {
+// `lead` goes before the law's columns in every line (the delay's column of the delay table, with its separator).
+void WriteCsvHeader(const std::string& lead, std::ostream& out) {
+  out << lead;
   for (const Column& column : kColumns) out << (&column == kColumns ? "" : ",") << column.csv;
   out << "\n";
-  for (const ControllerResult& r : c.laws) {
-    for (const Column& column : kColumns) out << (&column == kColumns ? "" : ",") << column.value(r);
-    out << "\n";
-  }
+}
+void WriteCsvRow(const std::string& lead, const ControllerResult& r, std::ostream& out) {
+  out << lead;
+  for (const Column& column : kColumns) out << (&column == kColumns ? "" : ",") << column.value(r);
+  out << "\n";
+}
+
+void WriteCsvTable(const ControllerComparison& c, std::ostream& out) {
+  WriteCsvHeader("", out);
+  for (const ControllerResult& r : c.laws) WriteCsvRow("", r, out);
+}
+
+void WriteDelayCsv(const std::vector<ControllerComparison>& delays, std::ostream& out) {
+  WriteCsvHeader("actuator_delay_s,", out);
+  for (const ControllerComparison& c : delays)
+    for (const ControllerResult& r : c.laws) WriteCsvRow(Number(c.actuator_delay_s) + ",", r, out);
+}
+
+// Markdown: `lead` holds the leading cells with their separators ("| 0.1 " before "| law |").
+void WriteMarkdownHeader(const std::string& lead, std::ostream& out) {
+  out << lead << "|";
+  for (const Column& column : kColumns) out << " " << column.markdown << " |";
+  out << "\n|";
+  const auto leading = static_cast<std::size_t>(std::count(lead.begin(), lead.end(), '|'));
+  for (std::size_t k = 0; k < leading + std::size(kColumns); ++k) out << "---|";
+  out << "\n";
+}
+void WriteMarkdownRow(const std::string& lead, const ControllerResult& r, std::ostream& out) {
+  out << lead << "|";
+  for (const Column& column : kColumns) out << " " << column.value(r) << " |";
+  out << "\n";
 }
 
 void WriteMarkdown(const std::string& name, const ControllerComparison& c, std::ostream& out) {
@@ -63,18 +95,42 @@ void WriteMarkdown(const std::string& name, const ControllerComparison& c, std::
       << "runs from the handover to the end of the last stick (0: the bit does not stick after it; not suppressed: it "
       << "still sticks in the last " << Number(kSeverityWindowS) << " s). The linear verdict is the rightmost "
       << "characteristic root at the operating point (in the coupled kind it may be the axial regenerative mode, "
-      << "which no top-drive law moves).\n\n|";
-  for (const Column& column : kColumns) out << " " << column.markdown << " |";
-  out << "\n|";
-  for (std::size_t k = 0; k < std::size(kColumns); ++k) out << "---|";
-  out << "\n";
-  for (const ControllerResult& r : c.laws) {
-    out << "|";
-    for (const Column& column : kColumns) out << " " << column.value(r) << " |";
-    out << "\n";
-  }
+      << "which no top-drive law moves).\n\n";
+  WriteMarkdownHeader("", out);
+  for (const ControllerResult& r : c.laws) WriteMarkdownRow("", r, out);
   out << "\nThe tops as run (/model/top):\n\n";
-  for (const ControllerResult& r : c.laws) out << "- " << r.law << ": `" << r.top.dump() << "`\n";
+  for (const ControllerResult& r : c.laws)
+    out << "- " << r.law << ": `" << r.document.at("model").at("top").dump() << "`\n";
+}
+
+// A law has the benefit of its tuning at a delay where its median severity is below the stiff PI's at that delay; a
+// severity that is not a number (the bit turned backwards, the run blew up) is worse than any.
+bool Benefits(const ControllerComparison& c, const ControllerResult& r) {
+  const double stiff = c.laws.front().severity;
+  return std::isfinite(r.severity) && (!std::isfinite(stiff) || r.severity < stiff);
+}
+
+void WriteDelayMarkdown(const std::vector<ControllerComparison>& delays, std::ostream& out) {
+  out << "\n## Actuator delay\n\n"
+      << "Every law with the drive's torque acting the delay after its controller computes it (the stiff PI too, "
+      << "before and after the handover), SoftSpeed and Z-Torque tuned as above (at the nominal delay) and held; the "
+      << "reduction is against the stiff PI at the same delay; benefit: a median severity below the stiff PI's at the "
+      << "same delay (nan, the bit turned backwards or the run blew up, is worse than any). The linear verdict "
+      << "includes the delay (retarded terms of the drive's speed and string torque in the linearization).\n\n";
+  WriteMarkdownHeader("| actuator delay [s] ", out);
+  for (const ControllerComparison& c : delays)
+    for (const ControllerResult& r : c.laws)
+      WriteMarkdownRow("| " + Number(c.actuator_delay_s) + " ", r, out);
+  out << "\n";
+  for (std::size_t law = 1; law < delays.front().laws.size(); ++law) {
+    const auto lost = std::find_if(delays.begin(), delays.end(), [&](const ControllerComparison& c) {
+      return !Benefits(c, c.laws[law]);
+    });
+    out << "- " << delays.front().laws[law].law << ": "
+        << (lost == delays.end() ? "keeps its benefit at every delay studied"
+                                 : "no benefit at " + Number(lost->actuator_delay_s) + " s delay")
+        << "\n";
+  }
 }
 
 void WriteFigure(const std::string& name, const ControllerComparison& c, std::ostream& out) {
@@ -82,6 +138,7 @@ void WriteFigure(const std::string& name, const ControllerComparison& c, std::os
                     {{"bit speed [rpm]", {}}, {"top torque [N m]", {}}}};
   figure.spans.push_back({"laws in the loop", c.handover_s, c.end_s});
   for (const ControllerResult& r : c.laws) {
+    if (!r.run_failure.empty()) continue;
     figure.panels[0].series.push_back({r.law, r.time_s, r.bit_rpm});
     figure.panels[1].series.push_back({r.law, r.time_s, r.top_torque_Nm});
   }
@@ -91,11 +148,21 @@ void WriteFigure(const std::string& name, const ControllerComparison& c, std::os
 }  // namespace
 
 void WriteControllerComparison(const nlohmann::json& document, const ControllerComparison& comparison,
-                               const std::string& out_dir) {
+                               const std::string& out_dir, const ControllerStudies& studies) {
   const std::string name = document.value("name", std::string("case"));
   io::OutputDirectory out(out_dir);
   WriteCsvTable(comparison, out.Open("controllers.csv"));
-  WriteMarkdown(name, comparison, out.Open("controllers.md"));
+  std::ostream& markdown = out.Open("controllers.md");
+  WriteMarkdown(name, comparison, markdown);
+  if (studies.envelopes) {
+    WriteEnvelopeMarkdown(*studies.envelopes, markdown);
+    WriteEnvelopeCsv(*studies.envelopes, out.Open("envelopes.csv"));
+    WriteEnvelopeSvg(name, *studies.envelopes, out.Open("envelopes.svg"));
+  }
+  if (!studies.delays.empty()) {
+    WriteDelayMarkdown(studies.delays, markdown);
+    WriteDelayCsv(studies.delays, out.Open("delays.csv"));
+  }
   WriteFigure(name, comparison, out.Open("controllers.svg"));
   out.Open("case.json") << document.dump(2) << "\n";
   out.Commit();

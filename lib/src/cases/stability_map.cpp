@@ -81,13 +81,13 @@ io::Marker MarkerOf(Regime r) {
 
 }  // namespace
 
-MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document) {
+MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document, const std::string& option) {
   const auto eq = text.rfind('=');
   if (eq == std::string::npos || eq == 0 || text[0] != '/')
-    throw InputError("--map", "'" + text + "': expected /json/pointer=first:last:count");
-  MapAxis axis{text.substr(0, eq), ParseSweepValues(text.substr(eq + 1), "--map " + text.substr(0, eq))};
+    throw InputError(option, "'" + text + "': expected /json/pointer=first:last:count");
+  MapAxis axis{text.substr(0, eq), ParseSweepValues(text.substr(eq + 1), option + " " + text.substr(0, eq))};
   for (double v : axis.values)
-    if (!std::isfinite(v)) throw InputError("--map", "'" + text + "': a value is not finite");
+    if (!std::isfinite(v)) throw InputError(option, "'" + text + "': a value is not finite");
   // The pointer must lead to a field the case reads: set the first value and parse (a misspelt optional field is
   // refused by the case's reader as unknown).
   nlohmann::json probe = document;
@@ -95,7 +95,7 @@ MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document) {
     io::SetByPointer(probe, axis.pointer, axis.values.front());
     ParseCase(probe);
   } catch (const InputError& e) {
-    throw InputError("--map", "'" + text + "': " + e.json_path() + ": " + e.what());
+    throw InputError(option, "'" + text + "': " + e.json_path() + ": " + e.what());
   }
   return axis;
 }
@@ -120,6 +120,14 @@ Regime ClassifyRun(const nlohmann::json& summary) {
   return Regime::kSmooth;
 }
 
+const char* CellVerdictName(const StabilityMapCell& cell) {
+  return !cell.analysed ? "n/a" : cell.steady_states > 0 ? analysis::VerdictName(cell.verdict) : "none";
+}
+
+bool LinearlySteady(const StabilityMapCell& cell) {
+  return cell.steady_states > 0 && cell.verdict != Verdict::kUnstable;
+}
+
 StabilityMapResult StabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
                                   const analysis::SpectrumOptions& options) {
   if (spec.jobs < 1) throw InputError("--jobs", std::to_string(spec.jobs) + " is not >= 1");
@@ -140,6 +148,8 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
                                             Significant(x, 8) + ", " + spec.y.pointer + " = " + Significant(y, 8) + ")");
       }
       cases.back().document = nullptr;
+      // The work from the first point, before the others are parsed (issue 38: 1000 x 1000 with --simulate ran on).
+      if (cases.size() == 1) CheckPointsWork(cases.front(), static_cast<double>(nx) * ny, spec.simulate, "--map");
     }
   // A kind without linearization fails here, before the threads start; with simulate, its map holds the regimes only.
   bool linearizable = true;
@@ -156,7 +166,7 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
     StabilityMapCell cell;
     cell.x = spec.x.values[k % nx];
     cell.y = spec.y.values[k / nx];
-    cell.stick_fraction = std::nan("");
+    cell.stick_fraction = cell.severity = std::nan("");
     cell.analysed = linearizable;
     if (!linearizable) cell.spectral_abscissa = cell.frequency_rad_s = cell.essential_abscissa = std::nan("");
     return cell;
@@ -220,40 +230,34 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
   result.linear_wall_time_s = Seconds(start);
   if (!spec.simulate) return result;
   start = std::chrono::steady_clock::now();
+  struct Run {
+    Regime regime = Regime::kFailed;
+    double stick_fraction = std::nan(""), severity = std::nan("");
+  };
   const auto runs = ParallelMap(cases.size(), spec.jobs, [&](std::size_t k) {
-    std::pair<Regime, double> regime{Regime::kFailed, std::nan("")};
+    Run run;
+    auto number = [](const nlohmann::json& summary, const char* key) {
+      return summary.contains(key) && summary.at(key).is_number() ? summary.at(key).get<double>() : std::nan("");
+    };
     try {
       const nlohmann::json summary = RunCase(cases[k]).summary;
-      regime.first = ClassifyRun(summary);
-      if (summary.contains("stick_fraction") && summary.at("stick_fraction").is_number())
-        regime.second = summary.at("stick_fraction").get<double>();
+      run.regime = ClassifyRun(summary);
+      run.stick_fraction = number(summary, "stick_fraction");
+      run.severity = number(summary, "stick_slip_severity");
     } catch (const NumericalError&) {
     }
-    return regime;
+    return run;
   });
   for (std::size_t k = 0; k < runs.size(); ++k) {
-    result.cells[k].regime = runs[k].first;
-    result.cells[k].stick_fraction = runs[k].second;
+    result.cells[k].regime = runs[k].regime;
+    result.cells[k].stick_fraction = runs[k].stick_fraction;
+    result.cells[k].severity = runs[k].severity;
   }
   result.simulation_wall_time_s = Seconds(start);
   return result;
 }
 
-void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
-                         const StabilityMapResult& result, const std::string& out_dir) {
-  io::OutputDirectory out(out_dir);
-  std::ostream& csv = out.Open("stability_map.csv");
-  csv << CsvName(spec.x.pointer, "x") << "," << CsvName(spec.y.pointer, "y")
-      << ",steady_states,spectral_abscissa_per_s,frequency_rad_s,essential_abscissa_per_s,verdict,regime,"
-         "stick_fraction\n";
-  for (const StabilityMapCell& c : result.cells)
-    csv << Number(c.x) << "," << Number(c.y) << "," << c.steady_states << "," << Number(c.spectral_abscissa) << ","
-        << Number(c.frequency_rad_s) << "," << Number(c.essential_abscissa) << ","
-        << (!c.analysed ? "n/a" : c.steady_states > 0 ? analysis::VerdictName(c.verdict) : "none") << ","
-        << RegimeName(c.regime) << ","
-        << Number(c.stick_fraction) << "\n";
-  out.Open("case.json") << document.dump(2) << "\n";
-
+io::HeatMap StabilityHeatMap(const StabilityMapSpec& spec, const StabilityMapResult& result) {
   // Colours: stable blue and unstable red, darker the farther the rightmost root is from the axis (relative to the
   // map's extreme), marginal yellow, no steady state grey.
   double most_stable = 0, most_unstable = 0;
@@ -263,8 +267,6 @@ void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec&
       if (c.verdict == Verdict::kUnstable) most_unstable = std::max(most_unstable, c.spectral_abscissa);
     }
   io::HeatMap map;
-  map.title = document.value("name", std::string("case")) + ": linear stability" +
-              (spec.simulate ? " and the regime simulated from the case's start" : "");
   map.x_label = io::AxisLabel(io::QuantityOfPointer(spec.x.pointer));
   map.y_label = io::AxisLabel(io::QuantityOfPointer(spec.y.pointer));
   map.x = spec.x.values;
@@ -291,6 +293,27 @@ void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec&
   if (any_simulated)
     for (Regime r : {Regime::kSmooth, Regime::kStickSlip, Regime::kBitBouncing, Regime::kFailed})
       map.legend.push_back({std::string("simulated: ") + RegimeName(r), "", MarkerOf(r)});
+  return map;
+}
+
+void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
+                         const StabilityMapResult& result, const std::string& out_dir) {
+  io::OutputDirectory out(out_dir);
+  std::ostream& csv = out.Open("stability_map.csv");
+  csv << CsvName(spec.x.pointer, "x") << "," << CsvName(spec.y.pointer, "y")
+      << ",steady_states,spectral_abscissa_per_s,frequency_rad_s,essential_abscissa_per_s,verdict,regime,"
+         "stick_fraction\n";
+  for (const StabilityMapCell& c : result.cells)
+    csv << Number(c.x) << "," << Number(c.y) << "," << c.steady_states << "," << Number(c.spectral_abscissa) << ","
+        << Number(c.frequency_rad_s) << "," << Number(c.essential_abscissa) << ","
+        << CellVerdictName(c) << ","
+        << RegimeName(c.regime) << ","
+        << Number(c.stick_fraction) << "\n";
+  out.Open("case.json") << document.dump(2) << "\n";
+
+  io::HeatMap map = StabilityHeatMap(spec, result);
+  map.title = document.value("name", std::string("case")) + ": linear stability" +
+              (spec.simulate ? " and the regime simulated from the case's start" : "");
   io::WriteHeatMapSvg(map, out.Open("stability_map.svg"));
 
   std::ostream& report = out.Open("report.md");
@@ -298,7 +321,7 @@ void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec&
   for (const StabilityMapCell& c : result.cells) {
     if (!c.analysed) continue;
     ++counts[c.steady_states == 0 ? 3 : Rank(c.verdict)];
-    const bool linear_stable = c.steady_states > 0 && c.verdict != Verdict::kUnstable;
+    const bool linear_stable = LinearlySteady(c);
     if ((c.regime == Regime::kStickSlip && linear_stable) || (c.regime == Regime::kSmooth && !linear_stable)) ++disagree;
   }
   report << "# Stability map of " << document.value("name", std::string("case")) << "\n\n"

@@ -28,11 +28,13 @@ struct ControllerComparisonSpec {
   double after_s = 60;                     // >= 20 s (a severity window): the runs end this long after the handover
   std::optional<double> tuning_period_s;   // SoftSpeed's P; default: the stiff PI's stick-slip period after handover
   std::optional<StiffPi> stiff_pi;         // needed for a top that is not a PI top drive (top_drive, soft_torque, ...)
+  // The drive every law runs on: its actuator delay [s] and torque limit [N m] (default: the case's top's).
+  std::optional<double> actuator_delay_s, torque_limit_Nm;
 };
 
 struct ControllerResult {
   std::string law;               // "stiff PI", "SoftSpeed", "Z-Torque"
-  nlohmann::json top;            // the /model/top block it ran with
+  nlohmann::json document;       // the case it ran: the law's /model/top, the comparison's duration and window
   std::string verdict;           // stable | marginal | unstable | no steady state
   double rightmost_re = 0, rightmost_im = 0;  // the rightmost characteristic root [1/s, rad/s] (NaN: none)
   double severity = 0;           // median over the 20-s windows after the handover (NaN: the bit turned backwards)
@@ -45,24 +47,49 @@ struct ControllerResult {
   std::optional<double> suppressed_after_s;  // handover to the end of the last stick; none: the bit still sticks
                                              // in the last 20 s (not suppressed)
   std::vector<double> time_s, bit_rpm, top_torque_Nm;  // the run from 10 s before the handover, for the figure
+  std::string run_failure;  // why the run failed numerically (a blow-up); empty: it ran. The measures are then NaN
 };
 
 struct ControllerComparison {
   double handover_s = 0, end_s = 0;
   double tuning_period_s = 0;          // SoftSpeed's P
   double feedback_time_constant_s = 0; // Z-Torque's high-pass filter
+  double actuator_delay_s = 0;         // of the drive every law runs on
   std::vector<ControllerResult> laws;  // the stiff PI first
 };
 
 // Throws InputError for a top that has no stiff PI to compare with (naming /model/top/type, unless spec.stiff_pi
 // gives one), a handover not > 0 or after_s below 20 s (naming the spec's field, handover_s or after_s), and where the
 // stiff PI shows no stick-slip period to tune SoftSpeed to (naming tuning_period_s, which gives one); NumericalError
-// from a run.
+// from the stiff PI's run when SoftSpeed is tuned to it (any other run's blow-up is its result: run_failure).
 ControllerComparison CompareControllers(const nlohmann::json& document, const ControllerComparisonSpec& spec);
 
+// The case as the comparison runs it under the stiff PI (its duration, statistics window and drive), which every
+// law's case shares but for the top's law: what a map over the laws' cases may address. Throws as CompareControllers
+// does before its runs.
+nlohmann::json StiffPiCase(const nlohmann::json& document, const ControllerComparisonSpec& spec);
+
+// Every law again at each actuator delay (spec.actuator_delay_s replaced), with SoftSpeed's period and Z-Torque's
+// filter held at the nominal comparison's: the drive is commissioned once and then lives with its delay. A delay
+// equal to the nominal's reuses it.
+std::vector<ControllerComparison> CompareUnderActuatorDelays(const nlohmann::json& document,
+                                                             ControllerComparisonSpec spec,
+                                                             const ControllerComparison& nominal,
+                                                             const std::vector<double>& delays_s);
+
+struct ControllerEnvelopes;  // controller_envelope.hpp
+
+// What compare-controllers may add to the nominal comparison.
+struct ControllerStudies {
+  const ControllerEnvelopes* envelopes = nullptr;  // none: not mapped
+  std::vector<ControllerComparison> delays;        // CompareUnderActuatorDelays' (empty: not studied)
+};
+
 // controllers.csv (a row per law), controllers.md (the table and how it was made), controllers.svg (bit speed and
-// surface torque of every law around the handover) and case.json into out_dir, all or nothing.
+// surface torque of every law around the handover) and case.json into out_dir, all or nothing; with the studies also
+// envelopes.csv and envelopes.svg (controller_envelope.hpp) and delays.csv (a row per delay and law), their tables
+// in controllers.md.
 void WriteControllerComparison(const nlohmann::json& document, const ControllerComparison& comparison,
-                               const std::string& out_dir);
+                               const std::string& out_dir, const ControllerStudies& studies = {});
 
 }  // namespace drillwave::cases

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "drillwave/analysis/spectrum.hpp"
+#include "drillwave/io/svg_heatmap.hpp"
 
 namespace drillwave::cases {
 
@@ -21,9 +22,9 @@ struct MapAxis {
 };
 
 // "POINTER=first:last:count" (or "POINTER=v1,v2,..."): the values as ParseSweepValues reads them. Throws
-// InputError("--map", ...) naming the text for anything else, for a pointer the case has no field at, and for a first
+// InputError(option, ...) naming the text for anything else, for a pointer the case has no field at, and for a first
 // value the field refuses (the case is parsed with it).
-MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document);
+MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document, const std::string& option = "--map");
 
 struct StabilityMapSpec {
   MapAxis x, y;
@@ -52,7 +53,13 @@ struct StabilityMapCell {
   analysis::Spectrum::Verdict verdict = analysis::Spectrum::Verdict::kUnstable;
   Regime regime = Regime::kNotSimulated;
   double stick_fraction = 0;  // of the run (NaN unless simulated and reported)
+  double severity = 0;        // the run's stick_slip_severity (NaN unless simulated and reported)
 };
+
+// "stable", "marginal", "unstable", "none" (no steady state) or "n/a" (no linearization).
+const char* CellVerdictName(const StabilityMapCell& cell);
+// A steady motion exists at the cell and is not unstable (stable or marginal): linearly free of stick-slip.
+bool LinearlySteady(const StabilityMapCell& cell);
 
 struct StabilityMapResult {
   std::vector<StabilityMapCell> cells;  // x varies fastest: cells[j * nx + i] is (x[i], y[j])
@@ -67,6 +74,9 @@ struct StabilityMapResult {
 // the regimes alone); then the analyses (and runs) go in parallel (core/parallel.hpp).
 StabilityMapResult StabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
                                   const analysis::SpectrumOptions& options = {});
+
+// The map as a heat map (no title): the verdict's colour, shaded by the rightmost real part, the regime as marker.
+io::HeatMap StabilityHeatMap(const StabilityMapSpec& spec, const StabilityMapResult& result);
 
 // stability_map.csv (x, y, steady_states, spectral_abscissa_per_s, frequency_rad_s, essential_abscissa_per_s, verdict
 // stable, marginal, unstable, none (no steady state) or n/a (no linearization), regime, stick_fraction), stability_map.svg (heat map of the
