@@ -274,6 +274,29 @@ TEST_F(Mutations, AnalysesOverAMillionPointsAreRefusedBeforeAnyWork) {
   Report(tallies);
 }
 
+// A torsional string of 20 000 sections (issue 38: it ran for hours with no estimate) is refused, naming the field and
+// the most it may have; 100 still parse.
+TEST_F(Mutations, StringsOfThousandsOfSectionsAreRefused) {
+  std::map<std::string, Tally> tallies;
+  json doc = drillwave::io::LoadJsonFile((kCases / "saldivar-collars.json").string());
+  const json pipe = doc["model"]["string"]["sections"][0];
+  for (const int n : {100, 20000}) {
+    json many = doc;
+    many["model"]["string"]["sections"] = json::array();
+    for (int i = 0; i < n; ++i) {
+      json s = pipe;
+      s["length_m"] = pipe["length_m"].get<double>() / n;
+      many["model"]["string"]["sections"].push_back(s);
+    }
+    const Outcome o = RunTool("validate " + WriteText("many.json", many.dump()));
+    const bool refused = o.exit_code == 2 && o.output.find("/model/string/sections: 20000 sections; expected at "
+                                                           "most 100") != std::string::npos;
+    tallies[std::to_string(n) + " sections"].Add(n == 100 ? o.exit_code == 0 : refused,
+                                                 "exit " + std::to_string(o.exit_code) + ": " + o.output);
+  }
+  Report(tallies);
+}
+
 // A damping so large that the explicit steps shrink to 1e-8 s for the whole run (its histories filled the memory:
 // bad_alloc, exit 4): refused before the run, naming the field and the most it may be for the run, or a numerical
 // failure (exit 3). The cases' own durations, as the issue ran them; the torsional_wave kind's string runs (exit 0).
