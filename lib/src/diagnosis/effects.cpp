@@ -37,14 +37,6 @@ const std::vector<std::string>& EffectVocabulary() {
   return names;
 }
 
-// Behind a soft PI the motor's back-EMF damping K^2/R makes the drive as stiff as the motor, not the PI, says: neither
-// alone comes near such a drive (train rec30: held out 1.14 for the base, 48.9 with the KEY's soft PI alone, 3.42
-// with its motor alone, 0.244 with both).
-const std::vector<std::pair<std::string, std::string>>& OneComponentPairs() {
-  static const std::vector<std::pair<std::string, std::string>> pairs = {{"dc_motor", "soft_topdrive"}};
-  return pairs;
-}
-
 double ToUnit(const EffectParameter& p, double v) {
   const double u = p.log_scale ? std::log(v / p.lower) / std::log(p.upper / p.lower) : (v - p.lower) / (p.upper - p.lower);
   return std::clamp(u, 0.0, 1.0);

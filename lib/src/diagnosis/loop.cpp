@@ -553,25 +553,6 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   };
   std::stable_sort(screening_order.begin(), screening_order.end(),
                    [&](std::size_t a, std::size_t b) { return screened_error(a) < screened_error(b); });
-  // Pairs on one component (OneComponentPairs), screened after the singles: neither part alone need come near the
-  // recording (a soft PI behind a DC motor is as stiff as the motor's back-EMF makes it: alone the soft PI lets the
-  // stick-slip grow, the motor alone hunts behind the stiff PI). Such a pair is fitted in full below where its
-  // screening run comes closer than the baseline's and every single's.
-  std::vector<std::vector<int>> component_pairs;
-  for (const auto& [first, second] : OneComponentPairs())
-    for (int i : screened ? modelable : std::vector<int>{})
-      for (int j : modelable)
-        if (i < j && ((loop.proposals[i].name == first && loop.proposals[j].name == second) ||
-                      (loop.proposals[i].name == second && loop.proposals[j].name == first)))
-          component_pairs.push_back({i, j});
-  if (!component_pairs.empty())
-    say("screening " + std::to_string(component_pairs.size()) + " pair(s) on one component");
-  for (Candidate& c : ParallelMap(component_pairs.size(), std::max(1, o.threads), [&](std::size_t i) {
-         return fit_candidate(component_pairs[i], start_of(component_pairs[i]), 1, true);
-       }))
-    loop.screening.push_back(std::move(c));
-  double best_screened = component_pairs.empty() ? 0.0 : loop.baseline_held_out_draw_errors.at(loop.fit_draw);
-  for (std::size_t i = 0; i < screened; ++i) best_screened = std::min(best_screened, screened_error(i));
   // The singles fitted in full: the (at most kRuleSingles) strongest proposals the rules make with strong evidence,
   // which know what a screening run misses (side friction needs the soft drive that lets the top move before it
   // lowers any error), then the best screened, up to max_singles.
@@ -608,27 +589,15 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     return loop.candidates[representative({a})].held_out_error < loop.candidates[representative({b})].held_out_error;
   });
   sets.clear();
-  std::vector<std::vector<double>> starts;
   for (std::size_t a = 0; a < ranked.size(); ++a)
-    for (std::size_t b = a + 1; b < ranked.size(); ++b) {
+    for (std::size_t b = a + 1; b < ranked.size(); ++b)
       sets.push_back({std::min(ranked[a], ranked[b]), std::max(ranked[a], ranked[b])});
-      starts.push_back(own_fit(sets.back()[0]));
-      const std::vector<double> second = own_fit(sets.back()[1]);
-      starts.back().insert(starts.back().end(), second.begin(), second.end());
-    }
   if (!sets.empty()) say(std::to_string(sets.size()) + " pair(s) of them to fit");
-  for (std::size_t i = 0; i < component_pairs.size(); ++i) {  // from its screening fit's values
-    const Candidate& c = loop.screening[screened + i];
-    if (!(c.failure.empty() && c.held_out_error < best_screened)) continue;
-    const auto known = std::find(sets.begin(), sets.end(), component_pairs[i]);
-    if (known != sets.end()) {
-      starts[static_cast<std::size_t>(known - sets.begin())] = c.unit_values;
-    } else {
-      sets.push_back(component_pairs[i]), starts.push_back(c.unit_values);
-      say(Joined(c.effects) + ", one component's pair, screened closer than the baseline and every single: to fit");
-    }
-  }
-  fit_all(sets, [&](std::size_t i) { return starts[i]; });
+  fit_all(sets, [&](std::size_t i) {
+    std::vector<double> start = own_fit(sets[i][0]), second = own_fit(sets[i][1]);
+    start.insert(start.end(), second.begin(), second.end());
+    return start;
+  });
   loop.kept = best_qualifying();
   // A kept set's fit had more runs than its parts' and started from their best values, so it may beat them only
   // because the parameters they share were fitted better. So before a set of two or more effects stands, each set

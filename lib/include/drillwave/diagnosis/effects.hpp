@@ -6,7 +6,6 @@
 // or remove it. Whether an effect is kept is decided by fitting it (loop.hpp).
 #include <functional>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -68,10 +67,6 @@ std::vector<Effect> RigEffects(const nlohmann::json& document, const FeatureSet&
 
 // The vocabulary, for listing and checking names.
 const std::vector<std::string>& EffectVocabulary();
-
-// Pairs of effects on one component whose parameters change what each other's mean (a DC motor's back-EMF damping
-// adds to the speed controller's gain): the diagnosis screens each such pair as well as the singles.
-const std::vector<std::pair<std::string, std::string>>& OneComponentPairs();
 
 // value <-> [0, 1] on the parameter's scale.
 double ToUnit(const EffectParameter& p, double value);
