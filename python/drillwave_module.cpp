@@ -5,7 +5,9 @@
 // The arguments are read with the GIL held, the library's work runs without it (WithoutGil), and the results become
 // Python objects with it again: other Python threads, and other drillwave calls, run meanwhile (issue 37).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -25,6 +27,7 @@
 #include "drillwave/cases/model_kind.hpp"
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/sweep.hpp"
+#include "drillwave/core/cancellation.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
@@ -168,16 +171,36 @@ std::optional<double> SampleLimit(py::handle limit) {
 // puts the previous limit back), calls without one share it.
 std::shared_mutex sample_limit_mutex;
 
-// Runs work() without the GIL, under the sample limit `limit` (nullopt: the current one), and returns its result.
-// work() must not touch a Python object; nothing in the library calls back into Python (a callback would take the
-// GIL again with py::gil_scoped_acquire). The limit's lock is taken without the GIL, so a call waiting for it never
-// blocks one that holds it and needs the GIL to return. Exceptions reach pybind11 with the GIL held again.
+// work() on a thread of its own while this one, taking the GIL every 50 ms, lets Python run its signal handlers: on
+// Ctrl-C (KeyboardInterrupt, or whatever exception a handler raises) the library's work is cancelled
+// (core/cancellation.hpp: it stops at its next integration step or map item), joined, and the exception raised.
+// Called without the GIL.
+template <class Work>
+auto Interruptible(Work&& work) -> decltype(work()) {
+  auto done = std::async(std::launch::async, std::forward<Work>(work));
+  while (done.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+    const py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) {
+      drillwave::RequestCancellation();
+      done.wait();
+      drillwave::ClearCancellation();
+      throw py::error_already_set();
+    }
+  }
+  return done.get();
+}
+
+// Runs work() without the GIL, under the sample limit `limit` (nullopt: the current one), and returns its result;
+// interruptible by Ctrl-C. work() must not touch a Python object; nothing in the library calls back into Python (a
+// callback would take the GIL again with py::gil_scoped_acquire). The limit's lock is taken without the GIL, so a
+// call waiting for it never blocks one that holds it and needs the GIL to return. Exceptions reach pybind11 with the
+// GIL held again.
 template <class Work>
 auto WithoutGil(std::optional<double> limit, Work&& work) -> decltype(work()) {
   const py::gil_scoped_release release;
   if (!limit) {
     const std::shared_lock<std::shared_mutex> shared(sample_limit_mutex);
-    return work();
+    return Interruptible(work);
   }
   const std::unique_lock<std::shared_mutex> alone(sample_limit_mutex);
   struct Restore {
@@ -185,7 +208,7 @@ auto WithoutGil(std::optional<double> limit, Work&& work) -> decltype(work()) {
     ~Restore() { drillwave::cases::SetMaxSamples(previous); }
   } const restore;
   drillwave::cases::SetMaxSamples(*limit);  // InputError unless a finite number >= 1
-  return work();
+  return Interruptible(work);
 }
 
 int Jobs(py::handle jobs) {

@@ -187,3 +187,32 @@ def test_version_is_the_projects_and_the_command_lines():
     if CLI:
         out = subprocess.run([CLI, "--version"], capture_output=True, text=True, check=True).stdout
         assert out == f"drillwave {version}\n"
+
+
+def test_ctrl_c_stops_a_long_call_with_keyboard_interrupt():
+    # Issue 41: a long call is interruptible. A sweep of 400 runs of the 300-s case (minutes of work) in a child
+    # interpreter gets SIGINT after its first second: KeyboardInterrupt within two seconds, and the module works again.
+    import signal
+    import sys
+    import time
+    script = (
+        "import sys, time, drillwave\n"
+        "print('started', flush=True)\n"
+        "t = time.monotonic()\n"
+        "try:\n"
+        f"    drillwave.sweep({CASE!r}, '/model/top/speed_rad_s/knots/1/1', '3:12:400', jobs=1)\n"
+        "    print('finished', flush=True)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted after %.2f s' % (time.monotonic() - t), flush=True)\n"
+        f"r = drillwave.run({CASE!r}, set={SHORT!r})\n"
+        "print('again', r['summary']['stick_fraction'] > 0, flush=True)\n")
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True, env=os.environ.copy())
+    assert child.stdout.readline().strip() == "started"
+    time.sleep(1.0)
+    sent = time.monotonic()
+    child.send_signal(signal.SIGINT)
+    line = child.stdout.readline().strip()
+    assert line.startswith("interrupted after"), line
+    assert time.monotonic() - sent < 2.0
+    assert child.stdout.readline().strip() == "again True"
+    assert child.wait(timeout=60) == 0

@@ -12,6 +12,8 @@
 #include <sched.h>
 #endif
 
+#include "drillwave/core/cancellation.hpp"
+
 namespace drillwave {
 
 int DefaultThreadCount() {
@@ -37,6 +39,7 @@ void ParallelFor(std::size_t n, int threads, const std::function<void(std::size_
       const std::size_t i = next++;
       if (i >= n) return;
       try {
+        ThrowIfCancelled();  // an interrupted caller hands out no further item
         body(i);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(error_mutex);

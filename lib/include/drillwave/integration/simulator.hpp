@@ -35,6 +35,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "drillwave/core/cancellation.hpp"
+
 #include <boost/numeric/odeint.hpp>
 
 #include "drillwave/core/error.hpp"
@@ -304,6 +306,7 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
     }
   };
   while (t < t_end) {
+    ThrowIfCancelled();
     if (options_.max_steps > 0 && stats_.steps >= options_.max_steps)
       throw NumericalError("step budget exhausted (max_steps = " + std::to_string(options_.max_steps) +
                                " accepted steps) before the end time " + std::to_string(t_end),
