@@ -1,6 +1,7 @@
 // Event detection of the Simulator loop on a process small enough to solve by hand.
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -107,6 +108,51 @@ TEST(SimulatorHistory, EveryPieceAcceptedBelowTheFloorIsPreparedBeforeItsCommit)
   sim.Integrate(0.0, {1.0}, 1.0);
   EXPECT_GT(process.commits(), 10);
   EXPECT_EQ(process.unprepared(), 0) << "of " << process.commits() << " pieces";
+}
+
+// Two modes that hand over to each other every 4e-11 s (x' = -1 until x = -h, then +1 until x = +h, h = 2e-11): no
+// two events at the same instant, yet no time passes. The loop must stop with the time and the state, not store
+// pieces for ever (the coupled bit's stuck-lifted-dropped cycle of issue 41 did so until memory ran out).
+class Chatter {
+ public:
+  int Dimension() const { return 1; }
+  void Derivatives(const std::vector<double>&, std::vector<double>& dxdt, double) const {
+    dxdt[0] = mode_ == 0 ? -1.0 : 1.0;
+  }
+  double MaxStep() const { return std::numeric_limits<double>::infinity(); }
+  void BeginStep(double) {}
+  double PrepareCommit(const Piece&, double, double) { return 0; }
+  void Commit(const Piece&) { ++commits_; }
+  int NumWitnesses() const { return 1; }
+  double Witness(int, double, const std::vector<double>& x) const { return mode_ == 0 ? x[0] + kH : kH - x[0]; }
+  bool OnEvent(int, double, std::vector<double>&) {
+    mode_ = 1 - mode_;
+    return true;
+  }
+  double NextBreakpoint() const { return std::numeric_limits<double>::infinity(); }
+  void OnBreakpoint(double) {}
+  long commits() const { return commits_; }
+
+ private:
+  static constexpr double kH = 2e-11;
+  int mode_ = 0;
+  long commits_ = 0;
+};
+
+TEST(SimulatorEvents, ModesChatteringOnAVanishingTimeScaleStopTheRunWithTimeAndState) {
+  Chatter process;
+  IntegratorOptions options;
+  options.event_time_tol = 1e-15;
+  options.max_steps = 1000000;  // without the guard the run ends here, a million pieces on
+  Simulator<Chatter> sim(process, options);
+  try {
+    sim.Integrate(0.0, {1.0}, 2.0);
+    FAIL() << "the chattering run ended normally";
+  } catch (const drillwave::NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("chattering"), std::string::npos) << e.what();
+    EXPECT_NEAR(e.time(), 1.0, 1e-6);
+    EXPECT_LT(process.commits(), 1000);
+  }
 }
 
 }  // namespace

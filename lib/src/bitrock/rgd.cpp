@@ -22,6 +22,13 @@ void RgdLaw::OnBottom(Turn turn, Axial axial, double w, bool cutting, double z, 
   const double d = std::max(f.depth, 0.0);
   const double strength = strength_heterogeneity.Multiplier(z);  // exactly 1 for homogeneous rock
   f.cut_weight = cutting ? CutWeightPerDepth() * d * strength : 0.0;
+  // A stuck bit twisted backward cannot be lifted by its own cutters: lifted, its wear flats would hold nothing, it
+  // would turn back and stop cutting, and the lift would be gone (no regime is consistent; the run chattered between
+  // four every 4e-11 s, after a long stick left a depth of cut whose cutting weight was twice the weight on bit). At
+  // rest its cutters answer the weight pressing them, up to the cutting weight, and no more. (Twisted forward, stuck
+  // and lifted is consistent: the cutters keep cutting when it turns; the independent simulator's bouncing bit lifts
+  // so.)
+  if (turn == Turn::kStuck && f.drive_torque < 0) f.cut_weight = std::min(f.cut_weight, std::max(f.drive_force, 0.0));
   const double cut_torque = cutting ? CutTorquePerDepth() * d * strength : 0.0;
   const double contact_force = ContactForce() * strength;
   double contact = 0;  // W_f
@@ -34,7 +41,11 @@ void RgdLaw::OnBottom(Turn turn, Axial axial, double w, bool cutting, double z, 
   const double friction = FrictionArm(w) * contact, holding = StaticFrictionArm() * contact;
   f.torque = turn == Turn::kBackward ? -friction : cut_torque + friction;
   f.static_forward = cut_torque + holding;
-  f.static_backward = holding;
+  // A bit that starts to turn backward stops cutting, and a held bit's wear flats then take the cutters' share of
+  // the weight too: the backward slip threshold is the holding of that contact (with the held contact, net less the
+  // cut weight, a bit whose torque lies between the two would slip back only to be held again).
+  const double contact_turning_back = axial == Axial::kHeld ? std::clamp(f.drive_force, 0.0, contact_force) : contact;
+  f.static_backward = StaticFrictionArm() * contact_turning_back;
 }
 
 void ReadRgdBit(const io::JsonReader& b, RgdLaw& law) {

@@ -253,7 +253,13 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
   bool history_limited = false;  // the last piece asked for a shorter step than the stepper's suggestion
   int events_here = 0;
   double events_here_time = t0;
-  // Applies event i at t; many at one instant mean the modes chatter (no consistent regime exists there).
+  // Events each less than a nanosecond (relative to t) after the one before: modes that chatter on a vanishing time
+  // scale (each piece a few 1e-11 s long) would otherwise fill the histories without bound.
+  constexpr double kBurstGap = 1e-9;
+  int events_in_burst = 0;
+  double last_event_time = -std::numeric_limits<double>::infinity(), burst_start = last_event_time;
+  // Applies event i at t; many at one instant, or in one burst, mean the modes chatter (no consistent regime exists
+  // there).
   auto apply_event = [&](int i, double te, State& xe) {
     if (te == events_here_time) {
       if (++events_here > options_.max_events_at_one_instant)
@@ -262,6 +268,16 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
       events_here_time = te;
       events_here = 0;
     }
+    if (te - last_event_time <= kBurstGap * std::max(1.0, std::abs(te))) {
+      if (++events_in_burst > 4 * options_.max_events_at_one_instant)
+        throw NumericalError(std::to_string(events_in_burst) + " events within " +
+                                 ReadableNumber(te - burst_start) + " s (chattering between modes)",
+                             te, xe);
+    } else {
+      burst_start = te;
+      events_in_burst = 0;
+    }
+    last_event_time = te;
     if (process_.OnEvent(i, te, xe)) ++stats_.events;
   };
 
