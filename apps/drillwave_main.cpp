@@ -36,6 +36,7 @@
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/diagnosis/fit.hpp"
 #include "drillwave/diagnosis/inspection.hpp"
+#include "drillwave/diagnosis/posterior.hpp"
 #include "drillwave/estimation/follow.hpp"
 #include "drillwave/estimation/recording_estimate.hpp"
 #include "drillwave/io/json_reader.hpp"
@@ -109,7 +110,8 @@ int Sweep(const std::string& file, const std::string& out_dir, const std::vector
 }
 
 int StabilityMap2D(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
-                   const std::vector<std::string>& axes, bool simulate, bool full_spectrum, int jobs) {
+                   const std::vector<std::string>& axes, bool simulate, bool full_spectrum, int jobs,
+                   const std::string& draws_file, int draw_count) {
   const nlohmann::json doc = LoadCaseDocument(file, overrides);
   if (axes.size() != 2)
     throw drillwave::InputError("--map", "expected two axes, POINTER1=first:last:n POINTER2=first:last:n");
@@ -121,13 +123,25 @@ int StabilityMap2D(const std::string& file, const std::string& out_dir, const st
   std::cout << "drillwave: stability map " << spec.x.pointer << " (" << spec.x.values.size() << ") x "
             << spec.y.pointer << " (" << spec.y.values.size() << ") on " << jobs << " thread(s)"
             << (simulate ? ", with a simulation per point" : "") << std::endl;
-  const auto result = drillwave::cases::StabilityMap2D(doc, spec);
+  drillwave::cases::StabilityMapResult result;
+  if (draws_file.empty()) {
+    result = drillwave::cases::StabilityMap2D(doc, spec);
+  } else {
+    const auto draws = drillwave::cases::ReadParameterDraws(draws_file, doc, draw_count);
+    std::cout << "  over " << draws.rows.size() << " parameter draws from " << draws_file << " and the case itself"
+              << std::endl;
+    result = drillwave::cases::StabilityMapOverDraws(doc, spec, draws, [](int done, int n) {
+      if (done % std::max(1, n / 10) == 0 || done == n)
+        std::cout << "  " << done << " of " << n << " draws mapped" << std::endl;
+    });
+  }
   drillwave::cases::WriteStabilityMap2D(doc, spec, result, out_dir);
   std::cout << "linear analysis " << result.linear_wall_time_s << " s (full spectrum at " << result.full_spectra
             << " steady states)";
   if (simulate) std::cout << ", simulations " << result.simulation_wall_time_s << " s";
   std::cout << "\nwrote " << std::filesystem::absolute(out_dir).string()
-            << "/stability_map.csv, stability_map.svg, report.md, case.json" << std::endl;
+            << "/stability_map.csv, stability_map.svg, " << (result.draws > 0 ? "p_stick_slip.svg, " : "")
+            << "report.md, case.json" << std::endl;
   return 0;
 }
 
@@ -436,20 +450,52 @@ struct DiagnoseArguments {
   double predict_until_s = 0;  // > 0: the fitted model run on to this recording time (prediction.csv)
 };
 
+// The case, recording and loop options diagnose and calibrate share: the case (with a sidecar's operating point), the
+// recording, its fit and held-out windows (checked against the model's span) and channel maps, its sample window.
+struct LoopInputs {
+  nlohmann::json doc;
+  std::string case_name;
+  drillwave::diagnosis::Recording recording;
+  drillwave::diagnosis::LoopOptions o;
+};
+
+LoopInputs ReadLoopInputs(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
+                          const std::vector<std::string>& overrides, const std::vector<std::string>& map_texts,
+                          const std::string& fit_window, const std::string& held_out, double sample_window_s) {
+  namespace dg = drillwave::diagnosis;
+  LoopInputs in;
+  in.doc = LoadCaseDocument(file, overrides);
+  if (!sidecar_file.empty()) in.doc = LoadSidecar(sidecar_file, in.doc, dg::kSidecarWarmupS);
+  const drillwave::cases::Case c = drillwave::cases::ParseCase(in.doc);
+  in.case_name = c.name;
+  in.recording = dg::LoadRecording(recording_file);
+  dg::LoopOptions& o = in.o;
+  o = dg::DefaultLoopOptions(c, in.recording, sidecar_file.empty() ? 0 : dg::kSidecarWarmupS);
+  if (!fit_window.empty()) std::tie(o.fit_begin_s, o.fit_end_s) = Window(fit_window);
+  if (!held_out.empty()) std::tie(o.held_out_begin_s, o.held_out_end_s) = Window(held_out);
+  const auto [model_begin, model_end] = ModelSpan(c, o.model_time_offset_s);
+  dg::CheckWindow(in.recording, model_begin, model_end, o.fit_begin_s, o.fit_end_s);
+  dg::CheckWindow(in.recording, model_begin, model_end, o.held_out_begin_s, o.held_out_end_s);
+  if (sample_window_s != -1) {  // given
+    if (!(sample_window_s >= 0 && sample_window_s <= 60))
+      throw drillwave::InputError("--sample-window", "expected seconds in [0, 60], got " +
+                                                         drillwave::ReadableNumber(sample_window_s));
+    o.sample_window_s = sample_window_s;
+  }
+  o.maps = dg::ResolveChannelMaps(map_texts, in.recording, dg::ProbeChannels(c));
+  return in;
+}
+
 int Diagnose(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
              const std::vector<std::string>& overrides, const std::vector<std::string>& map_texts,
              const DiagnoseArguments& a, const std::string& out_dir) {
   namespace dg = drillwave::diagnosis;
-  nlohmann::json doc = LoadCaseDocument(file, overrides);
-  if (!sidecar_file.empty()) doc = LoadSidecar(sidecar_file, doc, dg::kSidecarWarmupS);
-  const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
-  const dg::Recording recording = dg::LoadRecording(recording_file);
-  dg::LoopOptions o = dg::DefaultLoopOptions(c, recording, sidecar_file.empty() ? 0 : dg::kSidecarWarmupS);
-  if (!a.fit_window.empty()) std::tie(o.fit_begin_s, o.fit_end_s) = Window(a.fit_window);
-  if (!a.held_out.empty()) std::tie(o.held_out_begin_s, o.held_out_end_s) = Window(a.held_out);
-  const auto [model_begin, model_end] = ModelSpan(c, o.model_time_offset_s);
-  dg::CheckWindow(recording, model_begin, model_end, o.fit_begin_s, o.fit_end_s);
-  dg::CheckWindow(recording, model_begin, model_end, o.held_out_begin_s, o.held_out_end_s);
+  LoopInputs in =
+      ReadLoopInputs(file, recording_file, sidecar_file, overrides, map_texts, a.fit_window, a.held_out,
+                     a.sample_window_s);
+  const nlohmann::json& doc = in.doc;
+  const dg::Recording& recording = in.recording;
+  dg::LoopOptions& o = in.o;
   if (!(a.margin >= 0 && a.margin < 1))
     throw drillwave::InputError("--margin", "expected a fraction in [0, 1), got " + drillwave::ReadableNumber(a.margin));
   if (a.threads < 1) throw drillwave::InputError("-j", "expected a whole number >= 1, got " + std::to_string(a.threads));
@@ -459,12 +505,6 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
   if (!(a.fit_tolerance == 0 || (a.fit_tolerance >= 1e-14 && a.fit_tolerance <= 1e-2)))
     throw drillwave::InputError("--fit-tolerance", "expected 0 (the case's) or a tolerance in [1e-14, 1e-2], got " +
                                                        drillwave::ReadableNumber(a.fit_tolerance));
-  if (a.sample_window_s != -1) {  // given
-    if (!(a.sample_window_s >= 0 && a.sample_window_s <= 60))
-      throw drillwave::InputError("--sample-window", "expected seconds in [0, 60], got " +
-                                                         drillwave::ReadableNumber(a.sample_window_s));
-    o.sample_window_s = a.sample_window_s;
-  }
   if (a.predict_until_s != 0) dg::CheckPredictionTime(o, a.predict_until_s);
   if (!(a.draws >= 1 && a.draws <= 20))
     throw drillwave::InputError("--draws", "expected a whole number in [1, 20], got " + std::to_string(a.draws));
@@ -473,9 +513,8 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
   o.fit_tolerance = a.fit_tolerance;
   o.threads = a.threads;
   o.evaluations_per_parameter = a.evaluations_per_parameter;
-  o.maps = dg::ResolveChannelMaps(map_texts, recording, dg::ProbeChannels(c));
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
-  std::cout << "drillwave: diagnosing " << recording_file << " with '" << c.name << "': fit window ["
+  std::cout << "drillwave: diagnosing " << recording_file << " with '" << in.case_name << "': fit window ["
             << o.fit_begin_s << ", " << o.fit_end_s << "] s, held out [" << o.held_out_begin_s << ", "
             << o.held_out_end_s << "] s" << std::endl;
   const dg::DiagnosisLoop loop =
@@ -490,6 +529,43 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
   std::cout << "wrote " << std::filesystem::absolute(out_dir).string()
             << "/diagnosis.json, fitted-case.json, case.json, report.html, plot.svg"
             << (prediction ? ", prediction.csv" : "") << std::endl;
+  return 0;
+}
+
+struct CalibrateArguments {
+  std::string fit_window, held_out;
+  double sample_window_s = -1;
+  std::vector<std::string> params;
+  drillwave::diagnosis::PosteriorOptions posterior;
+};
+
+// The posterior of a case's parameters against a recording, with the diagnosis loop's feature likelihood.
+int Calibrate(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
+              const std::vector<std::string>& overrides, const std::vector<std::string>& map_texts,
+              const CalibrateArguments& a, const std::string& out_dir) {
+  namespace dg = drillwave::diagnosis;
+  const LoopInputs in =
+      ReadLoopInputs(file, recording_file, sidecar_file, overrides, map_texts, a.fit_window, a.held_out,
+                     a.sample_window_s);
+  std::vector<dg::FitParameter> parameters;
+  for (const std::string& text : a.params) parameters.push_back(dg::ParseFitParameter(text));
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
+  std::cout << "drillwave: sampling the posterior of " << parameters.size() << " parameter(s) of '" << in.case_name
+            << "' against " << recording_file << ": fit window [" << in.o.fit_begin_s << ", " << in.o.fit_end_s
+            << "] s, held out [" << in.o.held_out_begin_s << ", " << in.o.held_out_end_s << "] s" << std::endl;
+  const dg::Posterior post = dg::SamplePosterior(in.doc, in.recording, in.o, parameters, a.posterior,
+                                                 [](const std::string& line) { std::cout << "  " << line << std::endl; });
+  dg::WritePosterior(post, in.recording, out_dir);
+  for (const dg::ParameterSummary& s : post.summaries)
+    std::cout << "  " << s.pointer << ": median " << drillwave::Significant(s.q50, 5) << ", 90 % in ["
+              << drillwave::Significant(s.q05, 5) << ", " << drillwave::Significant(s.q95, 5) << "]"
+              << (std::abs(s.drift_sd) > dg::kMaxDrift ? " (still drifting: " + drillwave::Fixed(s.drift_sd, 2) +
+                                                             " sd; run more steps)"
+                                                       : std::string())
+              << std::endl;
+  std::cout << "wrote " << std::filesystem::absolute(out_dir).string()
+            << "/posterior_samples.csv, posterior.json, predictive.csv, posterior.svg, map-case.json, report.md"
+            << std::endl;
   return 0;
 }
 
@@ -764,6 +840,14 @@ int main(int argc, char** argv) {
       ->expected(2);
   stability->add_flag("--simulate", stability_simulate, "with --map: also run the case at every grid point and mark "
                                                          "the regime it reaches (stick-slip, smooth, bit bouncing)");
+  std::string stability_draws;
+  int stability_draw_count = 50;
+  stability->add_option("--draws", stability_draws,
+                        "with --map: a CSV of parameter draws (columns named by JSON pointers, e.g. calibrate's "
+                        "posterior_samples.csv): the map for each, and per point the probability of stick-slip "
+                        "(p_linearly_unstable, p_stick_slip with --simulate; p_stick_slip.svg)");
+  stability->add_option("--draw-count", stability_draw_count,
+                        "with --draws: this many rows spread evenly over the file (default 50, 0: every row)");
   bool stability_full_spectrum = false;
   stability->add_flag("--full-spectrum", stability_full_spectrum,
                       "with --map: every point's full spectrum (the reference) instead of roots continued from the "
@@ -852,6 +936,32 @@ int main(int argc, char** argv) {
   diagnose->add_option("--out,-o", diagnose_out, "output folder (written all or nothing)");
   diagnose->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
 
+  auto* calibrate = app.add_subcommand(
+      "calibrate", "the posterior of a case's parameters given a recording (the diagnosis loop's feature likelihood, "
+                   "an affine-invariant ensemble sampler): posterior_samples.csv, the held-out window's posterior "
+                   "predictive band and its coverage");
+  CalibrateArguments calibrate_args;
+  std::string calibrate_out = "drillwave-calibrate";
+  calibrate->add_option("case", case_file, "case JSON file (e.g. diagnose's fitted-case.json)")->required();
+  calibrate->add_option("recording", recording_file, "recording CSV file")->required();
+  calibrate->add_option("--sidecar", sidecar_file, "a synthetic recording's operator sidecar (as for diagnose)");
+  calibrate->add_option("--params", calibrate_args.params, "/json/pointer:lower:upper (uniform prior), one or more")
+      ->required();
+  calibrate->add_option("--map", maps, "recording_channel=model_channel[*scale]");
+  calibrate->add_option("--fit-window", calibrate_args.fit_window, "begin,end [s] (default: as diagnose)");
+  calibrate->add_option("--held-out", calibrate_args.held_out, "begin,end [s] (default: as diagnose)");
+  calibrate->add_option("--sample-window", calibrate_args.sample_window_s,
+                        "each recorded sample is the mean over this window [s] (default: the sample interval)");
+  calibrate->add_option("--walkers", calibrate_args.posterior.walkers, "ensemble walkers, even, >= 2 p + 2 (default 16)");
+  calibrate->add_option("--steps", calibrate_args.posterior.steps, "ensemble steps (default 60)");
+  calibrate->add_option("--burn-in", calibrate_args.posterior.burn_in, "first steps left out (default 20)");
+  calibrate->add_option("--predictive-draws", calibrate_args.posterior.predictive_draws,
+                        "posterior samples run over the whole span for the predictive band (default 40, 0: none)");
+  calibrate->add_option("--seed", calibrate_args.posterior.seed, "random seed (default 1)");
+  calibrate->add_option("-j,--jobs", calibrate_args.posterior.threads, "walkers run at once (default 1)");
+  calibrate->add_option("--out,-o", calibrate_out, "output folder (written all or nothing)");
+  calibrate->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
+
   auto* estimate = app.add_subcommand(
       "estimate", "a virtual downhole sensor: the bit's speed, torque, weight on bit and stuck flag estimated from "
                   "surface channels only, scored against the recording's downhole channels where it has them");
@@ -934,6 +1044,8 @@ int main(int argc, char** argv) {
     }
     if (estimate->parsed())
       return Estimate(case_file, recording_file, sidecar_file, overrides, estimate_args);
+    if (calibrate->parsed())
+      return Calibrate(case_file, recording_file, sidecar_file, overrides, maps, calibrate_args, calibrate_out);
     if (diagnose->parsed())
       return Diagnose(case_file, recording_file, sidecar_file, overrides, maps, diagnose_args, diagnose_out);
     if (fit->parsed())
@@ -946,9 +1058,10 @@ int main(int argc, char** argv) {
       if (!stability_map_axes.empty()) {
         if (!sweep_pointer.empty()) throw drillwave::InputError("--map", "give either --map or --param, not both");
         return StabilityMap2D(case_file, stability_out, overrides, stability_map_axes, stability_simulate,
-                              stability_full_spectrum, jobs);
+                              stability_full_spectrum, jobs, stability_draws, stability_draw_count);
       }
       if (stability_simulate) throw drillwave::InputError("--simulate", "only with --map");
+      if (!stability_draws.empty()) throw drillwave::InputError("--draws", "only with --map");
       if (sweep_pointer.empty() != sweep_values.empty())
         throw drillwave::InputError("--param/--values", "a stability map needs both --param and --values");
       return Stability(case_file, stability_out, overrides, sweep_pointer, sweep_values, jobs, !stability_no_run);

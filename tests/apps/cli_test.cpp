@@ -385,6 +385,47 @@ TEST_F(Cli, DiagnoseRejectsABadSidecarAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// calibrate end to end on a short noisy twin of the two-mass case: the posterior's files, a chain of the asked
+// size, and the P(stick-slip) map over its samples; bad options exit 2 naming the option, writing nothing.
+TEST_F(Cli, CalibrateWritesThePosteriorAndStabilityMapsOverItsSamples) {
+  const std::string cases = std::string(DRILLWAVE_TEST_SOURCE_DIR) + "/json-cases/";
+  const std::string twin = (dir_ / "twin").string();
+  ASSERT_EQ(RunTool("run " + cases + "two-mass-stickslip.json --set /simulation/duration_s=60 --set /statistics/window_s=[30,60] -o " + twin).exit_code, 0);
+  const std::string csv = twin + "/trajectory.csv";
+  const std::string post = (dir_ / "post").string();
+  const std::string common = "calibrate " + cases + "two-mass-stickslip.json " + csv +
+                             " --map top_rpm=top_rpm bit_rpm=bit_rpm --fit-window 30,45 --held-out 45,59 "
+                             "--params /model/bit/friction/mu_s:0.55:1.2 ";
+  const Outcome o = RunTool(common + "--walkers 4 --steps 4 --burn-in 2 --predictive-draws 3 -o " + post);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  for (const char* f : {"posterior_samples.csv", "posterior.json", "predictive.csv", "posterior.svg", "map-case.json",
+                        "report.md"})
+    EXPECT_TRUE(fs::exists(fs::path(post) / f)) << f;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(fs::path(post) / "posterior.json"));
+  EXPECT_EQ(j["walkers"], 4);
+  EXPECT_EQ(j["steps"], 4);
+  EXPECT_EQ(j["predictive_runs"], 3);
+  const std::string map = (dir_ / "pmap").string();
+  const Outcome m = RunTool("stability " + cases + "two-mass-stickslip.json --map "
+                            "/model/top/speed_rad_s/knots/1/1=0.5:5:3 /model/bit/friction/W_N=50000:150000:2 --draws " +
+                            post + "/posterior_samples.csv -o " + map);
+  ASSERT_EQ(m.exit_code, 0) << m.output;
+  EXPECT_TRUE(fs::exists(fs::path(map) / "p_stick_slip.svg"));
+  std::ifstream table(fs::path(map) / "stability_map.csv");
+  std::string header;
+  std::getline(table, header);
+  EXPECT_NE(header.find(",p_linearly_unstable,p_stick_slip"), std::string::npos) << header;
+  // Bad input: the option named, exit 2, nothing written.
+  const std::string bad = (dir_ / "bad").string();
+  Outcome b = RunTool(common + "--walkers 3 -o " + bad);
+  EXPECT_EQ(b.exit_code, 2) << b.output;
+  EXPECT_NE(b.output.find("--walkers"), std::string::npos) << b.output;
+  b = RunTool("stability " + cases + "two-mass-stickslip.json --draws " + post + "/posterior_samples.csv -o " + bad);
+  EXPECT_EQ(b.exit_code, 2) << b.output;
+  EXPECT_NE(b.output.find("--draws"), std::string::npos) << b.output;
+  EXPECT_FALSE(fs::exists(bad));
+}
+
 TEST_F(Cli, CompareWithASidecarRunsTheWarmUpAndComparesInRecordingTime) {
   const fs::path synthetic = fs::path(DRILLWAVE_SHARED_DIR) / "recordings" / "synthetic";
   if (!fs::exists(synthetic / "rec07.csv")) GTEST_SKIP() << "the synthetic recordings are not at " << synthetic;

@@ -50,6 +50,8 @@ SKIPPED = [
 COSTLY = [
     (re.compile(r"\bdiagnose\b"), "diagnose fits models for minutes per recording"),
     (re.compile(r"\bOUT/"), "reads the output of the rig's diagnose"),
+    (re.compile(r"\bcalibrate\b"), "samples a posterior: thousands of model runs"),
+    (re.compile(r"posterior_samples\.csv"), "reads the output of calibrate"),
 ]
 
 

@@ -296,20 +296,50 @@ io::HeatMap StabilityHeatMap(const StabilityMapSpec& spec, const StabilityMapRes
   return map;
 }
 
+namespace {
+// P(stick-slip) per cell, white (0) to dark red (1): the simulated share where the map ran, the linear one otherwise.
+io::HeatMap ProbabilityHeatMap(const StabilityMapSpec& spec, const StabilityMapResult& result) {
+  io::HeatMap map;
+  map.x_label = io::AxisLabel(io::QuantityOfPointer(spec.x.pointer));
+  map.y_label = io::AxisLabel(io::QuantityOfPointer(spec.y.pointer));
+  map.x = spec.x.values;
+  map.y = spec.y.values;
+  constexpr int kNone[3] = {0xff, 0xff, 0xff}, kCertain[3] = {0xa5, 0x0f, 0x15};
+  const std::vector<double>& p = spec.simulate ? result.p_stick_slip : result.p_linearly_unstable;
+  for (double v : p) map.colours.push_back(std::isfinite(v) ? Shade(kNone, kCertain, v) : kNoSteadyStateColour);
+  for (double v : {0.0, 0.25, 0.5, 0.75, 1.0})
+    map.legend.push_back({"P(stick-slip) = " + Fixed(v, 2), Shade(kNone, kCertain, v)});
+  map.legend.push_back({"not known (no run or no linearization)", kNoSteadyStateColour});
+  return map;
+}
+}  // namespace
+
 void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
                          const StabilityMapResult& result, const std::string& out_dir) {
   io::OutputDirectory out(out_dir);
   std::ostream& csv = out.Open("stability_map.csv");
   csv << CsvName(spec.x.pointer, "x") << "," << CsvName(spec.y.pointer, "y")
       << ",steady_states,spectral_abscissa_per_s,frequency_rad_s,essential_abscissa_per_s,verdict,regime,"
-         "stick_fraction\n";
-  for (const StabilityMapCell& c : result.cells)
+         "stick_fraction"
+      << (result.draws > 0 ? ",p_linearly_unstable,p_stick_slip" : "") << "\n";
+  for (std::size_t k = 0; k < result.cells.size(); ++k) {
+    const StabilityMapCell& c = result.cells[k];
     csv << Number(c.x) << "," << Number(c.y) << "," << c.steady_states << "," << Number(c.spectral_abscissa) << ","
         << Number(c.frequency_rad_s) << "," << Number(c.essential_abscissa) << ","
         << CellVerdictName(c) << ","
         << RegimeName(c.regime) << ","
-        << Number(c.stick_fraction) << "\n";
+        << Number(c.stick_fraction);
+    if (result.draws > 0) csv << "," << Number(result.p_linearly_unstable[k]) << "," << Number(result.p_stick_slip[k]);
+    csv << "\n";
+  }
   out.Open("case.json") << document.dump(2) << "\n";
+  if (result.draws > 0) {
+    io::HeatMap p = ProbabilityHeatMap(spec, result);
+    p.title = document.value("name", std::string("case")) + ": probability of stick-slip over " +
+              std::to_string(result.draws) + " parameter draws" +
+              (spec.simulate ? " (simulated regimes)" : " (linear verdict: no steady state that is not unstable)");
+    io::WriteHeatMapSvg(p, out.Open("p_stick_slip.svg"));
+  }
 
   io::HeatMap map = StabilityHeatMap(spec, result);
   map.title = document.value("name", std::string("case")) + ": linear stability" +
@@ -340,6 +370,17 @@ void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec&
            << " points the run from the case's start disagrees with the linear verdict (stick-slip beside a stable or "
               "marginal steady state: two attractors, the start decides; or smooth motion although every steady state "
               "is unstable: an oscillation without sticking).";
+  if (result.draws > 0) {
+    std::string pointers;
+    for (const std::string& q : result.draw_pointers) pointers += (pointers.empty() ? "" : ", ") + q;
+    report << "\n\n## Probability of stick-slip over " << result.draws << " parameter draws\n\n"
+           << "Every draw (" << pointers << " set to the draw's values) mapped as the case; per point "
+           << "`p_linearly_unstable` is the share of draws with no steady state that is stable or marginal"
+           << (spec.simulate ? ", `p_stick_slip` the share of the draws' runs that stick and slip (failed runs left "
+                               "out); p_stick_slip.svg shows the latter"
+                             : "; p_stick_slip.svg shows it (`--simulate` adds the simulated regimes' share)")
+           << ". The verdict columns and stability_map.svg are the case's own.";
+  }
   report << "\n\nEach point's verdict is that of its best steady state (stable before marginal before unstable). "
             "**Marginal** means that no characteristic root up to |Im s| = im_max lies to the right of the axis but "
             "the essential spectrum of the neutral difference operator lies on the imaginary axis (an inertial or "

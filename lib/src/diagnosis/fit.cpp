@@ -50,24 +50,26 @@ FitParameter ParseFitParameter(const std::string& text) {
   return p;
 }
 
+double CaseValue(const nlohmann::json& document, const FitParameter& p) {
+  nlohmann::json::json_pointer ptr;
+  try {
+    ptr = nlohmann::json::json_pointer(p.pointer);
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(p.pointer, "not a JSON pointer");
+  }
+  if (!document.contains(ptr) || !document.at(ptr).is_number())
+    throw InputError(p.pointer, "expected a number in the case at this pointer");
+  if (!(p.lower < p.upper)) throw InputError(p.pointer, "expected lower < upper");
+  return document.at(ptr).get<double>();
+}
+
 FitResult FitFeatures(const nlohmann::json& document, const Recording& recording,
                       const std::vector<FitParameter>& parameters, const FitOptions& o, const FitProgress& progress) {
   if (parameters.empty()) throw InputError("--param", "no parameter to fit");
   const std::size_t k = parameters.size();
   std::vector<double> start(k);
-  for (std::size_t i = 0; i < k; ++i) {
-    const FitParameter& p = parameters[i];
-    nlohmann::json::json_pointer ptr;
-    try {
-      ptr = nlohmann::json::json_pointer(p.pointer);
-    } catch (const nlohmann::json::exception&) {
-      throw InputError(p.pointer, "not a JSON pointer");
-    }
-    if (!document.contains(ptr) || !document.at(ptr).is_number())
-      throw InputError(p.pointer, "expected a number in the case at this pointer");
-    if (!(p.lower < p.upper)) throw InputError(p.pointer, "expected lower < upper");
-    start[i] = std::clamp(document.at(ptr).get<double>(), p.lower, p.upper);
-  }
+  for (std::size_t i = 0; i < k; ++i)
+    start[i] = std::clamp(CaseValue(document, parameters[i]), parameters[i].lower, parameters[i].upper);
   FitResult result;
   result.start = start;
 

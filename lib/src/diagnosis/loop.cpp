@@ -20,6 +20,7 @@
 #include "drillwave/diagnosis/minimize.hpp"
 #include "drillwave/diagnosis/signals.hpp"
 #include "model_runs.hpp"
+#include "prepared_recording.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -30,9 +31,8 @@ using loop_internal::Judged;
 using loop_internal::kFailedRun;
 using loop_internal::ModelRecording;
 using loop_internal::ModelRuns;
-// Model outputs per sample window, for the measured window means: a bouncing bit's twin of 10-ms means from 0.5-ms
-// outputs reads 0.046 held out at 5 (0.007 at 10, chance 0.535; loop_test.cpp), for about a sixth less CPU than 10.
-constexpr double kOutputsPerWindow = 5;
+using loop_internal::PrepareRecording;
+using loop_internal::PreparedRecording;
 // At most this many of the singles fitted in full are chosen by the rules' evidence, the others by screening.
 constexpr int kRuleSingles = 2;
 // A fit's run that lands in the other regime is drawn again, at most this many times in all.
@@ -244,54 +244,19 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   auto say = [&](const std::string& s) {
     if (progress) progress(s);
   };
-  if (!(o.fit_begin_s < o.fit_end_s && o.fit_end_s <= o.held_out_begin_s && o.held_out_begin_s < o.held_out_end_s))
-    throw InputError("--fit-window", "expected fit window [" + ReadableNumber(o.fit_begin_s) + ", " +
-                                         ReadableNumber(o.fit_end_s) + "] s before the held-out window [" +
-                                         ReadableNumber(o.held_out_begin_s) + ", " + ReadableNumber(o.held_out_end_s) +
-                                         "] s, each with begin < end");
-  if (o.maps.empty()) throw InputError("--map", "no channels to compare");
+  // 1. The recording made ready: mapped channels, artefacts masked, features, its noise and sampling in the case.
+  const PreparedRecording prepared = PrepareRecording(document, raw, o);
+  const Recording& rec = prepared.recording;
   DiagnosisLoop loop;
-  // Only the mapped channels take part: a channel the model does not have says nothing about it.
-  Recording mapped = raw;
-  mapped.names.clear(), mapped.channels.clear();
-  for (const ChannelMap& map : o.maps) {
-    mapped.names.push_back(map.recording);
-    mapped.channels.push_back(raw.Channel(map.recording));
-  }
-  const MaskedRecording masked = MaskArtefacts(mapped);
-  const Recording& rec = masked.recording;
-  loop.masked_samples = masked.masked;
-  for (std::size_t j = 0; j < masked.whole.size(); ++j)
-    if (masked.whole[j]) loop.channels_left_whole.push_back(mapped.names[j]);
-  // A recording channel that maps the model's torque on bit is read as one (a lab rig's calibration features).
-  FeatureOptions features = o.features;
-  for (const ChannelMap& map : o.maps)
-    if (features.bit_torque.empty() && map.model == "bit_torque_Nm") features.bit_torque = map.recording;
-  loop.recording_fit = MeasureFeatures(rec, o.fit_begin_s, o.fit_end_s, features);
-  loop.recording_held_out = MeasureFeatures(rec, o.held_out_begin_s, o.held_out_end_s, features);
-
-  // 1. The recording's noise, carried into the model's measured channels.
-  nlohmann::json base = document;
-  for (const ChannelMap& map : o.maps) {
-    std::vector<double> window;
-    const auto& values = rec.Channel(map.recording);
-    for (std::size_t i = 0; i < rec.time_s.size(); ++i)
-      if (rec.time_s[i] >= o.fit_begin_s && rec.time_s[i] <= o.fit_end_s) window.push_back(values[i]);
-    const double noise = NoiseStd(window);
-    loop.noise.push_back({map.recording, noise});
-    if (o.carry_noise) base["sensors"]["channels"][map.model]["noise_std"] = noise / std::abs(map.scale);
-  }
-  if (o.carry_noise) base["sensors"]["seed"] = o.seed;
-  // The recording's sampling: each sample the mean over its window, the model's from an output finer than it.
-  if (o.sample_window_s > 0) {
-    for (const ChannelMap& map : o.maps) base["sensors"]["channels"][map.model]["window_s"] = o.sample_window_s;
-    const double interval = o.sample_window_s / kOutputsPerWindow;
-    if (!(base["simulation"].value("output_interval_s", 1e-3) <= interval))
-      base["simulation"]["output_interval_s"] = interval;
-  }
+  loop.masked_samples = prepared.masked_samples;
+  loop.channels_left_whole = prepared.channels_left_whole;
+  loop.noise = prepared.noise;
+  loop.recording_fit = prepared.fit;
+  loop.recording_held_out = prepared.held_out;
+  nlohmann::json base = prepared.base;
   loop.baseline_document = base;
 
-  ModelRuns runner(o, rec, masked.whole, features, loop.recording_fit, loop.recording_held_out);
+  ModelRuns runner(o, rec, prepared.whole, prepared.features, loop.recording_fit, loop.recording_held_out);
   const double full_duration = runner.FullDuration(), fit_duration = runner.FitDuration();
   using Tolerance = ModelRuns::Tolerance;
   loop.recorded_off_bottom_share = runner.RecordedOffBottomShare();

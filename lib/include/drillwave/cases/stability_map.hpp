@@ -6,6 +6,7 @@
 //   StabilityMapSpec spec{ParseMapAxis("/model/top/speed_rad_s/knots/1/1=4:16:100", doc),
 //                         ParseMapAxis("/model/bit/inertia_kgm2=50:150:100", doc), 2, false};
 //   WriteStabilityMap2D(doc, spec, StabilityMap2D(doc, spec), "out");
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,12 @@ struct StabilityMapResult {
   // Full spectra computed: every steady state's with spec.full_spectrum; otherwise the first point's and those where
   // the argument principle did not certify the continued roots (the two probes that choose the walking axis included).
   int full_spectra = 0;
+  // A map over parameter draws (StabilityMapOverDraws): per cell, the share of the draws whose linear verdict is not
+  // steady (no stable or marginal steady state) and, with simulate, whose run from the case's start sticks and slips
+  // (NaN without simulate); the cells above are the case's own. Empty for a map of the case alone.
+  int draws = 0;
+  std::vector<std::string> draw_pointers;
+  std::vector<double> p_linearly_unstable, p_stick_slip;
 };
 
 // Every grid point's document is built and parsed before any work (InputError naming the pointers and values), and
@@ -75,12 +82,30 @@ struct StabilityMapResult {
 StabilityMapResult StabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
                                   const analysis::SpectrumOptions& options = {});
 
+// Parameter values to map over, one row a draw (a posterior's samples): `pointers[i]` set to `rows[d][i]`.
+struct ParameterDraws {
+  std::vector<std::string> pointers;
+  std::vector<std::vector<double>> rows;
+};
+
+// The draws in a CSV file whose JSON-pointer columns ("/model/...") hold the values (calibrate's
+// posterior_samples.csv; other columns are ignored): `count` rows spread evenly over the file (0: every row). Throws
+// InputError("--draws", ...) for a file without such columns or rows, and for a pointer the case has no number at.
+ParameterDraws ReadParameterDraws(const std::string& file, const nlohmann::json& document, int count);
+
+// The map for every draw (the document with the draw's values), and the probabilities per cell over them, beside the
+// case's own map. progress(done, draws) after each draw's map.
+StabilityMapResult StabilityMapOverDraws(const nlohmann::json& document, const StabilityMapSpec& spec,
+                                         const ParameterDraws& draws,
+                                         const std::function<void(int, int)>& progress = nullptr);
+
 // The map as a heat map (no title): the verdict's colour, shaded by the rightmost real part, the regime as marker.
 io::HeatMap StabilityHeatMap(const StabilityMapSpec& spec, const StabilityMapResult& result);
 
 // stability_map.csv (x, y, steady_states, spectral_abscissa_per_s, frequency_rad_s, essential_abscissa_per_s, verdict
-// stable, marginal, unstable, none (no steady state) or n/a (no linearization), regime, stick_fraction), stability_map.svg (heat map of the
-// verdict, shaded by the rightmost real part, with the simulated regime as markers), report.md, case.json.
+// stable, marginal, unstable, none (no steady state) or n/a (no linearization), regime, stick_fraction; over draws also
+// p_linearly_unstable and p_stick_slip), stability_map.svg (heat map of the verdict, shaded by the rightmost real part,
+// with the simulated regime as markers), over draws p_stick_slip.svg, report.md, case.json.
 void WriteStabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
                          const StabilityMapResult& result, const std::string& out_dir);
 

@@ -22,6 +22,10 @@ struct FitParameter {
 // "/pointer:lower:upper"; throws InputError naming the option for anything else.
 FitParameter ParseFitParameter(const std::string& text);
 
+// The case's value at the parameter's pointer; InputError naming the pointer where it is no JSON pointer, holds no
+// number in the case, or its bounds are not lower < upper.
+double CaseValue(const nlohmann::json& document, const FitParameter& parameter);
+
 struct FitOptions {
   std::vector<ChannelMap> maps;  // as for Compare
   double window_begin_s = -1e300, window_end_s = 1e300;
