@@ -101,5 +101,19 @@ TEST(Posterior, BadOptionsAreRefusedNamingTheOptionBeforeAnyRun) {
   EXPECT_EQ(RefusedOption(doc, {{kMuS, 1.2, 0.55}}, p), kMuS);
 }
 
+// 1000 walkers for 100000 steps of a 160-s run at 1-ms output: the estimate refused before the first run.
+TEST(Posterior, WorkAboveTheLimitIsRefusedBeforeAnyRun) {
+  const nlohmann::json doc = TwoMassCase();
+  PosteriorOptions p;
+  p.walkers = 1000, p.steps = 100000, p.burn_in = 0;
+  try {
+    SamplePosterior(doc, NoisyTwin(doc, 0.5), Options(), {{kMuS, 0.55, 1.2}}, p);
+    FAIL() << "not refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "--steps");
+    EXPECT_NE(std::string(e.what()).find("--max-samples"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace drillwave::diagnosis

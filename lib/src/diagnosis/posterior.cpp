@@ -5,6 +5,7 @@
 #include <limits>
 #include <random>
 
+#include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
@@ -74,6 +75,13 @@ Posterior SamplePosterior(const nlohmann::json& document, const Recording& raw, 
   for (std::size_t i = 0; i < dim; ++i) case_value[i] = CaseValue(document, parameters[i]);
   const loop_internal::PreparedRecording prepared = loop_internal::PrepareRecording(document, raw, o);
   ModelRuns runner(o, prepared.recording, prepared.whole, prepared.features, prepared.fit, prepared.held_out);
+  {  // The work asked, checked before any run: every walker's runs and the predictive draws, each over the whole span.
+    nlohmann::json whole = prepared.base;
+    whole["simulation"]["duration_s"] = runner.FullDuration();
+    whole.erase("statistics");  // its window may lie past the span; the runs keep it inside (ModelRuns::Run)
+    const double runs = static_cast<double>(p.walkers) * (p.steps + 1) + p.predictive_draws;
+    cases::CheckPointsWork(cases::ParseCase(whole), runs, true, "--steps");
+  }
   Posterior post;
   post.parameters = parameters;
   post.walkers = p.walkers, post.steps = p.steps, post.burn_in = p.burn_in;
