@@ -17,14 +17,11 @@
 #include <cmath>
 #include <limits>
 
-#include <nlohmann/json.hpp>
-
 #include "drillwave/bitrock/heterogeneity.hpp"
 #include "drillwave/bitrock/roughness.hpp"
 #include "drillwave/bitrock/stick_slip.hpp"
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/options.hpp"
-#include "drillwave/io/json_reader.hpp"
 
 namespace drillwave::bitrock {
 
@@ -55,9 +52,6 @@ struct RgdLaw {
   double ContactForce() const { return a * sigma_l; }  // a sigma l, of the homogeneous rock
   // a sigma l (1 + g(z)) of the rock at drilled depth z (ContactForce() exactly when homogeneous).
   double ContactForceAt(double z) const { return ContactForce() * strength_heterogeneity.Multiplier(z); }
-  // What a linearization about steady drilling says of the heterogeneous rock, for its steady state's description:
-  // null when the rock is homogeneous.
-  nlohmann::json LinearizedRock() const;
   // Friction coefficient of the wear flats at bit speed w (Stribeck: decays from static_mu to mu).
   double MuAt(double w) const {
     return stribeck_speed > 0 ? mu + (static_mu - mu) * std::exp(-std::abs(w) / stribeck_speed) : mu;
@@ -81,12 +75,6 @@ struct RgdLaw {
   // axial position U: where the rock's strength is read).
   void OnBottom(Turn turn, Axial axial, double w, bool cutting, double z, RgdForces& f) const;
 };
-
-// Reads a (bit/radius_m) and n (bit/blades) from the bit block, and the rock block (which it finishes).
-void ReadRgdBit(const io::JsonReader& bit, RgdLaw& law);
-void ReadRgdRock(const io::JsonReader& rock, RgdLaw& law);
-// The documentation of those fields, for FieldSchema.
-nlohmann::json RgdFieldSchema();
 
 // The bit's stored angle and position (prehistory: steady drilling Phi = Omega0 t, U = V0 t + h(Omega0 t) over the
 // bottom's roughness h) and the depth of cut against the rock surface under the blades.

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "axial_torsional_model.hpp"
+#include "rgd_reader.hpp"
 #include "drillwave/analysis/axial_torsional_linearization.hpp"
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/core/error.hpp"
@@ -330,7 +331,7 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
     point["steady_whirl_radius_m"] = md_.unbalance->WhirlAmplitude(omega);
     point["whirl_drag_torque_Nm"] = whirl_drag;
   }
-  if (md_.strength_heterogeneity.on()) point["rock_strength_heterogeneity"] = md_.LinearizedRock();
+  if (md_.strength_heterogeneity.on()) point["rock_strength_heterogeneity"] = LinearizedRock(md_);
   return {{std::move(point), std::move(lin.state_names), std::move(lin.system)}};
 }
 
@@ -413,7 +414,7 @@ class AxialTorsionalKind : public ModelKind {
     fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() +
                                       "; with side_friction the nodes tied by the dashpots are held by it where it "
                                       "suffices (a convex problem solved exactly)";
-    fields.update(bitrock::RgdFieldSchema());
+    fields.update(RgdFieldSchema());
     fields["top/induction_motor/pole_pairs"] =
         "p, integer in [1, 64]: optional induction motor (absent: the PI output is the torque) on a V/f supply with "
         "slip-frequency control, f = (p n w_m + u_PI / (n G)) / 2 pi at the measured speed w_m, G = p (V/f)^2 / "
@@ -429,10 +430,10 @@ class AxialTorsionalKind : public ModelKind {
     const JsonReader b = r.Object("bit");
     md.bit_inertia = b.Number("inertia_kgm2", Range::Positive());
     md.bit_mass = b.Number("mass_kg", Range::Positive());
-    bitrock::ReadRgdBit(b, md);
+    ReadRgdBit(b, md);
     md.unbalance = ReadUnbalance(b);
     b.Finish();
-    bitrock::ReadRgdRock(r.Object("rock"), md);
+    ReadRgdRock(r.Object("rock"), md);
     r.RefuseRenamed("top_drive", "/model/top");
     const JsonReader td = r.Object("top");
     const std::string type = td.String("type", {"top_drive", "soft_torque", "z_torque"}, "top_drive");

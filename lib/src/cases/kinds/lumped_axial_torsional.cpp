@@ -19,6 +19,7 @@
 #include <limits>
 
 #include "drillwave/bitrock/rgd.hpp"
+#include "rgd_reader.hpp"
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/error.hpp"
@@ -255,7 +256,7 @@ class LumpedAxialTorsionalModel : public PreparedModel {
                             {"beta", g.beta},
                             {"scaled_cut_delay", g.tau_n},
                             {"damping_ratio", g.xi}};
-    if (law.strength_heterogeneity.on()) point["rock_strength_heterogeneity"] = law.LinearizedRock();
+    if (law.strength_heterogeneity.on()) point["rock_strength_heterogeneity"] = LinearizedRock(law);
     return {{std::move(point), {"bit_angle_rad", "bit_speed_rad_s", "bit_axial_speed_m_s", "bit_position_m"},
              std::move(sys)}};
   }
@@ -300,7 +301,7 @@ class LumpedAxialTorsionalKind : public ModelKind {
         {"bit/mass_kg", "M > 0"},
         {"hoist/weight_on_bit_N", "W0(t) schedule [N], the constant downward force on the bit (hook load set-point); "
                                   "W0(0) > a sigma l"}};
-    fields.update(bitrock::RgdFieldSchema());
+    fields.update(RgdFieldSchema());
     return fields;
   }
 
@@ -318,9 +319,9 @@ class LumpedAxialTorsionalKind : public ModelKind {
     const JsonReader b = r.Object("bit");
     md.inertia = b.Number("inertia_kgm2", Range::Positive());
     md.mass = b.Number("mass_kg", Range::Positive());
-    bitrock::ReadRgdBit(b, md.law);
+    ReadRgdBit(b, md.law);
     b.Finish();
-    bitrock::ReadRgdRock(r.Object("rock"), md.law);
+    ReadRgdRock(r.Object("rock"), md.law);
     const JsonReader h = r.Object("hoist");
     md.weight = model::Schedule::FromJson(h.Raw("weight_on_bit_N"), h.PathOf("weight_on_bit_N"));
     h.Finish();
