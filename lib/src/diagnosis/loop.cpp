@@ -21,6 +21,7 @@
 #include "drillwave/diagnosis/signals.hpp"
 #include "model_runs.hpp"
 #include "prepared_recording.hpp"
+#include "effect_selection.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -33,19 +34,15 @@ using loop_internal::ModelRecording;
 using loop_internal::ModelRuns;
 using loop_internal::PrepareRecording;
 using loop_internal::PreparedRecording;
-// At most this many of the singles fitted in full are chosen by the rules' evidence, the others by screening.
-constexpr int kRuleSingles = 2;
-// A fit's run that lands in the other regime is drawn again, at most this many times in all.
-constexpr int kFitDraws = 3;
+using loop_internal::Applied;
+using loop_internal::EachDraw;
+using loop_internal::EffectSelection;
+using loop_internal::ErrorChance;
+using loop_internal::Joined;
+using loop_internal::StartOf;
 // A calibration of the motion: the mean error over this many draws, on a grid of this many points over the prior range.
 constexpr int kCalibrationDraws = 2;
 constexpr int kCalibrationGrid = 9;
-
-std::string Joined(const std::vector<std::string>& names) {
-  std::string s;
-  for (const std::string& n : names) s += (s.empty() ? "" : " + ") + n;
-  return s.empty() ? "baseline" : s;
-}
 
 // The recording and model must be of one scale: a field string against a lab rig differs by orders of magnitude.
 void CheckScale(const Recording& rec, const Recording& model, const std::vector<ChannelMap>& maps) {
@@ -65,48 +62,10 @@ void CheckScale(const Recording& rec, const Recording& model, const std::vector<
   }
 }
 
-// How much a feature distance e over K features moves by chance from one window to the next. Each difference in
-// scales is z = b + s n (a bias b the model keeps, noise n of unit variance, s <= 1 where the scale's floor is above
-// the feature's own spread), e = mean(z^2) = B + s^2 and var(e) = (4 s^2 B + 2 s^4) / K. Not knowing the split, s^2 is
-// taken as large as e allows: a model within its features' noise (e < 1) moves by e sqrt(2 / K), one off by a bias
-// by sqrt((2 + 4 (e - 1)) / K) — far less than e sqrt(2 / K) once e is large (rec04 of synthetic-train: a BHA's 6.5
-// against axial decoupling's 9.2 is 1.6 standard deviations apart, not 0.8).
-double ErrorSpread(double e, double k_features) {
-  const double s2 = std::clamp(e, 0.0, 1.0);
-  return std::sqrt((2 * s2 * s2 + 4 * s2 * std::max(e - 1, 0.0)) / std::max(1.0, k_features));
-}
-
-// `doc` with each effect switched on at its parameters' values u (in their unit cubes, one after the other).
-nlohmann::json Applied(nlohmann::json doc, const std::vector<const Effect*>& effects, const std::vector<double>& u) {
-  std::size_t k = 0;
-  for (const Effect* e : effects) {
-    std::vector<double> values;
-    for (const EffectParameter& p : e->parameters) values.push_back(FromUnit(p, u[k++]));
-    e->apply(doc, values);
-  }
-  return doc;
-}
-
-// The effects' first values, in their unit cubes.
-std::vector<double> StartOf(const std::vector<const Effect*>& effects) {
-  std::vector<double> u;
-  for (const Effect* e : effects)
-    for (const EffectParameter& p : e->parameters) u.push_back(ToUnit(p, p.start));
-  return u;
-}
-
 nlohmann::json InRegimeJson(const std::vector<char>& in_regime) {
   nlohmann::json out = nlohmann::json::array();
   for (char c : in_regime) out.push_back(c != 0);
   return out;
-}
-
-// "648, 4.4 (another regime), 1.1"
-std::string EachDraw(const std::vector<double>& errors, const std::vector<char>& in_regime) {
-  std::string each;
-  for (std::size_t d = 0; d < errors.size(); ++d)
-    each += (each.empty() ? "" : ", ") + Significant(errors[d], 3) + (in_regime[d] ? "" : " (another regime)");
-  return each;
 }
 
 // The median draw's channels, features and errors, into the loop's fields for a model (baseline or fitted).
@@ -115,10 +74,6 @@ void Adopt(const Judged& j, Recording& model, FeatureSet& fit, FeatureSet& held_
   model = j.model, fit = j.fit, held_out = j.held_out;
   fit_error = j.fit_error, held_out_error = j.held_out_error;
 }
-
-// How much a held-out error moves by chance: for a model within its features' noise the error (the mean of K squared
-// differences in scales) varies by sqrt(2 / K) from one window to the next.
-double ErrorChance(const FeatureSet& held_out) { return std::sqrt(2.0 / std::max(1.0, FeatureCount(held_out))); }
 
 // A calibrated base before effects: the base's uncertain parameters, within their prior ranges, fitted in order, each
 // to what it moves (a level: the fit window's means and period; the motion: all its features). `base` and
@@ -257,8 +212,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   loop.baseline_document = base;
 
   ModelRuns runner(o, rec, prepared.whole, prepared.features, loop.recording_fit, loop.recording_held_out);
-  const double full_duration = runner.FullDuration(), fit_duration = runner.FitDuration();
-  using Tolerance = ModelRuns::Tolerance;
+  const double full_duration = runner.FullDuration();
   loop.recorded_off_bottom_share = runner.RecordedOffBottomShare();
   loop.recording_bounces = runner.RecordingBounces();
   const int draws = std::max(1, o.draws);
@@ -315,364 +269,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     if (e.strength > 0)
       say((e.Proposed() ? "proposed " : "indicated ") + e.name + " (evidence " + Fixed(e.strength, 1) + "): " + e.evidence);
 
-  auto effects_of = [&](const std::vector<int>& set) {
-    std::vector<const Effect*> effects;
-    for (int i : set) effects.push_back(&loop.proposals[i]);
-    return effects;
-  };
-  auto document_at = [&](const std::vector<int>& set, const std::vector<double>& u) {
-    return Applied(base, effects_of(set), u);
-  };
-  auto start_of = [&](const std::vector<int>& set) { return StartOf(effects_of(set)); };
-  // Every effect is a candidate: the rules' evidence orders the work (the proposals are sorted by it), never gates it.
-  std::vector<int> modelable;
-  for (std::size_t i = 0; i < loop.proposals.size(); ++i) {
-    try {
-      cases::ParseCase(document_at({static_cast<int>(i)}, start_of({static_cast<int>(i)})));
-      modelable.push_back(static_cast<int>(i));
-    } catch (const InputError& e) {  // the case's kind has no such component
-      Candidate c;
-      c.effects = {loop.proposals[i].name};
-      c.failure = std::string("cannot be modelled with this case: ") + e.what();
-      say(loop.proposals[i].name + ": " + c.failure);
-      loop.candidates.push_back(c);
-    }
-  }
-
-  // A set whose parameters move only the sensors (a telemetry delay) leaves the motion as it is: the baseline's run
-  // serves its whole fit from the cache, so it is fitted on the very motion it is judged by, at the case's tolerance
-  // (rec04: a 2.1-s delay fitted at 1e-4 on a motion of its own came out 2.68 s, at the case's 1e-5 2.08 s).
-  auto moves_only_sensors = [&](const std::vector<int>& set) {
-    nlohmann::json low = document_at(set, std::vector<double>(start_of(set).size(), 0.25));
-    nlohmann::json high = document_at(set, std::vector<double>(start_of(set).size(), 0.75));
-    low.erase("sensors"), high.erase("sensors");
-    return low == high;
-  };
-
-  std::mutex progress_mutex;
-  const FeatureSet& target = loop.recording_fit;
-  // A screening fit (screening = true) is cheap: one start, a few evaluations per parameter, no curvature, and it is
-  // judged on one free run over the whole span (the fit draw) instead of the draws' median.
-  auto fit_candidate = [&](const std::vector<int>& set, std::vector<double> start, int threads, bool screening) {
-    Candidate c;
-    for (int i : set) c.effects.push_back(loop.proposals[i].name);
-    const bool sensors_only = moves_only_sensors(set);
-    std::mutex count_mutex;  // the fit's starts may run side by side
-    auto count = [&](int& counter) {
-      const std::lock_guard<std::mutex> lock(count_mutex);
-      ++counter;
-    };
-    auto count_failure = [&](const std::exception& e) {
-      const std::lock_guard<std::mutex> lock(count_mutex);
-      if (c.failed_runs++ == 0) c.first_failure = e.what();
-    };
-    auto objective = [&](const std::vector<double>& u) {
-      count(c.evaluations);
-      try {
-        // A run in the other regime is drawn again (at most kFitDraws times): the objective is the error in the
-        // recording's regime, not which attractor one start happened to reach.
-        const nlohmann::json doc = document_at(set, u);
-        Recording m;
-        for (int k = 0; k < kFitDraws; ++k) {
-          m = sensors_only ? runner.Run(Drawn(doc, loop.fit_draw + k), full_duration)
-                           : runner.Run(Drawn(doc, loop.fit_draw + k), fit_duration, Tolerance::kFit);
-          if (runner.InRegime(m)) break;
-          if (k + 1 < kFitDraws) count(c.redrawn_runs);
-        }
-        return FeatureDistance(runner.FitFeatures(m), target);
-      } catch (const InputError& e) {
-        count_failure(e);
-      } catch (const NumericalError& e) {
-        count_failure(e);
-      }
-      return kFailedRun;
-    };
-    MinimizeOptions mo;
-    mo.max_evaluations =
-        (screening ? o.screening_evaluations_per_parameter : o.evaluations_per_parameter) * static_cast<int>(start.size()) + 1;
-    mo.starts = start.empty() || screening ? 1 : 2;
-    mo.seed = o.seed + static_cast<unsigned>(set.front()) * 31 + static_cast<unsigned>(set.size());
-    mo.threads = threads;
-    const MinimizeResult best = MinimizeInUnitCube(objective, start, mo);
-    const std::vector<double> sigma_u = screening ? std::vector<double>(best.best.size(), std::nan(""))
-                                                  : CurvatureSigma(objective, best.best, best.value, k_features);
-    std::size_t k = 0;
-    for (int i : set)
-      for (const EffectParameter& p : loop.proposals[i].parameters) {
-        const double v = FromUnit(p, best.best[k]);
-        const double slope = p.log_scale ? v * std::log(p.upper / p.lower) : p.upper - p.lower;  // d value / d unit
-        c.parameters.push_back({loop.proposals[i].name, p.name, p.unit, v, slope * sigma_u[k], p.lower, p.upper});
-        ++k;
-      }
-    c.unit_values = best.best;
-    c.start_values = start;
-    try {
-      Draws one;
-      if (screening) {
-        one.models.push_back(runner.Run(Drawn(document_at(set, best.best), loop.fit_draw), full_duration));
-        one.in_regime.push_back(runner.InRegime(one.models.back()));
-      }
-      const Judged j = runner.Judge(screening ? std::move(one) : runner.RunDraws(document_at(set, best.best), threads));
-      c.fit_error = j.fit_error;
-      c.held_out_error = j.held_out_error;
-      c.held_out_draw_errors = j.held_out_draw_errors;
-      c.draw_in_regime = j.draw_in_regime;
-      c.failed_draws = j.failed_draws;
-    } catch (const NumericalError& e) {
-      c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
-    } catch (const InputError& e) {
-      c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
-    }
-    c.aic = k_features * std::log(c.fit_error) + 2.0 * start.size();
-    const std::lock_guard<std::mutex> lock(progress_mutex);
-    say((screening ? "screening " : "") + Joined(c.effects) + ": " + std::to_string(c.evaluations + c.redrawn_runs) +
-        " runs" +
-        (c.failed_runs ? " (" + std::to_string(c.failed_runs) + " failed: " + c.first_failure + ")" : "") +
-        (c.failure.empty() ? ", error " + Significant(c.fit_error, 3) + " fitted, " +
-                                 Significant(c.held_out_error, 3) + " held out (baseline " +
-                                 Significant(loop.baseline_held_out_error, 3) + ")" +
-                                 (std::count(c.draw_in_regime.begin(), c.draw_in_regime.end(), 0)
-                                      ? "; draws " + EachDraw(c.held_out_draw_errors, c.draw_in_regime)
-                                      : std::string())
-                           : ", not judged: " + c.failure));
-    return c;
-  };
-  // 4. The decision: held-out error below (1 - margin) of the reference's, by more than chance moves it, and a lower
-  //    AIC on the fit window. Each feature's difference is counted in the spread between two runs of the same
-  //    physics, so for a model that matches, the error (the mean of K squared differences) is about 1 and varies by
-  //    sqrt(2 / K) from one window to the next: a smaller gain is not evidence, whatever the relative margin says.
-  loop.error_chance = ErrorChance(loop.recording_held_out);
-  auto qualifies = [&](const Candidate& c, double reference_error, double reference_aic) {
-    return c.failure.empty() && c.held_out_error < (1 - o.margin) * reference_error &&
-           reference_error - c.held_out_error > loop.error_chance && c.aic < reference_aic;
-  };
-
-  auto indices_of = [&](const Candidate& c) {
-    std::vector<int> set;
-    for (const std::string& name : c.effects)
-      for (int i : modelable)
-        if (loop.proposals[i].name == name) set.push_back(i);
-    std::sort(set.begin(), set.end());
-    return set;
-  };
-  // A set of effects may have been fitted more than once (from different starts): the fit with the lower error on
-  // the fit window stands for it — the fit's own objective decides, not the held-out window.
-  auto representative = [&](const std::vector<int>& set) {
-    int best = -1;
-    for (std::size_t i = 0; i < loop.candidates.size(); ++i) {
-      const Candidate& c = loop.candidates[i];
-      if (c.failure.empty() && indices_of(c) == set && c.effects.size() == set.size() &&
-          (best < 0 || c.fit_error < loop.candidates[best].fit_error))
-        best = static_cast<int>(i);
-    }
-    return best;
-  };
-  // Each effect of a set must earn its place: the set qualifies against the baseline and against the fit standing
-  // for every smaller set of its effects that was fitted (a pair against each of its singles, a triple against its
-  // pairs and singles).
-  auto qualifies_against_subsets = [&](int index) {
-    const Candidate& c = loop.candidates[index];
-    if (representative(indices_of(c)) != index) return false;
-    double reference_error = loop.baseline_held_out_error, reference_aic = loop.baseline_aic;
-    const std::vector<int> set = indices_of(c);
-    for (std::size_t i = 0; i < loop.candidates.size(); ++i) {
-      const std::vector<int> other = indices_of(loop.candidates[i]);
-      if (other.size() >= set.size() || representative(other) != static_cast<int>(i) ||
-          !std::includes(set.begin(), set.end(), other.begin(), other.end()))
-        continue;
-      reference_error = std::min(reference_error, loop.candidates[i].held_out_error);
-      reference_aic = std::min(reference_aic, loop.candidates[i].aic);
-    }
-    return qualifies(c, reference_error, reference_aic);
-  };
-  auto best_qualifying = [&] {
-    int best = -1;
-    for (std::size_t i = 0; i < loop.candidates.size(); ++i)
-      if (qualifies_against_subsets(static_cast<int>(i)) &&
-          (best < 0 || loop.candidates[i].held_out_error < loop.candidates[best].held_out_error))
-        best = static_cast<int>(i);
-    return best;
-  };
-  auto fit_all = [&](const std::vector<std::vector<int>>& sets,
-                     const std::function<std::vector<double>(std::size_t)>& start) {
-    // Fewer sets than threads: the threads left over run a fit's starts and its judging draws side by side.
-    const int threads = std::max(1, o.threads), per_fit = std::max(1, threads / std::max<int>(1, sets.size()));
-    for (Candidate& c : ParallelMap(sets.size(), threads,
-                                    [&](std::size_t i) { return fit_candidate(sets[i], start(i), per_fit, false); }))
-      loop.candidates.push_back(std::move(c));
-  };
-
-  // Screening: every effect the case can model gets a cheap fit, judged on one free run over the whole span (the fit
-  // draw), and the effects are ranked by that run's held-out error (ties: the stronger evidence first).
-  const int max_singles = o.fit_effects ? o.max_singles : 0;
-  const std::size_t screened = max_singles > 0 ? modelable.size() : 0;
-  if (screened) say("screening " + std::to_string(screened) + " effect(s), each fitted cheaply and run over the whole span");
-  loop.screening = ParallelMap(screened, std::max(1, o.threads), [&](std::size_t i) {
-    return fit_candidate({modelable[i]}, start_of({modelable[i]}), 1, true);
-  });
-  std::vector<std::size_t> screening_order(screened);
-  std::iota(screening_order.begin(), screening_order.end(), std::size_t{0});
-  auto screened_error = [&](std::size_t i) {
-    const Candidate& c = loop.screening[i];
-    return c.failure.empty() && std::isfinite(c.held_out_error) ? c.held_out_error : kFailedRun;
-  };
-  std::stable_sort(screening_order.begin(), screening_order.end(),
-                   [&](std::size_t a, std::size_t b) { return screened_error(a) < screened_error(b); });
-  // The singles fitted in full: the (at most kRuleSingles) strongest proposals the rules make with strong evidence,
-  // which know what a screening run misses (side friction needs the soft drive that lets the top move before it
-  // lowers any error), then the best screened, up to max_singles.
-  std::vector<int> singles;
-  for (int i : modelable)  // the proposals are sorted by their evidence
-    if (loop.proposals[i].Proposed() && static_cast<int>(singles.size()) < std::min(kRuleSingles, max_singles))
-      singles.push_back(i);
-  for (std::size_t i : screening_order)
-    if (static_cast<int>(singles.size()) < max_singles &&
-        std::find(singles.begin(), singles.end(), modelable[i]) == singles.end())
-      singles.push_back(modelable[i]);
-  for (const Candidate& c : loop.screening)
-    loop.model_runs += c.evaluations + c.redrawn_runs + static_cast<int>(c.held_out_draw_errors.size());
-  say(std::to_string(singles.size()) + " effect(s) to fit alone: the strongest proposals, then the best screened");
-  std::vector<std::vector<int>> sets;
-  for (int i : singles) sets.push_back({i});
-  fit_all(sets, [&](std::size_t i) { return start_of(sets[i]); });
-  // Pairs, since one missing effect may hide what another explains — neither alone need lower the error (side
-  // friction without the soft drive that lets the top move): every pair of the singles fitted in full (dev rec01's
-  // side friction and soft drive are its second and fourth singles). Each starts from its effects' own fits, where a
-  // fit moved the fit-window error by more than chance (a fit that did not found no value for its effect: then from
-  // the effect's first value).
-  auto own_fit = [&](int effect) {
-    const int single = representative({effect});
-    if (single >= 0 && loop.baseline_fit_error - loop.candidates[single].fit_error > loop.error_chance &&
-        loop.candidates[single].unit_values.size() == loop.proposals[effect].parameters.size())
-      return loop.candidates[single].unit_values;
-    return start_of({effect});
-  };
-  std::vector<int> ranked;  // the singles that could be fitted, best held-out error first
-  for (int i : singles)
-    if (representative({i}) >= 0) ranked.push_back(i);
-  std::stable_sort(ranked.begin(), ranked.end(), [&](int a, int b) {
-    return loop.candidates[representative({a})].held_out_error < loop.candidates[representative({b})].held_out_error;
-  });
-  sets.clear();
-  for (std::size_t a = 0; a < ranked.size(); ++a)
-    for (std::size_t b = a + 1; b < ranked.size(); ++b)
-      sets.push_back({std::min(ranked[a], ranked[b]), std::max(ranked[a], ranked[b])});
-  if (!sets.empty()) say(std::to_string(sets.size()) + " pair(s) of them to fit");
-  fit_all(sets, [&](std::size_t i) {
-    std::vector<double> start = own_fit(sets[i][0]), second = own_fit(sets[i][1]);
-    start.insert(start.end(), second.begin(), second.end());
-    return start;
-  });
-  loop.kept = best_qualifying();
-  // A kept set's fit had more runs than its parts' and started from their best values, so it may beat them only
-  // because the parameters they share were fitted better. So before a set of two or more effects stands, each set
-  // without one of its effects is fitted again from the kept values (that fit then stands for its set when it is
-  // better on the fit window) and the decision is made again (backward elimination). A set that survives its check
-  // is extended by each other fitted single, from its own values (forward selection, up to max_effects), and the
-  // decision made again; until the kept set has survived its check and no extension of it qualifies.
-  auto values_of = [&](const Candidate& from, const std::vector<int>& set) {  // from's values of the set's effects
-    std::vector<double> u;
-    std::size_t k = 0;
-    for (int effect : indices_of(from)) {
-      const std::size_t n = loop.proposals[effect].parameters.size();
-      if (std::binary_search(set.begin(), set.end(), effect))
-        u.insert(u.end(), from.unit_values.begin() + static_cast<std::ptrdiff_t>(k),
-                 from.unit_values.begin() + static_cast<std::ptrdiff_t>(k + n));
-      k += n;
-    }
-    return u;
-  };
-  // A fit of the set started or ended at u (a refit from there would repeat it or start from its optimum).
-  auto fitted_at = [&](const std::vector<int>& set, const std::vector<double>& u) {
-    return std::any_of(loop.candidates.begin(), loop.candidates.end(), [&](const Candidate& c) {
-      return c.failure.empty() && indices_of(c) == set && c.effects.size() == set.size() &&
-             (c.unit_values == u || c.start_values == u);
-    });
-  };
-  std::vector<std::vector<int>> checked;
-  while (loop.kept >= 0 && loop.candidates[loop.kept].effects.size() >= 2) {
-    const Candidate kept = loop.candidates[loop.kept];
-    const std::vector<int> set = indices_of(kept);
-    sets.clear();
-    if (std::find(checked.begin(), checked.end(), set) == checked.end()) {
-      checked.push_back(set);
-      for (std::size_t drop = 0; drop < set.size(); ++drop) {
-        std::vector<int> subset = set;
-        subset.erase(subset.begin() + static_cast<std::ptrdiff_t>(drop));
-        if (!fitted_at(subset, values_of(kept, subset))) sets.push_back(subset);  // else the refit is that fit
-      }
-      say("checking each effect of " + Joined(kept.effects) + " against the set without it, refitted from its values");
-      fit_all(sets, [&](std::size_t i) { return values_of(kept, sets[i]); });
-      loop.kept = best_qualifying();
-      if (loop.kept >= 0 && indices_of(loop.candidates[loop.kept]) != set)
-        say(Joined(kept.effects) + " does not beat the sets without one of its effects by the margin");
-      continue;
-    }
-    if (static_cast<int>(set.size()) >= o.max_effects) break;
-    for (int i : ranked)
-      if (!std::binary_search(set.begin(), set.end(), i)) {
-        std::vector<int> larger = set;
-        larger.insert(std::upper_bound(larger.begin(), larger.end(), i), i);
-        if (representative(larger) < 0) sets.push_back(larger);
-      }
-    if (!sets.empty()) say(Joined(kept.effects) + " leads; " + std::to_string(sets.size()) + " extension(s) to fit");
-    fit_all(sets, [&](std::size_t i) {
-      std::vector<double> start;  // the lead's values, the new effect's own
-      for (int effect : sets[i]) {
-        const std::vector<double> own = std::binary_search(set.begin(), set.end(), effect)
-                                            ? values_of(kept, {effect})
-                                            : own_fit(effect);
-        start.insert(start.end(), own.begin(), own.end());
-      }
-      return start;
-    });
-    const int next = best_qualifying();
-    if (next == loop.kept) break;
-    loop.kept = next;
-  }
-  // Rival explanations contest the best set: each other set that qualifies as the best did (against the baseline and
-  // its own smaller sets), neither containing nor contained in it, whose held-out error is within chance of the
-  // best's: one standard deviation of the two errors' difference, hypot(ErrorSpread(e_best), ErrorSpread(e_rival)).
-  // Only what every rival shares with the best is named (an honest "cannot tell" for the rest), and only if that set
-  // qualifies on its own.
-  if (loop.kept >= 0) {
-    const int best = loop.kept;
-    const std::vector<int> best_set = indices_of(loop.candidates[best]);
-    const double k_held_out = FeatureCount(loop.recording_held_out);
-    std::vector<int> shared = best_set;
-    for (std::size_t i = 0; i < loop.candidates.size(); ++i) {
-      const Candidate& c = loop.candidates[i];
-      const std::vector<int> set = indices_of(c);
-      if (static_cast<int>(i) == best || std::includes(best_set.begin(), best_set.end(), set.begin(), set.end()) ||
-          std::includes(set.begin(), set.end(), best_set.begin(), best_set.end()) ||
-          !qualifies_against_subsets(static_cast<int>(i)))
-        continue;
-      const double e_best = loop.candidates[best].held_out_error;
-      if (c.held_out_error - e_best > std::hypot(ErrorSpread(e_best, k_held_out), ErrorSpread(c.held_out_error, k_held_out)))
-        continue;
-      loop.rivals.push_back(c);
-      std::vector<int> common;
-      std::set_intersection(shared.begin(), shared.end(), set.begin(), set.end(), std::back_inserter(common));
-      shared = common;
-    }
-    if (!loop.rivals.empty()) {
-      loop.rivals.insert(loop.rivals.begin(), loop.candidates[best]);
-      const int standing = shared.empty() ? -1 : representative(shared);
-      loop.kept = standing >= 0 && qualifies(loop.candidates[standing], loop.baseline_held_out_error,
-                                             loop.baseline_aic)
-                      ? standing
-                      : -1;
-      std::string each;
-      for (const Candidate& c : loop.rivals)
-        each += (each.empty() ? "" : ", ") + Joined(c.effects) + " " + Significant(c.held_out_error, 3);
-      say("rival explanations within chance of each other (held out: " + each + "): " +
-          (loop.kept >= 0 ? "only " + Joined(loop.candidates[loop.kept].effects) + ", which all share, is named"
-                          : std::string("none is named")));
-    }
-  }
-  if (loop.kept >= 0) loop.candidates[loop.kept].kept = true;
-  for (const Candidate& c : loop.candidates)
-    loop.model_runs += c.evaluations + c.redrawn_runs + static_cast<int>(c.held_out_draw_errors.size());
+  // 4. Every effect the case can model screened, fitted alone, in pairs and larger sets; rivals contest the best.
+  EffectSelection selection(o, runner, base, loop, say);
+  selection.FindModelable();
+  selection.Select();
 
   // 5. The model that stands, on both windows.
   loop.fitted_document = base;

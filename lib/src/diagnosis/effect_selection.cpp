@@ -1,0 +1,453 @@
+#include "effect_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <mutex>
+#include <numeric>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
+#include "drillwave/core/parallel.hpp"
+#include "drillwave/diagnosis/minimize.hpp"
+
+namespace drillwave::diagnosis::loop_internal {
+namespace {
+// At most this many of the singles fitted in full are chosen by the rules' evidence, the others by screening.
+constexpr int kRuleSingles = 2;
+// A fit's run that lands in the other regime is drawn again, at most this many times in all.
+constexpr int kFitDraws = 3;
+
+// How much a feature distance e over K features moves by chance from one window to the next. Each difference in
+// scales is z = b + s n (a bias b the model keeps, noise n of unit variance, s <= 1 where the scale's floor is above
+// the feature's own spread), e = mean(z^2) = B + s^2 and var(e) = (4 s^2 B + 2 s^4) / K. Not knowing the split, s^2 is
+// taken as large as e allows: a model within its features' noise (e < 1) moves by e sqrt(2 / K), one off by a bias
+// by sqrt((2 + 4 (e - 1)) / K) — far less than e sqrt(2 / K) once e is large (rec04 of synthetic-train: a BHA's 6.5
+// against axial decoupling's 9.2 is 1.6 standard deviations apart, not 0.8).
+double ErrorSpread(double e, double k_features) {
+  const double s2 = std::clamp(e, 0.0, 1.0);
+  return std::sqrt((2 * s2 * s2 + 4 * s2 * std::max(e - 1, 0.0)) / std::max(1.0, k_features));
+}
+}  // namespace
+
+std::string Joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : " + ") + n;
+  return s.empty() ? "baseline" : s;
+}
+
+std::string EachDraw(const std::vector<double>& errors, const std::vector<char>& in_regime) {
+  std::string each;
+  for (std::size_t d = 0; d < errors.size(); ++d)
+    each += (each.empty() ? "" : ", ") + Significant(errors[d], 3) + (in_regime[d] ? "" : " (another regime)");
+  return each;
+}
+
+nlohmann::json Applied(nlohmann::json doc, const std::vector<const Effect*>& effects, const std::vector<double>& u) {
+  std::size_t k = 0;
+  for (const Effect* e : effects) {
+    std::vector<double> values;
+    for (const EffectParameter& p : e->parameters) values.push_back(FromUnit(p, u[k++]));
+    e->apply(doc, values);
+  }
+  return doc;
+}
+
+std::vector<double> StartOf(const std::vector<const Effect*>& effects) {
+  std::vector<double> u;
+  for (const Effect* e : effects)
+    for (const EffectParameter& p : e->parameters) u.push_back(ToUnit(p, p.start));
+  return u;
+}
+
+double ErrorChance(const FeatureSet& held_out) { return std::sqrt(2.0 / std::max(1.0, FeatureCount(held_out))); }
+
+EffectSelection::EffectSelection(const LoopOptions& o, const ModelRuns& runner, const nlohmann::json& base,
+                                 DiagnosisLoop& loop, Say say)
+    : o_(o), runner_(runner), base_(base), loop_(loop), say_(std::move(say)),
+      k_features_(FeatureCount(loop.recording_fit)) {}
+
+std::vector<const Effect*> EffectSelection::EffectsOf(const std::vector<int>& set) const {
+  std::vector<const Effect*> effects;
+  for (int i : set) effects.push_back(&loop_.proposals[i]);
+  return effects;
+}
+
+nlohmann::json EffectSelection::DocumentAt(const std::vector<int>& set, const std::vector<double>& u) const {
+  return Applied(base_, EffectsOf(set), u);
+}
+
+std::vector<double> EffectSelection::StartOfSet(const std::vector<int>& set) const { return StartOf(EffectsOf(set)); }
+
+void EffectSelection::FindModelable() {
+  // Every effect is a candidate: the rules' evidence orders the work (the proposals are sorted by it), never gates it.
+  for (std::size_t i = 0; i < loop_.proposals.size(); ++i) {
+    try {
+      cases::ParseCase(DocumentAt({static_cast<int>(i)}, StartOfSet({static_cast<int>(i)})));
+      modelable_.push_back(static_cast<int>(i));
+    } catch (const InputError& e) {  // the case's kind has no such component
+      Candidate c;
+      c.effects = {loop_.proposals[i].name};
+      c.failure = std::string("cannot be modelled with this case: ") + e.what();
+      say_(loop_.proposals[i].name + ": " + c.failure);
+      loop_.candidates.push_back(c);
+    }
+  }
+}
+
+// A set whose parameters move only the sensors (a telemetry delay) leaves the motion as it is: the baseline's run
+// serves its whole fit from the cache, so it is fitted on the very motion it is judged by, at the case's tolerance
+// (rec04: a 2.1-s delay fitted at 1e-4 on a motion of its own came out 2.68 s, at the case's 1e-5 2.08 s).
+bool EffectSelection::MovesOnlySensors(const std::vector<int>& set) const {
+  nlohmann::json low = DocumentAt(set, std::vector<double>(StartOfSet(set).size(), 0.25));
+  nlohmann::json high = DocumentAt(set, std::vector<double>(StartOfSet(set).size(), 0.75));
+  low.erase("sensors"), high.erase("sensors");
+  return low == high;
+}
+
+Candidate EffectSelection::Fit(const std::vector<int>& set, std::vector<double> start, int threads, bool screening) {
+  using Tolerance = ModelRuns::Tolerance;
+  const double full_duration = runner_.FullDuration(), fit_duration = runner_.FitDuration();
+  Candidate c;
+  for (int i : set) c.effects.push_back(loop_.proposals[i].name);
+  const bool sensors_only = MovesOnlySensors(set);
+  std::mutex count_mutex;  // the fit's starts may run side by side
+  auto count = [&](int& counter) {
+    const std::lock_guard<std::mutex> lock(count_mutex);
+    ++counter;
+  };
+  auto count_failure = [&](const std::exception& e) {
+    const std::lock_guard<std::mutex> lock(count_mutex);
+    if (c.failed_runs++ == 0) c.first_failure = e.what();
+  };
+  auto objective = [&](const std::vector<double>& u) {
+    count(c.evaluations);
+    try {
+      // A run in the other regime is drawn again (at most kFitDraws times): the objective is the error in the
+      // recording's regime, not which attractor one start happened to reach.
+      const nlohmann::json doc = DocumentAt(set, u);
+      Recording m;
+      for (int k = 0; k < kFitDraws; ++k) {
+        m = sensors_only ? runner_.Run(Drawn(doc, loop_.fit_draw + k), full_duration)
+                         : runner_.Run(Drawn(doc, loop_.fit_draw + k), fit_duration, Tolerance::kFit);
+        if (runner_.InRegime(m)) break;
+        if (k + 1 < kFitDraws) count(c.redrawn_runs);
+      }
+      return FeatureDistance(runner_.FitFeatures(m), loop_.recording_fit);
+    } catch (const InputError& e) {
+      count_failure(e);
+    } catch (const NumericalError& e) {
+      count_failure(e);
+    }
+    return kFailedRun;
+  };
+  MinimizeOptions mo;
+  mo.max_evaluations =
+      (screening ? o_.screening_evaluations_per_parameter : o_.evaluations_per_parameter) * static_cast<int>(start.size()) + 1;
+  mo.starts = start.empty() || screening ? 1 : 2;
+  mo.seed = o_.seed + static_cast<unsigned>(set.front()) * 31 + static_cast<unsigned>(set.size());
+  mo.threads = threads;
+  const MinimizeResult best = MinimizeInUnitCube(objective, start, mo);
+  const std::vector<double> sigma_u = screening ? std::vector<double>(best.best.size(), std::nan(""))
+                                                : CurvatureSigma(objective, best.best, best.value, k_features_);
+  std::size_t k = 0;
+  for (int i : set)
+    for (const EffectParameter& p : loop_.proposals[i].parameters) {
+      const double v = FromUnit(p, best.best[k]);
+      const double slope = p.log_scale ? v * std::log(p.upper / p.lower) : p.upper - p.lower;  // d value / d unit
+      c.parameters.push_back({loop_.proposals[i].name, p.name, p.unit, v, slope * sigma_u[k], p.lower, p.upper});
+      ++k;
+    }
+  c.unit_values = best.best;
+  c.start_values = start;
+  try {
+    Draws one;
+    if (screening) {
+      one.models.push_back(runner_.Run(Drawn(DocumentAt(set, best.best), loop_.fit_draw), full_duration));
+      one.in_regime.push_back(runner_.InRegime(one.models.back()));
+    }
+    const Judged j = runner_.Judge(screening ? std::move(one) : runner_.RunDraws(DocumentAt(set, best.best), threads));
+    c.fit_error = j.fit_error;
+    c.held_out_error = j.held_out_error;
+    c.held_out_draw_errors = j.held_out_draw_errors;
+    c.draw_in_regime = j.draw_in_regime;
+    c.failed_draws = j.failed_draws;
+  } catch (const NumericalError& e) {
+    c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
+  } catch (const InputError& e) {
+    c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
+  }
+  c.aic = k_features_ * std::log(c.fit_error) + 2.0 * start.size();
+  const std::lock_guard<std::mutex> lock(progress_mutex_);
+  say_((screening ? "screening " : "") + Joined(c.effects) + ": " + std::to_string(c.evaluations + c.redrawn_runs) +
+       " runs" +
+       (c.failed_runs ? " (" + std::to_string(c.failed_runs) + " failed: " + c.first_failure + ")" : "") +
+       (c.failure.empty() ? ", error " + Significant(c.fit_error, 3) + " fitted, " +
+                                Significant(c.held_out_error, 3) + " held out (baseline " +
+                                Significant(loop_.baseline_held_out_error, 3) + ")" +
+                                (std::count(c.draw_in_regime.begin(), c.draw_in_regime.end(), 0)
+                                     ? "; draws " + EachDraw(c.held_out_draw_errors, c.draw_in_regime)
+                                     : std::string())
+                          : ", not judged: " + c.failure));
+  return c;
+}
+
+void EffectSelection::FitAll(const std::vector<std::vector<int>>& sets,
+                             const std::function<std::vector<double>(std::size_t)>& start) {
+  // Fewer sets than threads: the threads left over run a fit's starts and its judging draws side by side.
+  const int threads = std::max(1, o_.threads), per_fit = std::max(1, threads / std::max<int>(1, sets.size()));
+  for (Candidate& c :
+       ParallelMap(sets.size(), threads, [&](std::size_t i) { return Fit(sets[i], start(i), per_fit, false); }))
+    loop_.candidates.push_back(std::move(c));
+}
+
+// The decision: held-out error below (1 - margin) of the reference's, by more than chance moves it, and a lower AIC
+// on the fit window. Each feature's difference is counted in the spread between two runs of the same physics, so for
+// a model that matches, the error (the mean of K squared differences) is about 1 and varies by sqrt(2 / K) from one
+// window to the next: a smaller gain is not evidence, whatever the relative margin says.
+bool EffectSelection::Qualifies(const Candidate& c, double reference_error, double reference_aic) const {
+  return c.failure.empty() && c.held_out_error < (1 - o_.margin) * reference_error &&
+         reference_error - c.held_out_error > loop_.error_chance && c.aic < reference_aic;
+}
+
+std::vector<int> EffectSelection::IndicesOf(const Candidate& c) const {
+  std::vector<int> set;
+  for (const std::string& name : c.effects)
+    for (int i : modelable_)
+      if (loop_.proposals[i].name == name) set.push_back(i);
+  std::sort(set.begin(), set.end());
+  return set;
+}
+
+// A set of effects may have been fitted more than once (from different starts): the fit with the lower error on the
+// fit window stands for it — the fit's own objective decides, not the held-out window.
+int EffectSelection::Representative(const std::vector<int>& set) const {
+  int best = -1;
+  for (std::size_t i = 0; i < loop_.candidates.size(); ++i) {
+    const Candidate& c = loop_.candidates[i];
+    if (c.failure.empty() && IndicesOf(c) == set && c.effects.size() == set.size() &&
+        (best < 0 || c.fit_error < loop_.candidates[best].fit_error))
+      best = static_cast<int>(i);
+  }
+  return best;
+}
+
+// Each effect of a set must earn its place: the set qualifies against the baseline and against the fit standing for
+// every smaller set of its effects that was fitted (a pair against each of its singles, a triple against its pairs
+// and singles).
+bool EffectSelection::QualifiesAgainstSubsets(int index) const {
+  const Candidate& c = loop_.candidates[index];
+  if (Representative(IndicesOf(c)) != index) return false;
+  double reference_error = loop_.baseline_held_out_error, reference_aic = loop_.baseline_aic;
+  const std::vector<int> set = IndicesOf(c);
+  for (std::size_t i = 0; i < loop_.candidates.size(); ++i) {
+    const std::vector<int> other = IndicesOf(loop_.candidates[i]);
+    if (other.size() >= set.size() || Representative(other) != static_cast<int>(i) ||
+        !std::includes(set.begin(), set.end(), other.begin(), other.end()))
+      continue;
+    reference_error = std::min(reference_error, loop_.candidates[i].held_out_error);
+    reference_aic = std::min(reference_aic, loop_.candidates[i].aic);
+  }
+  return Qualifies(c, reference_error, reference_aic);
+}
+
+int EffectSelection::BestQualifying() const {
+  int best = -1;
+  for (std::size_t i = 0; i < loop_.candidates.size(); ++i)
+    if (QualifiesAgainstSubsets(static_cast<int>(i)) &&
+        (best < 0 || loop_.candidates[i].held_out_error < loop_.candidates[best].held_out_error))
+      best = static_cast<int>(i);
+  return best;
+}
+
+// An effect's own fit, where it moved the fit-window error by more than chance (a fit that did not found no value
+// for its effect: then the effect's first value).
+std::vector<double> EffectSelection::OwnFit(int effect) const {
+  const int single = Representative({effect});
+  if (single >= 0 && loop_.baseline_fit_error - loop_.candidates[single].fit_error > loop_.error_chance &&
+      loop_.candidates[single].unit_values.size() == loop_.proposals[effect].parameters.size())
+    return loop_.candidates[single].unit_values;
+  return StartOfSet({effect});
+}
+
+// from's values of the set's effects.
+std::vector<double> EffectSelection::ValuesOf(const Candidate& from, const std::vector<int>& set) const {
+  std::vector<double> u;
+  std::size_t k = 0;
+  for (int effect : IndicesOf(from)) {
+    const std::size_t n = loop_.proposals[effect].parameters.size();
+    if (std::binary_search(set.begin(), set.end(), effect))
+      u.insert(u.end(), from.unit_values.begin() + static_cast<std::ptrdiff_t>(k),
+               from.unit_values.begin() + static_cast<std::ptrdiff_t>(k + n));
+    k += n;
+  }
+  return u;
+}
+
+// A fit of the set started or ended at u (a refit from there would repeat it or start from its optimum).
+bool EffectSelection::FittedAt(const std::vector<int>& set, const std::vector<double>& u) const {
+  return std::any_of(loop_.candidates.begin(), loop_.candidates.end(), [&](const Candidate& c) {
+    return c.failure.empty() && IndicesOf(c) == set && c.effects.size() == set.size() &&
+           (c.unit_values == u || c.start_values == u);
+  });
+}
+
+// Screening: every effect the case can model gets a cheap fit, judged on one free run over the whole span (the fit
+// draw), and the effects are ranked by that run's held-out error (ties: the stronger evidence first). The singles
+// fitted in full: the (at most kRuleSingles) strongest proposals the rules make with strong evidence, which know what
+// a screening run misses (side friction needs the soft drive that lets the top move before it lowers any error), then
+// the best screened, up to max_singles.
+std::vector<int> EffectSelection::Screen() {
+  const int max_singles = o_.fit_effects ? o_.max_singles : 0;
+  const std::size_t screened = max_singles > 0 ? modelable_.size() : 0;
+  if (screened) say_("screening " + std::to_string(screened) + " effect(s), each fitted cheaply and run over the whole span");
+  loop_.screening = ParallelMap(screened, std::max(1, o_.threads), [&](std::size_t i) {
+    return Fit({modelable_[i]}, StartOfSet({modelable_[i]}), 1, true);
+  });
+  std::vector<std::size_t> screening_order(screened);
+  std::iota(screening_order.begin(), screening_order.end(), std::size_t{0});
+  auto screened_error = [&](std::size_t i) {
+    const Candidate& c = loop_.screening[i];
+    return c.failure.empty() && std::isfinite(c.held_out_error) ? c.held_out_error : kFailedRun;
+  };
+  std::stable_sort(screening_order.begin(), screening_order.end(),
+                   [&](std::size_t a, std::size_t b) { return screened_error(a) < screened_error(b); });
+  std::vector<int> singles;
+  for (int i : modelable_)  // the proposals are sorted by their evidence
+    if (loop_.proposals[i].Proposed() && static_cast<int>(singles.size()) < std::min(kRuleSingles, max_singles))
+      singles.push_back(i);
+  for (std::size_t i : screening_order)
+    if (static_cast<int>(singles.size()) < max_singles &&
+        std::find(singles.begin(), singles.end(), modelable_[i]) == singles.end())
+      singles.push_back(modelable_[i]);
+  for (const Candidate& c : loop_.screening)
+    loop_.model_runs += c.evaluations + c.redrawn_runs + static_cast<int>(c.held_out_draw_errors.size());
+  return singles;
+}
+
+void EffectSelection::Select() {
+  loop_.error_chance = ErrorChance(loop_.recording_held_out);
+  const std::vector<int> singles = Screen();
+  say_(std::to_string(singles.size()) + " effect(s) to fit alone: the strongest proposals, then the best screened");
+  std::vector<std::vector<int>> sets;
+  for (int i : singles) sets.push_back({i});
+  FitAll(sets, [&](std::size_t i) { return StartOfSet(sets[i]); });
+  // Pairs, since one missing effect may hide what another explains — neither alone need lower the error (side
+  // friction without the soft drive that lets the top move): every pair of the singles fitted in full (dev rec01's
+  // side friction and soft drive are its second and fourth singles). Each starts from its effects' own fits.
+  std::vector<int> ranked;  // the singles that could be fitted, best held-out error first
+  for (int i : singles)
+    if (Representative({i}) >= 0) ranked.push_back(i);
+  std::stable_sort(ranked.begin(), ranked.end(), [&](int a, int b) {
+    return loop_.candidates[Representative({a})].held_out_error < loop_.candidates[Representative({b})].held_out_error;
+  });
+  sets.clear();
+  for (std::size_t a = 0; a < ranked.size(); ++a)
+    for (std::size_t b = a + 1; b < ranked.size(); ++b)
+      sets.push_back({std::min(ranked[a], ranked[b]), std::max(ranked[a], ranked[b])});
+  if (!sets.empty()) say_(std::to_string(sets.size()) + " pair(s) of them to fit");
+  FitAll(sets, [&](std::size_t i) {
+    std::vector<double> start = OwnFit(sets[i][0]), second = OwnFit(sets[i][1]);
+    start.insert(start.end(), second.begin(), second.end());
+    return start;
+  });
+  loop_.kept = BestQualifying();
+  CheckAndExtend(ranked);
+  ContestRivals();
+  if (loop_.kept >= 0) loop_.candidates[loop_.kept].kept = true;
+  for (const Candidate& c : loop_.candidates)
+    loop_.model_runs += c.evaluations + c.redrawn_runs + static_cast<int>(c.held_out_draw_errors.size());
+}
+
+// A kept set's fit had more runs than its parts' and started from their best values, so it may beat them only because
+// the parameters they share were fitted better. So before a set of two or more effects stands, each set without one
+// of its effects is fitted again from the kept values (that fit then stands for its set when it is better on the fit
+// window) and the decision is made again (backward elimination). A set that survives its check is extended by each
+// other fitted single, from its own values (forward selection, up to max_effects), and the decision made again; until
+// the kept set has survived its check and no extension of it qualifies.
+void EffectSelection::CheckAndExtend(const std::vector<int>& ranked) {
+  std::vector<std::vector<int>> checked, sets;
+  while (loop_.kept >= 0 && loop_.candidates[loop_.kept].effects.size() >= 2) {
+    const Candidate kept = loop_.candidates[loop_.kept];
+    const std::vector<int> set = IndicesOf(kept);
+    sets.clear();
+    if (std::find(checked.begin(), checked.end(), set) == checked.end()) {
+      checked.push_back(set);
+      for (std::size_t drop = 0; drop < set.size(); ++drop) {
+        std::vector<int> subset = set;
+        subset.erase(subset.begin() + static_cast<std::ptrdiff_t>(drop));
+        if (!FittedAt(subset, ValuesOf(kept, subset))) sets.push_back(subset);  // else the refit is that fit
+      }
+      say_("checking each effect of " + Joined(kept.effects) + " against the set without it, refitted from its values");
+      FitAll(sets, [&](std::size_t i) { return ValuesOf(kept, sets[i]); });
+      loop_.kept = BestQualifying();
+      if (loop_.kept >= 0 && IndicesOf(loop_.candidates[loop_.kept]) != set)
+        say_(Joined(kept.effects) + " does not beat the sets without one of its effects by the margin");
+      continue;
+    }
+    if (static_cast<int>(set.size()) >= o_.max_effects) break;
+    for (int i : ranked)
+      if (!std::binary_search(set.begin(), set.end(), i)) {
+        std::vector<int> larger = set;
+        larger.insert(std::upper_bound(larger.begin(), larger.end(), i), i);
+        if (Representative(larger) < 0) sets.push_back(larger);
+      }
+    if (!sets.empty()) say_(Joined(kept.effects) + " leads; " + std::to_string(sets.size()) + " extension(s) to fit");
+    FitAll(sets, [&](std::size_t i) {
+      std::vector<double> start;  // the lead's values, the new effect's own
+      for (int effect : sets[i]) {
+        const std::vector<double> own =
+            std::binary_search(set.begin(), set.end(), effect) ? ValuesOf(kept, {effect}) : OwnFit(effect);
+        start.insert(start.end(), own.begin(), own.end());
+      }
+      return start;
+    });
+    const int next = BestQualifying();
+    if (next == loop_.kept) break;
+    loop_.kept = next;
+  }
+}
+
+// Rival explanations contest the best set: each other set that qualifies as the best did (against the baseline and
+// its own smaller sets), neither containing nor contained in it, whose held-out error is within chance of the best's:
+// one standard deviation of the two errors' difference, hypot(ErrorSpread(e_best), ErrorSpread(e_rival)). Only what
+// every rival shares with the best is named (an honest "cannot tell" for the rest), and only if that set qualifies on
+// its own.
+void EffectSelection::ContestRivals() {
+  if (loop_.kept < 0) return;
+  const int best = loop_.kept;
+  const std::vector<int> best_set = IndicesOf(loop_.candidates[best]);
+  const double k_held_out = FeatureCount(loop_.recording_held_out);
+  std::vector<int> shared = best_set;
+  for (std::size_t i = 0; i < loop_.candidates.size(); ++i) {
+    const Candidate& c = loop_.candidates[i];
+    const std::vector<int> set = IndicesOf(c);
+    if (static_cast<int>(i) == best || std::includes(best_set.begin(), best_set.end(), set.begin(), set.end()) ||
+        std::includes(set.begin(), set.end(), best_set.begin(), best_set.end()) ||
+        !QualifiesAgainstSubsets(static_cast<int>(i)))
+      continue;
+    const double e_best = loop_.candidates[best].held_out_error;
+    if (c.held_out_error - e_best > std::hypot(ErrorSpread(e_best, k_held_out), ErrorSpread(c.held_out_error, k_held_out)))
+      continue;
+    loop_.rivals.push_back(c);
+    std::vector<int> common;
+    std::set_intersection(shared.begin(), shared.end(), set.begin(), set.end(), std::back_inserter(common));
+    shared = common;
+  }
+  if (loop_.rivals.empty()) return;
+  loop_.rivals.insert(loop_.rivals.begin(), loop_.candidates[best]);
+  const int standing = shared.empty() ? -1 : Representative(shared);
+  loop_.kept =
+      standing >= 0 && Qualifies(loop_.candidates[standing], loop_.baseline_held_out_error, loop_.baseline_aic)
+          ? standing
+          : -1;
+  std::string each;
+  for (const Candidate& c : loop_.rivals)
+    each += (each.empty() ? "" : ", ") + Joined(c.effects) + " " + Significant(c.held_out_error, 3);
+  say_("rival explanations within chance of each other (held out: " + each + "): " +
+       (loop_.kept >= 0 ? "only " + Joined(loop_.candidates[loop_.kept].effects) + ", which all share, is named"
+                        : std::string("none is named")));
+}
+
+}  // namespace drillwave::diagnosis::loop_internal

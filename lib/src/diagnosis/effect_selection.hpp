@@ -1,0 +1,78 @@
+#pragma once
+// The diagnosis loop's effect selection (internal to the loop): every effect the case can model screened cheaply,
+// the strongest fitted alone, then in pairs; a kept set checked against itself without each of its effects (backward
+// elimination) and extended by each other single (forward selection); rival sets within chance of the best contest
+// it, and only what they share is named. Each decision: held-out error below (1 - margin) of the reference's, by
+// more than chance moves it, and a lower AIC on the fit window; a set against the baseline and every fitted smaller
+// set of its effects.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "drillwave/diagnosis/loop.hpp"
+#include "model_runs.hpp"
+
+namespace drillwave::diagnosis::loop_internal {
+
+// "a + b", or "baseline" for none.
+std::string Joined(const std::vector<std::string>& names);
+// "648, 4.4 (another regime), 1.1": each draw's error, those out of the recording's regime marked.
+std::string EachDraw(const std::vector<double>& errors, const std::vector<char>& in_regime);
+// `doc` with each effect switched on at its parameters' values u (in their unit cubes, one after the other).
+nlohmann::json Applied(nlohmann::json doc, const std::vector<const Effect*>& effects, const std::vector<double>& u);
+// The effects' first values, in their unit cubes.
+std::vector<double> StartOf(const std::vector<const Effect*>& effects);
+// How much a held-out error moves by chance: for a model within its features' noise the error (the mean of K squared
+// differences in scales) varies by sqrt(2 / K) from one window to the next.
+double ErrorChance(const FeatureSet& held_out);
+
+class EffectSelection {
+ public:
+  using Say = std::function<void(const std::string&)>;
+  // `loop` holds the baseline (errors, AIC, fit draw), the proposals sorted by evidence and the recording's features;
+  // the selection adds its candidates, screening, rivals, kept index and model runs there. `base` is the calibrated
+  // base case the effects are switched on in.
+  EffectSelection(const LoopOptions& o, const ModelRuns& runner, const nlohmann::json& base, DiagnosisLoop& loop,
+                  Say say);
+
+  // Every proposal the case can model; the others become failed candidates ("cannot be modelled").
+  void FindModelable();
+  // Screening, singles in full, pairs, then the check and extension of the kept set; rivals last.
+  void Select();
+
+ private:
+  std::vector<const Effect*> EffectsOf(const std::vector<int>& set) const;
+  nlohmann::json DocumentAt(const std::vector<int>& set, const std::vector<double>& u) const;
+  std::vector<double> StartOfSet(const std::vector<int>& set) const;
+  bool MovesOnlySensors(const std::vector<int>& set) const;
+  // A fit of the set from `start`; a screening fit is cheap (one start, a few evaluations per parameter, no curvature)
+  // and judged on one free run over the whole span instead of the draws' median.
+  Candidate Fit(const std::vector<int>& set, std::vector<double> start, int threads, bool screening);
+  void FitAll(const std::vector<std::vector<int>>& sets, const std::function<std::vector<double>(std::size_t)>& start);
+
+  bool Qualifies(const Candidate& c, double reference_error, double reference_aic) const;
+  std::vector<int> IndicesOf(const Candidate& c) const;
+  int Representative(const std::vector<int>& set) const;
+  bool QualifiesAgainstSubsets(int index) const;
+  int BestQualifying() const;
+  std::vector<double> OwnFit(int effect) const;
+  std::vector<double> ValuesOf(const Candidate& from, const std::vector<int>& set) const;
+  bool FittedAt(const std::vector<int>& set, const std::vector<double>& u) const;
+
+  std::vector<int> Screen();  // the singles to fit in full
+  void CheckAndExtend(const std::vector<int>& ranked);
+  void ContestRivals();
+
+  const LoopOptions& o_;
+  const ModelRuns& runner_;
+  const nlohmann::json& base_;
+  DiagnosisLoop& loop_;
+  Say say_;
+  std::vector<int> modelable_;
+  double k_features_ = 0;
+  std::mutex progress_mutex_;
+};
+
+}  // namespace drillwave::diagnosis::loop_internal
