@@ -47,5 +47,29 @@ TEST(LoopReport, ThePlotMarksTheFitAndHeldOutWindowsAndNamesItsUnits) {
   EXPECT_NE(page.find(">torque on bit [N m]<"), std::string::npos);
 }
 
+// Akaike weights: the baseline and each set once (by its lowest AIC), failed fits left out, summing to one.
+TEST(LoopReport, ModelProbabilitiesAreTheAkaikeWeightsOfEachSetOnce) {
+  DiagnosisLoop loop;
+  loop.baseline_aic = 10;
+  auto candidate = [](std::vector<std::string> effects, double aic, std::string failure = "") {
+    Candidate c;
+    c.effects = std::move(effects), c.aic = aic, c.failure = std::move(failure);
+    return c;
+  };
+  loop.candidates = {candidate({"a"}, 6), candidate({"b"}, 12), candidate({"a"}, 5), candidate({"c"}, -50, "failed"),
+                     candidate({"b", "a"}, 7)};
+  const std::vector<ModelProbability> m = AkaikeWeights(loop);
+  ASSERT_EQ(m.size(), 4u);  // baseline, a, b, a + b
+  const double total = std::exp(-2.5) + 1 + std::exp(-3.5) + std::exp(-1.0);
+  EXPECT_EQ(m[0].effects, std::vector<std::string>{"a"});
+  EXPECT_DOUBLE_EQ(m[0].aic, 5);
+  EXPECT_NEAR(m[0].weight, 1 / total, 1e-12);
+  EXPECT_EQ(m[1].effects, (std::vector<std::string>{"a", "b"}));
+  EXPECT_NEAR(m[1].weight, std::exp(-1.0) / total, 1e-12);
+  EXPECT_TRUE(m[2].effects.empty());  // the baseline
+  EXPECT_NEAR(m[2].weight, std::exp(-2.5) / total, 1e-12);
+  EXPECT_NEAR(m[3].weight, std::exp(-3.5) / total, 1e-12);
+}
+
 }  // namespace
 }  // namespace drillwave::diagnosis

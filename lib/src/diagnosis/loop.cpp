@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -60,6 +61,14 @@ void CheckScale(const Recording& rec, const Recording& model, const std::vector<
                                    ": the case does not describe the system recorded (a field string against a lab "
                                    "rig?); start from a case of the recorded system");
   }
+}
+
+nlohmann::json ProbabilitiesJson(const std::vector<ModelProbability>& models) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const ModelProbability& m : models)
+    out.push_back({{"effects", m.effects}, {"aic", std::isfinite(m.aic) ? nlohmann::json(m.aic) : nlohmann::json(nullptr)},
+                   {"akaike_weight", m.weight}});
+  return out;
 }
 
 nlohmann::json InRegimeJson(const std::vector<char>& in_regime) {
@@ -343,6 +352,26 @@ Recording PredictFitted(const DiagnosisLoop& loop, const LoopOptions& o, const R
   return out;
 }
 
+std::vector<ModelProbability> AkaikeWeights(const DiagnosisLoop& loop) {
+  std::vector<ModelProbability> models = {{{}, loop.baseline_aic, 0}};
+  for (const Candidate& c : loop.candidates) {
+    if (!c.failure.empty() || !std::isfinite(c.aic)) continue;
+    std::vector<std::string> set = c.effects;
+    std::sort(set.begin(), set.end());
+    auto same = std::find_if(models.begin(), models.end(), [&](const ModelProbability& m) { return m.effects == set; });
+    if (same == models.end()) models.push_back({set, c.aic, 0});
+    else same->aic = std::min(same->aic, c.aic);
+  }
+  double best = std::numeric_limits<double>::infinity(), total = 0;
+  for (const ModelProbability& m : models)
+    if (std::isfinite(m.aic)) best = std::min(best, m.aic);
+  for (ModelProbability& m : models) total += m.weight = std::isfinite(m.aic) ? std::exp(-0.5 * (m.aic - best)) : 0.0;
+  for (ModelProbability& m : models) m.weight = total > 0 ? m.weight / total : 0.0;
+  std::stable_sort(models.begin(), models.end(),
+                   [](const ModelProbability& a, const ModelProbability& b) { return a.weight > b.weight; });
+  return models;
+}
+
 nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
   auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json hypotheses = nlohmann::json::array(), candidates = nlohmann::json::array(),
@@ -410,6 +439,7 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
                    {"error_after", loop.fitted_fit_error},
                    {"baseline_aic", loop.baseline_aic}}},
           {"ambiguous", ambiguous},
+          {"model_probabilities", ProbabilitiesJson(AkaikeWeights(loop))},
           {"base_calibration", {{"parameters", calibration}, {"kept", loop.calibration_kept}}},
           {"plain_case", {{"fit_error_one_draw", number(loop.plain_fit_error)},
                           {"held_out_error_one_draw", number(loop.plain_held_out_error)}}},

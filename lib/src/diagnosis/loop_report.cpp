@@ -101,7 +101,16 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
       out << Html(p.name) << " = " << Cell(p.value) << " &plusmn; " << Cell(p.sigma, 2) << " " << Html(p.unit) << "<br>";
     out << "</td><td>" << Html(c.failure.empty() ? (c.kept ? "kept" : "") : c.failure) << "</td></tr>\n";
   }
-  out << "</table>\n<h2>Evidence</h2>\n<ul>\n";
+  out << "</table>\n<p>Relative probability of each model (Akaike weights of the fit window's AIC: the models' "
+         "evidence as far as the fit window tells; the loop decides on the held-out window): ";
+  std::string list;
+  for (const ModelProbability& m : AkaikeWeights(loop)) {
+    if (m.weight < 0.01) continue;
+    std::string name;
+    for (const std::string& e : m.effects) name += (name.empty() ? "" : " + ") + e;
+    list += (list.empty() ? "" : ", ") + Html(name.empty() ? "baseline" : name) + " " + Fixed(m.weight, 2);
+  }
+  out << (list.empty() ? std::string("none above 0.01") : list) << ".</p>\n<h2>Evidence</h2>\n<ul>\n";
   for (const Effect& e : loop.proposals)
     if (e.strength > 0) out << "<li><b>" << Html(e.name) << "</b> (" << Fixed(e.strength, 1) << "): " << Html(e.evidence) << "</li>\n";
   out << "</ul>\n<h2>Features, held out</h2>\n";

@@ -159,6 +159,15 @@ using LoopProgress = std::function<void(const std::string&)>;
 DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& recording, const LoopOptions& options,
                                const LoopProgress& progress = nullptr);
 
+// The relative probability of each model the loop fitted, by its AIC on the fit window (Akaike weights,
+// exp(-(AIC - AIC_min) / 2) normalised over the baseline and each set of effects, a set fitted more than once by its
+// lowest AIC): an approximation of the models' evidence beside the held-out decision, which is the loop's.
+struct ModelProbability {
+  std::vector<std::string> effects;  // empty: the baseline
+  double aic = 0, weight = 0;
+};
+std::vector<ModelProbability> AkaikeWeights(const DiagnosisLoop& loop);
+
 nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop);
 
 // The fitted model (the baseline where nothing is kept) run freely from its start to `until_s` of recording time: its
