@@ -88,5 +88,20 @@ TEST(StabilityMapOverDraws, DrawsAreSpreadEvenlyOverTheFileAndBadFilesAreRefused
   fs::remove(file);
 }
 
+// A value the case refuses is reported with the axis and the field's own message, its path said once.
+TEST(StabilityMapOverDraws, AnAxisValueTheCaseRefusesNamesItsFieldOnce) {
+  const nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  try {
+    ParseMapAxis("/model/hoist/weight_on_bit_N=1000:2000:3", doc);
+    FAIL() << "not refused";
+  } catch (const InputError& e) {
+    const std::string what = e.what(), path = "/model/hoist/weight_on_bit_N";
+    EXPECT_EQ(e.json_path(), "--map");
+    const std::size_t first = what.find(path + ":");
+    ASSERT_NE(first, std::string::npos) << what;
+    EXPECT_EQ(what.find(path + ":", first + 1), std::string::npos) << what;
+  }
+}
+
 }  // namespace
 }  // namespace drillwave::cases

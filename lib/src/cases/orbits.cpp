@@ -43,7 +43,7 @@ OrbitsSpec ParseContinueOption(const std::string& text, const nlohmann::json& do
       io::SetByPointer(probe, spec.pointer, v);
       ParseCase(probe).model->OrbitField();
     } catch (const InputError& e) {
-      throw InputError("--continue", "'" + text + "': " + e.json_path() + ": " + e.what());
+      throw InputError("--continue", "'" + text + "': " + e.what());  // what() names its path
     }
   }
   nlohmann::json first = document;

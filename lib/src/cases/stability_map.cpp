@@ -95,7 +95,7 @@ MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document, co
     io::SetByPointer(probe, axis.pointer, axis.values.front());
     ParseCase(probe);
   } catch (const InputError& e) {
-    throw InputError(option, "'" + text + "': " + e.json_path() + ": " + e.what());
+    throw InputError(option, "'" + text + "': " + e.what());  // what() names its path
   }
   return axis;
 }
