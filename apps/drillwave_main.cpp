@@ -56,6 +56,16 @@ int RunAndWrite(const std::string& file, const std::string& out_dir, const std::
                 bool check) {
   const Case c = drillwave::cases::ParseCase(LoadCaseDocument(file, overrides));
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
+  {  // trajectory.csv dominates the outputs: samples x (time and channels) x about 12 bytes a number, plus the rest
+    const double samples = c.settings.duration_s / c.settings.output_interval_s + 1;
+    auto bytes = [&](double channels) { return samples * (channels + 1) * 12 + 5e5; };
+    try {  // a generous estimate first; the kind's own channels (a probe of a few samples) only when it does not fit
+      drillwave::io::OutputDirectory::CheckFreeSpace(out_dir, bytes(32));
+    } catch (const drillwave::io::OutputError&) {
+      drillwave::io::OutputDirectory::CheckFreeSpace(out_dir,
+                                                     bytes(static_cast<double>(drillwave::diagnosis::ProbeChannels(c).size())));
+    }
+  }
   std::cout << "drillwave: running case '" << c.name << "' (kind " << c.kind << ", " << c.settings.duration_s
             << " s simulated)" << (file.empty() ? " [embedded default case]" : "") << std::endl;
   auto run = drillwave::cases::RunCase(c);

@@ -364,5 +364,23 @@ TEST_F(OutputDirectoryTest, RejectsMisuse) {
   EXPECT_THROW(out.Commit(), std::logic_error);
 }
 
+// Free space against the outputs' estimate, before any work: more than the file system holds is refused naming both
+// sizes and the nearest existing folder (a folder not yet made is judged by its parent's file system); what fits
+// passes and nothing is created.
+TEST_F(OutputDirectoryTest, OutputsLargerThanTheFreeSpaceAreRefusedBeforeAnyWork) {
+  const std::string dir = (scratch_ / "not" / "yet").string();
+  const double free_bytes = static_cast<double>(fs::space(scratch_).available);
+  EXPECT_NO_THROW(OutputDirectory::CheckFreeSpace(dir, 1e3));
+  try {
+    OutputDirectory::CheckFreeSpace(dir, 10 * free_bytes + 1e12);
+    FAIL() << "not refused";
+  } catch (const OutputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("free on the file system of " + scratch_.string()), std::string::npos) << what;
+    EXPECT_NE(what.find(" MB of outputs for " + dir), std::string::npos) << what;
+  }
+  EXPECT_TRUE(Entries().empty());
+}
+
 }  // namespace
 }  // namespace drillwave::io

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
 
 namespace drillwave::io {
 
@@ -296,6 +297,21 @@ void CheckFolder(const fs::path& path) {
 }
 
 }  // namespace
+
+void OutputDirectory::CheckFreeSpace(const std::string& dir, double estimated_bytes) {
+  std::error_code ec;
+  fs::path existing = fs::absolute(dir, ec);
+  while (!existing.empty() && !fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
+    existing = existing.parent_path();
+  const fs::space_info space = fs::space(existing, ec);
+  if (ec || space.available == static_cast<std::uintmax_t>(-1)) return;
+  const auto available = static_cast<double>(space.available);
+  if (available >= estimated_bytes) return;
+  auto megabytes = [](double bytes) { return Significant(bytes / 1e6, 3) + " MB"; };
+  throw OutputError("about " + megabytes(estimated_bytes) + " of outputs for " + dir + ", but only " +
+                    megabytes(available) + " free on the file system of " + existing.string() +
+                    ": free some space, write elsewhere (-o), or ask for fewer samples (a longer output interval)");
+}
 
 void OutputDirectory::CheckReplaceable(const std::string& dir) {
   const fs::path path = NormalisedFolder(dir);

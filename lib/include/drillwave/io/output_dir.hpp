@@ -81,6 +81,11 @@ class OutputDirectory {
   // the check after the work is told apart (see the constructor).
   static void CheckReplaceable(const std::string& dir);
 
+  // Before the work: OutputError when the file system `dir` would be written on (that of its nearest existing folder)
+  // has less free space than `estimated_bytes` and the staging copy need, naming both sizes and the folder. Does
+  // nothing where the free space cannot be read.
+  static void CheckFreeSpace(const std::string& dir, double estimated_bytes);
+
  private:
   // CheckReplaceable's checks once more; an InputError becomes an OutputError if `dir` passed them before.
   void CheckAgain(bool passed_before) const;
