@@ -155,4 +155,35 @@ TEST(SimulatorEvents, ModesChatteringOnAVanishingTimeScaleStopTheRunWithTimeAndS
   }
 }
 
+// x' = 10 x escapes to infinity without any step-size trouble (a delayed feedback loop without a limit did, to
+// 1e33 rpm, for 2.4 million stored steps and 3 GB): stopped once it has grown 1e12 times, at ln(1e12) / 10 = 2.76 s.
+class Growth {
+ public:
+  int Dimension() const { return 1; }
+  void Derivatives(const std::vector<double>& x, std::vector<double>& dxdt, double) const { dxdt[0] = 10 * x[0]; }
+  double MaxStep() const { return std::numeric_limits<double>::infinity(); }
+  void BeginStep(double) {}
+  double PrepareCommit(const Piece&, double, double) { return 0; }
+  void Commit(const Piece&) {}
+  int NumWitnesses() const { return 0; }
+  double Witness(int, double, const std::vector<double>&) const { return 1.0; }
+  bool OnEvent(int, double, std::vector<double>&) { return false; }
+  double NextBreakpoint() const { return std::numeric_limits<double>::infinity(); }
+  void OnBreakpoint(double) {}
+};
+
+TEST(SimulatorGrowth, ASolutionEscapingToInfinityIsStoppedWhenItHasGrownATrillionTimes) {
+  Growth process;
+  IntegratorOptions options;
+  options.abs_tol = options.rel_tol = 1e-8;
+  Simulator<Growth> sim(process, options);
+  try {
+    sim.Integrate(0.0, {1.0}, 100.0);
+    FAIL() << "not stopped";
+  } catch (const drillwave::NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("blow-up"), std::string::npos) << e.what();
+    EXPECT_NEAR(e.time(), std::log(1e12) / 10, 0.05);
+  }
+}
+
 }  // namespace

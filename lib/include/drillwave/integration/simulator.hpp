@@ -158,6 +158,9 @@ class Simulator {
 
   // Trials of one step reading its own interpolant: at most this many, settled at this change (tolerance units).
   static constexpr int kMaxTrials = 12;
+  // A state component this many times the start's largest (at least 1) is a solution escaping to infinity: far
+  // beyond any physical growth (a bit angle after a day at 20 rad/s is 2e6 rad).
+  static constexpr double kBlowUpGrowth = 1e12;
   static constexpr double kTrialTolerance = 0.05;
 
   // The process's OnBreakpoint, with the state where it takes one (the loop restarts from x after it either way).
@@ -493,6 +496,13 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
     const bool on_stop = limited && std::abs(t1 - t_stop) <= 1e-12 * std::max(1.0, std::abs(t_stop));
     t = on_stop ? t_stop : t1;
     x = x1;
+    // A solution that escapes to infinity without the step size underflowing (a delayed feedback loop without a
+    // limit) would otherwise take ever more steps, and store them, until time or memory runs out.
+    for (double v : x)
+      if (std::abs(v) > kBlowUpGrowth * start_size)
+        throw NumericalError("blow-up: the solution has grown to |x| = " + std::to_string(std::abs(v)) + " (from " +
+                                 std::to_string(start_size) + " at the start)",
+                             t, x);
     std::swap(f0, f1);  // the last stage is the next step's first (first same as last)
     g0.swap(g1);
     if (on_stop && t < t_end) {
