@@ -115,11 +115,12 @@ double NumberOr(const nlohmann::json& summary, const char* key, double otherwise
 // A run's blow-up is recorded (run_failure) unless the comparison needs the run: the stiff PI's when SoftSpeed is
 // tuned to its period.
 ControllerResult Evaluate(const std::string& law, const nlohmann::json& doc, double handover, double end,
-                          bool needed = false) {
+                          long max_steps, bool needed = false) {
   ControllerResult r;
   r.law = law;
   r.document = doc;
-  const Case c = ParseCase(doc);
+  Case c = ParseCase(doc);
+  if (max_steps > 0) c.settings.integrator.max_steps = max_steps;
   LinearVerdict(c, r);
   CaseRun run;
   try {
@@ -130,6 +131,7 @@ ControllerResult Evaluate(const std::string& law, const nlohmann::json& doc, dou
     r.severity = r.stick_fraction = r.period_s = r.torque_std_Nm = kNaN;
     return r;
   }
+  r.steps = static_cast<long>(NumberOr(run.summary, "steps", 0));
   r.severity = NumberOr(run.summary, "stick_slip_severity", kNaN);
   r.stick_fraction = NumberOr(run.summary, "stick_fraction", kNaN);
   r.period_s = NumberOr(run.summary, "stick_slip_period_s", NumberOr(run.summary, "oscillation_period_s", kNaN));
@@ -189,7 +191,7 @@ ControllerComparison CompareControllers(const nlohmann::json& document, const Co
   out.handover_s = p.handover_s, out.end_s = p.end_s;
   out.actuator_delay_s = stiff.drive.value("actuator_delay_s", 0.0);
   out.laws.push_back(
-      Evaluate("stiff PI", WithTop(p.base, stiff.drive, p.stiff_law), out.handover_s, out.end_s,
+      Evaluate("stiff PI", WithTop(p.base, stiff.drive, p.stiff_law), out.handover_s, out.end_s, spec.max_steps,
                !spec.tuning_period_s));
   // SoftSpeed is tuned to the stick-slip the stiff PI keeps up (its period over the same span).
   out.tuning_period_s = spec.tuning_period_s.value_or(out.laws.front().period_s);
@@ -208,8 +210,10 @@ ControllerComparison CompareControllers(const nlohmann::json& document, const Co
   nlohmann::json z_torque = p.stiff_law;
   z_torque.update({{"type", "z_torque"}, {"feedback_time_constant_s", out.feedback_time_constant_s},
                    {"handover", handover}});
-  out.laws.push_back(Evaluate("SoftSpeed", WithTop(p.base, stiff.drive, soft_speed), out.handover_s, out.end_s));
-  out.laws.push_back(Evaluate("Z-Torque", WithTop(p.base, stiff.drive, z_torque), out.handover_s, out.end_s));
+  out.laws.push_back(
+      Evaluate("SoftSpeed", WithTop(p.base, stiff.drive, soft_speed), out.handover_s, out.end_s, spec.max_steps));
+  out.laws.push_back(
+      Evaluate("Z-Torque", WithTop(p.base, stiff.drive, z_torque), out.handover_s, out.end_s, spec.max_steps));
   const double reference = out.laws.front().torque_std_Nm;
   for (ControllerResult& r : out.laws) r.torque_reduction_pct = 100 * (1 - r.torque_std_Nm / reference);
   return out;
@@ -220,6 +224,9 @@ std::vector<ControllerComparison> CompareUnderActuatorDelays(const nlohmann::jso
                                                              const ControllerComparison& nominal,
                                                              const std::vector<double>& delays_s) {
   spec.tuning_period_s = nominal.tuning_period_s;
+  long costliest = 0;
+  for (const ControllerResult& r : nominal.laws) costliest = std::max(costliest, r.steps);
+  if (costliest > 0) spec.max_steps = static_cast<long>(kDelayedWorkFactor * static_cast<double>(costliest));
   std::vector<ControllerComparison> out;
   Progress progress("compare-controllers under actuator delays");
   for (double delay : delays_s) {

@@ -30,6 +30,8 @@ struct ControllerComparisonSpec {
   std::optional<StiffPi> stiff_pi;         // needed for a top that is not a PI top drive (top_drive, soft_torque, ...)
   // The drive every law runs on: its actuator delay [s] and torque limit [N m] (default: the case's top's).
   std::optional<double> actuator_delay_s, torque_limit_Nm;
+  // Each law's run stops after this many integration steps and is recorded as failed (0: no limit).
+  long max_steps = 0;
 };
 
 struct ControllerResult {
@@ -48,6 +50,7 @@ struct ControllerResult {
                                              // in the last 20 s (not suppressed)
   std::vector<double> time_s, bit_rpm, top_torque_Nm;  // the run from 10 s before the handover, for the figure
   std::string run_failure;  // why the run failed numerically (a blow-up); empty: it ran. The measures are then NaN
+  long steps = 0;           // the run's accepted integration steps (0: it failed)
 };
 
 struct ControllerComparison {
@@ -71,7 +74,10 @@ nlohmann::json StiffPiCase(const nlohmann::json& document, const ControllerCompa
 
 // Every law again at each actuator delay (spec.actuator_delay_s replaced), with SoftSpeed's period and Z-Torque's
 // filter held at the nominal comparison's: the drive is commissioned once and then lives with its delay. A delay
-// equal to the nominal's reuses it.
+// equal to the nominal's reuses it. A delayed run may take at most kDelayedWorkFactor times the steps of the
+// costliest nominal run: beyond, it is recorded as failed (a bit bouncing off the rock with 28-MN impacts once took
+// 1e-8-s steps, whose wave histories filled 4 GB).
+inline constexpr double kDelayedWorkFactor = 10;
 std::vector<ControllerComparison> CompareUnderActuatorDelays(const nlohmann::json& document,
                                                              ControllerComparisonSpec spec,
                                                              const ControllerComparison& nominal,
