@@ -31,7 +31,9 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
+#include "drillwave/diagnosis/fit.hpp"
 #include "drillwave/diagnosis/loop.hpp"
+#include "drillwave/diagnosis/posterior.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -323,52 +325,115 @@ std::pair<double, double> WindowArgument(const json& w, const std::string& name)
   return {begin, end};
 }
 
-// As `drillwave diagnose`: the sidecar (a file or a dict) sets the operating point and a warm-up before the
-// recording; the usable recording is split into a fit and a held-out window unless they are given.
+// What diagnose and calibrate read alike, with the GIL: the case (a sidecar, file or dict, sets the operating point
+// and a warm-up before the recording), the recording's file, the windows and channel maps as given.
+struct LoopArguments {
+  json doc, fit_given, held_out_given, maps_given;
+  std::string recording_name;
+  double warmup_s = 0;
+};
+
+LoopArguments ReadLoopArguments(const py::object& case_, const py::object& recording_file, const py::object& sidecar,
+                                const py::object& overrides, const py::object& map_texts,
+                                const py::object& fit_window, const py::object& held_out) {
+  namespace dg = drillwave::diagnosis;
+  LoopArguments a;
+  a.doc = CaseDocument(case_, overrides);
+  if (!sidecar.is_none()) {
+    const bool dict = py::isinstance<py::dict>(sidecar);
+    const std::string source = dict ? "sidecar" : FileName(sidecar, "sidecar");
+    a.doc = dg::CaseFromSidecar(dict ? ToJson(sidecar, "") : drillwave::io::LoadJsonFile(source), a.doc,
+                                dg::kSidecarWarmupS, source);
+  }
+  a.recording_name = FileName(recording_file, "recording");
+  a.fit_given = fit_window.is_none() ? json() : ToJson(fit_window, "fit_window");
+  a.held_out_given = held_out.is_none() ? json() : ToJson(held_out, "held_out");
+  a.maps_given = map_texts.is_none() ? json::array() : ToJson(map_texts, "maps");
+  a.warmup_s = sidecar.is_none() ? 0 : dg::kSidecarWarmupS;
+  return a;
+}
+
+// Without the GIL: the recording loaded, the loop's options with the windows checked against the model's span and
+// the channel maps resolved.
+std::pair<drillwave::diagnosis::Recording, drillwave::diagnosis::LoopOptions> LoopInputs(const LoopArguments& a) {
+  namespace dg = drillwave::diagnosis;
+  const drillwave::cases::Case c = drillwave::cases::ParseCase(a.doc);
+  dg::Recording recording = dg::LoadRecording(a.recording_name);
+  dg::LoopOptions o = dg::DefaultLoopOptions(c, recording, a.warmup_s);
+  if (!a.fit_given.is_null()) std::tie(o.fit_begin_s, o.fit_end_s) = WindowArgument(a.fit_given, "fit_window");
+  if (!a.held_out_given.is_null())
+    std::tie(o.held_out_begin_s, o.held_out_end_s) = WindowArgument(a.held_out_given, "held_out");
+  const double offset = o.model_time_offset_s;
+  dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.fit_begin_s, o.fit_end_s);
+  dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.held_out_begin_s, o.held_out_end_s);
+  std::vector<std::string> texts;
+  for (const json& m : a.maps_given.is_array() ? a.maps_given : json::array({nullptr})) {
+    if (!m.is_string())
+      throw InputError("maps", "expected a list of \"recording_channel=model_channel[*scale]\", got " +
+                                   drillwave::ReadableText(a.maps_given.dump()));
+    texts.push_back(m.get<std::string>());
+  }
+  o.maps = dg::ResolveChannelMaps(texts, recording, dg::ProbeChannels(c));
+  return {std::move(recording), std::move(o)};
+}
+
+// As `drillwave diagnose`: the usable recording is split into a fit and a held-out window unless they are given.
 py::dict Diagnose(const py::object& case_, const py::object& recording_file, const py::object& sidecar,
                   const py::object& overrides, const py::object& map_texts, const py::object& fit_window,
                   const py::object& held_out, double margin, const py::object& jobs, const py::object& max_samples) {
   namespace dg = drillwave::diagnosis;
   // The Python arguments first, with the GIL; then the work without it, checked in the command line's order.
   const std::optional<double> limit = SampleLimit(max_samples);
-  json doc = CaseDocument(case_, overrides);
-  if (!sidecar.is_none()) {
-    const bool dict = py::isinstance<py::dict>(sidecar);
-    const std::string source = dict ? "sidecar" : FileName(sidecar, "sidecar");
-    doc = dg::CaseFromSidecar(dict ? ToJson(sidecar, "") : drillwave::io::LoadJsonFile(source), doc,
-                              dg::kSidecarWarmupS, source);
-  }
-  const std::string recording_name = FileName(recording_file, "recording");
-  const json fit_given = fit_window.is_none() ? json() : ToJson(fit_window, "fit_window");
-  const json held_out_given = held_out.is_none() ? json() : ToJson(held_out, "held_out");
+  const LoopArguments args =
+      ReadLoopArguments(case_, recording_file, sidecar, overrides, map_texts, fit_window, held_out);
   const int threads = Jobs(jobs);
-  const json maps_given = map_texts.is_none() ? json::array() : ToJson(map_texts, "maps");
-  const double warmup_s = sidecar.is_none() ? 0 : dg::kSidecarWarmupS;
   const json result = WithoutGil(limit, [&] {
-    const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
-    const dg::Recording recording = dg::LoadRecording(recording_name);
-    dg::LoopOptions o = dg::DefaultLoopOptions(c, recording, warmup_s);
-    if (!fit_given.is_null()) std::tie(o.fit_begin_s, o.fit_end_s) = WindowArgument(fit_given, "fit_window");
-    if (!held_out_given.is_null())
-      std::tie(o.held_out_begin_s, o.held_out_end_s) = WindowArgument(held_out_given, "held_out");
-    const double offset = o.model_time_offset_s;
-    dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.fit_begin_s, o.fit_end_s);
-    dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.held_out_begin_s, o.held_out_end_s);
+    auto [recording, o] = LoopInputs(args);
     if (!(margin >= 0 && margin < 1))
       throw InputError("margin", "expected a fraction in [0, 1), got " + drillwave::ReadableNumber(margin));
     o.margin = margin;
     o.threads = threads;
-    std::vector<std::string> texts;
-    for (const json& m : maps_given.is_array() ? maps_given : json::array({nullptr})) {
-      if (!m.is_string())
-        throw InputError("maps", "expected a list of \"recording_channel=model_channel[*scale]\", got " +
-                                     drillwave::ReadableText(maps_given.dump()));
-      texts.push_back(m.get<std::string>());
-    }
-    o.maps = dg::ResolveChannelMaps(texts, recording, dg::ProbeChannels(c));
-    const dg::DiagnosisLoop loop = dg::RunDiagnosisLoop(doc, recording, o);
+    const dg::DiagnosisLoop loop = dg::RunDiagnosisLoop(args.doc, recording, o);
     json out = dg::DiagnosisLoopToJson(loop);
     out["fitted_case"] = loop.fitted_document;
+    return out;
+  });
+  return FromJson(result);
+}
+
+// As `drillwave calibrate`: params ["/pointer:lower:upper", ...].
+py::dict Calibrate(const py::object& case_, const py::object& recording_file, const py::object& params,
+                   const py::object& sidecar, const py::object& overrides, const py::object& map_texts,
+                   const py::object& fit_window, const py::object& held_out, int walkers, int steps, int burn_in,
+                   int predictive_draws, unsigned seed, const py::object& jobs, const py::object& max_samples) {
+  namespace dg = drillwave::diagnosis;
+  const std::optional<double> limit = SampleLimit(max_samples);
+  const LoopArguments args =
+      ReadLoopArguments(case_, recording_file, sidecar, overrides, map_texts, fit_window, held_out);
+  const json params_given = ToJson(params, "params");
+  dg::PosteriorOptions p;
+  p.walkers = walkers, p.steps = steps, p.burn_in = burn_in, p.predictive_draws = predictive_draws, p.seed = seed;
+  p.threads = Jobs(jobs);
+  const json result = WithoutGil(limit, [&] {
+    std::vector<dg::FitParameter> parameters;
+    for (const json& q : params_given.is_array() ? params_given : json::array({nullptr})) {
+      if (!q.is_string())
+        throw InputError("params", "expected a list of \"/pointer:lower:upper\", got " +
+                                       drillwave::ReadableText(params_given.dump()));
+      parameters.push_back(dg::ParseFitParameter(q.get<std::string>()));
+    }
+    const auto [recording, o] = LoopInputs(args);
+    const dg::Posterior post = dg::SamplePosterior(args.doc, recording, o, parameters, p);
+    json out = dg::PosteriorToJson(post, recording);
+    json samples = json::array();  // after burn-in: [step, walker, log_likelihood, values...]
+    for (int s = post.burn_in + 1; s <= post.steps; ++s)
+      for (int w = 0; w < post.walkers; ++w) {
+        json row = {s, w, post.log_likelihood[s][w]};
+        for (double v : post.chain[s][w]) row.push_back(v);
+        samples.push_back(row);
+      }
+    out["samples"] = samples;
+    out["map_case"] = post.map_document;
     return out;
   });
   return FromJson(result);
@@ -455,6 +520,16 @@ kept when the held-out error falls by the margin. recording: a CSV file with tim
 recording's operator sidecar (file or dict). maps: ["recording_channel=model_channel[*scale]", ...]; fit_window,
 held_out: (begin, end) in recording time [s] (default: the usable recording's halves). Returns diagnosis.json's
 content ("hypotheses", "held_out", "fit", "candidates", "fitted_parameters", ...) and "fitted_case".)");
+  m.def("calibrate", &Calibrate, py::arg("case"), py::arg("recording"), py::arg("params"),
+        py::arg("sidecar") = py::none(), py::arg("set") = py::none(), py::arg("maps") = py::none(),
+        py::arg("fit_window") = py::none(), py::arg("held_out") = py::none(), py::arg("walkers") = 16,
+        py::arg("steps") = 60, py::arg("burn_in") = 20, py::arg("predictive_draws") = 40, py::arg("seed") = 1,
+        py::arg("jobs") = py::none(), py::arg("max_samples") = py::none(),
+        R"(The posterior of a case's parameters given a recording, as `drillwave calibrate`: params
+["/pointer:lower:upper", ...] (uniform priors), the diagnosis loop's feature likelihood, an affine-invariant ensemble
+sampler. Returns posterior.json's content ("parameters" with each one's median and 90 % interval, "predictive" with
+the held-out features' bands, "coverage_90", "acceptance", ...), "samples" ([step, walker, log_likelihood, values...]
+after burn-in) and "map_case" (the sample of highest likelihood).)");
   m.def("case_document", &Document, py::arg("case") = py::none(), py::arg("set") = py::none(),
         R"(The case document as the other calls read it (a file, a dict or None for the embedded default case, with the
 overrides `set` applied), as a dict; nothing is checked beyond the JSON and the pointers. drillwave_dask sends it

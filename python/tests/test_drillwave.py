@@ -131,8 +131,8 @@ def test_stability_of_the_case_and_a_map():
         drillwave.stability(CASE, param="/model/top/speed_rad_s/knots/1/1")
 
 
-def test_diagnose_a_recording_of_the_model_itself(tmp_path):
-    # The model's own run written as a recording: nothing to explain.
+def own_recording(tmp_path):
+    """The case's own short run written as a recording (time_s, top_rpm, bit_rpm)."""
     r = drillwave.run(CASE, set=SHORT)
     recording = tmp_path / "recording.csv"
     names = ["time_s", "top_rpm", "bit_rpm"]
@@ -140,6 +140,12 @@ def test_diagnose_a_recording_of_the_model_itself(tmp_path):
         writer = csv.writer(f)
         writer.writerow(names)
         writer.writerows(zip(*(r["channels"][n] for n in names)))
+    return recording
+
+
+def test_diagnose_a_recording_of_the_model_itself(tmp_path):
+    # The model's own run written as a recording: nothing to explain.
+    recording = own_recording(tmp_path)
     d = drillwave.diagnose(CASE, str(recording), set=SHORT, fit_window=(20, 40), held_out=(40, 60))
     assert d["hypotheses"] == [] and d["unexplained"] == []
     assert d["held_out"]["window_s"] == [40, 60] and d["held_out"]["error_after"] < 1
@@ -148,6 +154,23 @@ def test_diagnose_a_recording_of_the_model_itself(tmp_path):
         drillwave.diagnose(CASE, str(recording), set=SHORT, held_out=(60, 20))
     with pytest.raises(ValueError, match=r"^--map: 'bit_rpm=no_such': the model has no channel no_such"):
         drillwave.diagnose(CASE, str(recording), set=SHORT, maps=["bit_rpm=no_such"])
+
+
+def test_calibrate_samples_the_posterior_of_a_recording_of_the_model_itself(tmp_path):
+    # The model's own run as a recording: the posterior of its static friction holds the case's value.
+    recording = own_recording(tmp_path)
+    truth = drillwave.case_document(CASE)["model"]["bit"]["friction"]["mu_s"]
+    p = drillwave.calibrate(CASE, str(recording), [f"/model/bit/friction/mu_s:{0.7 * truth}:{1.3 * truth}"],
+                            set=SHORT, fit_window=(20, 40), held_out=(40, 60), walkers=6, steps=12, burn_in=4,
+                            predictive_draws=4, jobs=2)
+    (mu,) = p["parameters"]
+    assert mu["q05"] <= truth <= mu["q95"]
+    assert len(p["samples"]) == 6 * (12 - 4) and len(p["samples"][0]) == 4
+    assert p["walkers"] == 6 and p["predictive_runs"] == 4
+    assert p["map_case"]["model"]["kind"] == "two_mass"
+    with pytest.raises(drillwave.InputError, match=r"^--walkers: expected an even number") as e:
+        drillwave.calibrate(CASE, str(recording), ["/model/bit/friction/mu_s:0.5:1"], set=SHORT, walkers=5)
+    assert e.value.path == "--walkers"
 
 
 def test_a_file_name_with_a_nul_byte_is_refused_not_cut(tmp_path):

@@ -284,6 +284,36 @@ Posterior SamplePosterior(const nlohmann::json& document, const Recording& raw, 
   return post;
 }
 
+nlohmann::json PosteriorToJson(const Posterior& post, const Recording& recording) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json parameters = nlohmann::json::array();
+  for (const ParameterSummary& s : post.summaries)
+    parameters.push_back({{"pointer", s.pointer}, {"case_value", s.case_value}, {"bounds", {s.lower, s.upper}},
+                          {"mean", s.mean}, {"sd", s.sd}, {"q05", s.q05}, {"median", s.q50}, {"q95", s.q95},
+                          {"drift_sd", s.drift_sd}});
+  nlohmann::json predictive = nlohmann::json::array();
+  for (const PredictiveFeature& f : post.predictive)
+    predictive.push_back({{"feature", f.name}, {"recorded", f.recorded}, {"scale", f.scale}, {"q05", number(f.q05)},
+                          {"median", number(f.q50)}, {"q95", number(f.q95)}, {"undefined_share", f.undefined_share},
+                          {"inside", f.inside}});
+  return {{"recording", recording.source},
+          {"likelihood", "log L = -1/2 sum over the fit window's features of ((model - recorded) / scale)^2; uniform "
+                         "prior in the bounds"},
+          {"fit_window_features", post.recording_features},
+          {"walkers", post.walkers},
+          {"steps", post.steps},
+          {"burn_in", post.burn_in},
+          {"acceptance", post.acceptance},
+          {"runs", post.runs},
+          {"failed_runs", post.failed_runs},
+          {"parameters", parameters},
+          {"map_log_likelihood", number(post.map_log_likelihood)},
+          {"predictive_runs", post.predictive_runs},
+          {"failed_predictive_runs", post.failed_predictive_runs},
+          {"predictive", predictive},
+          {"coverage_90", number(post.coverage)}};
+}
+
 void WritePosterior(const Posterior& post, const Recording& recording, const std::string& out_dir) {
   io::OutputDirectory out(out_dir);
   const std::size_t dim = post.parameters.size();
@@ -300,42 +330,15 @@ void WritePosterior(const Posterior& post, const Recording& recording, const std
       }
     out.Open("posterior_samples.csv") << csv;
   }
-  nlohmann::json parameters = nlohmann::json::array();
-  for (const ParameterSummary& s : post.summaries)
-    parameters.push_back({{"pointer", s.pointer}, {"case_value", s.case_value}, {"bounds", {s.lower, s.upper}},
-                          {"mean", s.mean}, {"sd", s.sd}, {"q05", s.q05}, {"median", s.q50}, {"q95", s.q95},
-                          {"drift_sd", s.drift_sd}});
-  nlohmann::json predictive = nlohmann::json::array();
   std::string predictive_csv = "feature,recorded,scale,q05,median,q95,undefined_share,inside\n";
   for (const PredictiveFeature& f : post.predictive) {
-    predictive.push_back({{"feature", f.name}, {"recorded", f.recorded}, {"scale", f.scale}, {"q05", f.q05},
-                          {"median", f.q50}, {"q95", f.q95}, {"undefined_share", f.undefined_share},
-                          {"inside", f.inside}});
     predictive_csv += f.name + ",";
     for (double v : {f.recorded, f.scale, f.q05, f.q50, f.q95, f.undefined_share})
       io::AppendCsvNumber(predictive_csv, v), predictive_csv += ",";
     predictive_csv += f.inside ? "1\n" : "0\n";
   }
   out.Open("predictive.csv") << predictive_csv;
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  out.Open("posterior.json") << nlohmann::json{{"recording", recording.source},
-                                               {"likelihood", "log L = -1/2 sum over the fit window's features of "
-                                                              "((model - recorded) / scale)^2; uniform prior in the bounds"},
-                                               {"fit_window_features", post.recording_features},
-                                               {"walkers", post.walkers},
-                                               {"steps", post.steps},
-                                               {"burn_in", post.burn_in},
-                                               {"acceptance", post.acceptance},
-                                               {"runs", post.runs},
-                                               {"failed_runs", post.failed_runs},
-                                               {"parameters", parameters},
-                                               {"map_log_likelihood", number(post.map_log_likelihood)},
-                                               {"predictive_runs", post.predictive_runs},
-                                               {"failed_predictive_runs", post.failed_predictive_runs},
-                                               {"predictive", predictive},
-                                               {"coverage_90", number(post.coverage)}}
-                                    .dump(2)
-                             << "\n";
+  out.Open("posterior.json") << PosteriorToJson(post, recording).dump(2) << "\n";
   out.Open("map-case.json") << post.map_document.dump(2) << "\n";
 
   // Each parameter's walkers over the steps: the median and the 5-95 % spread of the ensemble, and the log-likelihood.

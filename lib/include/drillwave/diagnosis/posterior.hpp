@@ -78,6 +78,10 @@ Posterior SamplePosterior(const nlohmann::json& document, const Recording& recor
                           const std::vector<FitParameter>& parameters, const PosteriorOptions& options,
                           const PosteriorProgress& progress = nullptr);
 
+// posterior.json's content: the settings, acceptance, runs, each parameter's summary, the predictive bands and their
+// coverage.
+nlohmann::json PosteriorToJson(const Posterior& posterior, const Recording& recording);
+
 // posterior_samples.csv (step, walker, log_likelihood, one column per pointer: after burn-in; what `stability --map
 // --draws` reads), posterior.json, predictive.csv, posterior.svg (each parameter's walkers over the steps), map-case.json
 // (the sample of highest likelihood), report.md.
