@@ -5,8 +5,10 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 # The Python module for Debian's interpreter, for which install-deps.sh installed NumPy and pytest (a python3 found
 # first on PATH, e.g. pyenv's, may have neither, and its tests would be skipped).
-python=()
-[[ -x /usr/bin/python3 ]] && python=(-DPython3_EXECUTABLE=/usr/bin/python3)
+# DRILLWAVE_PYTHON=ON: a build folder first configured by run-default.sh, before pybind11 was installed, keeps the
+# module off otherwise.
+python=(-DDRILLWAVE_PYTHON=ON)
+[[ -x /usr/bin/python3 ]] && python+=(-DPython3_EXECUTABLE=/usr/bin/python3)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${python[@]}" >/dev/null
 cmake --build build -j"$(nproc)"
 # `scoring`: a label for acceptance scores kept out of the test run (none today; the synthetic recordings' score is
