@@ -17,7 +17,8 @@ namespace {
 
 std::string Number(double v, int digits = 4) { return std::isfinite(v) ? Significant(v, digits) : "nan"; }
 std::string Suppression(const ControllerResult& r) {
-  if (!r.run_failure.empty()) return "run blew up";
+  if (!r.run_failure.empty())  // a run over its step budget did not blow up: it was stopped as too costly
+    return r.run_failure.find("step budget exhausted") != std::string::npos ? "run stopped (step budget)" : "run blew up";
   return r.suppressed_after_s ? Number(*r.suppressed_after_s, 3) : "not suppressed";
 }
 
@@ -115,13 +116,18 @@ void WriteDelayMarkdown(const std::vector<ControllerComparison>& delays, std::os
       << "Every law with the drive's torque acting the delay after its controller computes it (the stiff PI too, "
       << "before and after the handover), SoftSpeed and Z-Torque tuned as above (at the nominal delay) and held; the "
       << "reduction is against the stiff PI at the same delay; benefit: a median severity below the stiff PI's at the "
-      << "same delay (nan, the bit turned backwards or the run blew up, is worse than any). The linear verdict "
+      << "same delay (nan, the bit turned backwards, the run blew up or took more than " << kDelayedWorkFactor
+      << " times the costliest nominal run's steps, is worse than any). The linear verdict "
       << "includes the delay (retarded terms of the drive's speed and string torque in the linearization).\n\n";
   WriteMarkdownHeader("| actuator delay [s] ", out);
   for (const ControllerComparison& c : delays)
     for (const ControllerResult& r : c.laws)
       WriteMarkdownRow("| " + Number(c.actuator_delay_s) + " ", r, out);
   out << "\n";
+  for (const ControllerComparison& c : delays)
+    for (const ControllerResult& r : c.laws)
+      if (!r.run_failure.empty())
+        out << "- " << r.law << " at " << Number(c.actuator_delay_s) << " s delay: " << r.run_failure << "\n";
   for (std::size_t law = 1; law < delays.front().laws.size(); ++law) {
     const auto lost = std::find_if(delays.begin(), delays.end(), [&](const ControllerComparison& c) {
       return !Benefits(c, c.laws[law]);
