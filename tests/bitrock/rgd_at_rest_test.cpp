@@ -43,12 +43,18 @@ TEST(RgdAtRest, AStuckBitsCuttersPushBackNoHarderThanTheStringPresses) {
   const double net = stuck.drive_force - stuck.cut_weight;
   EXPECT_GE(net, 0.0);
   EXPECT_LE(net, law.ContactForce());
+  // On the edge of lifting (net 0), yet it lifts only when the string pulls: the held regime's margin is the drive
+  // force, not the net force (with the net force, the held bit lifted at once, slipped back, fell and stuck again
+  // every 4e-11 s: the Inclined string's Z-Torque behind 0.1 s, at 58.65 s).
+  EXPECT_DOUBLE_EQ(stuck.lift_margin, pressing);
   // Pulled up, nothing pushes back.
   EXPECT_DOUBLE_EQ(At(law, Turn::kStuck, Axial::kHeld, deep, -1e3).cut_weight, 0.0);
   // A shallow depth asks less than the string presses: the cutting weight as it is.
   const double shallow = 2.6e-3;
   EXPECT_DOUBLE_EQ(At(law, Turn::kStuck, Axial::kHeld, shallow, pressing).cut_weight,
                    law.CutWeightPerDepth() * shallow);
+  EXPECT_DOUBLE_EQ(At(law, Turn::kStuck, Axial::kHeld, shallow, pressing).lift_margin,
+                   pressing - law.CutWeightPerDepth() * shallow);
   // Twisted forward, or turning, the cutting weight is the depth's, whatever presses.
   EXPECT_DOUBLE_EQ(At(law, Turn::kStuck, Axial::kHeld, deep, pressing, 500).cut_weight, law.CutWeightPerDepth() * deep);
   EXPECT_DOUBLE_EQ(At(law, Turn::kForward, Axial::kHeld, deep, pressing).cut_weight, law.CutWeightPerDepth() * deep);

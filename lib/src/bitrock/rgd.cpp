@@ -21,7 +21,10 @@ void RgdLaw::OnBottom(Turn turn, Axial axial, double w, bool cutting, double z, 
   // rest its cutters answer the weight pressing them, up to the cutting weight, and no more. (Twisted forward, stuck
   // and lifted is consistent: the cutters keep cutting when it turns; the independent simulator's bouncing bit lifts
   // so.)
-  if (turn == Turn::kStuck && f.drive_torque < 0) f.cut_weight = std::min(f.cut_weight, std::max(f.drive_force, 0.0));
+  const bool reaction = turn == Turn::kStuck && f.drive_torque < 0 && f.cut_weight > std::max(f.drive_force, 0.0);
+  if (reaction) f.cut_weight = std::max(f.drive_force, 0.0);
+  // Held with its cutters a reaction, the bit is on the edge of lifting (net force 0) but lifts only when pulled up.
+  f.lift_margin = reaction ? f.drive_force : f.drive_force - f.cut_weight;
   const double cut_torque = cutting ? CutTorquePerDepth() * d * strength : 0.0;
   const double contact_force = ContactForce() * strength;
   double contact = 0;  // W_f

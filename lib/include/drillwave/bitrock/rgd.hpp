@@ -33,6 +33,10 @@ struct RgdForces {
   double drive_torque = 0, drive_force = 0;  // from the string (and gravity) on the bit at its current speeds
   double torque = 0, weight = 0;             // the rock's reaction while moving (slip values)
   double cut_weight = 0;
+  // Held axially, how far the bit is from lifting: the net force on the wear flats (drive force less the cut weight),
+  // or, where a stuck bit's cutters answer what presses them (RgdLaw::OnBottom), the drive force itself: such a bit
+  // lifts only when the string pulls it up.
+  double lift_margin = 0;
   double static_forward = 0, static_backward = 0;  // torque the contact can hold at rest
 
   AtRest RotationAtRest() const { return {drive_torque, {static_forward, static_backward}}; }
@@ -134,7 +138,7 @@ struct RgdRegimes {
         if (axial == Axial::kLifting) return k == 2 ? -v : 1.0;
         const RgdForces f = forces();  // held: the net force must stay within [0, a sigma l]
         const double net = f.drive_force - f.cut_weight;
-        return k == 2 ? contact_force - net : net;
+        return k == 2 ? contact_force - net : f.lift_margin;
       }
       case 4: {
         // 1 nm of hysteresis: right after a landing (or lift-off) the depth of cut is zero to rounding, and the cut
