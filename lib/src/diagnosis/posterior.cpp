@@ -55,9 +55,9 @@ void CheckOptions(const std::vector<FitParameter>& parameters, const PosteriorOp
     throw InputError("--predictive-draws", "expected a whole number in [0, 10000], got " +
                                                std::to_string(p.predictive_draws));
   if (!(p.stretch > 1 && p.stretch <= 10))
-    throw InputError("--stretch", "expected a number in (1, 10], got " + ReadableNumber(p.stretch));
+    throw InputError("stretch", "expected a number in (1, 10], got " + ReadableNumber(p.stretch));
   if (!(p.start_spread > 0 && p.start_spread <= 1))
-    throw InputError("--start-spread", "expected a share in (0, 1], got " + ReadableNumber(p.start_spread));
+    throw InputError("start_spread", "expected a share in (0, 1], got " + ReadableNumber(p.start_spread));
   if (p.threads < 1) throw InputError("-j", "expected a whole number >= 1, got " + std::to_string(p.threads));
 }
 
