@@ -14,6 +14,17 @@ using drillwave::integration::IntegratorOptions;
 using drillwave::integration::Piece;
 using drillwave::integration::Simulator;
 
+// What every small process below shares: no delays (no step limit), nothing to prepare or store per piece, no
+// breakpoints.
+struct PlainProcess {
+  double MaxStep() const { return std::numeric_limits<double>::infinity(); }
+  void BeginStep(double) {}
+  double PrepareCommit(const Piece&, double, double) { return 0; }
+  void Commit(const Piece&) {}
+  double NextBreakpoint() const { return std::numeric_limits<double>::infinity(); }
+  void OnBreakpoint(double) {}
+};
+
 // x' = v(mode) with a witness g = x in mode 0 (moving down from where it starts) that switches to mode 1 (x' = +1)
 // when x reaches 0 from above, or leaves it at once if x starts at exactly 0 and moves down.
 class Descent {
@@ -113,15 +124,12 @@ TEST(SimulatorHistory, EveryPieceAcceptedBelowTheFloorIsPreparedBeforeItsCommit)
 // Two modes that hand over to each other every 4e-11 s (x' = -1 until x = -h, then +1 until x = +h, h = 2e-11): no
 // two events at the same instant, yet no time passes. The loop must stop with the time and the state, not store
 // pieces for ever (the coupled bit's stuck-lifted-dropped cycle of issue 41 did so until memory ran out).
-class Chatter {
+class Chatter : public PlainProcess {
  public:
   int Dimension() const { return 1; }
   void Derivatives(const std::vector<double>&, std::vector<double>& dxdt, double) const {
     dxdt[0] = mode_ == 0 ? -1.0 : 1.0;
   }
-  double MaxStep() const { return std::numeric_limits<double>::infinity(); }
-  void BeginStep(double) {}
-  double PrepareCommit(const Piece&, double, double) { return 0; }
   void Commit(const Piece&) { ++commits_; }
   int NumWitnesses() const { return 1; }
   double Witness(int, double, const std::vector<double>& x) const { return mode_ == 0 ? x[0] + kH : kH - x[0]; }
@@ -129,8 +137,6 @@ class Chatter {
     mode_ = 1 - mode_;
     return true;
   }
-  double NextBreakpoint() const { return std::numeric_limits<double>::infinity(); }
-  void OnBreakpoint(double) {}
   long commits() const { return commits_; }
 
  private:
@@ -157,19 +163,13 @@ TEST(SimulatorEvents, ModesChatteringOnAVanishingTimeScaleStopTheRunWithTimeAndS
 
 // x' = 10 x escapes to infinity without any step-size trouble (a delayed feedback loop without a limit did, to
 // 1e33 rpm, for 2.4 million stored steps and 3 GB): stopped once it has grown 1e12 times, at ln(1e12) / 10 = 2.76 s.
-class Growth {
+class Growth : public PlainProcess {
  public:
   int Dimension() const { return 1; }
   void Derivatives(const std::vector<double>& x, std::vector<double>& dxdt, double) const { dxdt[0] = 10 * x[0]; }
-  double MaxStep() const { return std::numeric_limits<double>::infinity(); }
-  void BeginStep(double) {}
-  double PrepareCommit(const Piece&, double, double) { return 0; }
-  void Commit(const Piece&) {}
   int NumWitnesses() const { return 0; }
   double Witness(int, double, const std::vector<double>&) const { return 1.0; }
   bool OnEvent(int, double, std::vector<double>&) { return false; }
-  double NextBreakpoint() const { return std::numeric_limits<double>::infinity(); }
-  void OnBreakpoint(double) {}
 };
 
 TEST(SimulatorGrowth, ASolutionEscapingToInfinityIsStoppedWhenItHasGrownATrillionTimes) {
