@@ -107,11 +107,16 @@ TEST(Features, TheFastPartIsTheContentAboveTwoHertzWithoutTheCyclesHarmonics) {
     r.time_s.push_back(t);
     r.channels[0].push_back(v + 0.1 * std::sin(2 * kPi * 5 * t));
   }
-  EXPECT_NEAR(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_std"), 0.1 / std::sqrt(2.0), 0.002);
+  // The 5-Hz line is in the fast band's upper half (4.5-10 Hz), nothing in its lower half (2-4.5 Hz).
+  EXPECT_NEAR(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_high_std"), 0.1 / std::sqrt(2.0), 0.002);
+  EXPECT_LT(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_low_std"), 0.01);
   // A window of a prime number of samples (4751: the spectrum is zero-padded to a power of two) reads the same.
-  EXPECT_NEAR(MeasureFeatures(r, 0, 47.5).Value("top_torque_kNm fast_std"), 0.1 / std::sqrt(2.0), 0.002);
+  EXPECT_NEAR(MeasureFeatures(r, 0, 47.5).Value("top_torque_kNm fast_high_std"), 0.1 / std::sqrt(2.0), 0.002);
   for (double& v : r.channels[0]) v = 9 + 3 * std::sin(2 * kPi * 1.75 * (&v - r.channels[0].data()) * 0.01);
-  EXPECT_LT(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_std"), 0.01);  // a 3-kN m line at 1.75 Hz
+  EXPECT_LT(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_low_std"), 0.01);  // a 3-kN m line at 1.75 Hz
+  for (double& v : r.channels[0]) v = 9 + 0.2 * std::sin(2 * kPi * 3 * (&v - r.channels[0].data()) * 0.01);
+  EXPECT_NEAR(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_low_std"), 0.2 / std::sqrt(2.0), 0.004);
+  EXPECT_LT(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_high_std"), 0.01);  // a 3-Hz line
 }
 
 TEST(Features, OffBottomShareIsTheTimeTheWeightOnBitIsGone) {

@@ -52,7 +52,14 @@ class EffectSelection {
   Candidate Fit(const std::vector<int>& set, std::vector<double> start, int threads, bool screening);
   void FitAll(const std::vector<std::vector<int>>& sets, const std::function<std::vector<double>(std::size_t)>& start);
 
-  bool Qualifies(const Candidate& c, double reference_error, double reference_aic) const;
+  // What a candidate must beat: the baseline or the best smaller set of its effects (its held-out error, its AIC, and
+  // its held-out error in each draw, paired with the candidate's by seed).
+  struct Reference {
+    double error, aic;
+    const std::vector<double>* draw_errors;
+  };
+  bool Qualifies(const Candidate& c, const Reference& reference) const;
+  Reference BaselineReference() const;
   std::vector<int> IndicesOf(const Candidate& c) const;
   int Representative(const std::vector<int>& set) const;
   bool QualifiesAgainstSubsets(int index) const;

@@ -95,7 +95,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
     };
     // A drive soft enough to let the top speed move also absorbs the torsional waves that make the bit stick: where
     // the top moves more, a smoother bit adds to the evidence (no other effect moves the top).
-    const double top_moves = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_std"));
+    const double top_moves = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_low_std"));
     const double smoother = top_moves > kWeakEvidence ? BitRunsSmoother(m, r) : 0.0;
     const double z = top_moves + smoother;
     if (z > kWeakEvidence)
@@ -166,22 +166,23 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
                                    Describe(m, r, "stick_fraction") + "; " + Describe(m, r, "bit_rpm std");
     effects.push_back(e);
   }
-  // kelvin_voigt: the fast part of the bit speed and weight on bit is weaker than in the model: damping that grows
-  // with frequency.
+  // kelvin_voigt: the fast part of the bit speed and surface torque is weaker than in the model, most so at the
+  // higher frequencies: damping that grows with frequency.
   {
     Effect e{"kelvin_voigt", "Kelvin-Voigt (strain-rate) damping of the pipe in torsion", {}, nullptr, 0, ""};
     e.parameters = {{"eta_s", "s", 1e-3, 0.2, true, 0.02}};
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["string"]["kelvin_voigt_s"] = v[0]; };
-    const double z = std::max(Z(m, r, "bit_rpm fast_std"), 0.0) + std::max(Z(m, r, "top_torque_kNm fast_std"), 0.0);
+    const double z =
+        std::max(Z(m, r, "bit_rpm fast_high_std"), 0.0) + std::max(Z(m, r, "top_torque_kNm fast_high_std"), 0.0);
     if (z > kWeakEvidence) e.strength = z, e.evidence = "less fast motion than in the model: " +
-                                            Describe(m, r, "bit_rpm fast_std") + "; " +
-                                            Describe(m, r, "top_torque_kNm fast_std");
+                                            Describe(m, r, "bit_rpm fast_high_std") + "; " +
+                                            Describe(m, r, "top_torque_kNm fast_high_std");
     effects.push_back(e);
   }
   // dc_motor: the drive's torque follows its speed error with a lag (armature inductance) and an extra damping
-  // K^2/R: above the lag's corner the top is held by its inertia alone and lets the string's torsional modes through,
-  // so the surface torque's fast part is stronger than a PI drive's (rec12's point on the bottom, with the KEY's
-  // motor: 2-10 Hz 0.65 kN m against 0.39 without, held out), and its spread differs.
+  // K^2/R: above the lag's corner the top is held by its inertia alone, so the surface torque's fast content moves
+  // between the halves of the fast band (train rec05, with the KEY's motor: 2-4.5 Hz 0.21 kN m against 0.11 without,
+  // 4.5-10 Hz 0.04 against 0.09), and its spread differs.
   {
     Effect e{"dc_motor", "a DC motor behind the speed controller (armature lag, back-EMF damping)", {}, nullptr, 0, ""};
     e.parameters = {{"electrical_time_constant_s", "s", 0.005, 1.0, true, 0.1},
@@ -193,9 +194,12 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
                                           {"resistance_ohm", resistance},
                                           {"inductance_H", v[0] * resistance}};
     };
-    const double z = std::max(-Z(m, r, "top_torque_kNm fast_std"), 0.0) + 0.5 * std::abs(Z(m, r, "top_torque_kNm std"));
+    const double z = std::max(std::abs(Z(m, r, "top_torque_kNm fast_low_std")),
+                              std::abs(Z(m, r, "top_torque_kNm fast_high_std"))) +
+                     0.5 * std::abs(Z(m, r, "top_torque_kNm std"));
     if (z > kWeakEvidence) e.strength = z, e.evidence = "the surface torque's dynamics differ: " +
-                                            Describe(m, r, "top_torque_kNm fast_std") + "; " +
+                                            Describe(m, r, "top_torque_kNm fast_low_std") + "; " +
+                                            Describe(m, r, "top_torque_kNm fast_high_std") + "; " +
                                             Describe(m, r, "top_torque_kNm std");
     effects.push_back(e);
   }

@@ -120,11 +120,12 @@ double Amplitude(const std::vector<double>& x, double dt, double hz) {
   return 2 * std::hypot(re, im) / x.size();
 }
 
-// The rms of x's content in [lo_hz, hi_hz] (mean removed): the Hann-windowed periodogram summed over the band
-// (Parseval). The band's edge is sharp where a moving average's side lobes pass a stick-slip cycle's harmonics: on
-// rec10's fit window the surface torque's 2-10 Hz content was 0.246 kN m in the model against 0.054 recorded (the
-// Kelvin-Voigt damping the model lacked), where a 0.5-s moving average's residual read 0.32 against 0.23.
-double BandRms(const std::vector<double>& x, double dt, double lo_hz, double hi_hz) {
+// The rms of x's content (mean removed) in each band between consecutive edges_hz ([e0, e1], (e1, e2], ...): the
+// Hann-windowed periodogram summed over the band (Parseval), one spectrum for all. The band's edge is sharp where a
+// moving average's side lobes pass a stick-slip cycle's harmonics: on rec10's fit window the surface torque's 2-10 Hz
+// content was 0.246 kN m in the model against 0.054 recorded (the Kelvin-Voigt damping the model lacked), where a
+// 0.5-s moving average's residual read 0.32 against 0.23.
+std::vector<double> BandRms(const std::vector<double>& x, double dt, const std::vector<double>& edges_hz) {
   const std::size_t n = x.size();
   // Zero-padded to a power of two: the padded periodogram samples the same windowed spectrum more finely, and the
   // FFT of a length with a large prime factor is quadratic (a 47.5-s window at 100 Hz has 4751 samples, a prime:
@@ -142,11 +143,14 @@ double BandRms(const std::vector<double>& x, double dt, double lo_hz, double hi_
   std::vector<std::complex<double>> spectrum;
   Eigen::FFT<double> fft;
   fft.fwd(spectrum, windowed);
-  double power = 0;
+  std::vector<double> rms(edges_hz.size() - 1, 0.0);
   const double bin_hz = 1 / (padded * dt);
   for (std::size_t k = 1; 2 * k < padded; ++k)  // both signs of each frequency; the Nyquist bin is left out
-    if (k * bin_hz >= lo_hz && k * bin_hz <= hi_hz) power += 2 * std::norm(spectrum[k]);
-  return std::sqrt(power / (padded * window_power));
+    for (std::size_t b = 0; b + 1 < edges_hz.size(); ++b)
+      if ((b == 0 ? k * bin_hz >= edges_hz[b] : k * bin_hz > edges_hz[b]) && k * bin_hz <= edges_hz[b + 1])
+        rms[b] += 2 * std::norm(spectrum[k]);
+  for (double& r : rms) r = std::sqrt(r / (padded * window_power));
+  return rms;
 }
 
 // The lag in [0, period) at which the bit speed follows the surface torque most closely.
@@ -212,7 +216,10 @@ std::map<std::string, double> Measure(const Recording& r, std::size_t first, std
     for (std::size_t i = 0; i < x.size(); ++i) fast[i] = x[i] - slow[i];
     f[r.names[j] + " mean"] = Mean(raw);
     f[r.names[j] + " std"] = Std(x);
-    f[r.names[j] + " fast_std"] = BandRms(raw, dt, 1 / o.fast_window_s, 0.5 / o.smoothing_s);
+    const FastBands bands = FastBandsOf(o);
+    const std::vector<double> fast_rms = BandRms(raw, dt, {bands.low_hz, bands.split_hz, bands.high_hz});
+    f[r.names[j] + kFastLow] = fast_rms[0];
+    f[r.names[j] + kFastHigh] = fast_rms[1];
     if (r.names[j] == o.bit_speed) bit = x;
     if (r.names[j] == o.top_speed) top = x;
     if (r.names[j] == o.top_torque) torque = x;
@@ -270,6 +277,11 @@ double Floor(const std::string& name, double value, const std::map<std::string, 
 }
 
 }  // namespace
+
+FastBands FastBandsOf(const FeatureOptions& o) {
+  const double low = 1 / o.fast_window_s, high = 0.5 / o.smoothing_s;
+  return {low, std::sqrt(low * high), high};
+}
 
 std::string EnvelopeCorrelationName(double lag_s) {
   char text[32];

@@ -67,7 +67,7 @@ Effect SoftDrive(const nlohmann::json& doc, const FeatureSet& m, const FeatureSe
   // (the droop, which a stiff speed loop does not have). A drive without integral already droops: then a still top
   // says that the model does not stick and slip, not that its drive is stiff, and the refit is offered unproposed.
   if (case_ki == 0) return e;
-  const double swings = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_std"));
+  const double swings = std::max(-Z(m, r, "top_rpm std"), -0.5 * Z(m, r, "top_rpm fast_low_std"));
   const Feature* line = r.Find(kDriveDroop);
   const double droops = line && std::isfinite(line->value)
                             ? std::max((OrZero(m.Value(kDriveDroop)) - line->value) / line->scale, 0.0)
