@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "svg_points.hpp"
+
 #include "drillwave/io/svg_heatmap.hpp"
 
 namespace drillwave::io {
@@ -25,23 +27,7 @@ std::size_t Count(const std::string& text, const std::string& what) {
   return n;
 }
 
-// The "points" attributes of all polylines, as (x, y) pixel pairs.
-std::vector<std::pair<double, double>> PolylinePoints(const std::string& svg) {
-  std::vector<std::pair<double, double>> points;
-  const std::string key = "points=\"";
-  for (std::size_t at = svg.find(key); at != std::string::npos; at = svg.find(key, at + 1)) {
-    const char* p = svg.c_str() + at + key.size();
-    while (*p != '"') {
-      char* end = nullptr;
-      const double x = std::strtod(p, &end);
-      const double y = std::strtod(end + 1, &end);  // past ','
-      points.emplace_back(x, y);
-      p = end;
-      while (*p == ' ') ++p;
-    }
-  }
-  return points;
-}
+using drillwave::testing::PolylinePoints;
 
 Series Sine(const std::string& label, int n, double amplitude) {
   Series s{label, {}, {}};
@@ -126,6 +112,52 @@ TEST(WriteSvg, SpansAreShadedInEveryPanelAndLabelledOnce) {
   const double x = Attribute(svg, "x", span), width = Attribute(svg, "width", span);
   EXPECT_NEAR(x, 80 + 900 / 9.9, 0.01);
   EXPECT_NEAR(width, 900 * 4 / 9.9, 0.02);
+}
+
+// Samples set apart from a line (masked as artefacts) are dots of their own colour, in the legend too, and take no
+// colour of the palette from the lines after them.
+TEST(WriteSvg, DotsAreCirclesApartFromTheLinesInAColourOfTheirOwn) {
+  Series masked{"masked (artefact)", {2, 2.1, 5}, {40, 41, -30}, Mark::kDots, "#9a9a9a"};
+  const std::string svg =
+      Svg(Figure{"", "time [s]", {Panel{"v", {Sine("recording", 100, 1), masked, Sine("model", 100, 2)}}}});
+  EXPECT_EQ(Count(svg, "<polyline"), 2u);
+  const std::size_t dots = svg.find("<g class=\"dots\" fill=\"#9a9a9a\">");
+  ASSERT_NE(dots, std::string::npos);
+  EXPECT_EQ(Count(svg.substr(dots, svg.find("</g>", dots) - dots), "<circle"), 3u);
+  EXPECT_NE(svg.find("stroke=\"#1f77b4\""), std::string::npos);  // the recording, first of the palette
+  EXPECT_NE(svg.find("stroke=\"#d62728\""), std::string::npos);  // the model, second
+  const std::size_t legend = svg.find("<g class=\"legend\">");
+  ASSERT_NE(legend, std::string::npos);
+  const std::size_t entry = svg.find(">masked (artefact)<", legend);
+  ASSERT_NE(entry, std::string::npos);
+  const std::size_t key = svg.rfind("<circle", entry);  // a dot, not a line, stands for them
+  EXPECT_TRUE(key != std::string::npos && key > legend);
+  EXPECT_NE(svg.find(">40<"), std::string::npos);  // the dots count for the y axis: they are data
+}
+
+// A zoom on a few cycles: its x axis spans only its own series, with its tick labels and label under it; the panels
+// above keep the shared axis (labelled under the last of them) and its spans.
+TEST(WriteSvg, APanelWithAnXAxisOfItsOwnSpansItsSeriesOnly) {
+  Series zoomed = Sine("zoomed", 100, 1);
+  zoomed.x.erase(zoomed.x.begin(), zoomed.x.begin() + 80), zoomed.y.erase(zoomed.y.begin(), zoomed.y.begin() + 80);
+  Figure figure{"", "time [s]", {Panel{"a [m]", {Sine("a", 100, 1)}}, Panel{"b [m]", {Sine("b", 100, 1)}}}};
+  figure.panels.push_back(Panel{"a [m]", {zoomed}, "time [s], zoomed on the last two"});
+  figure.spans = {{"held out", 5, 9.9}};
+  const std::string svg = Svg(figure);
+  EXPECT_EQ(Count(svg, "<rect class=\"span\""), 2u);  // in the panels on the shared axis only
+  EXPECT_EQ(Count(svg, ">time [s]<"), 1u);
+  EXPECT_EQ(Count(svg, ">time [s], zoomed on the last two<"), 1u);
+  const auto points = PolylinePoints(svg);
+  ASSERT_EQ(points.size(), 2u * 100 + 20);
+  // The zoom's 20 points, x in [8, 9.9], fill the data area's width (on the shared axis: its right fifth).
+  EXPECT_NEAR(points[200].first, 80, 0.01);
+  EXPECT_NEAR(points.back().first, 80 + 900, 0.01);
+  EXPECT_NE(svg.find(">9.8<"), std::string::npos);  // its tick labels, finer than the shared axis's
+  // Room for the shared axis's labels under the second panel, and for the zoom's under it.
+  const std::size_t zoom_frame = svg.rfind("<rect", svg.rfind("fill=\"none\" stroke=\"#444\""));
+  const double zoom_top = Attribute(svg, "y", zoom_frame);
+  EXPECT_GE(zoom_top, 40 + 2 * 220 + 16 + 50);
+  EXPECT_NEAR(Attribute(svg, "height", 0), zoom_top + 220 + 50, 0.01);
 }
 
 TEST(WriteHeatMapSvg, TheLegendsLongestLabelFitsInThePicture) {

@@ -11,6 +11,7 @@
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
+#include "channel_figure.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -41,7 +42,6 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
 
   // Artefacts, channel by channel.
   Progress progress("inspect " + ReadableText(rec.source, 200));
-  std::vector<std::vector<char>> flags;
   for (std::size_t j = 0; j < rec.names.size(); ++j) {
     progress.Count("artefacts of each channel", static_cast<double>(j), static_cast<double>(rec.names.size()),
                    "channels");
@@ -63,7 +63,7 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
     a.clean_max = *std::max_element(h.cleaned.begin(), h.cleaned.end());
     ins.artefacts.push_back(a);
     ins.cleaned.push_back(std::move(h.cleaned));
-    flags.push_back(std::move(h.flagged));
+    ins.masked.push_back(std::move(h.flagged));
   }
   auto index = [&](const std::string& name) {
     return static_cast<std::size_t>(std::find(rec.names.begin(), rec.names.end(), name) - rec.names.begin());
@@ -259,34 +259,66 @@ nlohmann::json InspectionToJson(const Inspection& ins) {
           {"findings", ins.findings}};
 }
 
-void WriteInspection(const Recording& rec, const Inspection& ins, const std::string& out_dir) {
-  io::OutputDirectory out(out_dir);
-  out.Open("findings.json") << InspectionToJson(ins).dump(2) << "\n";
+namespace {
 
-  io::Figure figure;
-  figure.title = "inspection of " + rec.source;
-  figure.x_label = "time [s]";
-  // One panel per channel, the speeds first, at most kPlottedChannels of them (the report says which are left out).
+// The channels plotted: the speeds first, then the others in the file's order, at most kPlottedChannels of them (the
+// report says which are left out).
+std::vector<std::size_t> PlottedChannels(const Recording& rec, const Inspection& ins) {
   std::vector<std::size_t> plotted;
   for (const std::string& name : {ins.bit_speed, ins.top_speed})
     for (std::size_t j = 0; j < rec.names.size(); ++j)
       if (rec.names[j] == name && std::find(plotted.begin(), plotted.end(), j) == plotted.end()) plotted.push_back(j);
   for (std::size_t j = 0; j < rec.names.size() && plotted.size() < kPlottedChannels; ++j)
     if (std::find(plotted.begin(), plotted.end(), j) == plotted.end()) plotted.push_back(j);
-  for (const std::size_t j : plotted) {
-    io::Panel panel{io::AxisLabelOfChannels({rec.names[j]}), {}};
-    panel.series.push_back({rec.names[j] + " (raw)", rec.time_s, rec.channels[j]});
-    panel.series.push_back({rec.names[j] + " (artefacts masked)", rec.time_s, ins.cleaned[j]});
-    figure.panels.push_back(panel);
-  }
+  return plotted;
+}
+
+// 1 while the bit is at rest (in a stuck episode), 0 otherwise, at each sample.
+std::vector<double> AtRest(const Recording& rec, const Inspection& ins) {
   std::vector<double> stuck(rec.time_s.size(), 0.0);
   std::size_t k = 0;
   for (std::size_t i = 0; i < rec.time_s.size(); ++i) {
     while (k < ins.stuck.size() && ins.stuck[k].end_s < rec.time_s[i]) ++k;
     stuck[i] = k < ins.stuck.size() && ins.stuck[k].begin_s <= rec.time_s[i] ? 1.0 : 0.0;
   }
-  figure.panels.push_back({"bit at rest", {{"bit at rest (1)", rec.time_s, stuck}}});
-  io::WriteSvg(figure, out.Open("plot.svg"));
+  return stuck;
+}
+
+// Channel j as recorded over [from_s, to_s], its masked samples apart.
+std::vector<io::Series> Recorded(const Recording& rec, const Inspection& ins, std::size_t j, double from_s,
+                                 double to_s) {
+  return figure_internal::RecordedSeries(rec.names[j], rec.time_s, rec.channels[j],
+                                         j < ins.masked.size() ? ins.masked[j] : std::vector<char>{}, from_s, to_s);
+}
+
+}  // namespace
+
+io::Figure InspectionFigure(const Recording& rec, const Inspection& ins) {
+  io::Figure figure;
+  figure.title = "inspection of " + rec.source;
+  figure.x_label = "time [s]";
+  const double begin = rec.time_s.front(), end = rec.time_s.back();
+  for (const std::size_t j : PlottedChannels(rec, ins))
+    figure.panels.push_back({io::AxisLabelOfChannels({rec.names[j]}), Recorded(rec, ins, j, begin, end)});
+  figure.panels.push_back({"bit at rest", {{"bit at rest (1)", rec.time_s, AtRest(rec, ins)}}});
+  // Stick-slip cycles are too short to read over a whole recording: the bit speed's last few again, on a time axis
+  // of their own (the stick-slip period, or where the bit never sticks, its oscillation's).
+  const auto bit = std::find(rec.names.begin(), rec.names.end(), ins.bit_speed);
+  if (bit == rec.names.end()) return figure;
+  const double period =
+      std::isfinite(ins.stick_slip_period_s) ? ins.stick_slip_period_s : ins.bit_oscillation_period_s;
+  const figure_internal::Zoom zoom = figure_internal::LastCycles(period, begin, end, figure.x_label, "recording");
+  const std::size_t j = static_cast<std::size_t>(bit - rec.names.begin());
+  figure.panels.push_back(figure_internal::ZoomPanel(io::AxisLabelOfChannels({ins.bit_speed}),
+                                                     Recorded(rec, ins, j, zoom.from_s, zoom.to_s), zoom));
+  return figure;
+}
+
+void WriteInspection(const Recording& rec, const Inspection& ins, const std::string& out_dir) {
+  io::OutputDirectory out(out_dir);
+  out.Open("findings.json") << InspectionToJson(ins).dump(2) << "\n";
+
+  io::WriteSvg(InspectionFigure(rec, ins), out.Open("plot.svg"));
 
   std::ostream& report = out.Open("report.md");
   report << "# Inspection of " << rec.source << "\n\n"
@@ -301,10 +333,12 @@ void WriteInspection(const Recording& rec, const Inspection& ins, const std::str
   if (rec.names.size() > kAllPairsChannels)
     report << "\nWith " << rec.names.size() << " channels (more than " << kAllPairsChannels
            << "), each channel is correlated with the two speeds only.\n";
-  if (plotted.size() < rec.names.size())
-    report << "\n`plot.svg` shows " << plotted.size() << " of the " << rec.names.size()
+  const std::size_t plotted = PlottedChannels(rec, ins).size();
+  if (plotted < rec.names.size())
+    report << "\n`plot.svg` shows " << plotted << " of the " << rec.names.size()
            << " channels (the speeds first, then in the file's order).\n";
-  report << "\nFiles: `findings.json` (every number above), `plot.svg` (raw and cleaned channels, the stuck flag).\n";
+  report << "\nFiles: `findings.json` (every number above), `plot.svg` (each channel as recorded, its masked samples "
+            "as grey dots; the stuck flag; the bit speed's last few stick-slip cycles zoomed).\n";
   out.Commit();
 }
 

@@ -214,6 +214,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   DiagnosisLoop loop;
   loop.masked_samples = prepared.masked_samples;
   loop.channels_left_whole = prepared.channels_left_whole;
+  loop.bit_speed = prepared.features.bit_speed;
   loop.noise = prepared.noise;
   loop.recording_fit = prepared.fit;
   loop.recording_held_out = prepared.held_out;

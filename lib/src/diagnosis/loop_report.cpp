@@ -5,10 +5,12 @@
 #include <sstream>
 
 #include "drillwave/core/format.hpp"
+#include "drillwave/diagnosis/signals.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
+#include "channel_figure.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -17,28 +19,54 @@ std::string Html(const std::string& text) { return io::EscapeXml(text); }
 
 std::string Cell(double v, int digits = 4) { return std::isfinite(v) ? Significant(v, digits) : "-"; }
 
-// Recording, baseline and fitted model, channel by channel, over the fit and held-out windows.
-io::Figure ChannelsFigure(const DiagnosisLoop& loop, const Recording& rec) {
+// The samples the loop masked as artefacts in each of the channels `names`: the loop keeps only their counts, and it
+// masks each channel alone and deterministically (MaskArtefacts), so masking them again finds the same samples.
+std::vector<std::vector<char>> MaskedSamples(const Recording& rec, const std::vector<std::string>& names) {
+  Recording chosen{rec.source, rec.time_s, {}, {}, rec.sample_interval_s};
+  for (const std::string& name : names) chosen.names.push_back(name), chosen.channels.push_back(rec.Channel(name));
+  return MaskArtefacts(chosen).flagged;
+}
+
+// Channel j: the recording over [from_s, to_s] (its masked samples apart), the baseline and the fitted model.
+std::vector<io::Series> ChannelSeries(const DiagnosisLoop& loop, const Recording& rec, std::size_t j,
+                                      const std::vector<char>& masked, double from_s, double to_s) {
+  const Recording& base = loop.baseline_model;
+  std::vector<io::Series> series =
+      figure_internal::RecordedSeries("recording", rec.time_s, rec.Channel(base.names[j]), masked, from_s, to_s);
+  series.push_back({"baseline", base.time_s, base.channels[j]});
+  if (loop.kept >= 0) series.push_back({"fitted", loop.fitted_model.time_s, loop.fitted_model.channels[j]});
+  return series;
+}
+
+}  // namespace
+
+io::Figure DiagnosisFigure(const DiagnosisLoop& loop, const Recording& rec) {
   io::Figure figure;
   figure.title = "recording, baseline and fitted model (fit window, then held out)";
   figure.x_label = "recording time [s]";
   figure.spans = {{"fit window", loop.recording_fit.begin_s, loop.recording_fit.end_s},
                   {"held out", loop.recording_held_out.begin_s, loop.recording_held_out.end_s}};
   const Recording& base = loop.baseline_model;
-  for (std::size_t j = 0; j < base.names.size(); ++j) {
-    io::Panel panel{io::AxisLabelOfChannels({base.names[j]}), {}};
-    std::vector<double> t, y;
-    const auto& recorded = rec.Channel(base.names[j]);
-    for (std::size_t i = 0; i < rec.time_s.size(); ++i)
-      if (rec.time_s[i] >= base.time_s.front() && rec.time_s[i] <= base.time_s.back())
-        t.push_back(rec.time_s[i]), y.push_back(recorded[i]);
-    panel.series.push_back({"recording", t, y});
-    panel.series.push_back({"baseline", base.time_s, base.channels[j]});
-    if (loop.kept >= 0) panel.series.push_back({"fitted", loop.fitted_model.time_s, loop.fitted_model.channels[j]});
-    figure.panels.push_back(panel);
-  }
+  if (base.names.empty() || base.time_s.empty()) return figure;
+  const std::vector<std::vector<char>> masked = MaskedSamples(rec, base.names);
+  for (std::size_t j = 0; j < base.names.size(); ++j)
+    figure.panels.push_back({io::AxisLabelOfChannels({base.names[j]}),
+                             ChannelSeries(loop, rec, j, masked[j], base.time_s.front(), base.time_s.back())});
+  // Stick-slip cycles are too short to compare over the whole span: the bit speed's last few of the held-out window
+  // again, on a time axis of their own, where the model's cycles are judged.
+  const auto bit = std::find(base.names.begin(), base.names.end(), loop.bit_speed);
+  if (bit == base.names.end()) return figure;
+  const std::size_t j = static_cast<std::size_t>(bit - base.names.begin());
+  const figure_internal::Zoom zoom =
+      figure_internal::LastCycles(loop.recording_held_out.Value("period_s"), loop.recording_held_out.begin_s,
+                                  loop.recording_held_out.end_s, figure.x_label, "held-out window");
+  figure.panels.push_back(figure_internal::ZoomPanel(io::AxisLabelOfChannels({loop.bit_speed}),
+                                                     ChannelSeries(loop, rec, j, masked[j], zoom.from_s, zoom.to_s),
+                                                     zoom));
   return figure;
 }
+
+namespace {
 
 void FeatureTable(std::ostream& out, const FeatureSet& recording, const FeatureSet& before, const FeatureSet& after) {
   out << "<table><tr><th>feature</th><th>recording</th><th>scale</th><th>baseline</th><th>(scales)</th>"
@@ -83,7 +111,7 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
         << (in_regime ? "only those are judged, the fits running draw " + std::to_string(loop.fit_draw) + "."
                       : std::string("none did: all are judged.")) << "</p>\n";
   std::ostringstream svg;
-  io::WriteSvg(ChannelsFigure(loop, rec), svg);
+  io::WriteSvg(DiagnosisFigure(loop, rec), svg);
   std::string picture = svg.str();
   if (picture.rfind("<?xml", 0) == 0) picture = picture.substr(picture.find("?>") + 2);  // inline: no prolog
   out << "<figure id=\"channels\">" << picture << "</figure>\n";
@@ -144,7 +172,7 @@ void WriteDiagnosisLoop(const DiagnosisLoop& loop, const Recording& rec, const s
   out.Open("diagnosis.json") << DiagnosisLoopToJson(loop).dump(2) << "\n";
   out.Open("fitted-case.json") << loop.fitted_document.dump(2) << "\n";
   out.Open("case.json") << loop.baseline_document.dump(2) << "\n";
-  io::WriteSvg(ChannelsFigure(loop, rec), out.Open("plot.svg"));
+  io::WriteSvg(DiagnosisFigure(loop, rec), out.Open("plot.svg"));
   WriteLoopHtml(loop, rec, out.Open("report.html"));
   out.Commit();
 }

@@ -67,6 +67,7 @@ MaskedRecording MaskArtefacts(const Recording& rec, const std::vector<char>* who
     if (!whole) out.whole[j] = TooManyForArtefacts(static_cast<std::size_t>(flagged), h.flagged.size());
     if (!out.whole[j]) out.recording.channels[j] = h.cleaned;
     out.masked.push_back({rec.names[j], out.whole[j] ? 0 : static_cast<int>(flagged)});
+    out.flagged.push_back(out.whole[j] ? std::vector<char>(h.flagged.size(), 0) : h.flagged);
   }
   return out;
 }

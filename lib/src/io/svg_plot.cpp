@@ -53,6 +53,9 @@ struct Interval {
       hi = std::max(hi, v);
     }
   }
+  void IncludeX(const Panel& panel) {  // the x values of its series
+    for (const Series& s : panel.series) Include(s.x);
+  }
   // A usable axis even for no data or constant data.
   void MakeNonEmpty() {
     if (!(lo <= hi)) {
@@ -74,7 +77,31 @@ struct Axes {
   double Y(double y) const { return bottom - (y - y_lo) / (y_hi - y_lo) * (bottom - top); }
 };
 
-void WriteSeries(const Series& series, const Axes& axes, const char* colour, std::ostream& out) {
+// Each series' colour: its own, or the palette's next, so that a series set apart in a colour of its own (masked
+// samples in grey) leaves the others the colours they have without it.
+std::vector<std::string> Colours(const Panel& panel) {
+  std::vector<std::string> colours;
+  std::size_t next = 0;
+  for (const Series& s : panel.series) colours.push_back(s.colour.empty() ? kColours[next++ % kColourCount] : s.colour);
+  return colours;
+}
+
+// Dots are small beside the 1.2-px line, so that a burst of them marks its samples without hiding the line.
+constexpr double kDotRadius = 2;
+
+void WriteDots(const Series& series, const Axes& axes, const std::string& colour, std::ostream& out) {
+  const std::size_t n = std::min(series.x.size(), series.y.size());
+  out << "<g class=\"dots\" fill=\"" << colour << "\">";
+  for (std::size_t i : DecimateMinMax(series.x, series.y, axes.x_lo, axes.x_hi, static_cast<int>(kPlotWidth))) {
+    if (i >= n) break;
+    if (!std::isfinite(series.x[i]) || !std::isfinite(series.y[i])) continue;
+    out << "<circle cx=\"" << Px(axes.X(series.x[i])) << "\" cy=\"" << Px(axes.Y(series.y[i])) << "\" r=\""
+        << kDotRadius << "\"/>";
+  }
+  out << "</g>\n";
+}
+
+void WriteLine(const Series& series, const Axes& axes, const std::string& colour, std::ostream& out) {
   const std::size_t n = std::min(series.x.size(), series.y.size());
   std::string points;  // "x,y x,y ..." of the current unbroken stretch
   double lone_x = 0, lone_y = 0;
@@ -127,20 +154,25 @@ void WriteLegend(const Panel& panel, const Axes& axes, std::ostream& out) {
   const double left = kLeft + kPlotWidth + kLegendGap, top = axes.top;
   out << "<g class=\"legend\"><rect x=\"" << Px(left) << "\" y=\"" << Px(top) << "\" width=\"" << Px(width)
       << "\" height=\"" << Px(kLegendRow * static_cast<double>(entries) + 6) << "\" fill=\"white\" stroke=\"#bbb\"/>\n";
+  const std::vector<std::string> colours = Colours(panel);
   std::size_t k = 0;
   for (std::size_t si = 0; si < panel.series.size(); ++si) {
-    if (panel.series[si].label.empty()) continue;
+    const Series& series = panel.series[si];
+    if (series.label.empty()) continue;
     const double y = top + 3 + kLegendRow * (static_cast<double>(k++) + 0.5);
-    out << "<line x1=\"" << Px(left + 6) << "\" x2=\"" << Px(left + 24) << "\" y1=\"" << Px(y) << "\" y2=\"" << Px(y)
-        << "\" stroke=\"" << kColours[si % kColourCount] << "\" stroke-width=\"2\"/>"
-        << "<text x=\"" << Px(left + 30) << "\" y=\"" << Px(y + 4) << "\">" << EscapeXml(panel.series[si].label)
-        << "</text>\n";
+    if (series.mark == Mark::kDots)
+      out << "<circle cx=\"" << Px(left + 15) << "\" cy=\"" << Px(y) << "\" r=\"" << kDotRadius + 1 << "\" fill=\""
+          << colours[si] << "\"/>";
+    else
+      out << "<line x1=\"" << Px(left + 6) << "\" x2=\"" << Px(left + 24) << "\" y1=\"" << Px(y) << "\" y2=\""
+          << Px(y) << "\" stroke=\"" << colours[si] << "\" stroke-width=\"2\"/>";
+    out << "<text x=\"" << Px(left + 30) << "\" y=\"" << Px(y + 4) << "\">" << EscapeXml(series.label) << "</text>\n";
   }
   out << "</g>\n";
 }
 
-// The spans' shading (behind everything else of the panel), with their labels in the top panel.
-void WriteSpans(const std::vector<Span>& spans, const Axes& axes, bool top_panel, std::ostream& out) {
+// The spans' shading (behind everything else of the panel), with their labels where asked (one panel of a figure).
+void WriteSpans(const std::vector<Span>& spans, const Axes& axes, bool labels, std::ostream& out) {
   for (std::size_t k = 0; k < spans.size(); ++k) {
     const double from = std::max(std::min(spans[k].from, spans[k].to), axes.x_lo);
     const double to = std::min(std::max(spans[k].from, spans[k].to), axes.x_hi);
@@ -148,10 +180,84 @@ void WriteSpans(const std::vector<Span>& spans, const Axes& axes, bool top_panel
     out << "<rect class=\"span\" x=\"" << Px(axes.X(from)) << "\" y=\"" << Px(axes.top) << "\" width=\""
         << Px(axes.X(to) - axes.X(from)) << "\" height=\"" << kPanelHeight << "\" fill=\"" << kSpanColours[k % 2]
         << "\"/>\n";
-    if (top_panel && !spans[k].label.empty())
+    if (labels && !spans[k].label.empty())
       out << "<text x=\"" << Px(axes.X((from + to) / 2)) << "\" y=\"" << Px(axes.top + 14)
           << "\" text-anchor=\"middle\" fill=\"#555\">" << EscapeXml(spans[k].label) << "</text>\n";
   }
+}
+
+// The last panel on the figure's shared x axis, under which that axis is labelled (panels.size() where none shares it).
+std::size_t LastSharing(const Figure& figure) {
+  for (std::size_t pi = figure.panels.size(); pi-- > 0;)
+    if (figure.panels[pi].x_label.empty()) return pi;
+  return figure.panels.size();
+}
+
+struct Layout {
+  std::vector<double> tops;  // of each panel's data area
+  double height = 0;         // of the whole picture
+};
+
+// Panels stack from the title down; under a panel whose x axis is labelled there (the shared axis under the last
+// panel on it, an own axis under its panel) stand the tick labels and the axis label, which need the bottom's room.
+Layout Arrange(const Figure& figure, std::size_t last_sharing) {
+  Layout layout;
+  double top = kTitle;
+  for (std::size_t pi = 0; pi < figure.panels.size(); ++pi) {
+    layout.tops.push_back(top);
+    const bool labelled = pi == last_sharing || !figure.panels[pi].x_label.empty();
+    top += kPanelHeight + (pi + 1 == figure.panels.size() ? 0 : labelled ? kBottom + kPanelGap : kPanelGap);
+  }
+  layout.height = top + kBottom;
+  return layout;
+}
+
+// One panel: spans (their labels too where asked), grid, frame, y axis, data and legend; and where `x_label` is given,
+// the x tick labels and that label under it.
+void WritePanel(const Panel& panel, const Interval& x_range, double top, const std::string* x_label,
+                const std::vector<Span>& spans, bool label_spans, std::ostream& out) {
+  Interval y_range;
+  for (const Series& s : panel.series) y_range.Include(s.y);
+  y_range.MakeNonEmpty();
+  const double pad = 0.05 * (y_range.hi - y_range.lo);  // lines do not touch the frame
+  const Axes axes{x_range.lo, x_range.hi, y_range.lo - pad, y_range.hi + pad, top, top + kPanelHeight};
+  const std::vector<double> x_ticks = NiceTicks(x_range.lo, x_range.hi, 10);
+  const double x_step = x_ticks.size() >= 2 ? x_ticks[1] - x_ticks[0] : 1;
+
+  out << "<g>\n";
+  WriteSpans(spans, axes, label_spans, out);
+  const std::vector<double> y_ticks = NiceTicks(axes.y_lo, axes.y_hi, 5);
+  const double y_step = y_ticks.size() >= 2 ? y_ticks[1] - y_ticks[0] : 1;
+  for (double t : y_ticks) {
+    out << "<line x1=\"" << kLeft << "\" x2=\"" << kLeft + kPlotWidth << "\" y1=\"" << Px(axes.Y(t)) << "\" y2=\""
+        << Px(axes.Y(t)) << "\" stroke=\"#e0e0e0\"/><text x=\"" << kLeft - 6 << "\" y=\"" << Px(axes.Y(t) + 4)
+        << "\" text-anchor=\"end\">" << TickLabel(t, y_step) << "</text>\n";
+  }
+  for (double t : x_ticks) {
+    out << "<line x1=\"" << Px(axes.X(t)) << "\" x2=\"" << Px(axes.X(t)) << "\" y1=\"" << Px(axes.top)
+        << "\" y2=\"" << Px(axes.bottom) << "\" stroke=\"#e0e0e0\"/>";
+    if (x_label)
+      out << "<text x=\"" << Px(axes.X(t)) << "\" y=\"" << Px(axes.bottom + 16) << "\" text-anchor=\"middle\">"
+          << TickLabel(t, x_step) << "</text>";
+    out << "\n";
+  }
+  out << "<rect x=\"" << kLeft << "\" y=\"" << Px(axes.top) << "\" width=\"" << kPlotWidth << "\" height=\""
+      << kPanelHeight << "\" fill=\"none\" stroke=\"#444\"/>\n";
+  out << "<text transform=\"translate(18," << Px((axes.top + axes.bottom) / 2)
+      << ") rotate(-90)\" text-anchor=\"middle\">" << EscapeXml(panel.y_label) << "</text>\n";
+  if (x_label)
+    out << "<text x=\"" << kLeft + kPlotWidth / 2 << "\" y=\"" << Px(axes.bottom + 38) << "\" text-anchor=\"middle\">"
+        << EscapeXml(*x_label) << "</text>\n";
+  const std::vector<std::string> colours = Colours(panel);
+  for (std::size_t si = 0; si < panel.series.size(); ++si) {
+    const Series& series = panel.series[si];
+    if (series.mark == Mark::kDots)
+      WriteDots(series, axes, colours[si], out);
+    else
+      WriteLine(series, axes, colours[si], out);
+  }
+  WriteLegend(panel, axes, out);
+  out << "</g>\n";
 }
 
 }  // namespace
@@ -232,60 +338,32 @@ std::vector<std::size_t> DecimateMinMax(const std::vector<double>& x, const std:
 }
 
 void WriteSvg(const Figure& figure, std::ostream& out) {
-  Interval x_range;
+  const std::size_t last_sharing = LastSharing(figure);
+  Interval shared_x;
   for (const Panel& panel : figure.panels)
-    for (const Series& s : panel.series) x_range.Include(s.x);
-  x_range.MakeNonEmpty();
-  const std::vector<double> x_ticks = NiceTicks(x_range.lo, x_range.hi, 10);
-  const double x_step = x_ticks.size() >= 2 ? x_ticks[1] - x_ticks[0] : 1;
-
-  const double panels = static_cast<double>(figure.panels.size());
-  const double height = kTitle + panels * kPanelHeight + std::max(0.0, panels - 1) * kPanelGap + kBottom;
+    if (panel.x_label.empty()) shared_x.IncludeX(panel);
+  shared_x.MakeNonEmpty();
+  const Layout layout = Arrange(figure, last_sharing);
   const double width = FigureWidth(figure);
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << Px(width) << "\" height=\"" << Px(height)
-      << "\" viewBox=\"0 0 " << Px(width) << " " << Px(height) << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << Px(width) << "\" height=\"" << Px(layout.height)
+      << "\" viewBox=\"0 0 " << Px(width) << " " << Px(layout.height)
+      << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << Px(kLeft + kPlotWidth / 2) << "\" y=\"25\" text-anchor=\"middle\" font-size=\"15\">"
       << EscapeXml(figure.title) << "</text>\n";
-
+  bool spans_labelled = false;  // in the first panel on the shared axis
   for (std::size_t pi = 0; pi < figure.panels.size(); ++pi) {
     const Panel& panel = figure.panels[pi];
-    const bool bottom_panel = pi + 1 == figure.panels.size();
-    Interval y_range;
-    for (const Series& s : panel.series) y_range.Include(s.y);
-    y_range.MakeNonEmpty();
-    const double pad = 0.05 * (y_range.hi - y_range.lo);  // lines do not touch the frame
-    const double top = kTitle + static_cast<double>(pi) * (kPanelHeight + kPanelGap);
-    const Axes axes{x_range.lo, x_range.hi, y_range.lo - pad, y_range.hi + pad, top, top + kPanelHeight};
-
-    out << "<g>\n";
-    WriteSpans(figure.spans, axes, pi == 0, out);
-    const std::vector<double> y_ticks = NiceTicks(axes.y_lo, axes.y_hi, 5);
-    const double y_step = y_ticks.size() >= 2 ? y_ticks[1] - y_ticks[0] : 1;
-    for (double t : y_ticks) {
-      out << "<line x1=\"" << kLeft << "\" x2=\"" << kLeft + kPlotWidth << "\" y1=\"" << Px(axes.Y(t)) << "\" y2=\""
-          << Px(axes.Y(t)) << "\" stroke=\"#e0e0e0\"/><text x=\"" << kLeft - 6 << "\" y=\"" << Px(axes.Y(t) + 4)
-          << "\" text-anchor=\"end\">" << TickLabel(t, y_step) << "</text>\n";
+    if (panel.x_label.empty()) {
+      WritePanel(panel, shared_x, layout.tops[pi], pi == last_sharing ? &figure.x_label : nullptr, figure.spans,
+                 !spans_labelled, out);
+      spans_labelled = true;
+    } else {
+      Interval own_x;
+      own_x.IncludeX(panel);
+      own_x.MakeNonEmpty();
+      WritePanel(panel, own_x, layout.tops[pi], &panel.x_label, {}, false, out);
     }
-    for (double t : x_ticks) {
-      out << "<line x1=\"" << Px(axes.X(t)) << "\" x2=\"" << Px(axes.X(t)) << "\" y1=\"" << Px(axes.top)
-          << "\" y2=\"" << Px(axes.bottom) << "\" stroke=\"#e0e0e0\"/>";
-      if (bottom_panel)
-        out << "<text x=\"" << Px(axes.X(t)) << "\" y=\"" << Px(axes.bottom + 16) << "\" text-anchor=\"middle\">"
-            << TickLabel(t, x_step) << "</text>";
-      out << "\n";
-    }
-    out << "<rect x=\"" << kLeft << "\" y=\"" << Px(axes.top) << "\" width=\"" << kPlotWidth << "\" height=\""
-        << kPanelHeight << "\" fill=\"none\" stroke=\"#444\"/>\n";
-    out << "<text transform=\"translate(18," << Px((axes.top + axes.bottom) / 2)
-        << ") rotate(-90)\" text-anchor=\"middle\">" << EscapeXml(panel.y_label) << "</text>\n";
-    if (bottom_panel)
-      out << "<text x=\"" << kLeft + kPlotWidth / 2 << "\" y=\"" << Px(axes.bottom + 38)
-          << "\" text-anchor=\"middle\">" << EscapeXml(figure.x_label) << "</text>\n";
-    for (std::size_t si = 0; si < panel.series.size(); ++si)
-      WriteSeries(panel.series[si], axes, kColours[si % kColourCount], out);
-    WriteLegend(panel, axes, out);
-    out << "</g>\n";
   }
   out << "</svg>\n";
 }

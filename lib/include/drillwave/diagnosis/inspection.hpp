@@ -10,6 +10,7 @@
 
 #include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::diagnosis {
 
@@ -70,6 +71,7 @@ struct Inspection {
   std::vector<std::string> findings;
   // The cleaned channels (artefacts masked), for plots and later fits.
   std::vector<std::vector<double>> cleaned;
+  std::vector<std::vector<char>> masked;  // per channel, 1 where a sample was masked (replaced in `cleaned`)
 };
 
 // Throws InputError if the bit or top speed channel is missing. Linear in the number of channels: with more than 24,
@@ -78,7 +80,11 @@ Inspection InspectRecording(const Recording& recording, const InspectOptions& op
 
 nlohmann::json InspectionToJson(const Inspection& inspection);
 
-// findings.json, report.md, plot.svg (raw and cleaned speeds, the stuck flag, the other channels), all or nothing.
+// The figure of plot.svg: the speeds, then the other channels, each as recorded with its masked samples as dots apart
+// from the line; the stuck flag; and the bit speed zoomed on the recording's last few stick-slip cycles.
+io::Figure InspectionFigure(const Recording& recording, const Inspection& inspection);
+
+// findings.json, report.md, plot.svg (InspectionFigure), all or nothing.
 void WriteInspection(const Recording& recording, const Inspection& inspection, const std::string& out_dir);
 
 }  // namespace drillwave::diagnosis

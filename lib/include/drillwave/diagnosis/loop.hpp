@@ -114,6 +114,7 @@ struct DiagnosisLoop {
   std::vector<std::pair<std::string, double>> noise;  // recording channel, estimated noise std (its unit)
   std::vector<std::pair<std::string, int>> masked_samples;  // recording channel, artefact samples masked
   std::vector<std::string> channels_left_whole;  // channels with too many bursts for artefacts (motion), left whole
+  std::string bit_speed = "bit_rpm";  // the recording's channel read as the bit speed (FeatureOptions::bit_speed)
   FeatureSet recording_fit, recording_held_out;
   // The models' features: the median draw's (LoopOptions::draws).
   FeatureSet baseline_fit, baseline_held_out, fitted_fit, fitted_held_out;

@@ -8,8 +8,14 @@
 
 #include "drillwave/diagnosis/loop.hpp"
 #include "drillwave/diagnosis/recording.hpp"
+#include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::diagnosis {
+
+// The figure of plot.svg and the report: each mapped channel over the fit and held-out windows, the recording (its
+// samples masked as artefacts as dots apart from its line) against the baseline and the fitted model; then the bit
+// speed zoomed on the held-out window's last few stick-slip cycles.
+io::Figure DiagnosisFigure(const DiagnosisLoop& loop, const Recording& recording);
 
 void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& recording, std::ostream& out);
 

@@ -37,6 +37,7 @@ struct MaskedRecording {
   Recording recording;                              // artefacts replaced by their window's median
   std::vector<std::pair<std::string, int>> masked;  // channel, samples masked (0 where left whole)
   std::vector<char> whole;                          // 1 where the channel's bursts are motion, left whole
+  std::vector<std::vector<char>> flagged = {};      // per channel, 1 where a sample was masked (none where left whole)
 };
 
 // A recording with its sensor artefacts (spikes, dropouts) masked as the inspection masks them (Hampel filter over

@@ -1,6 +1,6 @@
 #pragma once
 // A small dependency-free SVG line plot for the runner's quick-look figure: panels stacked vertically over a shared
-// x axis, each with its own y axis and legend.
+// x axis, each with its own y axis and legend; a panel may have an x axis of its own (a zoom on a few cycles).
 #include <cstddef>
 #include <ostream>
 #include <string>
@@ -8,33 +8,45 @@
 
 namespace drillwave::io {
 
+// How a series is drawn.
+enum class Mark {
+  kLine,  // a line through the points
+  kDots,  // a small dot at each point, unjoined: samples set apart from a line (e.g. those masked as artefacts)
+};
+
 struct Series {
   std::string label;         // legend text
-  std::vector<double> x, y;  // same length; a non-finite x or y breaks the line
+  std::vector<double> x, y;  // same length; a non-finite x or y breaks the line (and has no dot)
+  Mark mark = Mark::kLine;
+  std::string colour = {};  // an SVG colour; empty: the palette's next (a series with its own colour takes none)
 };
 
 struct Panel {
   std::string y_label;
   std::vector<Series> series;
+  // Empty: the panel shares the figure's x axis. Otherwise the panel has an x axis of its own, labelled so, over its
+  // own series' x range, with its tick labels and this label under it, and no spans (e.g. a zoom on a few cycles).
+  std::string x_label = {};
 };
 
-// An interval of x marked in every panel (shaded behind the data), e.g. a fit window and a held-out window.
+// An interval of x marked in every panel on the shared x axis (shaded behind the data), e.g. a fit window and a
+// held-out window.
 struct Span {
-  std::string label;  // written at the top of the top panel
+  std::string label;  // written at the top of the first panel on the shared x axis
   double from, to;
 };
 
 struct Figure {
   std::string title;
-  std::string x_label;        // the quantity and its unit, e.g. "time [s]" (see axis_label.hpp)
-  std::vector<Panel> panels;  // top to bottom
+  std::string x_label;        // the shared x axis: its quantity and unit, e.g. "time [s]" (see axis_label.hpp)
+  std::vector<Panel> panels;  // top to bottom; the shared x axis is labelled under the last panel that shares it
   std::vector<Span> spans = {};  // optional: figures written as {title, x_label, panels} have none
 };
 
 // Writes the figure as a standalone SVG document: a data area 900 px wide, and right of it, outside the data, each
 // panel's legend (<g class="legend">). Each series becomes one <polyline> per unbroken stretch of finite points,
 // reduced by DecimateMinMax so that a million samples still make a small file in which stick-slip spikes survive.
-// Spans are <rect class="span"> in each panel.
+// A series of dots becomes <g class="dots"> of <circle>s, reduced alike. Spans are <rect class="span"> in each panel.
 void WriteSvg(const Figure& figure, std::ostream& out);
 
 // Text as XML (and HTML) character data or attribute value: markup characters escaped, characters XML 1.0 forbids
