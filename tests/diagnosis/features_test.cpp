@@ -110,6 +110,11 @@ TEST(Features, TheFastPartIsTheContentAboveTwoHertzWithoutTheCyclesHarmonics) {
   // The 5-Hz line is in the fast band's upper half (4.5-10 Hz), nothing in its lower half (2-4.5 Hz).
   EXPECT_NEAR(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_high_std"), 0.1 / std::sqrt(2.0), 0.002);
   EXPECT_LT(MeasureFeatures(r, 0, 60).Value("top_torque_kNm fast_low_std"), 0.01);
+  // A channel that is not the drive's reads the whole band in one.
+  Recording bit = r;
+  bit.names = {"wob_kN"};
+  EXPECT_NEAR(MeasureFeatures(bit, 0, 60).Value("wob_kN fast_std"), 0.1 / std::sqrt(2.0), 0.002);
+  EXPECT_FALSE(std::isfinite(MeasureFeatures(bit, 0, 60).Value("wob_kN fast_high_std")));
   // A window of a prime number of samples (4751: the spectrum is zero-padded to a power of two) reads the same.
   EXPECT_NEAR(MeasureFeatures(r, 0, 47.5).Value("top_torque_kNm fast_high_std"), 0.1 / std::sqrt(2.0), 0.002);
   for (double& v : r.channels[0]) v = 9 + 3 * std::sin(2 * kPi * 1.75 * (&v - r.channels[0].data()) * 0.01);

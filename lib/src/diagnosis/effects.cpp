@@ -166,16 +166,16 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
                                    Describe(m, r, "stick_fraction") + "; " + Describe(m, r, "bit_rpm std");
     effects.push_back(e);
   }
-  // kelvin_voigt: the fast part of the bit speed and surface torque is weaker than in the model, most so at the
-  // higher frequencies: damping that grows with frequency.
+  // kelvin_voigt: the fast part of the bit speed and of the surface torque (its upper half) is weaker than in the
+  // model: damping that grows with frequency.
   {
     Effect e{"kelvin_voigt", "Kelvin-Voigt (strain-rate) damping of the pipe in torsion", {}, nullptr, 0, ""};
     e.parameters = {{"eta_s", "s", 1e-3, 0.2, true, 0.02}};
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["string"]["kelvin_voigt_s"] = v[0]; };
     const double z =
-        std::max(Z(m, r, "bit_rpm fast_high_std"), 0.0) + std::max(Z(m, r, "top_torque_kNm fast_high_std"), 0.0);
+        std::max(Z(m, r, "bit_rpm fast_std"), 0.0) + std::max(Z(m, r, "top_torque_kNm fast_high_std"), 0.0);
     if (z > kWeakEvidence) e.strength = z, e.evidence = "less fast motion than in the model: " +
-                                            Describe(m, r, "bit_rpm fast_high_std") + "; " +
+                                            Describe(m, r, "bit_rpm fast_std") + "; " +
                                             Describe(m, r, "top_torque_kNm fast_high_std");
     effects.push_back(e);
   }

@@ -217,9 +217,13 @@ std::map<std::string, double> Measure(const Recording& r, std::size_t first, std
     f[r.names[j] + " mean"] = Mean(raw);
     f[r.names[j] + " std"] = Std(x);
     const FastBands bands = FastBandsOf(o);
-    const std::vector<double> fast_rms = BandRms(raw, dt, {bands.low_hz, bands.split_hz, bands.high_hz});
-    f[r.names[j] + kFastLow] = fast_rms[0];
-    f[r.names[j] + kFastHigh] = fast_rms[1];
+    if (r.names[j] == o.top_speed || r.names[j] == o.top_torque) {
+      const std::vector<double> halves = BandRms(raw, dt, {bands.low_hz, bands.split_hz, bands.high_hz});
+      f[r.names[j] + kFastLow] = halves[0];
+      f[r.names[j] + kFastHigh] = halves[1];
+    } else {
+      f[r.names[j] + kFast] = BandRms(raw, dt, {bands.low_hz, bands.high_hz})[0];
+    }
     if (r.names[j] == o.bit_speed) bit = x;
     if (r.names[j] == o.top_speed) top = x;
     if (r.names[j] == o.top_torque) torque = x;

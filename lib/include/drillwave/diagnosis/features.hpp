@@ -24,7 +24,7 @@ std::string EnvelopeCorrelationName(double lag_s);
 inline constexpr double kMinEnvelopeCorrelation = 0.3;
 
 struct Feature {
-  std::string name;   // "<channel> mean", "<channel> std", "<channel> fast_low_std", "stick_fraction", ...
+  std::string name;   // "<channel> mean", "<channel> std", "<channel> fast_std", "stick_fraction", ...
   double value = 0;   // NaN where the window does not define it (no oscillation: no period)
   double scale = 1;   // > 0; the size of a difference that is within the feature's own variability
 };
@@ -40,7 +40,9 @@ struct FeatureSet {
 // speed while slipping, and the drive's droop, top speed per unit of torque on bit (units of the recording's channels).
 inline constexpr const char* kFrictionSlope = "friction_slope";
 inline constexpr const char* kDriveDroop = "drive_droop";
-// The suffixes of a channel's fast spreads (FeatureOptions::fast_window_s).
+// The suffixes of a channel's fast spreads (FeatureOptions::fast_window_s): the whole fast band, or for the drive's
+// channels its two halves.
+inline constexpr const char* kFast = " fast_std";
 inline constexpr const char* kFastLow = " fast_low_std";
 inline constexpr const char* kFastHigh = " fast_high_std";
 
@@ -66,11 +68,14 @@ struct FeatureOptions {
   double envelope_detrend_s = 4;   // less its moving average over this window
   int parts = 4;                         // the window's parts whose spread sets each feature's scale
   double smoothing_s = 0.05;             // centred moving average before levels and spreads are read
-  // "fast": what a moving average over this window removes (the envelopes and the axial lag read it). The fast
-  // band, from 1 / fast_window_s to 1 / (2 smoothing_s) (2 to 10 Hz), is read in two halves of equal log-width (split
-  // at their geometric mean, 4.5 Hz): "fast_low_std" and "fast_high_std", the rms of each. A drive's dynamics move
-  // them apart (a DC motor's armature lag raises the surface torque's 2-4.5 Hz content and lowers its 4.5-10 Hz
-  // content: train rec05, where the whole band's rms moved by less than either).
+  // "fast": what a moving average over this window removes (the envelopes and the axial lag read it); "fast_std" is
+  // the rms of the content between 1 / fast_window_s and 1 / (2 smoothing_s): 2 to 10 Hz. The drive's channels (top
+  // speed and torque) are read in the band's two halves of equal log-width instead (split at their geometric mean,
+  // 4.5 Hz: "fast_low_std", "fast_high_std"): a drive's dynamics move content between them (a DC motor's armature lag
+  // raises the surface torque's 2-4.5 Hz content and lowers its 4.5-10 Hz content: train rec05, where the whole
+  // band's rms moved by less than either). The bit's channels keep the whole band: their fast content hangs on
+  // bit-rock details (the rock's heterogeneity, an axial resonance) that a base model reproduces only roughly, and
+  // read in halves they made damping a false explanation (dev rec01, rec07: Kelvin-Voigt beside side friction).
   double fast_window_s = 0.5;
   double stuck_fraction = 0.05;          // stuck while |bit speed| < max(stuck_floor, fraction * mean |speed|)
   double stuck_floor = 2.0;              // in the bit speed's unit
