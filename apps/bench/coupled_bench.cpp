@@ -59,6 +59,11 @@ int BenchCoupled() {
       drillwave::io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
   std::printf("## coupled axial–torsional kind (cases::RunCase, best of 3 down to tol 1e-5, output every 10 ms)\n\n");
   BenchCase("baseline-60rpm: stick-slip", baseline);
+  // The formation diagnose and the README's commands use (BASELINE.md's 1 % rock strength heterogeneity, 2 mm
+  // correlation): the bit's strength read from its table at every evaluation, against the homogeneous rock above.
+  nlohmann::json heterogeneous = baseline;
+  heterogeneous["model"]["rock"]["strength_heterogeneity"] = {{"std", 0.01}, {"correlation_m", 0.002}, {"seed", 1}};
+  BenchCase("baseline-60rpm on 1 % heterogeneous rock", heterogeneous);
   nlohmann::json bouncing = baseline;  // the bouncing bit of tests/cases/axial_torsional_test.cpp
   bouncing["model"]["string"]["length_m"] = 3000;
   bouncing["model"]["hoist"]["weight_on_bit_N"] = 150000;
