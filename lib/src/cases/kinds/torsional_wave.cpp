@@ -47,6 +47,25 @@ waves::Section ReadSection(const JsonReader& r) {
   return s;
 }
 
+// Consecutive sections of one pipe (the same impedance and wave speed) as one: their junction reflects nothing and
+// transmits the whole wave, so the string is the same, and the engine should not pay for a cut that scatters nothing
+// (each junction is a node whose waves are stored, checked and looked up at every step, and a node of the linear
+// verdict's characteristic matrix: 16 such parts of saldivar-stickslip cost 100 times the one section, issue 33).
+std::vector<waves::Section> JoinSectionsOfOnePipe(const std::vector<waves::Section>& sections) {
+  auto same = [](double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)); };
+  std::vector<waves::Section> joined;
+  for (const waves::Section& s : sections) {
+    if (!joined.empty() && same(joined.back().impedance, s.impedance) &&
+        same(joined.back().wave_speed(), s.wave_speed())) {
+      joined.back().length_m += s.length_m;
+      joined.back().travel_time_s += s.travel_time_s;
+    } else {
+      joined.push_back(s);
+    }
+  }
+  return joined;
+}
+
 // Splits each section into m equal parts and puts a dashpot gamma * length / m to ground at each internal node:
 // the distributed viscous damping of eqs. 2.20/2.24 (gamma per unit length) lumped so the reduction stays exact.
 // Kelvin-Voigt damping (T += eta G J dw/ds) is a dashpot eta G J / part length = eta Z / part travel time across
@@ -301,7 +320,8 @@ class TorsionalWaveKind : public ModelKind {
         {"string/sections/*/shear_modulus_Pa", "G [Pa], > 0"},
         {"string/sections/*/density_kg_m3", "rho [kg/m^3], > 0"},
         {"string/sections/*/polar_moment_m4", "J [m^4], > 0 (or outer_radius_m and inner_radius_m)"},
-        {"string/sections/*/name", "optional label"},
+        {"string/sections/*/name", "optional label (consecutive sections of the same impedance and wave speed are "
+                                   "joined into one: their junction scatters nothing)"},
         {"string/torsional_damping_Nms_per_rad_m", "distributed viscous damping gamma [N·m·s/rad per m], >= 0, default 0"},
         {"string/damping_subsections", "parts per section for the viscous and Kelvin-Voigt damping, 1..1000, "
                                        "default 20"},
@@ -358,6 +378,7 @@ class TorsionalWaveKind : public ModelKind {
       throw InputError(string.PathOf("sections"), std::to_string(sections.size()) + " sections; expected at most " +
                                                       std::to_string(kMaxSections) +
                                                       " (join sections of the same pipe into one)");
+    sections = JoinSectionsOfOnePipe(sections);
     string.RefuseRenamed("viscous_damping_Nms_per_rad_m", string.PathOf("torsional_damping_Nms_per_rad_m"));
     const double gamma = string.Number("torsional_damping_Nms_per_rad_m", Range::NonNegative(), 0.0);
     const double eta = ReadKelvinVoigt(string);
