@@ -1,7 +1,8 @@
 // libFuzzer target: the input's first byte picks a case (the embedded default case or one of json-cases/), each
 // following line is a command line's --set "/json/pointer=value", applied in turn (io::ApplySetOption), and the case
-// is then prepared (cases::ParseCase). Bad input must end in InputError; anything else is a bug (a case accepted
-// must also be writable as case.json).
+// is then prepared (cases::ParseCase) and, once accepted, run briefly (short_run.hpp). Bad input must end in
+// InputError, a run in success or a NumericalError; anything else is a bug (a case accepted must also be writable as
+// case.json).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "short_run.hpp"
 
 namespace {
 
@@ -39,6 +41,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::string line; std::getline(lines, line);) drillwave::io::ApplySetOption(doc, line);
     drillwave::cases::ParseCase(doc);
     (void)doc.dump();  // what writing case.json does after a run
+    drillwave::fuzz::RunBriefly(doc);
   } catch (const drillwave::InputError&) {
   }
   return 0;

@@ -13,10 +13,12 @@
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/sensors.hpp"
+#include "drillwave/cases/sweep.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
+#include "drillwave/core/progress.hpp"
 #include "drillwave/core/sampled.hpp"
 #include "drillwave/diagnosis/minimize.hpp"
 #include "drillwave/diagnosis/signals.hpp"
@@ -41,9 +43,66 @@ using loop_internal::EffectSelection;
 using loop_internal::ErrorChance;
 using loop_internal::Joined;
 using loop_internal::StartOf;
+using loop_internal::kMaxDrawFactor;
 // A calibration of the motion: the mean error over this many draws, on a grid of this many points over the prior range.
 constexpr int kCalibrationDraws = 2;
 constexpr int kCalibrationGrid = 9;
+
+// The loop's work is estimated before its runs (issue 38: a sidecar's 1-m string made each run of the loop 100 s on
+// 1e-5-s steps, and diagnose ran for hours saying "baseline: running 43 s simulated"). What a run costs is measured on
+// its first kProbeS s of model time; how many runs the loop makes is bounded from its options (PlannedRuns), counting
+// each effect of the vocabulary (at most kMaxEffects) with at most kParametersPerEffect parameters.
+constexpr double kProbeS = 1;
+constexpr int kMaxEffects = 10;
+constexpr int kParametersPerEffect = 2;
+
+// The model runs a loop with options `o` makes at most, estimated for effects of at most kParametersPerEffect
+// parameters (rec01: 490 planned, 255 made): the first run; the draws (up to kMaxDrawFactor times
+// LoopOptions::draws) of every model judged — the baseline, the base before and after each of its two calibrations,
+// every fitted set (the singles, their pairs, and up to max_effects extensions or eliminations of each single), the
+// model kept; the calibrations' grids; the screening fits and the full fits with their runs per parameter.
+double PlannedRuns(const LoopOptions& o) {
+  const double draw_runs = kMaxDrawFactor * std::max(1, o.draws);
+  if (o.max_singles <= 0) return 1 + draw_runs;
+  const double singles = o.max_singles, pairs = singles * (singles - 1) / 2, larger = o.max_effects * singles;
+  const double p = kParametersPerEffect;
+  const double fit_runs = singles * (o.evaluations_per_parameter * p + 2) +
+                          pairs * (o.evaluations_per_parameter * 2 * p + 2) +
+                          larger * (o.evaluations_per_parameter * 3 * p + 2);
+  return 1 + draw_runs * (1 + 3 + singles + pairs + larger + 1) + 2 * kCalibrationGrid * kCalibrationDraws +
+         kMaxEffects * (o.screening_evaluations_per_parameter * p + 4) + fit_runs;
+}
+
+// The loop's work before any of its runs over the whole span: PlannedRuns times one run's output samples or
+// integration steps (the steps per second of the base's first kProbeS s, carried over the span; each run counted as at
+// least kSweepRunMinimumWork, as sweeps do), refused above kSweepWorkPerMaxSample x --max-samples (1e9 by default)
+// with InputError naming --evaluations and the estimate. Returns the planned runs.
+double CheckLoopWork(const nlohmann::json& base, const LoopOptions& o, double full_duration) {
+  nlohmann::json probe = base;
+  const double probe_s = std::min(kProbeS, full_duration);
+  probe["simulation"]["duration_s"] = probe_s;
+  probe["statistics"] = {{"window_s", {0.0, probe_s}}};
+  probe.erase("expect");
+  const cases::Case c = cases::ParseCase(probe);
+  const nlohmann::json summary = cases::RunCase(c).summary;
+  const double steps = (summary.contains("steps") && summary["steps"].is_number() ? summary["steps"].get<double>() : 0) *
+                       full_duration / probe_s;
+  const double samples = c.settings.output_interval_s > 0 ? full_duration / c.settings.output_interval_s : 0.0;
+  const double per_run = std::max({steps, samples, cases::kSweepRunMinimumWork});
+  const double runs = PlannedRuns(o), work = runs * per_run;
+  const double limit = cases::kSweepWorkPerMaxSample * cases::MaxSamples();
+  if (work > limit)
+    throw InputError("--evaluations",
+                     "the diagnosis plans up to about " + ReadableNumber(std::round(runs)) + " model runs of " +
+                         ReadableNumber(std::round(full_duration)) + " s simulated, each about " +
+                         ReadableNumber(std::round(per_run)) + " output samples or integration steps (the steps " +
+                         "measured on its first " + ReadableNumber(probe_s) + " s): " + ReadableNumber(work) +
+                         " in all, above the limit of " + ReadableNumber(limit) + " (" +
+                         ReadableNumber(cases::kSweepWorkPerMaxSample) +
+                         " x --max-samples); ask for fewer --draws or --evaluations, a shorter recording, a case "
+                         "with longer time steps, or raise the limit with --max-samples");
+  return runs;
+}
 
 // The recording and model must be of one scale: a field string against a lab rig differs by orders of magnitude.
 void CheckScale(const Recording& rec, const Recording& model, const std::vector<ChannelMap>& maps) {
@@ -205,7 +264,17 @@ LoopOptions DefaultLoopOptions(const cases::Case& c, const Recording& rec, doubl
 
 DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& raw, const LoopOptions& o,
                                const LoopProgress& progress) {
+  // What the loop does, said as it happens, and every 5 s on long steps (core/progress.hpp, where a program shows
+  // it): the step it is in and the model runs started of those planned.
+  Progress long_work("diagnosis");
+  std::mutex step_mutex;
+  std::string step = "preparing the recording";
+  double planned_runs = 0;
   auto say = [&](const std::string& s) {
+    {
+      const std::lock_guard<std::mutex> lock(step_mutex);
+      step = "after " + s.substr(0, s.find(':'));  // the loop says each step as it ends
+    }
     if (progress) progress(s);
   };
   // 1. The recording made ready: mapped channels, artefacts masked, features, its noise and sampling in the case.
@@ -226,6 +295,13 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   loop.recorded_off_bottom_share = runner.RecordedOffBottomShare();
   loop.recording_bounces = runner.RecordingBounces();
   const int draws = std::max(1, o.draws);
+  planned_runs = CheckLoopWork(base, o, full_duration);
+  runner.OnRun([&](int started) {
+    const std::lock_guard<std::mutex> lock(step_mutex);
+    long_work.Count(step + ": model runs started", started, std::round(planned_runs), "planned");
+  });
+  say("work: up to about " + Fixed(planned_runs, 0) + " model runs of " + Fixed(full_duration, 0) +
+      " s simulated");
 
   for (const std::string& channel : loop.channels_left_whole)
     say(channel + ": too many bursts for artefacts (over " + Fixed(100 * kMaxArtefactShare, 0) +

@@ -95,6 +95,8 @@ Recording ModelRuns::Run(nlohmann::json doc, double duration, Tolerance toleranc
     // parameter box that makes the model stiff fails as a run instead of taking the machine's time and memory.
     if (evaluations_per_second_ > 0)
       c.settings.integrator.max_evaluations = static_cast<long>(work_factor * evaluations_per_second_ * duration);
+    const int started = ++runs_simulated_;
+    if (on_run_) on_run_(started);
     cases::RunResult result = cases::RunCase(c).result;
     // Only the mapped channels are read: at an output finer than the recording's, the others would fill the cache.
     const auto unmapped = [&](const cases::Channel& ch) {

@@ -3,6 +3,8 @@
 // channels measured through the case's sensors on the recording's times and masked as the recording was; runs that
 // differ only in their sensors share one simulation (a cache); a model run in draws of its random inputs until enough
 // are in the recording's regime, and judged by the median draw.
+#include <atomic>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -90,6 +92,9 @@ class ModelRuns {
   // A model's features on the fit or held-out window, measured as the recording's.
   FeatureSet FitFeatures(const Recording& model) const;
   FeatureSet HeldOutFeatures(const Recording& model) const;
+  // Each run simulated (not those the cache answers) calls `on_run` as it starts with the number started so far, from
+  // the thread that runs it: the loop's progress.
+  void OnRun(std::function<void(int)> on_run) { on_run_ = std::move(on_run); }
   double FullDuration() const { return full_duration_; }  // model time to the held-out window's end
   double FitDuration() const { return fit_duration_; }    // model time just past the fit window's end
 
@@ -106,6 +111,8 @@ class ModelRuns {
   double evaluations_per_second_ = 0;  // the costliest run's so far, once the baseline has run
   mutable std::mutex cache_mutex_;
   mutable std::map<std::string, std::shared_ptr<const cases::RunResult>> simulations_;
+  mutable std::atomic<int> runs_simulated_{0};
+  std::function<void(int)> on_run_;
 };
 
 }  // namespace drillwave::diagnosis::loop_internal
