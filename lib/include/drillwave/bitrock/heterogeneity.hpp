@@ -23,18 +23,14 @@ class StrengthHeterogeneity {
 
   bool on() const { return amplitude_ > 0; }
   double std() const { return std_; }  // the relative standard deviation asked for
-  // g(z), relative, from its Taylor polynomial about the nearest node of a table (the sum itself up to rounding, a
-  // pure function of the field and z).
-  double Deviation(double z) const;
-  double ExactDeviation(double z) const;  // the sum of cosines itself
+  double Deviation(double z) const;  // g(z), relative
   // 1 + g(z), exactly 1 when off.
   double Multiplier(double z) const { return on() ? 1.0 + Deviation(z) : 1.0; }
 
  private:
-  std::uint64_t id_ = 0;  // this field's own number (its copies share it): the key of Deviation's table
+  std::uint64_t id_ = 0;  // this field's own number (its copies share it): the key of Deviation's last answer
   double std_ = 0;
   double amplitude_ = 0;                    // c
-  double node_spacing_ = 1;                 // of the table's nodes [m]
   std::vector<double> wavenumbers_, phases_;  // kappa_k [1/m], phi_k
 };
 
