@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <new>
 #include <optional>
 #include <string>
 #include <thread>
@@ -28,6 +29,7 @@
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/memory.hpp"
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/core/progress.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
@@ -56,14 +58,20 @@ int RunAndWrite(const std::string& file, const std::string& out_dir, const std::
                 bool check) {
   const Case c = drillwave::cases::ParseCase(LoadCaseDocument(file, overrides));
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
-  {  // trajectory.csv dominates the outputs: samples x (time and channels) x about 12 bytes a number, plus the rest
+  {  // trajectory.csv dominates the outputs: samples x (time and channels) x about 12 bytes a number, plus the rest;
+     // in memory the run holds them as 8-byte numbers
     const double samples = c.settings.duration_s / c.settings.output_interval_s + 1;
     auto bytes = [&](double channels) { return samples * (channels + 1) * 12 + 5e5; };
+    auto memory = [&](double channels) { return samples * (channels + 1) * 8; };
+    const std::string remedy = "ask for fewer samples (a longer /simulation/output_interval_s or a shorter "
+                               "/simulation/duration_s), or free memory";
     try {  // a generous estimate first; the kind's own channels (a probe of a few samples) only when it does not fit
       drillwave::io::OutputDirectory::CheckFreeSpace(out_dir, bytes(32));
-    } catch (const drillwave::io::OutputError&) {
-      drillwave::io::OutputDirectory::CheckFreeSpace(out_dir,
-                                                     bytes(static_cast<double>(drillwave::diagnosis::ProbeChannels(c).size())));
+      drillwave::CheckMemory(memory(32), "the run's trajectory", remedy);
+    } catch (const std::runtime_error&) {
+      const double channels = static_cast<double>(drillwave::diagnosis::ProbeChannels(c).size());
+      drillwave::io::OutputDirectory::CheckFreeSpace(out_dir, bytes(channels));
+      drillwave::CheckMemory(memory(channels), "the run's trajectory", remedy);
     }
   }
   std::cout << "drillwave: running case '" << c.name << "' (kind " << c.kind << ", " << c.settings.duration_s
@@ -1094,6 +1102,15 @@ int main(int argc, char** argv) {
   } catch (const drillwave::io::OutputError& e) {
     std::cerr << "drillwave: cannot write the outputs: " << e.what() << std::endl;
     return 5;
+  } catch (const drillwave::MemoryError& e) {
+    std::cerr << "drillwave: not enough memory: " << e.what() << std::endl;
+    return 6;
+  } catch (const std::bad_alloc&) {  // the machine's limit, met during the work: not a bug of drillwave's
+    std::cerr << "drillwave: not enough memory: an allocation failed during the work (the machine's memory or this "
+                 "process's address-space limit, ulimit -v, is exhausted); ask for less work (fewer samples, points or "
+                 "runs) or free memory"
+              << std::endl;
+    return 6;
   } catch (const std::exception& e) {
     std::cerr << "drillwave: internal error: " << e.what() << std::endl;
     return 4;

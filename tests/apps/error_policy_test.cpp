@@ -1,4 +1,4 @@
-// The error policy (issues 15, 16 and 41) as a user meets it: exit codes 0 / 1 / 2 / 3 / 4 / 5, bad input named with
+// The error policy (issues 15, 16 and 41) as a user meets it: exit codes 0 / 1 / 2 / 3 / 4 / 5 / 6, bad input named with
 // its path and value before any work starts, non-finite runs as numerical failures, output folders replaced whole and
 // only when they hold nothing but drillwave's outputs, write failures after the work named with the file and cause.
 #include <unistd.h>
@@ -111,6 +111,30 @@ TEST_F(ErrorPolicy, AHugeSweepIsRefusedBeforeAnyRun) {
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("--values: 1000000 runs of about"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("raise the limit with --max-samples"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+// Issue 41: a run whose trajectory the memory cannot hold (8e6 samples of about 20 channels, some 450 MB, under an
+// address-space limit of 400 MB) ended as an internal error (exit 4, std::bad_alloc) after part of the work; now it is
+// refused before the run with exit 6, naming both sizes and what to ask for instead.
+TEST_F(ErrorPolicy, ARunLargerThanTheMemoryIsRefusedBeforeTheRun) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer maps terabytes of shadow memory: no run starts under an address-space limit";
+#endif
+  auto doc = base_;
+  doc["simulation"]["duration_s"] = 80;
+  doc["statistics"]["window_s"] = {40, 80};
+  doc["simulation"]["output_interval_s"] = 1e-5;
+  const auto start = std::chrono::steady_clock::now();
+  const Outcome o = drillwave::test_support::RunCommand("bash -c 'ulimit -v 400000; exec timeout 60 " +
+                                                        std::string(DRILLWAVE_BINARY) + " run " + Write(doc) + Out() +
+                                                        "'");
+  EXPECT_EQ(o.exit_code, 6) << o.output;
+  EXPECT_NE(o.output.find("not enough memory: about "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("of memory for the run's trajectory, but only "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("/simulation/output_interval_s"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("running case"), std::string::npos) << "refused only after starting: " << o.output;
   EXPECT_FALSE(fs::exists(dir_ / "out"));
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }

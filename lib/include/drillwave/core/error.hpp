@@ -1,6 +1,7 @@
 #pragma once
 // Error types shared by every module. The command-line tool maps them to exit codes:
-// InputError -> 2 (the input is wrong), NumericalError -> 3 (the integration failed), anything else -> 4.
+// InputError -> 2 (the input is wrong), NumericalError -> 3 (the integration failed), io::OutputError -> 5 (the
+// outputs could not be written), MemoryError (core/memory.hpp) and std::bad_alloc -> 6, anything else -> 4.
 #include <stdexcept>
 #include <string>
 #include <string_view>
