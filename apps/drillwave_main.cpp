@@ -734,6 +734,9 @@ int CompareControllers(const std::string& file, const std::string& out_dir, cons
       envelope.emplace(drillwave::cases::ParseMapAxis(args.envelope[0], stiff, "--envelope"),
                        drillwave::cases::ParseMapAxis(args.envelope[1], stiff, "--envelope"));
     }
+    if (!delays.empty())  // every law again at each delay: three runs a delay, estimated on the stiff PI's case
+      drillwave::cases::CheckPointsWork(drillwave::cases::ParseCase(drillwave::cases::StiffPiCase(doc, spec)),
+                                        3.0 * static_cast<double>(delays.size()), true, "--actuator-delays");
     drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
     std::cout << "drillwave: top-drive laws on '" << doc.value("name", std::string("case")) << "' (stiff PI, "
               << "SoftSpeed, Z-Torque), each from the same stick-slip" << std::endl;

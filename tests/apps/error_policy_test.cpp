@@ -115,6 +115,20 @@ TEST_F(ErrorPolicy, AHugeSweepIsRefusedBeforeAnyRun) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
+// Issue 38: compare-controllers ran every law again at each actuator delay with no estimate (2 000 delays: 35 min,
+// a million: days); its delays are counted as three runs each before any run.
+TEST_F(ErrorPolicy, AMillionActuatorDelaysAreRefusedBeforeAnyRun) {
+  const auto start = std::chrono::steady_clock::now();
+  const Outcome o = drillwave::test_support::RunCommand(
+      "timeout 60 " + std::string(DRILLWAVE_BINARY) + " compare-controllers " + kCases +
+      "saldivar-soft-torque.json --actuator-delays 0:1:1000000" + Out());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--actuator-delays: 3000000 points of about"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("top-drive laws on"), std::string::npos) << "refused only after starting: " << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
 // Issue 41: a run whose trajectory the memory cannot hold (8e6 samples of about 20 channels, some 450 MB, under an
 // address-space limit of 400 MB) ended as an internal error (exit 4, std::bad_alloc) after part of the work; now it is
 // refused before the run with exit 6, naming both sizes and what to ask for instead.
