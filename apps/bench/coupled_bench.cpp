@@ -60,7 +60,7 @@ int BenchCoupled() {
   std::printf("## coupled axial–torsional kind (cases::RunCase, best of 3 down to tol 1e-5, output every 10 ms)\n\n");
   BenchCase("baseline-60rpm: stick-slip", baseline);
   // The formation diagnose and the README's commands use (BASELINE.md's 1 % rock strength heterogeneity, 2 mm
-  // correlation): the bit's strength read from its table at every evaluation, against the homogeneous rock above.
+  // correlation): the bit's strength summed over its 64 modes at every evaluation, against homogeneous rock above.
   nlohmann::json heterogeneous = baseline;
   heterogeneous["model"]["rock"]["strength_heterogeneity"] = {{"std", 0.01}, {"correlation_m", 0.002}, {"seed", 1}};
   BenchCase("baseline-60rpm on 1 % heterogeneous rock", heterogeneous);
