@@ -269,7 +269,6 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   Progress long_work("diagnosis");
   std::mutex step_mutex;
   std::string step = "preparing the recording";
-  double planned_runs = 0;
   auto say = [&](const std::string& s) {
     {
       const std::lock_guard<std::mutex> lock(step_mutex);
@@ -295,7 +294,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   loop.recorded_off_bottom_share = runner.RecordedOffBottomShare();
   loop.recording_bounces = runner.RecordingBounces();
   const int draws = std::max(1, o.draws);
-  planned_runs = CheckLoopWork(base, o, full_duration);
+  const double planned_runs = CheckLoopWork(base, o, full_duration);
   runner.OnRun([&](int started) {
     const std::lock_guard<std::mutex> lock(step_mutex);
     long_work.Count(step + ": model runs started", started, std::round(planned_runs), "planned");
