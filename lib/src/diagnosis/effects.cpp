@@ -135,8 +135,9 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
   }
   // axial_coupling_off: the weight on bit hardly moves while the coupled model's swings.
   {
-    Effect e{"axial_coupling_off", "no axial-torsional coupling: the weight on bit held, constant depth of cut", {},
-             nullptr, 0, ""};
+    Effect e{"axial_coupling_off",
+             "no axial-torsional coupling: the weight on bit held, the depth of cut following the rock", {}, nullptr, 0,
+             ""};
     e.apply = [](nlohmann::json& d, const std::vector<double>&) { d["model"]["axial_coupling"] = false; };
     const double z = Z(m, r, "wob_kN std");
     const double level = r.Value("wob_kN std") / std::max(m.Value("wob_kN std"), 1e-12);

@@ -14,6 +14,7 @@
 // Three pieces: RgdLaw (parameters and forces), CutProfile (the bit's stored angle and position and the search for
 // t_n and d) and RgdRegimes (rotation forward / stuck / backward, axial advancing / held / lifting, contact on / off,
 // switched at located events). The string that drives the bit is the caller's.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -66,6 +67,13 @@ struct RgdLaw {
   double CutTorquePerDepth() const { return 0.5 * a * a * eps; }            // T_c / d
   // Steady drilling under weight on bit W0 at bit speed w: depth of cut per blade, torque on bit.
   double SteadyDepth(double wob) const { return std::max(0.0, (wob - ContactForce()) / CutWeightPerDepth()); }
+  // The depth of cut per revolution under weight W0 held on the rock at drilled depth z (no axial dynamics): the
+  // cutters carry what the wear flats' contact a sigma l (1 + g(z)) leaves of W0, so a stronger rock is cut less deep
+  // and the weight stays W0 (SteadyDepth(wob) exactly when homogeneous).
+  double HeldWeightDepth(double wob, double z) const {
+    const double strength = strength_heterogeneity.Multiplier(z);
+    return std::max(0.0, (wob - ContactForce() * strength) / (CutWeightPerDepth() * strength));
+  }
   double SteadyTorque(double wob, double w) const {
     return CutTorquePerDepth() * SteadyDepth(wob) + FrictionArm(w) * ContactForce();
   }

@@ -373,7 +373,7 @@ class AxialTorsionalKind : public ModelKind {
             {"bit/inertia_kgm2", "J_b > 0 (bit, and the BHA unless string/bha distributes it)"},
             {"bit/mass_kg", "M_b > 0"},
             {"axial_coupling", "boolean, default true; false: no axial dynamics, weight on bit held at W0 and depth "
-                               "of cut at its steady value"},
+                               "of cut what W0 cuts in the rock under the bit (the steady one in homogeneous rock)"},
             {"top/type", "top_drive (default: the stiff PI speed controller) | soft_torque (the PI tracking the "
                          "set-point less the high-passed string torque; kp/ki or tuning_period_s) | z_torque (the same "
                          "matched to the pipe's impedance); the two laws drive the top's torque (no motor)"},

@@ -120,8 +120,8 @@ class Process {
     // Bit.
     dx[kWbit] = rg_.turn == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
     dx[kVbit] = rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : (f.drive_force - f.weight) / md_.bit_mass;
-    if (!md_.axial_coupling) {  // no axial dynamics: the bit drills the steady depth per revolution
-      dx[kU] = steady_.depth / (2 * kPi) * std::max(BitSpeed(x), 0.0);
+    if (!md_.axial_coupling) {  // no axial dynamics: the bit drills the depth per revolution its held weight cuts
+      dx[kU] = f.depth / (2 * kPi) * std::max(BitSpeed(x), 0.0);
       dx[kVtop] = dx[kVbit] = 0;
     }
     if (md_.unbalance.has_value()) LateralRates(x, dx[kWbit], dx);
@@ -282,7 +282,11 @@ class Process {
     f.drive_force = ends.bit[1];
     if (md_.unbalance.has_value()) f.drive_torque += LateralReaction(x);
     f.depth = DepthOfCut(x, t, side, &f.tn);
-    if (!md_.axial_coupling) f.depth = steady_.depth;
+    // Without axial dynamics the weight on bit is held at W0 and the depth of cut follows the rock's strength (the
+    // steady depth in homogeneous rock): a stronger patch is cut less deep under the same weight, and the cutting
+    // torque moves only by the share of W0 the wear flats' contact takes (a constant depth would move it by the whole
+    // strength deviation: 2-3 times the first torsional mode's response, dev rec06).
+    if (!md_.axial_coupling) f.depth = md_.HeldWeightDepth(md_.weight_on_bit, x[kU]);
     if (!rg_.contact) return f;
     // Cutting only into new rock: not while turning backwards, nor before the bit is back past its furthest angle.
     const bool cutting = rg_.turn != Turn::kBackward && x[kPhi] >= cut_.Furthest(t);
