@@ -18,6 +18,11 @@ namespace {
 constexpr int kRuleSingles = 2;
 // A fit's run that lands in the other regime is drawn again, at most this many times in all.
 constexpr int kFitDraws = 3;
+// A fit's budget is split among random starts only where each keeps this many evaluations per parameter: Subplex
+// spends n + 1 on its first simplex and halves its steps from there, and two starts of five evaluations each left
+// a one-parameter fit where it began (dev rec07: side friction 1.85 N m/m from a start of 1.82, the fit-window
+// likelihood's optimum near 2.1 and 7 log-units higher).
+constexpr int kEvaluationsPerStart = 8;
 
 // How much a feature distance e over K features moves by chance from one window to the next. Each difference in
 // scales is z = b + s n (a bias b the model keeps, noise n of unit variance, s <= 1 where the scale's floor is above
@@ -145,7 +150,8 @@ Candidate EffectSelection::Fit(const std::vector<int>& set, std::vector<double> 
   MinimizeOptions mo;
   mo.max_evaluations =
       (screening ? o_.screening_evaluations_per_parameter : o_.evaluations_per_parameter) * static_cast<int>(start.size()) + 1;
-  mo.starts = start.empty() || screening ? 1 : 2;
+  const int evaluations_per_start = kEvaluationsPerStart * std::max<int>(1, static_cast<int>(start.size()));
+  mo.starts = start.empty() || screening ? 1 : std::clamp(mo.max_evaluations / evaluations_per_start, 1, 2);
   mo.seed = o_.seed + static_cast<unsigned>(set.front()) * 31 + static_cast<unsigned>(set.size());
   mo.threads = threads;
   const MinimizeResult best = MinimizeInUnitCube(objective, start, mo);
@@ -295,6 +301,16 @@ std::vector<double> EffectSelection::OwnFit(int effect) const {
   return StartOfSet({effect});
 }
 
+// Where an effect's screening fit ended (its best point on the fit objective, never worse than its start), or its
+// start where it was not screened or the screening failed.
+std::vector<double> EffectSelection::ScreenedOrStart(int effect) const {
+  for (std::size_t i = 0; i < loop_.screening.size() && i < modelable_.size(); ++i)
+    if (modelable_[i] == effect && loop_.screening[i].failed_runs < loop_.screening[i].evaluations &&
+        loop_.screening[i].unit_values.size() == loop_.proposals[effect].parameters.size())
+      return loop_.screening[i].unit_values;
+  return StartOfSet({effect});
+}
+
 // from's values of the set's effects.
 std::vector<double> EffectSelection::ValuesOf(const Candidate& from, const std::vector<int>& set) const {
   std::vector<double> u;
@@ -356,7 +372,9 @@ void EffectSelection::Select() {
   say_(std::to_string(singles.size()) + " effect(s) to fit alone: the strongest proposals, then the best screened");
   std::vector<std::vector<int>> sets;
   for (int i : singles) sets.push_back({i});
-  FitAll(sets, [&](std::size_t i) { return StartOfSet(sets[i]); });
+  // A single's full fit goes on from where its screening ended: the same objective (fit window, fit draw, fit
+  // tolerance), so its evaluations are not spent again on the way there.
+  FitAll(sets, [&](std::size_t i) { return ScreenedOrStart(sets[i][0]); });
   // Pairs, since one missing effect may hide what another explains — neither alone need lower the error (side
   // friction without the soft drive that lets the top move): every pair of the singles fitted in full (dev rec01's
   // side friction and soft drive are its second and fourth singles). Each starts from its effects' own fits.

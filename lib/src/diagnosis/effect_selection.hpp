@@ -65,6 +65,7 @@ class EffectSelection {
   bool QualifiesAgainstSubsets(int index) const;
   int BestQualifying() const;
   std::vector<double> OwnFit(int effect) const;
+  std::vector<double> ScreenedOrStart(int effect) const;
   std::vector<double> ValuesOf(const Candidate& from, const std::vector<int>& set) const;
   bool FittedAt(const std::vector<int>& set, const std::vector<double>& u) const;
 

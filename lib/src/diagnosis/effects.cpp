@@ -106,10 +106,16 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
   }
   // side_friction: more torque at the top than the model needs to turn the same bit, torque lost along the string.
   {
-    const double missing_kNm = r.Value("top_torque_kNm mean") - m.Value("top_torque_kNm mean");
-    const double estimate = std::isfinite(missing_kNm) && missing_kNm > 0 ? 1000 * missing_kNm / pipe.length : 0.5;
+    const double recorded_kNm = r.Value("top_torque_kNm mean");
+    const double missing_kNm = recorded_kNm - m.Value("top_torque_kNm mean");
+    // The string cannot lose more torque on its way down than the top drive puts in: over a long window the mean
+    // top torque is the bit's plus the string's drag and friction, so the friction is at most that mean over the
+    // length (a box of that size, not of 10 N m/m, is what the fit's first steps explore).
+    const double most = std::isfinite(recorded_kNm) && recorded_kNm > 0 ? 1000 * recorded_kNm / pipe.length : 10.0;
+    const double estimate =
+        std::min(std::isfinite(missing_kNm) && missing_kNm > 0 ? 1000 * missing_kNm / pipe.length : 0.5, 0.9 * most);
     Effect e{"side_friction", "Coulomb friction torque along the string (per metre)", {}, nullptr, 0, ""};
-    e.parameters = {{"torque_per_m_Nm", "N m/m", 0.0, std::max(10.0, 3 * estimate), false, estimate}};
+    e.parameters = {{"torque_per_m_Nm", "N m/m", 0.0, most, false, estimate}};
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
       d["model"]["string"]["side_friction"] = {{"torque_per_m_Nm", v[0]}, {"from_m", 0.0}};
     };
