@@ -177,10 +177,10 @@ TEST(AxialTorsionalUncoupled, OnHeterogeneousRockTheWeightIsHeldAndTheDepthOfCut
   const double arm = 0.5 * a * md["rock"]["gamma"].get<double>() * md["rock"]["mu"].get<double>();
   const double w0 = md["hoist"]["weight_on_bit_N"];
   const auto &depth = Channel(run, "depth_of_cut_m"), &torque = Channel(run, "bit_torque_Nm");
-  const auto& bit = Channel(run, "bit_rpm");
+  const auto &bit = Channel(run, "bit_rpm"), &wob = Channel(run, "wob_N");
   double worst = 0, depth_min = INFINITY, depth_max = 0;
   for (std::size_t i = 0; i < depth.size(); ++i) {
-    ASSERT_EQ(Channel(run, "wob_N")[i], w0);
+    ASSERT_EQ(wob[i], w0);
     if (!(bit[i] > 1)) continue;  // sliding forward and cutting
     const double s = w0 / (a * zeta * eps * depth[i] + contact);
     const double expected = s * (0.5 * a * a * eps * depth[i] + arm * contact);

@@ -3,6 +3,7 @@
 // and the calibrated base is closer to the recording than the case as given.
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -65,27 +66,37 @@ Recording FiveChannelTwin(const nlohmann::json& doc) {
   return r;
 }
 
-class BaseCalibration : public ::testing::TestWithParam<double> {};
-
-// The twin's rock is GetParam() times as strong as the case's.
-TEST_P(BaseCalibration, TheRockStrengthIsReadOffTheMotion) {
+// The loop's base calibration alone (no effect fitted) on a twin whose rock is `ratio` times as strong as the nominal
+// case's; `said` hears every step.
+DiagnosisLoop CalibrateOnTwin(double ratio, const std::function<void(const std::string&)>& said = {}) {
   constexpr double kDuration = 60;
-  const double ratio = GetParam();
   const nlohmann::json doc = NominalCase(kDuration);
   nlohmann::json truth = doc;
-  const double eps = doc["model"]["rock"]["intrinsic_specific_energy_Pa"].get<double>();
-  truth["model"]["rock"]["intrinsic_specific_energy_Pa"] = ratio * eps;
+  truth["model"]["rock"]["intrinsic_specific_energy_Pa"] =
+      ratio * doc["model"]["rock"]["intrinsic_specific_energy_Pa"].get<double>();
   const Recording twin = FiveChannelTwin(truth);
-
   const cases::Case c = cases::ParseCase(doc);
   LoopOptions o = DefaultLoopOptions(c, twin, kSidecarWarmupS, 2);
   o.maps = ResolveChannelMaps({}, twin, ProbeChannels(c));
   o.sample_window_s = 0;  // the twin's samples are the run's own
   o.fit_effects = false;
   o.draws = 3;
-  const DiagnosisLoop loop = RunDiagnosisLoop(doc, twin, o, [](const std::string& step) {
+  return RunDiagnosisLoop(doc, twin, o, [&](const std::string& step) {
     if (step.rfind("base calibration", 0) == 0) std::printf("[ progress ] %s\n", step.c_str());
+    if (said) said(step);
   });
+}
+
+double NominalRockStrength() {
+  return NominalCase(60)["model"]["rock"]["intrinsic_specific_energy_Pa"].get<double>();
+}
+
+class BaseCalibration : public ::testing::TestWithParam<double> {};
+
+// The twin's rock is GetParam() times as strong as the case's.
+TEST_P(BaseCalibration, TheRockStrengthIsReadOffTheMotion) {
+  const double ratio = GetParam(), eps = NominalRockStrength();
+  const DiagnosisLoop loop = CalibrateOnTwin(ratio);
 
   const CalibratedParameter* strength = nullptr;
   for (const CalibratedParameter& p : loop.calibration)
@@ -109,21 +120,9 @@ INSTANTIATE_TEST_SUITE_P(HarderAndSofter, BaseCalibration, ::testing::Values(1.1
 // no reading of the rock but a mismatch leaning on the range's wall (on the synthetic recordings, an effect's work:
 // side friction pushed dev rec07's rock to +20 % where the KEY's is +13 %), so the case's value stands.
 TEST(BaseCalibrationEdge, ARockBeyondTheRangeEndsOnItsEdgeAndIsNotKept) {
-  constexpr double kDuration = 60;
-  const nlohmann::json doc = NominalCase(kDuration);
-  nlohmann::json truth = doc;
-  const double eps = doc["model"]["rock"]["intrinsic_specific_energy_Pa"].get<double>();
-  truth["model"]["rock"]["intrinsic_specific_energy_Pa"] = 1.4 * eps;
-  const Recording twin = FiveChannelTwin(truth);
-  const cases::Case c = cases::ParseCase(doc);
-  LoopOptions o = DefaultLoopOptions(c, twin, kSidecarWarmupS, 2);
-  o.maps = ResolveChannelMaps({}, twin, ProbeChannels(c));
-  o.sample_window_s = 0;
-  o.fit_effects = false;
-  o.draws = 3;
+  const double eps = NominalRockStrength();
   bool said_edge = false;
-  const DiagnosisLoop loop = RunDiagnosisLoop(doc, twin, o, [&](const std::string& step) {
-    if (step.rfind("base calibration", 0) == 0) std::printf("[ progress ] %s\n", step.c_str());
+  const DiagnosisLoop loop = CalibrateOnTwin(1.4, [&](const std::string& step) {
     said_edge = said_edge || step.find("on the edge of its range") != std::string::npos;
   });
   const CalibratedParameter* strength = nullptr;
