@@ -256,6 +256,57 @@ TEST(Features, AnAxialLagOnAnotherPeakCountsAsThreeScales) {
   EXPECT_NEAR(FeatureDistance(model, recording), (9.0 + 25.0) / 2, 1e-12);
 }
 
+// The difference of two models' distances to one recording, as the recording's noise moves it: drawn 20 000 times
+// (noise of 0.3 squared scales in each feature), its spread is the one DistanceDifferenceStd predicts; a feature one
+// model lacks and an axial lag on another peak are constants, and twins do not differ at all.
+TEST(Features, TheDifferenceOfTwoDistancesMovesWithTheRecordingsNoiseAsPredicted) {
+  FeatureSet recording;
+  recording.features = {{"wob_kN std", 10, 2}, {"bit_rpm mean", 60, 3}, {"top_torque_kNm std", 1, 0.1},
+                        {"period_s", 4, 0.5}, {"hook_to_wob_lag_s", 1.5, 0.1}};
+  FeatureSet a = recording, b = recording;
+  a.features[0].value = 13, b.features[0].value = 9;       // 1.5 and -0.5 scales
+  a.features[1].value = 60, b.features[1].value = 66;      // 0 and 2
+  a.features[2].value = 1.05, b.features[2].value = 1.05;  // equal: no slope
+  a.features[3].value = std::nan(""), b.features[3].value = 4.2;  // a lacks the period: its term stays 9
+  a.features[4].value = 9.0, b.features[4].value = 1.6;           // a's lag on another peak: held at its cap
+  const double variance = 0.3;
+  const double predicted = DistanceDifferenceStd(a, b, recording, variance);
+  // Slopes 2 (z_a - z_b): 4, -4, 0, -2 x 0.4 (b's period alone moves), -2 x 1 (b's lag alone); over 5 terms.
+  EXPECT_NEAR(predicted, std::sqrt(variance * (16 + 16 + 0 + 0.64 + 4)) / 5, 1e-12);
+  std::mt19937 random(7);
+  std::normal_distribution<double> noise(0.0, std::sqrt(variance));
+  double sum = 0, square = 0;
+  const int draws = 20000;
+  for (int d = 0; d < draws; ++d) {
+    FeatureSet noisy = recording;
+    for (Feature& f : noisy.features) f.value += f.scale * noise(random);
+    const double difference = FeatureDistance(a, noisy) - FeatureDistance(b, noisy);
+    sum += difference, square += difference * difference;
+  }
+  const double mean = sum / draws, spread = std::sqrt(square / draws - mean * mean);
+  // The lag's cap makes b's term bend where its noise carries it past 3 scales (rarely at 0.55 scales of noise).
+  EXPECT_NEAR(spread / predicted, 1.0, 0.03);
+  EXPECT_EQ(DistanceDifferenceStd(a, a, recording, variance), 0.0);
+}
+
+// Two models' largest difference, in the recording's scales: a level 2.5 scales apart leads; a feature only one model
+// defines counts as three; the correlogram's lags count as one feature, their rms.
+TEST(Features, TheLargestDifferenceOfTwoModelsIsCountedInTheRecordingsScales) {
+  FeatureSet recording;
+  recording.features = {{"wob_kN std", 10, 2}, {"period_s", 4, 0.5}};
+  FeatureSet a = recording, b = recording;
+  a.features[0].value = 15;  // 2.5 scales from b
+  EXPECT_NEAR(LargestDifferenceInScales(a, b, recording), 2.5, 1e-12);
+  EXPECT_NEAR(LargestDifferenceInScales(b, a, recording), 2.5, 1e-12);
+  a.features[1].value = std::nan("");  // a does not oscillate
+  EXPECT_NEAR(LargestDifferenceInScales(a, b, recording), 3.0, 1e-12);
+  EXPECT_EQ(LargestDifferenceInScales(b, b, recording), 0.0);
+  recording.features = {{EnvelopeCorrelationName(0), 0.9, 0.05}, {EnvelopeCorrelationName(0.5), 0.5, 0.05}};
+  a = recording, b = recording;
+  a.features[0].value += 0.2, a.features[1].value -= 0.1;  // 4 and 2 scales: rms sqrt(10)
+  EXPECT_NEAR(LargestDifferenceInScales(a, b, recording), std::sqrt(10.0), 1e-12);
+}
+
 TEST(Features, TheCorrelogramCountsAsOneFeature) {
   FeatureSet recording;
   recording.features = {{"wob_kN std", 100, 10},

@@ -367,6 +367,58 @@ double FeatureDistance(const FeatureSet& model, const FeatureSet& recording) {
   return count ? sum / count : 0.0;
 }
 
+double DistanceDifferenceStd(const FeatureSet& a, const FeatureSet& b, const FeatureSet& recording,
+                             double noise_variance) {
+  double slopes = 0, correlogram_slope = 0;  // sum of the terms' squared slopes in n; the correlogram's mean |slope|
+  int count = 0, correlogram_count = 0;
+  const bool correlogram_counts = CorrelogramCounts(recording);
+  for (const Feature& r : recording.features) {
+    const double va = a.Value(r.name), vb = b.Value(r.name);
+    const bool rf = std::isfinite(r.value), af = std::isfinite(va), bf = std::isfinite(vb);
+    if (!rf && !af && !bf) continue;
+    if (InCorrelogram(r.name)) {
+      if (!correlogram_counts) continue;
+      ++correlogram_count;
+      if (rf && af && bf) correlogram_slope += 2 * std::abs(va - vb) / r.scale;
+      continue;
+    }
+    ++count;
+    if (!rf) continue;  // each model's term is 0 or 9 whatever the noise
+    // A term held at its cap (a missing value, an axial lag on another peak) is a constant: its slope is 0.
+    const bool lag = r.name == "hook_to_wob_lag_s";
+    const auto moving = [&](bool finite, double v) {
+      const double z = finite ? (v - r.value) / r.scale : 0.0;
+      return finite && !(lag && std::abs(z) >= 3.0) ? z : 0.0;
+    };
+    const double slope = 2 * (moving(af, va) - moving(bf, vb));
+    slopes += slope * slope;
+  }
+  if (correlogram_count) {
+    const double slope = correlogram_slope / correlogram_count;
+    slopes += slope * slope, ++count;
+  }
+  return count ? std::sqrt(std::max(noise_variance, 0.0) * slopes) / count : 0.0;
+}
+
+double LargestDifferenceInScales(const FeatureSet& a, const FeatureSet& b, const FeatureSet& recording) {
+  double largest = 0, correlogram_sum = 0;
+  int correlogram_count = 0;
+  const bool correlogram_counts = CorrelogramCounts(recording);
+  for (const Feature& r : recording.features) {
+    const double va = a.Value(r.name), vb = b.Value(r.name);
+    const bool af = std::isfinite(va), bf = std::isfinite(vb);
+    if (!af && !bf) continue;
+    const double d = af && bf ? std::abs(va - vb) / r.scale : 3.0;
+    if (InCorrelogram(r.name)) {
+      if (correlogram_counts) correlogram_sum += d * d, ++correlogram_count;
+      continue;
+    }
+    largest = std::max(largest, d);
+  }
+  if (correlogram_count) largest = std::max(largest, std::sqrt(correlogram_sum / correlogram_count));
+  return largest;
+}
+
 CorrelogramDifference CompareCorrelograms(const FeatureSet& model, const FeatureSet& recording) {
   CorrelogramDifference d{kNaN, kNaN};
   if (!CorrelogramCounts(recording)) return d;

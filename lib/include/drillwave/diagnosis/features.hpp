@@ -98,6 +98,21 @@ FeatureSet MeasureFeatures(const Recording& recording, double begin_s, double en
 // its lags' squared differences, where the recording's peaks at kMinEnvelopeCorrelation or more.
 double FeatureDistance(const FeatureSet& model, const FeatureSet& recording);
 
+// How far FeatureDistance(a, recording) - FeatureDistance(b, recording) moves with the recording's own noise, as a
+// standard deviation, for noise of `noise_variance` squared scales in each feature. Both models are compared with the
+// same recording, so its noise n moves each term by the same amount: with z = b - n, z_a^2 - z_b^2 = b_a^2 - b_b^2 -
+// 2 n (z_a - z_b), linear in n with a slope twice the models' own difference. Two models that agree where the recording
+// is noisy are told apart by far less than either error's own spread. Terms that do not move with the recording (a
+// feature one model lacks, an axial lag past its cap) add nothing; the correlogram's lags count as one noise, fully
+// correlated (the larger bound).
+double DistanceDifferenceStd(const FeatureSet& a, const FeatureSet& b, const FeatureSet& recording,
+                             double noise_variance);
+
+// The largest difference between two models over the recording's features, in the recording's scales: a feature one
+// model defines and the other does not counts as 3; the envelopes' correlogram as one feature, the rms over its lags.
+// Below 1 the two are the same model at the resolution the features claim.
+double LargestDifferenceInScales(const FeatureSet& a, const FeatureSet& b, const FeatureSet& recording);
+
 // The envelopes' correlogram as the distance counts it: the rms over its lags of the model's difference in scales,
 // and the lag where it is largest; NaN (and lag NaN) where the recording's correlogram does not count (its peak below
 // kMinEnvelopeCorrelation) or either set lacks it.
