@@ -57,7 +57,14 @@ class EffectSelection {
   struct Reference {
     double error, aic;
     const std::vector<double>* draw_errors;
+    const FeatureSet* held_out;  // its held-out features' means over its draws
   };
+  static Reference ReferenceOf(const Candidate& c) {
+    return {c.held_out_error, c.aic, &c.held_out_draw_errors, &c.held_out_mean};
+  }
+  int ParameterOnEdge(const Candidate& c) const;
+  double DifferenceSpread(const Candidate& c, const Reference& reference) const;
+  bool Resolved(const Candidate& c, const Reference& reference) const;
   bool Qualifies(const Candidate& c, const Reference& reference) const;
   Reference BaselineReference() const;
   std::vector<int> IndicesOf(const Candidate& c) const;

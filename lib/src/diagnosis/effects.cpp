@@ -116,6 +116,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
         std::min(std::isfinite(missing_kNm) && missing_kNm > 0 ? 1000 * missing_kNm / pipe.length : 0.5, 0.9 * most);
     Effect e{"side_friction", "Coulomb friction torque along the string (per metre)", {}, nullptr, 0, ""};
     e.parameters = {{"torque_per_m_Nm", "N m/m", 0.0, most, false, estimate}};
+    e.parameters[0].lower_is_physical = true;
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
       d["model"]["string"]["side_friction"] = {{"torque_per_m_Nm", v[0]}, {"from_m", 0.0}};
     };
@@ -131,6 +132,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
     Effect e{"stribeck", "bit friction that weakens with speed (Stribeck)", {}, nullptr, 0, ""};
     e.parameters = {{"static_mu", "-", 1.02 * mu, 3 * mu, false, 1.6 * mu},
                     {"velocity_rad_s", "rad/s", 0.5, 40, true, 5}};
+    e.parameters[0].lower_is_physical = true;  // static friction just above kinetic: no weakening
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
       d["model"]["rock"]["stribeck"] = {{"static_mu", v[0]}, {"velocity_rad_s", v[1]}};
     };
@@ -194,6 +196,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
     Effect e{"dc_motor", "a DC motor behind the speed controller (armature lag, back-EMF damping)", {}, nullptr, 0, ""};
     e.parameters = {{"electrical_time_constant_s", "s", 0.005, 1.0, true, 0.1},
                     {"back_emf_damping_Nms_per_rad", "N m s/rad", 100, 1e6, true, 1e4}};
+    e.parameters[0].lower_is_physical = true;  // 5 ms: no armature lag at the torsional modes' time scales
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
       constexpr double k = 30;  // N m/A: only K^2/R and La/R shape the torque, so K is fixed and R, La follow
       const double resistance = k * k / v[1];
@@ -254,6 +257,7 @@ std::vector<Effect> ProposeEffects(const nlohmann::json& doc, const FeatureSet& 
     const double first = axial ? axial_shift : std::isfinite(shift) ? shift : 1.0;
     Effect e{"sensor_delay", "telemetry delay of the downhole channels (bit speed, weight on bit)", {}, nullptr, 0, ""};
     e.parameters = {{"delay_s", "s", 0.0, 8.0, false, std::clamp(first, 0.0, 8.0)}};
+    e.parameters[0].lower_is_physical = true;
     e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
       if (!d.contains("sensors")) return;
       for (auto& [channel, sensor] : d["sensors"]["channels"].items())

@@ -335,6 +335,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   Adopt(baseline, loop.baseline_model, loop.baseline_fit, loop.baseline_held_out, loop.baseline_fit_error,
         loop.baseline_held_out_error);
   loop.baseline_held_out_draw_errors = baseline.held_out_draw_errors;
+  loop.baseline_held_out_mean = baseline.held_out_mean;
   loop.baseline_draw_in_regime = baseline.draw_in_regime;
   loop.fit_draw = static_cast<int>(std::find(baseline.draw_in_regime.begin(), baseline.draw_in_regime.end(), 1) -
                                    baseline.draw_in_regime.begin());

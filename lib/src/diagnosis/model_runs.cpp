@@ -195,6 +195,16 @@ Judged ModelRuns::Judge(Draws runs) const {
   std::sort(fit_errors.begin(), fit_errors.end());
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return j.held_out_draw_errors[a] < j.held_out_draw_errors[b]; });
+  j.held_out_mean = held_out[order.front()];
+  for (Feature& f : j.held_out_mean.features) {
+    double sum = 0;
+    int defined = 0;
+    for (std::size_t d : order) {
+      const double v = held_out[d].Value(f.name);
+      if (std::isfinite(v)) sum += v, ++defined;
+    }
+    f.value = defined ? sum / defined : std::nan("");
+  }
   const std::size_t median = order[(order.size() - 1) / 2];
   j.model = std::move(models[median]);
   j.fit = fit[median], j.held_out = held_out[median];

@@ -53,6 +53,7 @@ struct Draws {
 struct Judged {
   Recording model;
   FeatureSet fit, held_out;
+  FeatureSet held_out_mean;  // each held-out feature's mean over the draws judged (NaN where none defines it)
   double fit_error = 0, held_out_error = 0;
   std::vector<double> held_out_draw_errors;
   std::vector<char> draw_in_regime;

@@ -155,6 +155,7 @@ Effect Stribeck(const nlohmann::json& coulomb, double weight, const FeatureSet& 
   e.parameters = {{"static_torque_Nm", "N m", 0.7 * t_s, 1.6 * t_s, false, t_s},
                   {"kinetic_to_static", "-", 0.0, 1.0, false, 0.7},
                   {"nu_f_rad_s", "rad/s", 0.3, 100, true, 5}};
+  e.parameters[1].lower_is_physical = e.parameters[1].upper_is_physical = true;
   e.apply = [viscous, weight](nlohmann::json& d, const std::vector<double>& v) {
     const double mu_s = v[0] / weight;  // with R = 1 m: only mu R W is identified
     d["model"]["bit"]["friction"] = {{"law", "stribeck"}, {"W_N", weight},       {"R_m", 1.0},
@@ -197,6 +198,7 @@ Effect LinearWeakening(const nlohmann::json& coulomb, const nlohmann::json& doc,
   e.parameters = {{"static_torque_Nm", "N m", 0.7 * t_static, 1.6 * t_static, false, t_static},
                   {"slip_at_rest_to_static", "-", 0.5, 0.97, false, std::clamp(at_rest / t_static, 0.5, 0.97)},
                   {"weakening_Nms_per_rad", "N m s/rad", 0.2 * fall, 5 * fall, true, fall}};
+  e.parameters[1].upper_is_physical = true;  // 0.97: slipping at rest as strongly as sticking, the limit
   e.apply = [viscous](nlohmann::json& d, const std::vector<double>& v) {
     d["model"]["bit"]["friction"] = {{"law", "linear_weakening"}, {"T_s_Nm", v[0]},   {"T_0_Nm", v[1] * v[0]},
                                      {"weakening_Nms_per_rad", v[2]}, {"T_min_Nm", 0.0}, {"c_Nms_per_rad", viscous}};
@@ -223,6 +225,8 @@ Effect NormalLoad(const nlohmann::json& doc, double weight, double static_level,
   Effect e{"normal_load", "friction proportional to a normal load that follows the torque on bit", {}, nullptr, 0, ""};
   e.parameters = {{"torque_gain_N_per_Nm", "N/(N m)", 0.0, 0.6 * runaway, false, 0.3 * runaway},
                   {"time_constant_s", "s", 0.002, 0.2, true, 0.02}};
+  e.parameters[0].lower_is_physical = true;
+  e.parameters[1].lower_is_physical = true;  // 2 ms: the load follows at once
   e.apply = [reference](nlohmann::json& d, const std::vector<double>& v) {
     d["model"]["bit"]["normal_load"] = {
         {"torque_gain_N_per_Nm", v[0]}, {"reference_torque_Nm", reference}, {"time_constant_s", v[1]}};

@@ -27,6 +27,10 @@ struct EffectParameter {
   double lower = 0, upper = 1;
   bool log_scale = false;  // moved on a log scale (spans decades)
   double start = 0;        // first value, inside the bounds
+  // Which bounds are limits of the physics itself (a friction or delay of zero, static friction no lower than
+  // kinetic): a fit that ends on one has estimated the effect at its limit. The other bounds only span what the effect
+  // plausibly is, and a fit that ends on one of those has not estimated it (the loop does not name it).
+  bool lower_is_physical = false, upper_is_physical = false;
 };
 
 struct Effect {

@@ -97,6 +97,7 @@ struct Candidate {
   double fit_error = 0, held_out_error = 0;  // medians over the draws judged (LoopOptions::draws)
   std::vector<double> held_out_draw_errors;   // each draw's own held-out error, every draw run
   std::vector<char> draw_in_regime;           // per draw run: in the recording's regime (judged), see DiagnosisLoop
+  FeatureSet held_out_mean;  // each held-out feature's mean over the draws judged
   double aic = 0;  // K ln(fit_error) + 2 p over the K features of the fit window
   int evaluations = 0;
   int redrawn_runs = 0;       // fit runs drawn again because a start landed in the other regime
@@ -119,6 +120,7 @@ struct DiagnosisLoop {
   // The models' features: the median draw's (LoopOptions::draws).
   FeatureSet baseline_fit, baseline_held_out, fitted_fit, fitted_held_out;
   std::vector<double> baseline_held_out_draw_errors;  // each draw's own held-out error, every draw run
+  FeatureSet baseline_held_out_mean;                  // each held-out feature's mean over the draws judged
   // The recording's regime: its bit's share of time off the bottom (NaN: no weight on bit) and whether that makes it
   // a bouncing bit. A model may have both regimes at one set-point, and which one a run ends on depends on its start:
   // a model is judged on its draws in the recording's regime (more are drawn to find them), on all where none is.
