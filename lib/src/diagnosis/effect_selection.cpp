@@ -177,6 +177,7 @@ Candidate EffectSelection::Fit(const std::vector<int>& set, std::vector<double> 
     c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
   }
   c.aic = k_features_ * std::log(c.fit_error) + 2.0 * start.size();
+  const int on_edge = screening ? -1 : ParameterOnEdge(c);
   const std::lock_guard<std::mutex> lock(progress_mutex_);
   say_((screening ? "screening " : "") + Joined(c.effects) + ": " + std::to_string(c.evaluations + c.redrawn_runs) +
        " runs" +
@@ -187,10 +188,9 @@ Candidate EffectSelection::Fit(const std::vector<int>& set, std::vector<double> 
                                 (std::count(c.draw_in_regime.begin(), c.draw_in_regime.end(), 0)
                                      ? "; draws " + EachDraw(c.held_out_draw_errors, c.draw_in_regime)
                                      : std::string()) +
-                                (!screening && ParameterOnEdge(c) >= 0
-                                     ? "; " + c.parameters[static_cast<std::size_t>(ParameterOnEdge(c))].name +
-                                           " on the edge of its range: not an estimate, not named"
-                                     : std::string())
+                                (on_edge >= 0 ? "; " + c.parameters[static_cast<std::size_t>(on_edge)].name +
+                                                    " on the edge of its range: not an estimate, not named"
+                                              : std::string())
                           : ", not judged: " + c.failure));
   return c;
 }
@@ -233,13 +233,8 @@ int EffectSelection::ParameterOnEdge(const Candidate& c) const {
 // every draw closer by 0.12 to 0.21; two independent spreads 0.26).
 double EffectSelection::DifferenceSpread(const Candidate& c, const Reference& reference) const {
   const double noise_variance = 0.5 * std::min({1.0, reference.error, c.held_out_error});
-  const bool have_features = reference.held_out && !reference.held_out->features.empty() &&
-                             !c.held_out_mean.features.empty();
-  // Without the models' features (a failed judging), each error's own spread: the larger bound.
   const double recording =
-      have_features ? DistanceDifferenceStd(*reference.held_out, c.held_out_mean, loop_.recording_held_out,
-                                            noise_variance)
-                    : 2 * noise_variance * std::sqrt(2 / std::max(1.0, FeatureCount(loop_.recording_held_out)));
+      DistanceDifferenceStd(*reference.held_out, c.held_out_mean, loop_.recording_held_out, noise_variance);
   const std::vector<double>& mine = c.held_out_draw_errors;
   const std::vector<double>& theirs = *reference.draw_errors;
   const std::size_t paired = std::min(mine.size(), theirs.size());
@@ -282,7 +277,6 @@ bool EffectSelection::Qualifies(const Candidate& c, const Reference& reference) 
 // tests/diagnosis/loop_test.cpp with a bit 5 % heavier: the fitted inertia within 1.2 % of it, the period half a
 // scale away).
 bool EffectSelection::Resolved(const Candidate& c, const Reference& reference) const {
-  if (!reference.held_out || reference.held_out->features.empty() || c.held_out_mean.features.empty()) return true;
   return LargestDifferenceInScales(*reference.held_out, c.held_out_mean, loop_.recording_held_out) >= 1.0;
 }
 

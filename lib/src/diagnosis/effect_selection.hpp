@@ -57,7 +57,7 @@ class EffectSelection {
   struct Reference {
     double error, aic;
     const std::vector<double>* draw_errors;
-    const FeatureSet* held_out;  // its held-out features' means over its draws
+    const FeatureSet* held_out;  // its held-out features' means over its draws (a judged model always has them)
   };
   static Reference ReferenceOf(const Candidate& c) {
     return {c.held_out_error, c.aic, &c.held_out_draw_errors, &c.held_out_mean};
