@@ -27,6 +27,7 @@
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/stability_map.hpp"
 #include "drillwave/cases/sweep.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/memory.hpp"
@@ -378,7 +379,8 @@ drillwave::estimation::BitEstimate FollowRecording(const drillwave::estimation::
   std::cout << "time_s,bit_rpm,bit_rpm_band,bit_torque_Nm,bit_torque_Nm_band,wob_N,wob_N_band,bit_stuck\n";
   const auto print = [&](const std::vector<es::EstimateRow>& out) {
     for (const es::EstimateRow& r : out) {
-      std::cout << r.time_s << "," << r.bit_speed_rad_s * 30 / M_PI << "," << r.bit_speed_band_rad_s * 30 / M_PI << ","
+      std::cout << r.time_s << "," << r.bit_speed_rad_s / drillwave::kRadPerSecondPerRpm << ","
+                << r.bit_speed_band_rad_s / drillwave::kRadPerSecondPerRpm << ","
                 << r.bit_torque_Nm << "," << r.bit_torque_band_Nm << "," << r.wob_N << "," << r.wob_band_N << ","
                 << (r.stuck ? 1 : 0) << "\n";
       given_out.push_back(r);

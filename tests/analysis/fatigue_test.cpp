@@ -1,6 +1,7 @@
 // Rainflow counting against the worked example of ASTM E1049-85 (sect. 5.4.4, counted by hand below), the S-N
 // curve against its defining points, and Miner's damage of a constant-amplitude history against n / N_f.
 #include "drillwave/analysis/fatigue.hpp"
+#include "drillwave/core/constants.hpp"
 
 #include <cmath>
 #include <map>
@@ -11,7 +12,6 @@
 namespace drillwave::analysis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(Reversals, KeepsPeaksValleysAndTheEndsOnly) {
   EXPECT_EQ(Reversals({0, 1, 2, 2, 3, 1, 1, 0, 4, 5}), (std::vector<double>{0, 3, 0, 5}));

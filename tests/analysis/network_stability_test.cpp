@@ -17,6 +17,7 @@
 
 #include "drillwave/analysis/network_linearization.hpp"
 #include "drillwave/analysis/torsional_linearization.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/waves/network_simulation.hpp"
 
 namespace drillwave::analysis {
@@ -330,13 +331,13 @@ std::vector<Complex> KelvinVoigtClosedFormRoots(double tau, int parts, double et
   const double tau_p = tau / parts, r = eta / tau_p;
   std::vector<Complex> roots;
   for (int k = 0; k < parts; ++k) {
-    const double c = std::cos(M_PI * (2 * k + 1) / (2 * parts)), a = r * (1 - c);
+    const double c = std::cos(kPi * (2 * k + 1) / (2 * parts)), a = r * (1 - c);
     const Complex root = std::sqrt(Complex(c * c - (1 + a) * (1 - a)));
     for (const Complex y : {(c + root) / (1 + a), (c - root) / (1 + a)}) {
       const Complex base = std::log(y) / tau_p;
       if (base.real() < re_min) continue;
       for (int j = -100; j <= 100; ++j) {
-        const Complex s = base + Complex(0, 2 * M_PI * j / tau_p);
+        const Complex s = base + Complex(0, 2 * kPi * j / tau_p);
         if (s.imag() >= -1e-12 && s.imag() <= im_max) roots.push_back(s);
       }
     }
@@ -377,7 +378,7 @@ TEST(NetworkStability, KelvinVoigtStringRootsAreTheDiscreteClosedForm) {
         ++missing;
         ADD_FAILURE() << parts << " parts: closed-form root " << z << " not found";
       }
-    const double w0 = M_PI / (2 * tau);
+    const double w0 = kPi / (2 * tau);
     const double lowest = std::max_element(closed.begin(), closed.end(), [](Complex a, Complex b) {
                             return a.real() < b.real();
                           })->real();
@@ -467,7 +468,7 @@ waves::NetworkTrajectory KickedRun(waves::Network net, double w0, double kick, d
 // e^{(sigma + i omega) t} gives exactly sigma; modes at other frequencies leak little through the window.
 double ModeGrowthRate(const std::vector<double>& time, const std::vector<double>& signal, double steady, double omega,
                       double t0, double t1) {
-  const double window = std::min(std::max(8 * M_PI / omega, 10.0), 0.5 * (t1 - t0));
+  const double window = std::min(std::max(8 * kPi / omega, 10.0), 0.5 * (t1 - t0));
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int n = 0;
   for (double centre = t0 + 0.5 * window; centre <= t1 - 0.5 * window; centre += 0.5) {
@@ -475,7 +476,7 @@ double ModeGrowthRate(const std::vector<double>& time, const std::vector<double>
     for (std::size_t i = 0; i < time.size(); ++i) {
       const double x = (time[i] - centre) / window;
       if (std::abs(x) > 0.5) continue;
-      sum += (signal[i] - steady) * std::pow(std::cos(M_PI * x), 2) * std::polar(1.0, -omega * time[i]);
+      sum += (signal[i] - steady) * std::pow(std::cos(kPi * x), 2) * std::polar(1.0, -omega * time[i]);
     }
     const double y = std::log(std::abs(sum));
     sx += centre, sy += y, sxx += centre * centre, sxy += centre * y;
@@ -681,7 +682,7 @@ TEST(NetworkStability, InductionMotorTopUndampsTheHarmonicsBelowItsSupplyFrequen
   const Spectrum sp = ComputeSpectrum(LinearizeNetwork(net, points[0]).system);
   EXPECT_GT(sp.roots[0].s.real(), 0);
   EXPECT_GT(sp.roots[0].s.imag(), 100);
-  EXPECT_LT(sp.roots[0].s.imag(), 2 * M_PI * 25.5);
+  EXPECT_LT(sp.roots[0].s.imag(), 2 * kPi * 25.5);
   const waves::NetworkTrajectory tr = KickedRun(net, w0, 1e-3, 105);
   int checked = 0, growing = 0;
   for (const CharacteristicRoot& r : sp.roots) {  // by real part, descending

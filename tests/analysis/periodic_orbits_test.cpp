@@ -1,5 +1,6 @@
 // Periodic orbits by shooting, their Floquet multipliers and their continuation, on systems with closed forms.
 #include "drillwave/analysis/periodic_orbits.hpp"
+#include "drillwave/core/constants.hpp"
 
 #include <cmath>
 #include <memory>
@@ -38,7 +39,7 @@ TEST(PeriodicOrbits, HopfNormalFormCycleAndMultipliersAreTheClosedForm) {
   VectorXd guess(3);
   guess << 0.8, 0.1, 0.2;
   const PeriodicOrbit orbit = FindPeriodicOrbit(f, guess, 3.0);
-  const double period = 2 * M_PI / omega;
+  const double period = 2 * kPi / omega;
   EXPECT_NEAR(orbit.period, period, 1e-9);
   EXPECT_NEAR(std::hypot(orbit.x0[0], orbit.x0[1]), std::sqrt(mu), 1e-9);
   EXPECT_NEAR(orbit.x0[2], 0, 1e-9);
@@ -88,7 +89,7 @@ TEST(PeriodicOrbits, SubcriticalHopfBranchFoldsWhereTheClosedFormDoes) {
     if (r2 > 1e-2) {
       EXPECT_NEAR(mu + r2 - r2 * r2, 0, 1e-7) << "mu = " << mu;
     }
-    EXPECT_NEAR(b.orbit.period, 2 * M_PI / omega, 1e-8);
+    EXPECT_NEAR(b.orbit.period, 2 * kPi / omega, 1e-8);
     if (std::abs(g_prime) > 1e-2) {
       EXPECT_EQ(b.orbit.stable, g_prime < 0) << "mu = " << mu << ", r^2 = " << r2;
       (b.orbit.stable ? stable : unstable)++;
@@ -128,7 +129,7 @@ TEST(PeriodicOrbits, StickSlipOnABeltHasTheClosedFormPeriodAndSaltationMonodromy
   // Closed form: slip is harmonic about x_c = F_c / k from x_s = F_s / k (relative speed 0) to 2 x_c - x_s, then the
   // mass rides the belt back to x_s.
   const double w = std::sqrt(k / m), y0 = (fs - fc) / k, alpha = std::atan(vb / (w * y0));
-  const double period = (M_PI + 2 * alpha) / w + 2 * y0 / vb;
+  const double period = (kPi + 2 * alpha) / w + 2 * y0 / vb;
   const double amplitude = std::hypot(y0, vb / w);
   // A guess from a transient: the state of least speed after a few cycles (mid-slip).
   const FlowResult transient = Flow(f, VectorXd::Zero(2), 5 * period, false);

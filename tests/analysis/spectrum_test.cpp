@@ -8,12 +8,12 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/analysis/spectrum.hpp"
+#include "drillwave/core/constants.hpp"
 
 namespace drillwave::analysis {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::MatrixXd Scalar(double v) { return Eigen::MatrixXd::Constant(1, 1, v); }
 

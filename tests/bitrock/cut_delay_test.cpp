@@ -7,12 +7,12 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/bitrock/rgd.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/integration/options.hpp"
 
 namespace drillwave::bitrock {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kBlades = 5;
 constexpr double kOmega = 2 * kPi, kRop = 0.01;  // 60 rpm, 36 m/h
 

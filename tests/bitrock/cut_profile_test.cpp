@@ -7,14 +7,15 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/bitrock/rgd.hpp"
+#include "drillwave/core/constants.hpp"
 
 namespace {
 
+using drillwave::kPi;
 using drillwave::bitrock::CutProfile;
 using drillwave::integration::Piece;
 using drillwave::integration::Side;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kBlades = 5;
 constexpr double kOmega = 2 * kPi;  // rad/s: one blade pass every t_n = 2 pi / (n omega) = 0.2 s
 constexpr double kRop = 0.01;       // m/s, also the stored prehistory's

@@ -10,14 +10,15 @@
 
 #include "drillwave/bitrock/rgd.hpp"
 #include "drillwave/bitrock/roughness.hpp"
+#include "drillwave/core/constants.hpp"
 
 namespace {
 
+using drillwave::kPi;
 using drillwave::bitrock::BottomRoughness;
 using drillwave::bitrock::CutProfile;
 using drillwave::integration::Side;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kRms = 1e-5;  // m
 constexpr int kModes = 20;
 

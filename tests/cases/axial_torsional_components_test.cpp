@@ -13,6 +13,7 @@
 
 #include "drillwave/bitrock/roughness.hpp"
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -23,7 +24,7 @@ namespace {
 // last `window` s.
 nlohmann::json Nominal(double rpm, double duration, double window) {
   nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
-  doc["model"]["top"]["speed_rad_s"] = rpm * M_PI / 30;
+  doc["model"]["top"]["speed_rad_s"] = rpm * kPi / 30;
   doc["simulation"]["duration_s"] = duration;
   doc["statistics"]["window_s"] = {duration - window, duration};
   doc.erase("expect");
@@ -32,7 +33,7 @@ nlohmann::json Nominal(double rpm, double duration, double window) {
 // The same with the baseline case's 5 % set-point bump at 1-2 s, which starts the instabilities.
 nlohmann::json Bumped(double rpm, double duration, double window) {
   nlohmann::json doc = Nominal(rpm, duration, window);
-  const double w = rpm * M_PI / 30;
+  const double w = rpm * kPi / 30;
   doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}}}};
   return doc;
 }
@@ -85,7 +86,7 @@ TEST(AxialTorsionalStribeck, StaticMuEqualToMuIsTheCoulombRun) {
 // undamps the baseline string, 10.2-10.8 rad/s after 120 s).
 TEST(AxialTorsionalStribeck, SteadyBitTorqueIsTheClosedForm) {
   nlohmann::json doc = Nominal(60, 60, 10);
-  const double w1 = 2 * M_PI, w2 = 100 * M_PI / 30;
+  const double w1 = 2 * kPi, w2 = 100 * kPi / 30;
   doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w1}, {1, w1}, {3, w2}}}};
   doc["model"]["rock"]["stribeck"] = {{"static_mu", 1.1}, {"velocity_rad_s", 6.8}};
   doc["model"]["axial_coupling"] = false;
@@ -148,7 +149,7 @@ TEST(AxialTorsionalUncoupled, HoldsTheWeightOnBitAndSettlesToTheClosedForm) {
   for (double d : Channel(run, "depth_of_cut_m")) ASSERT_EQ(d, depth);
   const double torque = Get(run, "bit_torque_mean_Nm"), expected = cf.BitTorque(0.6);
   const auto& top = Channel(run, "top_torque_Nm");
-  const double top_expected = expected + cf.drag_per_speed * 2 * M_PI;
+  const double top_expected = expected + cf.drag_per_speed * 2 * kPi;
   std::printf("[ measured ] uncoupled, 60 rpm after the bump: bit torque %.6f (closed form %.6f, %+.1e), top torque "
               "%.6f (%.6f, %+.1e), bit speed %.6f..%.6f rad/s, %d stick onsets\n", torque, expected,
               torque / expected - 1, top.back(), top_expected, top.back() / top_expected - 1,
@@ -157,8 +158,8 @@ TEST(AxialTorsionalUncoupled, HoldsTheWeightOnBitAndSettlesToTheClosedForm) {
   EXPECT_EQ(run.summary.at("stick_onsets").get<int>(), 0);
   EXPECT_NEAR(torque, expected, 1e-9 * expected);
   EXPECT_NEAR(top.back(), top_expected, 1e-5 * top_expected);
-  EXPECT_NEAR(Get(run, "bit_speed_min_rad_s"), 2 * M_PI, 1e-4);
-  EXPECT_NEAR(Get(run, "bit_speed_max_rad_s"), 2 * M_PI, 1e-4);
+  EXPECT_NEAR(Get(run, "bit_speed_min_rad_s"), 2 * kPi, 1e-4);
+  EXPECT_NEAR(Get(run, "bit_speed_max_rad_s"), 2 * kPi, 1e-4);
 }
 
 // On rock whose strength s(z) varies (BASELINE.md: 0.5-1.5 % over 2 mm of drilled depth) the held weight is still
@@ -221,7 +222,7 @@ TEST(AxialTorsionalMotor, HoldsTheSteadyCurrent) {
   doc["model"]["top"]["motor"] = Motor(0.005);
   const CaseRun run = RunDoc(doc);
   const SteadyClosedForm cf(doc);
-  const double expected = (cf.BitTorque(0.6) + cf.drag_per_speed * 2 * M_PI) / 50;
+  const double expected = (cf.BitTorque(0.6) + cf.drag_per_speed * 2 * kPi) / 50;
   const auto& current = Channel(run, "top_current_A");
   const auto [lo, hi] = std::minmax_element(current.begin(), current.end());
   std::printf("[ measured ] steady current %.10f..%.10f A, closed form T0 / K = %.10f A\n", *lo, *hi, expected);
@@ -301,7 +302,7 @@ TEST(AxialTorsionalUnbalance, ZeroUnbalanceMassIsThePlainRun) {
 // The bit made heavy (J_b = 1e6 kg m^2) turns at the imposed 150 rpm; the whirl settles to the radius
 // m e W^2 / sqrt((k - (M + m) W^2)^2 + (c W)^2), largest where W is the natural frequency sqrt(k / (M + m)).
 TEST(AxialTorsionalUnbalance, SteadyWhirlIsTheClosedFormAndPeaksAtTheNaturalFrequency) {
-  const double w = 150 * M_PI / 30, zeta = 0.05, m = 10, e = 0.05, total = 2010;
+  const double w = 150 * kPi / 30, zeta = 0.05, m = 10, e = 0.05, total = 2010;
   std::vector<double> amplitudes;
   for (double ratio : {0.8, 0.95, 1.0, 1.05, 1.25}) {  // natural frequency / bit speed
     nlohmann::json doc = Nominal(150, 16, 2);
@@ -353,8 +354,8 @@ TEST(AxialTorsionalRoughness, ZeroRoughnessIsTheSmoothStartAndStaysSteady) {
     EXPECT_EQ(Channel(smooth, name), Channel(zero, name)) << name;
   std::printf("[ measured ] roughness 0 for 2 s: bit speed %.12f..%.12f rad/s\n", Get(zero, "bit_speed_min_rad_s"),
               Get(zero, "bit_speed_max_rad_s"));
-  EXPECT_NEAR(Get(zero, "bit_speed_min_rad_s"), 2 * M_PI, 1e-7);
-  EXPECT_NEAR(Get(zero, "bit_speed_max_rad_s"), 2 * M_PI, 1e-7);
+  EXPECT_NEAR(Get(zero, "bit_speed_min_rad_s"), 2 * kPi, 1e-7);
+  EXPECT_NEAR(Get(zero, "bit_speed_max_rad_s"), 2 * kPi, 1e-7);
   EXPECT_EQ(zero.summary.at("events").get<int>(), 0);
 }
 
@@ -369,7 +370,7 @@ TEST(AxialTorsionalRoughness, TheFirstBladePassCutsTheRoughBottom) {
     doc["model"]["rock"]["bottom_roughness"] = Roughness(kRms, seed);
     const CaseRun run = RunDoc(doc);
     const double d0 = Get(run, "steady_depth_of_cut_m");
-    const double h = bitrock::BottomRoughness(kRms, seed, 20).Depth(-2 * M_PI / kBlades);  // 20: the default modes
+    const double h = bitrock::BottomRoughness(kRms, seed, 20).Depth(-2 * kPi / kBlades);  // 20: the default modes
     const double d = Channel(run, "depth_of_cut_m").front();
     std::printf("[ measured ] seed %d: depth of cut at t = 0 %.12f m, steady %.12f, closed form %.12f\n", seed, d, d0,
                 d0 - kBlades * h);

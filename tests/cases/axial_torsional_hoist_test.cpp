@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "refused_path.hpp"
@@ -31,16 +32,16 @@ struct AxialBalance {
     const auto& s = md["string"];
     const double rho = s["density_kg_m3"], rho_mud = s["mud_density_kg_m3"], g = 9.81;
     const double od = s["outer_diameter_m"], id = s["inner_diameter_m"], length = s["length_m"];
-    buoyant_weight = (rho - rho_mud) * g * M_PI / 4 * (od * od - id * id) * length +
+    buoyant_weight = (rho - rho_mud) * g * kPi / 4 * (od * od - id * id) * length +
                      md["bit"]["mass_kg"].get<double>() * g * (1 - rho_mud / rho);
     drag_per_speed = s["axial_damping_Ns_per_m2"].get<double>() * length;
     const double a = md["bit"]["radius_m"];
     contact_force = a * md["rock"]["sigma_l_N_per_m"].get<double>();
     cut_weight_per_depth = a * md["rock"]["zeta"].get<double>() * md["rock"]["intrinsic_specific_energy_Pa"].get<double>();
   }
-  double Rop(double wob, double omega) const { return (wob - contact_force) / cut_weight_per_depth * omega / (2 * M_PI); }
+  double Rop(double wob, double omega) const { return (wob - contact_force) / cut_weight_per_depth * omega / (2 * kPi); }
   double WeightOnBit(double hook, double omega) const {  // linear in W: bisection would do, the closed form is exact
-    const double kappa = drag_per_speed * omega / (2 * M_PI) / cut_weight_per_depth;
+    const double kappa = drag_per_speed * omega / (2 * kPi) / cut_weight_per_depth;
     return (buoyant_weight - hook + kappa * contact_force) / (1 + kappa);
   }
 };
@@ -132,7 +133,7 @@ TEST(AxialTorsionalHoist, HoistDashpotIsQuietInSteadyDrilling) {
   hoist.erase("hook_force_N");
   hoist["weight_on_bit_N"] = 90000;
   hoist["damping_Ns_per_m"] = 2e5;
-  doc["model"]["top"]["speed_rad_s"] = 2 * M_PI;
+  doc["model"]["top"]["speed_rad_s"] = 2 * kPi;
   doc["simulation"]["duration_s"] = 2;
   doc["statistics"] = {{"window_s", {0, 2}}};
   const CaseRun run = RunCase(ParseCase(doc));

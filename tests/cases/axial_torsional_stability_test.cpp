@@ -23,6 +23,7 @@
 
 #include "drillwave/analysis/spectrum.hpp"
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/model/hoist_rig.hpp"
@@ -46,7 +47,7 @@ nlohmann::json Undamped(int pieces) {
   s["torsional_damping_Nms_per_rad_m"] = 0;
   s["axial_damping_Ns_per_m2"] = 0;
   s["subsections"] = pieces;
-  doc["model"]["top"]["speed_rad_s"] = 2 * M_PI;
+  doc["model"]["top"]["speed_rad_s"] = 2 * kPi;
   return doc;
 }
 
@@ -63,7 +64,7 @@ struct ClosedForm {
     const auto& s = m["string"];
     const double od = s["outer_diameter_m"], id = s["inner_diameter_m"], length = s["length_m"];
     const double g = s["shear_modulus_Pa"], e = s["youngs_modulus_Pa"], rho = s["density_kg_m3"];
-    const double polar = M_PI / 32 * (std::pow(od, 4) - std::pow(id, 4)), area = M_PI / 4 * (od * od - id * id);
+    const double polar = kPi / 32 * (std::pow(od, 4) - std::pow(id, 4)), area = kPi / 4 * (od * od - id * id);
     zt = polar * std::sqrt(g * rho), taut = length / std::sqrt(g / rho);
     za = area * std::sqrt(e * rho), taua = length / std::sqrt(e / rho);
     pieces = s.value("subsections", 20);
@@ -76,9 +77,9 @@ struct ClosedForm {
     const double sigma_l = m["rock"]["sigma_l_N_per_m"], w0 = m["top"]["speed_rad_s"], wob = m["hoist"]["weight_on_bit_N"];
     blades = m["bit"]["blades"];
     cut_w = a * zeta * eps, cut_t = 0.5 * a * a * eps;
-    tn0 = 2 * M_PI / (blades * w0);
+    tn0 = 2 * kPi / (blades * w0);
     const double depth = (wob - a * sigma_l) / cut_w;  // per revolution
-    ratio = depth / (2 * M_PI);                       // V0 / Omega0
+    ratio = depth / (2 * kPi);                       // V0 / Omega0
     const auto& top = m["top"];
     if (top.contains("gear")) {
       gear_ratio = top["gear"]["ratio"], j_motor = top["motor_inertia_kgm2"];
@@ -297,7 +298,7 @@ TEST(AxialTorsionalStability, HeavyHoistingRigRingsAtItsTwoMassFrequencies) {
 double ModeGrowthRate(const RunResult& run, const std::string& channel, double omega, double t0, double t1,
                       double window = 0) {
   const std::vector<double>& x = run.channel(channel).values;
-  if (window == 0) window = 8 * M_PI / omega;
+  if (window == 0) window = 8 * kPi / omega;
   double sx = 0, sy = 0, sxx = 0, sxy = 0, mean = 0;
   for (double v : x) mean += v / x.size();
   int n = 0;
@@ -306,7 +307,7 @@ double ModeGrowthRate(const RunResult& run, const std::string& channel, double o
     for (std::size_t i = 0; i < run.time_s.size(); ++i) {
       const double u = (run.time_s[i] - centre) / window;
       if (std::abs(u) > 0.5) continue;
-      sum += (x[i] - mean) * std::pow(std::cos(M_PI * u), 2) * std::polar(1.0, -omega * run.time_s[i]);
+      sum += (x[i] - mean) * std::pow(std::cos(kPi * u), 2) * std::polar(1.0, -omega * run.time_s[i]);
     }
     const double y = std::log(std::abs(sum));
     sx += centre, sy += y, sxx += centre * centre, sxy += centre * y;
@@ -354,8 +355,8 @@ void ExpectRightmostRootGrowsAsSimulated(nlohmann::json doc, double w, double t0
 // small beside the slowly decaying torsional modes, whose leakage through the window bends its slope (measured 0.389
 // against 0.420): checked in the axial speed only.
 TEST(AxialTorsionalStability, RightmostRootIsTheGrowthRateOfTheSimulatedCoupledModel) {
-  ExpectRightmostRootGrowsAsSimulated(Baseline(), 2 * M_PI, 1, 4, true, "60 rpm");
-  ExpectRightmostRootGrowsAsSimulated(Baseline(), 5 * M_PI, 2, 14, false, "150 rpm");
+  ExpectRightmostRootGrowsAsSimulated(Baseline(), 2 * kPi, 1, 4, true, "60 rpm");
+  ExpectRightmostRootGrowsAsSimulated(Baseline(), 5 * kPi, 2, 14, false, "150 rpm");
 }
 
 // Kelvin-Voigt dashpots across the pieces of both channels, and the top drive hanging from the hoisting rig: the
@@ -365,9 +366,9 @@ TEST(AxialTorsionalStability, KelvinVoigtAndRigRightmostRootIsTheGrowthRateOfThe
   nlohmann::json kv = Baseline();
   kv["model"]["string"]["kelvin_voigt_s"] = 0.024;
   kv["model"]["string"]["axial_kelvin_voigt_s"] = 0.002;
-  ExpectRightmostRootGrowsAsSimulated(kv, 2 * M_PI, 2.5, 5, true, "Kelvin-Voigt, 60 rpm", 1e-3);
+  ExpectRightmostRootGrowsAsSimulated(kv, 2 * kPi, 2.5, 5, true, "Kelvin-Voigt, 60 rpm", 1e-3);
   const nlohmann::json rig = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/hoist-rig.json");
-  ExpectRightmostRootGrowsAsSimulated(rig, 2 * M_PI, 2.5, 5, true, "hoisting rig, 60 rpm", 1e-3);
+  ExpectRightmostRootGrowsAsSimulated(rig, 2 * kPi, 2.5, 5, true, "hoisting rig, 60 rpm", 1e-3);
 }
 
 // The induction motor on the slip-compensated V/f supply behind the rig's compliant gear
@@ -387,7 +388,7 @@ Case UncoupledRun(nlohmann::json doc, const nlohmann::json& speed) {
 }
 
 TEST(AxialTorsionalStability, InductionMotorTopsTorsionalModesDecayAsSimulated) {
-  const double w = 2 * M_PI;
+  const double w = 2 * kPi;
   const Case c = UncoupledRun(io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) +
                                                "/json-cases/baseline-induction-rig-60rpm.json"),
                               {{"knots", {{0, w}, {0.05, w + 1e-6}, {0.1, w}}}});
@@ -455,7 +456,7 @@ void ExpectUnbalancedModesDecayAsSimulated(double w, double unbalance_mass) {
   }
 }
 
-TEST(AxialTorsionalStability, UnbalancedBhaModesDecayAsSimulated) { ExpectUnbalancedModesDecayAsSimulated(2 * M_PI, 50); }
+TEST(AxialTorsionalStability, UnbalancedBhaModesDecayAsSimulated) { ExpectUnbalancedModesDecayAsSimulated(2 * kPi, 50); }
 
 TEST(AxialTorsionalStability, UnbalancedBhaModesDecayAsSimulatedAtALargeWhirl) {
   ExpectUnbalancedModesDecayAsSimulated(12, 300);
@@ -472,7 +473,7 @@ TEST(AxialTorsionalStability, UnbalancedBhaModesDecayAsSimulatedAtALargeWhirl) {
 TEST(AxialTorsionalStability, TopDriveLawsModesGrowOrDecayAsSimulated) {
   const nlohmann::json stribeck =
       io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-stribeck.json");
-  const double w = 2 * M_PI;
+  const double w = 2 * kPi;
   struct Law {
     const char* what;
     nlohmann::json top;  // fields set on the case's top

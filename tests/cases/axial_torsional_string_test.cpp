@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "modal_decay.hpp"
 
@@ -21,8 +22,8 @@ constexpr double kG = 80769000000.0, kRho = 7850, kRhoMud = 1200, kGravity = 9.8
 constexpr double kPipeOd = 0.127, kPipeId = 0.1086104;
 constexpr double kCollarOd = 0.17145, kCollarId = 0.0714375;  // 6.75 in x 2.8125 in
 
-double Polar(double od, double id) { return M_PI / 32 * (std::pow(od, 4) - std::pow(id, 4)); }
-double Area(double od, double id) { return M_PI / 4 * (od * od - id * id); }
+double Polar(double od, double id) { return kPi / 32 * (std::pow(od, 4) - std::pow(id, 4)); }
+double Area(double od, double id) { return kPi / 4 * (od * od - id * id); }
 double TorsionalImpedance(double od, double id) { return Polar(od, id) * std::sqrt(kG * kRho); }
 double TorsionalTravelTime(double length) { return length / std::sqrt(kG / kRho); }
 
@@ -36,7 +37,7 @@ nlohmann::json WithBha(double rpm) {
   doc["model"]["string"]["bha"] = {{"length_m", 189.4}, {"outer_diameter_m", kCollarOd}, {"inner_diameter_m", kCollarId}};
   doc["model"]["bit"]["inertia_kgm2"] = 3;
   doc["model"]["bit"]["mass_kg"] = 800;
-  doc["model"]["top"]["speed_rad_s"] = rpm * M_PI / 30;
+  doc["model"]["top"]["speed_rad_s"] = rpm * kPi / 30;
   return doc;
 }
 void Bump(nlohmann::json& doc, double w, double t0, double factor) {  // set-point w, factor x w over [t0, t0 + 1] s
@@ -69,7 +70,7 @@ double SpectralPeak(const std::vector<double>& t, const std::vector<double>& y, 
     std::complex<double> sum = 0;
     for (std::size_t i = 0; i < t.size(); ++i)
       if (t[i] >= from && t[i] <= to)
-        sum += y[i] * (0.5 - 0.5 * std::cos(2 * M_PI * (t[i] - from) / (to - from))) * std::polar(1.0, -w * t[i]);
+        sum += y[i] * (0.5 - 0.5 * std::cos(2 * kPi * (t[i] - from) / (to - from))) * std::polar(1.0, -w * t[i]);
     if (std::norm(sum) > best_power) best_power = std::norm(sum), best = w;
   }
   return best;
@@ -78,7 +79,7 @@ double SpectralPeak(const std::vector<double>& t, const std::vector<double>& y, 
 using testing::ModalDecay;
 std::vector<double> BitSpeedChange(const CaseRun& run, double rpm) {  // [rad/s]
   std::vector<double> y = run.result.channel("bit_rpm").values;
-  for (double& v : y) v = (v - rpm) * M_PI / 30;
+  for (double& v : y) v = (v - rpm) * kPi / 30;
   return y;
 }
 
@@ -86,8 +87,8 @@ std::vector<double> BitSpeedChange(const CaseRun& run, double rpm) {  // [rad/s]
 // (a zeta eps)); the top drive holds T0 + c_t L Omega (bit torque T0 = a^2 eps d0 / 2 + a gamma mu a sigma l / 2).
 // Held exactly without a disturbance, also with Kelvin-Voigt damping in both channels (no strain rate, no force).
 TEST(AxialTorsionalString, BhaSteadyDrillingAndHookForceAreTheClosedForm) {
-  const double w = 80 * M_PI / 30, w0 = 90000, a = 0.10795, sigma_l = 450000, eps = 5e7, zeta = 0.6, mu = 0.6;
-  const double d0 = (w0 - a * sigma_l) / (a * zeta * eps), v0 = d0 * w / (2 * M_PI);
+  const double w = 80 * kPi / 30, w0 = 90000, a = 0.10795, sigma_l = 450000, eps = 5e7, zeta = 0.6, mu = 0.6;
+  const double d0 = (w0 - a * sigma_l) / (a * zeta * eps), v0 = d0 * w / (2 * kPi);
   const double buoyant = (kRho - kRhoMud) * kGravity * (Area(kPipeOd, kPipeId) * (2600 - 189.4) +
                                                        Area(kCollarOd, kCollarId) * 189.4) + 800 * kGravity * (1 - kRhoMud / kRho);
   const double hook = buoyant - w0 - 50 * 2600 * v0;
@@ -118,8 +119,8 @@ TEST(AxialTorsionalString, BhaSteadyDrillingAndHookForceAreTheClosedForm) {
 // buoyant weight in closed form, and collars given as two sections of one size are the one section they make up.
 TEST(AxialTorsionalString, SeveralBhaSectionsHoldTheirWeightAndJoinSeamlessly) {
   constexpr double kHwOd = 0.127, kHwId = 0.0762;  // 5 in heavy-weight pipe, 3 in bore
-  const double w = 80 * M_PI / 30, w0 = 90000, a = 0.10795, sigma_l = 450000, eps = 5e7, zeta = 0.6;
-  const double d0 = (w0 - a * sigma_l) / (a * zeta * eps), v0 = d0 * w / (2 * M_PI);
+  const double w = 80 * kPi / 30, w0 = 90000, a = 0.10795, sigma_l = 450000, eps = 5e7, zeta = 0.6;
+  const double d0 = (w0 - a * sigma_l) / (a * zeta * eps), v0 = d0 * w / (2 * kPi);
   const double buoyant = (kRho - kRhoMud) * kGravity * (Area(kPipeOd, kPipeId) * (2600 - 280 - 189.4) +
                                                        Area(kHwOd, kHwId) * 280 + Area(kCollarOd, kCollarId) * 189.4) +
                          800 * kGravity * (1 - kRhoMud / kRho);
@@ -183,7 +184,7 @@ TEST(AxialTorsionalString, BhaOfPipeSizeIsTheUniformString) {
 //   dw_bit(t) = 2 T sum_k R^k dw_top(t - tau_p - tau_c - 2 k tau_c),  T = 2 Z_p / (Z_p + Z_c), R = (Z_c - Z_p) / (Z_p + Z_c)
 // (transmitted into the collars, doubled at the free end, reflected back down at the junction from below).
 TEST(AxialTorsionalString, BhaJunctionTransmitsTheDalembertFraction) {
-  const double w = 150 * M_PI / 30, t0 = 0.5;
+  const double w = 150 * kPi / 30, t0 = 0.5;
   nlohmann::json doc = WithBha(150);
   doc["model"]["string"]["torsional_damping_Nms_per_rad_m"] = 0;
   doc["model"]["bit"]["inertia_kgm2"] = 0.3;
@@ -233,7 +234,7 @@ TEST(AxialTorsionalString, BhaJunctionTransmitsTheDalembertFraction) {
 // stiffness or damping). Spectral resolution of the 60 s record: 2 pi / 60 = 0.10 rad/s; the peaks are located to
 // better than that.
 TEST(AxialTorsionalString, BhaFreeTorsionalResponseMatchesTheFrequencyEquation) {
-  const double rpm = 150, w = rpm * M_PI / 30;
+  const double rpm = 150, w = rpm * kPi / 30;
   nlohmann::json doc = WithBha(rpm);
   doc["model"]["string"]["torsional_damping_Nms_per_rad_m"] = 0;
   doc["model"]["hoist"]["weight_on_bit_N"] = 50000;
@@ -270,7 +271,7 @@ TEST(AxialTorsionalString, BhaFreeTorsionalResponseMatchesTheFrequencyEquation) 
 // on bit is just above a sigma l: at 50 kN the regenerative cut (its delay t_n) already takes 0.04 1/s off the
 // viscous decay and 12 % off the Kelvin-Voigt part, not additively.
 TEST(AxialTorsionalString, KelvinVoigtDecayMatchesTheClosedFormAndConverges) {
-  const double rpm = 150, w = rpm * M_PI / 30, eta = 0.024, length = 1500, jb = 1;
+  const double rpm = 150, w = rpm * kPi / 30, eta = 0.024, length = 1500, jb = 1;
   nlohmann::json doc = Baseline();
   doc["model"]["string"]["length_m"] = length;
   doc["model"]["bit"]["inertia_kgm2"] = jb;
@@ -289,7 +290,7 @@ TEST(AxialTorsionalString, KelvinVoigtDecayMatchesTheClosedFormAndConverges) {
       doc["model"]["string"]["subsections"] = m;
       doc["model"]["string"]["kelvin_voigt_s"] = with ? eta : 0.0;
       const auto run = RunCase(ParseCase(doc));
-      sigma[with] = ModalDecay(run.result.time_s, BitSpeedChange(run, rpm), w1, 2 * M_PI / w1, 3, 14);
+      sigma[with] = ModalDecay(run.result.time_s, BitSpeedChange(run, rpm), w1, 2 * kPi / w1, 3, 14);
       cost[with] = 1000 * run.summary["wall_time_s"].get<double>() / 16;
     }
     errors.push_back((sigma[1] - sigma[0]) / kv - 1);
@@ -310,13 +311,13 @@ TEST(AxialTorsionalString, KelvinVoigtWithSideFrictionHoldsSteadyDrillingAndTend
   nlohmann::json doc = Baseline();  // 2000 m in 20 pieces
   doc["model"]["string"]["side_friction"]["torque_per_m_Nm"] = 2;
   doc["model"]["string"]["kelvin_voigt_s"] = 0.02;
-  doc["model"]["top"]["speed_rad_s"] = 2 * M_PI;  // no disturbance (the point is unstable: 5 s before noise grows)
+  doc["model"]["top"]["speed_rad_s"] = 2 * kPi;  // no disturbance (the point is unstable: 5 s before noise grows)
   doc["simulation"]["duration_s"] = 5;
   doc["statistics"]["window_s"] = {0, 5};
   const auto steady = RunCase(ParseCase(doc));
   // The internal nodes carry the friction of all but the two half pieces at the ends: L - L / 20.
   const double expected =
-      steady.summary["steady_bit_torque_Nm"].get<double>() + 0.06 * 2000 * 2 * M_PI + 2 * (2000 - 100);
+      steady.summary["steady_bit_torque_Nm"].get<double>() + 0.06 * 2000 * 2 * kPi + 2 * (2000 - 100);
   double drift = 0;
   for (double v : Values(steady, "top_torque_Nm")) drift = std::max(drift, std::abs(v - expected));
   EXPECT_LT(drift, 1e-8 * expected) << "top torque off T0 + c_t L Omega + side friction (L - L / 20) = " << expected;

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -18,7 +19,7 @@ namespace {
 
 nlohmann::json Baseline(double rpm) {
   nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
-  const double w = rpm * M_PI / 30;
+  const double w = rpm * kPi / 30;
   doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}}}};
   return doc;
 }
@@ -27,7 +28,7 @@ nlohmann::json Baseline(double rpm) {
 // BASELINE.md lists 0.01279 m/rev, 46 m/h at 60 rpm and 5300 N m for W0 = 90 kN.
 TEST(AxialTorsional, SteadyDrillingIsHeldExactlyWithoutADisturbance) {
   nlohmann::json doc = Baseline(60);
-  doc["model"]["top"]["speed_rad_s"] = 2 * M_PI;  // no disturbance at all
+  doc["model"]["top"]["speed_rad_s"] = 2 * kPi;  // no disturbance at all
   doc["simulation"]["duration_s"] = 2;
   doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-9;
   doc["statistics"]["window_s"] = {0, 2};
@@ -39,8 +40,8 @@ TEST(AxialTorsional, SteadyDrillingIsHeldExactlyWithoutADisturbance) {
   std::printf("[ measured ] unstable equilibrium held for 2 s: bit speed %.12f..%.12f rad/s, mean WOB %.6f N, "
               "mean ROP %.6f m/h\n", s["bit_speed_min_rad_s"].get<double>(), s["bit_speed_max_rad_s"].get<double>(),
               s["wob_mean_N"].get<double>(), s["rop_mean_m_h"].get<double>());
-  EXPECT_NEAR(s["bit_speed_min_rad_s"].get<double>(), 2 * M_PI, 1e-7);
-  EXPECT_NEAR(s["bit_speed_max_rad_s"].get<double>(), 2 * M_PI, 1e-7);
+  EXPECT_NEAR(s["bit_speed_min_rad_s"].get<double>(), 2 * kPi, 1e-7);
+  EXPECT_NEAR(s["bit_speed_max_rad_s"].get<double>(), 2 * kPi, 1e-7);
   EXPECT_NEAR(s["wob_mean_N"].get<double>(), 90000, 1e-3);
   EXPECT_NEAR(s["rop_mean_m_h"].get<double>(), s["steady_rop_m_h"].get<double>(), 1e-6);
   EXPECT_EQ(s["events"].get<int>(), 0);
@@ -68,7 +69,7 @@ TEST(AxialTorsional, StickSlipAt60RpmSmoothDrillingAt150Rpm) {
 // or 0.050 in [30, 50] s with root finders for t_n that agree to 1e-9.)
 nlohmann::json BouncingBit(int surface_passes) {
   nlohmann::json doc = Baseline(60);
-  doc["model"]["top"]["speed_rad_s"] = 60 * M_PI / 30;
+  doc["model"]["top"]["speed_rad_s"] = 60 * kPi / 30;
   doc["model"]["rock"]["surface_passes"] = surface_passes;
   doc["model"]["string"]["length_m"] = 3000;
   doc["model"]["hoist"]["weight_on_bit_N"] = 150000;
@@ -186,7 +187,7 @@ TEST(AxialTorsional, ReproducesTheFeaturesOfTheBaseRecording) {
   if (!std::filesystem::exists(dir + "/rec03.csv")) GTEST_SKIP() << "the synthetic recordings are not at " << dir;
   // rec03: the baseline with no concealed effect (its sidecar: 2000 m, 90 kN, 60 rpm, then 150 rpm from 55-65 s).
   nlohmann::json doc = Baseline(60);
-  const double w = 2 * M_PI;
+  const double w = 2 * kPi;
   doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}, {55, w}, {65, 2.5 * w}, {120, 2.5 * w}}}};
   doc["simulation"]["duration_s"] = 120;
   const auto model = RunCase(ParseCase(doc)).result;

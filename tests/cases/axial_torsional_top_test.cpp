@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "equivalent_circuit.hpp"
 #include "two_mass_reference.hpp"
@@ -17,7 +18,7 @@
 namespace drillwave::cases {
 namespace {
 
-constexpr double kOmega = 150 * M_PI / 30, kRatio = 8, kMotorInertia = 10, kStiffness = 3e5, kGearDamping = 20;
+constexpr double kOmega = 150 * kPi / 30, kRatio = 8, kMotorInertia = 10, kStiffness = 3e5, kGearDamping = 20;
 
 // The baseline at a constant 150 rpm (steady drilling from t = 0), run for `duration` s at tolerance 1e-9.
 nlohmann::json Steady(double duration, double interval) {
@@ -74,7 +75,7 @@ TEST(AxialTorsionalTop, InductionMotorDrillsSteadilyOnItsTorqueSpeedCurve) {
   const CaseRun run = RunCase(ParseCase(doc));
   const double torque = SteadyTopTorque(doc["model"]), shaft = kRatio * kOmega;
   const model::InductionMotor m = Machine();
-  const double synchronous_hz = m.pole_pairs * shaft / (2 * M_PI);
+  const double synchronous_hz = m.pole_pairs * shaft / (2 * kPi);
   const double f = testing::Bisect([&](double hz) { return torque / kRatio - testing::EquivalentCircuit(m, hz, shaft).torque; },
                                    synchronous_hz * (1 + 1e-12), synchronous_hz + 1);
   const double current = testing::EquivalentCircuit(m, f, shaft).stator_current;
@@ -82,7 +83,7 @@ TEST(AxialTorsionalTop, InductionMotorDrillsSteadilyOnItsTorqueSpeedCurve) {
   std::printf("[ measured ] supply %.9f Hz (equivalent circuit %.9f Hz, synchronous %.6f Hz), stator %.6f A (circuit "
               "%.6f A), top torque off by %.3g N m, bit speed by %.3g rad/s\n", reported, f, synchronous_hz,
               Values(run, "top_current_A").back(), current, MaxDeviation(Values(run, "top_torque_Nm"), torque),
-              MaxDeviation(Values(run, "bit_rpm"), 150) * M_PI / 30);
+              MaxDeviation(Values(run, "bit_rpm"), 150) * kPi / 30);
   EXPECT_NEAR(reported, f, 1e-9 * f);
   EXPECT_LT(MaxDeviation(Values(run, "top_torque_Nm"), torque), 1e-6 * torque);
   EXPECT_LT(MaxDeviation(Values(run, "top_current_A"), current), 1e-6 * current);
@@ -95,10 +96,10 @@ TEST(AxialTorsionalTop, InductionMotorFollowsASetPointStep) {
   nlohmann::json doc = Steady(40, 0.01);
   doc["model"]["top"]["induction_motor"] = InductionMotorJson();
   doc["model"]["top"]["gear"] = {{"ratio", kRatio}};
-  const double target = 160 * M_PI / 30;
+  const double target = 160 * kPi / 30;
   doc["model"]["top"]["speed_rad_s"] = {{"knots", {{1, kOmega}, {2, target}}}};
   const CaseRun run = RunCase(ParseCase(doc));
-  const double top = Values(run, "top_rpm").back() * M_PI / 30;
+  const double top = Values(run, "top_rpm").back() * kPi / 30;
   std::printf("[ measured ] 40 s after the step: top %.9f rad/s (set-point %.9f), %d stick onsets\n", top, target,
               run.summary.at("stick_onsets").get<int>());
   EXPECT_NEAR(top, target, 1e-3 * target);
@@ -131,7 +132,7 @@ TEST(AxialTorsionalTop, CompliantGearFreeMotionIsTheTwoMassSolution) {
   const CaseRun run = RunCase(ParseCase(doc));
   const auto& s = md["string"];
   const double od = s["outer_diameter_m"], id = s["inner_diameter_m"];
-  const double z = M_PI / 32 * (std::pow(od, 4) - std::pow(id, 4)) *
+  const double z = kPi / 32 * (std::pow(od, 4) - std::pow(id, 4)) *
                    std::sqrt(s["shear_modulus_Pa"].get<double>() * s["density_kg_m3"].get<double>());
   const double t0 = SteadyTopTorque(md);
   const testing::TwoMassOnDashpot rig{kRatio * kRatio * kMotorInertia, kStiffness, kGearDamping,
@@ -140,8 +141,8 @@ TEST(AxialTorsionalTop, CompliantGearFreeMotionIsTheTwoMassSolution) {
   double worst = 0, swing = 0;
   for (std::size_t k = 0; k < t.size(); ++k) {
     const Eigen::Vector3d y = rig.Response(t[k], Eigen::Vector3d::Zero(), -t0);  // deviation from steady drilling
-    worst = std::max({worst, std::abs(Values(run, "top_rpm")[k] * M_PI / 30 - (kOmega + y(2))),
-                      std::abs(Values(run, "motor_rpm")[k] * M_PI / 30 / kRatio - (kOmega + y(0))),
+    worst = std::max({worst, std::abs(Values(run, "top_rpm")[k] * kPi / 30 - (kOmega + y(2))),
+                      std::abs(Values(run, "motor_rpm")[k] * kPi / 30 / kRatio - (kOmega + y(0))),
                       std::abs(Values(run, "gear_torque_Nm")[k] - (t0 + rig.GearTorque(y))) / z});
     swing = std::max(swing, std::abs(y(0)));
   }

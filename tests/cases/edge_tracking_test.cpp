@@ -12,6 +12,7 @@
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/stability.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/io/json_reader.hpp"
 
 namespace drillwave::cases {
@@ -43,7 +44,7 @@ std::complex<double> RightmostRoot(double omega) {
 TEST(EdgeTracking, SaldivarSaddleCycleShrinksToTheHopfPoint) {
   const double omega_hopf = 8.34409;
   const std::complex<double> critical = RightmostRoot(omega_hopf);
-  const double period_hopf = 2 * M_PI / std::abs(critical.imag());
+  const double period_hopf = 2 * kPi / std::abs(critical.imag());
   std::printf("[ measured ] critical root at %.5f rad/s: %.3e %+.6fi, 2 pi / omega = %.5f s\n", omega_hopf,
               critical.real(), critical.imag(), period_hopf);
   std::vector<double> amplitude, period;
@@ -55,7 +56,7 @@ TEST(EdgeTracking, SaldivarSaddleCycleShrinksToTheHopfPoint) {
     const EdgeResult edge = TrackEdge(DipCase(omega, 300), spec);
     const RunResult& run = edge.edge;
     std::vector<double> bit(run.channel("bit_rpm").values);
-    for (double& v : bit) v *= M_PI / 30;
+    for (double& v : bit) v *= kPi / 30;
     const ShadowedCycle cycle = FindShadowedCycle(run.time_s, bit, 101);
     std::printf("[ measured ] top %.2f rad/s: edge at knot %.12f (%d runs); saddle cycle period %.5f s, bit speed "
                 "peak-to-peak %.5f rad/s (at t = %.1f s, change %.2e per cycle)\n", omega, edge.decays, edge.runs,

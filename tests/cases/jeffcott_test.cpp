@@ -10,6 +10,7 @@
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/sweep.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -168,7 +169,6 @@ TEST(Jeffcott, TransientsDoFatigueDamage) {
 // divided by the drive's zero speed while the rotor still swung on the shaft. While the drive turns the channel is the
 // seed's ratio; at rest it is the rotor's speed over the speed the drive ran at before it stopped.
 TEST(Jeffcott, ADriveComingToRestIsAValidRun) {
-  constexpr double kPi = 3.14159265358979323846;
   nlohmann::json doc = Rotor();
   doc["model"]["drive_speed_rad_s"] = {{"knots", {{0, 0}, {0.2, 100}, {0.3, 100}, {0.35, 0}}}};
   doc["simulation"] = {{"duration_s", 0.6}, {"output_interval_s", 0.001}};

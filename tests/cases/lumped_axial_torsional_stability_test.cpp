@@ -38,6 +38,7 @@
 
 #include "drillwave/analysis/spectrum.hpp"
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "complex_newton.hpp"
 
@@ -60,9 +61,9 @@ nlohmann::json WithGroups(const Groups& g) {
   const double a = m["bit"]["radius_m"], n = m["bit"]["blades"], eps = m["rock"]["intrinsic_specific_energy_Pa"];
   const double zeta = m["rock"]["zeta"], sigma_l = m["rock"]["sigma_l_N_per_m"];
   m["bit"]["mass_kg"] = n * a * zeta * eps * inertia / (g.psi * c);
-  const double cut_torque = 2 * M_PI * c * g.beta / n, depth = cut_torque / (0.5 * a * a * eps);
+  const double cut_torque = 2 * kPi * c * g.beta / n, depth = cut_torque / (0.5 * a * a * eps);
   m["hoist"]["weight_on_bit_N"] = a * sigma_l + a * zeta * eps * depth;
-  m["top"]["speed_rad_s"] = 2 * M_PI * w0 / (n * g.tau_n);
+  m["top"]["speed_rad_s"] = 2 * kPi * w0 / (n * g.tau_n);
   m["string"]["damping_Nms_per_rad"] = 2 * g.xi * std::sqrt(c * inertia);
   return doc;
 }
@@ -144,7 +145,7 @@ TEST(LumpedAxialTorsionalStability, RootOnTheImaginaryAxisWhereTheClosedFormPuts
     ASSERT_GT(disc, 0);
     for (double w2 : {(-b + std::sqrt(disc)) / 2, (-b - std::sqrt(disc)) / 2}) {
       const double w = std::sqrt(w2);
-      const Groups g{psi, beta, M_PI / w, 0};
+      const Groups g{psi, beta, kPi / w, 0};
       const Linearized lin = Linearize(WithGroups(g), 2 * w * std::sqrt(480 / 152.19) + 10);
       double nearest = 1e300;
       for (const auto& r : lin.spectrum.roots) nearest = std::min(nearest, std::abs(r.s / lin.w0 - Complex(0, w)));
@@ -214,7 +215,7 @@ TEST(LumpedAxialTorsionalStability, RightmostRootIsTheGrowthRateOfTheSimulation)
     const analysis::CharacteristicRoot r = analysis::ComputeSpectrum(points[0].system).roots.front();
     const RunResult run = RunCase(c).result;
     const auto& v = run.channel("bit_axial_speed_m_s").values;
-    const double v0 = v.front(), period = 2 * M_PI / r.s.imag();
+    const double v0 = v.front(), period = 2 * kPi / r.s.imag();
     // Least-squares slope of log(peak |v - V0|) over consecutive periods in [t0, t1].
     double sx = 0, sy = 0, sxx = 0, sxy = 0, largest = 0;
     int n = 0;

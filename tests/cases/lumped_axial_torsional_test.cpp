@@ -10,6 +10,7 @@
 
 #include "drillwave/analysis/spectrum.hpp"
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -38,18 +39,18 @@ TEST(LumpedAxialTorsional, SteadyDrillingIsTheClosedFormOfTheRgdLaw) {
     const double sigma_l = m["rock"]["sigma_l_N_per_m"], mu = m["rock"]["mu"], gamma = m["rock"]["gamma"];
     const double w0 = m["hoist"]["weight_on_bit_N"], n = m["bit"]["blades"];
     const double depth = (w0 - a * sigma_l) / (a * zeta * eps);
-    const double rop = depth * omega / (2 * M_PI);
+    const double rop = depth * omega / (2 * kPi);
     const double torque = 0.5 * a * a * eps * depth + 0.5 * a * gamma * mu * a * sigma_l;
     const CaseRun run = RunCase(ParseCase(doc));
     const RunResult& r = run.result;
     for (std::size_t i = 0; i < r.time_s.size(); ++i) {
-      ASSERT_NEAR(r.channel("bit_rpm").values[i], omega * 30 / M_PI, 1e-7) << "t = " << r.time_s[i];
+      ASSERT_NEAR(r.channel("bit_rpm").values[i], omega * 30 / kPi, 1e-7) << "t = " << r.time_s[i];
       ASSERT_NEAR(r.channel("bit_axial_speed_m_s").values[i], rop, 1e-9 * rop) << "t = " << r.time_s[i];
       ASSERT_NEAR(r.channel("depth_of_cut_m").values[i], depth, 1e-8 * depth) << "t = " << r.time_s[i];
       ASSERT_NEAR(r.channel("bit_torque_Nm").values[i], torque, 1e-8 * torque) << "t = " << r.time_s[i];
       ASSERT_NEAR(r.channel("top_torque_Nm").values[i], torque, 1e-8 * torque) << "t = " << r.time_s[i];
       ASSERT_NEAR(r.channel("wob_N").values[i], w0, 1e-8 * w0) << "t = " << r.time_s[i];
-      ASSERT_NEAR(r.channel("cut_delay_s").values[i], 2 * M_PI / (n * omega), 1e-9) << "t = " << r.time_s[i];
+      ASSERT_NEAR(r.channel("cut_delay_s").values[i], 2 * kPi / (n * omega), 1e-9) << "t = " << r.time_s[i];
     }
     EXPECT_NEAR(run.summary.at("steady_rop_m_h").get<double>(), 3600 * rop, 1e-9 * 3600 * rop);
     EXPECT_NEAR(run.summary.at("steady_bit_torque_Nm").get<double>(), torque, 1e-9 * torque);
@@ -99,18 +100,18 @@ TEST(LumpedAxialTorsional, ShortStiffStringHasTheRootsOfTheWaveModel) {
   w["string"]["torsional_damping_Nms_per_rad_m"] = 0;
   w["string"]["axial_damping_Ns_per_m2"] = 0;
   w["string"]["mud_density_kg_m3"] = 0;
-  w["top"] = {{"inertia_kgm2", 1e6}, {"kp_Nms_per_rad", 1e7}, {"ki_Nm_per_rad", 0}, {"speed_rad_s", 2 * M_PI}};
+  w["top"] = {{"inertia_kgm2", 1e6}, {"kp_Nms_per_rad", 1e7}, {"ki_Nm_per_rad", 0}, {"speed_rad_s", 2 * kPi}};
   w["hoist"]["mass_kg"] = hoist;
   const auto& s = w["string"];
   const double od = s["outer_diameter_m"], id = s["inner_diameter_m"], rho = s["density_kg_m3"];
-  const double polar = M_PI / 32 * (std::pow(od, 4) - std::pow(id, 4)), area = M_PI / 4 * (od * od - id * id);
+  const double polar = kPi / 32 * (std::pow(od, 4) - std::pow(id, 4)), area = kPi / 4 * (od * od - id * id);
   nlohmann::json lumped = Lumped();
   auto& l = lumped["model"];
   l["string"] = {{"length_m", length}, {"outer_diameter_m", od}, {"inner_diameter_m", id},
                  {"shear_modulus_Pa", s["shear_modulus_Pa"]}};
   l["bit"]["inertia_kgm2"] = w["bit"]["inertia_kgm2"].get<double>() + rho * polar * length / 3;
   l["bit"]["mass_kg"] = w["bit"]["mass_kg"].get<double>() + rho * area * length + hoist;
-  l["top"]["speed_rad_s"] = 2 * M_PI;
+  l["top"]["speed_rad_s"] = 2 * kPi;
   l["hoist"]["weight_on_bit_N"] = w["hoist"]["weight_on_bit_N"];
   analysis::SpectrumOptions o;
   o.im_max = 60;

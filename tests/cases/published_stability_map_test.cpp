@@ -31,6 +31,7 @@
 
 #include "drillwave/analysis/spectrum.hpp"
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "complex_newton.hpp"
 
@@ -40,7 +41,7 @@ namespace {
 using Complex = std::complex<double>;
 
 constexpr double kKa = 20, kEta = 0.7, kWaveSpeedRatio = 1.6;
-constexpr double kBand = 20 * M_PI;  // the published scan: |Im s| up to 10 * 2 pi
+constexpr double kBand = 20 * kPi;  // the published scan: |Im s| up to 10 * 2 pi
 constexpr double kRigidMode = 0.05;  // |s| below it: the vanishing ki's slow mode, absent from the published model
 
 // The published characteristic function, cleared of its poles: with g = A / B, A(x) = cosh x + Z_L sinh x and
@@ -115,8 +116,8 @@ struct Twin {
     s["axial_damping_Ns_per_m2"] = 0;
     s["subsections"] = 2;
     s.erase("side_friction");
-    const double zt = M_PI / 32 * (std::pow(od, 4) - std::pow(id, 4)) * std::sqrt(g * rho);
-    const double za = M_PI / 4 * (od * od - id * id) * std::sqrt(e * rho);
+    const double zt = kPi / 32 * (std::pow(od, 4) - std::pow(id, 4)) * std::sqrt(g * rho);
+    const double za = kPi / 4 * (od * od - id * id) * std::sqrt(e * rho);
     tau = length / std::sqrt(g / rho);
     const double zl = (1 + kEta) / (1 - kEta);
     const int n = m["bit"]["blades"];
@@ -124,8 +125,8 @@ struct Twin {
     const double eps = kKa * za / (n * tau * a * zeta);
     m["rock"]["intrinsic_specific_energy_Pa"] = eps;
     m["rock"]["sigma_l_N_per_m"] = 0;
-    const double omega = 2 * M_PI * omega0 / (n * tau);
-    const double depth = v0 * 2 * M_PI * zt / (omega0 * n * tau * (a * a * eps / 2));
+    const double omega = 2 * kPi * omega0 / (n * tau);
+    const double depth = v0 * 2 * kPi * zt / (omega0 * n * tau * (a * a * eps / 2));
     const double kp = zl * zt;
     m["top"] = {{"inertia_kgm2", mu * zt * tau}, {"kp_Nms_per_rad", kp}, {"ki_Nm_per_rad", 1e-6 * kp / tau},
                 {"speed_rad_s", omega}};

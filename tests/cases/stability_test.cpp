@@ -12,6 +12,7 @@
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/stability.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -112,7 +113,7 @@ TEST(CaseStability, MotorAndGearTopsAddTheirStates) {
   ASSERT_FALSE(induction.empty());
   EXPECT_TRUE(has_state(induction.back(), "top_rotor_flux_q_Wb"));
   // On the motor's steep torque-speed curve just below the synchronous 2 pi 25.5 / 16 rad/s.
-  const double synchronous = 2 * M_PI * 25.5 / 16;
+  const double synchronous = 2 * kPi * 25.5 / 16;
   const double w0 = induction.back().point.steady_state.at("bit_speed_rad_s").get<double>();
   EXPECT_LT(w0, synchronous);
   EXPECT_GT(w0, 0.95 * synchronous);

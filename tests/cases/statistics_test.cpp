@@ -6,11 +6,11 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/statistics.hpp"
+#include "drillwave/core/constants.hpp"
 
 namespace drillwave::cases {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // A stick-slip cycle of period T: stuck for 1 s, then a slip burst v = A sin^2(pi (t - 1) / (T - 1)); in every other
 // cycle a short re-stick of 0.05 s at the end of the burst. The oscillation period is T whatever the re-sticks do.

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "refused_path.hpp"
@@ -132,7 +133,7 @@ TEST(TorsionalWaveSoftTorque, TuningsAreTheGainsTheyStand) {
   const auto& pipe = tuned["model"]["string"]["sections"][0];
   const double z = pipe["polar_moment_m4"].get<double>() *
                    std::sqrt(pipe["shear_modulus_Pa"].get<double>() * pipe["density_kg_m3"].get<double>());
-  const double period = 2.5, omega = 2 * M_PI / period, inertia = top["inertia_kgm2"].get<double>();
+  const double period = 2.5, omega = 2 * kPi / period, inertia = top["inertia_kgm2"].get<double>();
   top.erase("kp_Nms_per_rad"), top.erase("ki_Nm_per_rad");
   top["tuning_period_s"] = period;
   nlohmann::json explicit_gains = tuned;

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -72,7 +73,7 @@ TEST(TwoMassRigLaws, TheIntegralIsHeldWhileTheLimitActs) {
   for (std::size_t i = 0; i < r.time_s.size(); ++i) {
     if (r.time_s[i] <= 6) continue;
     if (left < 0 && drive[i] < 3.8 - 1e-9) left = r.time_s[i] - 6;
-    fastest = std::max(fastest, r.channel("top_rpm").values[i] * M_PI / 30);
+    fastest = std::max(fastest, r.channel("top_rpm").values[i] * kPi / 30);
   }
   std::printf("[ measured ] the drive leaves its limit %.3f s after the weight falls; the motor peaks at %.2f rad/s "
               "(set-point 18.3)\n", left, fastest);

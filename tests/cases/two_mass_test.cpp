@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -33,7 +34,7 @@ EnergyBudget BudgetFromChannels(const nlohmann::json& doc, const RunResult& r) {
   const double jt = m.at("top").at("inertia_kgm2"), jb = m.at("bit").at("inertia_kgm2"),
                k = m.at("string").at("stiffness_Nm_per_rad"), c = m.at("string").at("damping_Nms_per_rad"),
                dt_ = m.at("top").at("damping_Nms_per_rad"), db = m.at("bit").at("damping_Nms_per_rad");
-  constexpr double kRpm = 60.0 / (2.0 * M_PI);
+  constexpr double kRpm = 60.0 / (2.0 * kPi);
   const auto& t = r.time_s;
   const auto& top = r.channel("top_rpm").values;
   const auto& bit = r.channel("bit_rpm").values;

@@ -8,13 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/diagnosis/features.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // An empty 100-Hz recording of these channels.
 Recording Empty(const std::vector<std::string>& names) {

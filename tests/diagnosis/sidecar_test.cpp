@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -26,7 +27,7 @@ nlohmann::json Baseline() {
 
 TEST(CaseFromSidecar, StartsFromSteadyDrillingOverATinyBottomRoughnessWithSteadyInputs) {
   const nlohmann::json doc = CaseFromSidecar(Sidecar(), Baseline(), kSidecarWarmupS);
-  const double w60 = 2 * M_PI, w90 = 3 * M_PI;
+  const double w60 = 2 * kPi, w90 = 3 * kPi;
   const nlohmann::json expected_knots = {{0.0, w60}, {30.0, w60}, {50.0, w60}, {60.0, w90}};
   const nlohmann::json& knots = doc["model"]["top"]["speed_rad_s"]["knots"];
   ASSERT_EQ(knots.size(), expected_knots.size()) << knots.dump();

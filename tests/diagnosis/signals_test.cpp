@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/diagnosis/signals.hpp"
 
 namespace drillwave::diagnosis {
@@ -18,7 +19,7 @@ TEST(Hampel, MasksRampedSpikesAndNothingElse) {
   std::normal_distribution<double> noise(0.0, 1.0);
   const int n = 20000;
   std::vector<double> x(n), truth(n);
-  for (int i = 0; i < n; ++i) truth[i] = x[i] = 80 + 40 * std::sin(2 * M_PI * i / 400.0) + noise(rng);
+  for (int i = 0; i < n; ++i) truth[i] = x[i] = 80 + 40 * std::sin(2 * kPi * i / 400.0) + noise(rng);
   // Ten glitches: a dip to -250 with 4-sample flanks on each side (like the rig's encoder artefacts).
   std::vector<char> injected(n, 0);
   for (int g = 0; g < 10; ++g) {

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
@@ -27,11 +28,12 @@ namespace es = drillwave::estimation;
 
 namespace {
 
-constexpr double kRpm = M_PI / 30;
+using drillwave::kPi;
+using drillwave::kRadPerSecondPerRpm;
 
 std::vector<double> Rad(const std::vector<double>& rpm) {
   std::vector<double> w(rpm);
-  for (double& v : w) v *= kRpm;
+  for (double& v : w) v *= kRadPerSecondPerRpm;
   return w;
 }
 
@@ -104,7 +106,7 @@ TEST(WaveStringEstimate, RecoversTheBitOfDrillwavesOwnCoupledRun) {
   // interpolation, the top inertia's torque taken as a time advance and the smoothing over 0.08 s, which rounds the
   // stick's corners. Measured: 2.09 rpm, 3.3 % of the mean (more than these alone explain: not yet found); bound 5 %.
   EXPECT_GT(speed.samples, 2500u);
-  EXPECT_LT(speed.rms, 0.05 * speed.measured_mean) << "RMS " << speed.rms / kRpm << " rpm";
+  EXPECT_LT(speed.rms, 0.05 * speed.measured_mean) << "RMS " << speed.rms / kRadPerSecondPerRpm << " rpm";
   const es::StuckScore stuck = es::ScoreStuck(e.time_s, e.bit_speed_rad_s, e.stuck, bit, e.stuck_threshold_rad_s, 10, 40);
   EXPECT_GT(stuck.measured_stuck, 200u);  // it does stick
   EXPECT_GT(stuck.f1, 0.9);
@@ -145,7 +147,7 @@ TEST(LumpedObserver, ConvergesFromAWrongStartToTheSimulatedBit) {
   const es::SeriesError late = es::CompareSeries(e.time_s, e.bit_speed_rad_s, bit, 2, 10);
   // Noise-free top speed and the exact model: what is left is the filter's discretisation (explicit sub-steps of the
   // stick-slip switching against the solver's located events): within 2 % of the mean bit speed.
-  EXPECT_LT(late.rms, 0.02 * late.measured_mean) << "RMS " << late.rms / kRpm << " rpm";
+  EXPECT_LT(late.rms, 0.02 * late.measured_mean) << "RMS " << late.rms / kRadPerSecondPerRpm << " rpm";
   int stuck_samples = 0;
   for (double w : bit) stuck_samples += std::abs(w) < 0.05 * 12.33;
   EXPECT_GT(stuck_samples, 100);  // the run sticks
@@ -203,7 +205,7 @@ TEST(HybridObserver, RecoversTheStuckPhasesOfDrillwavesOwnRigRunFromAWrongStart)
   // Exact top speed and model: what is left is the low-pass (three boxes of 23 ms round the stops' corners where
   // the regime does not take over) and the release, which waits for the inverted speed to pass the stuck threshold.
   // Measured: 3.1 rpm, 4.8 % of the mean; F1 0.907 (21 % of the samples stuck).
-  EXPECT_LT(late.rms, 0.06 * late.measured_mean) << "RMS " << late.rms / kRpm << " rpm of " << late.measured_mean / kRpm;
+  EXPECT_LT(late.rms, 0.06 * late.measured_mean) << "RMS " << late.rms / kRadPerSecondPerRpm << " rpm of " << late.measured_mean / kRadPerSecondPerRpm;
   const es::StuckScore stuck = es::ScoreStuck(e.time_s, e.bit_speed_rad_s, e.stuck, run.bit_speed_rad_s, threshold, 2, 12);
   EXPECT_GT(stuck.measured_stuck, 1000u) << "the run sticks";
   EXPECT_GT(stuck.f1, 0.88) << "precision " << stuck.precision << " recall " << stuck.recall;
@@ -235,8 +237,8 @@ TEST(Follow, AFileWrittenInPiecesGivesTheBatchEstimateWithinTheLatency) {
   text << "time_s,top_rpm,bit_rpm\n";
   text.precision(12);
   for (std::size_t i = 0; i < run.surface.time_s.size(); ++i)
-    text << run.surface.time_s[i] << "," << run.surface.top_speed_rad_s[i] / kRpm << ","
-         << run.bit_speed_rad_s[i] / kRpm << "\n";
+    text << run.surface.time_s[i] << "," << run.surface.top_speed_rad_s[i] / kRadPerSecondPerRpm << ","
+         << run.bit_speed_rad_s[i] / kRadPerSecondPerRpm << "\n";
   const std::string all = text.str();
   const std::string path = (std::filesystem::temp_directory_path() / "drillwave-follow-test.csv").string();
   std::ofstream(path, std::ios::trunc).close();

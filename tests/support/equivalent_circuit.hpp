@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/model/induction_motor.hpp"
 
 namespace drillwave::testing {
@@ -16,7 +17,7 @@ struct CircuitPoint {
 
 // At supply frequency f [Hz] and shaft speed w [rad/s], with the phase voltage of the V/f line (and its limit).
 inline CircuitPoint EquivalentCircuit(const model::InductionMotor& m, double f, double w) {
-  const double w_e = 2 * M_PI * f, s = (w_e - m.pole_pairs * w) / w_e;
+  const double w_e = 2 * kPi * f, s = (w_e - m.pole_pairs * w) / w_e;
   const std::complex<double> j(0, 1);
   const std::complex<double> z_m = j * w_e * m.magnetizing_inductance;
   const std::complex<double> z_r = m.rotor_resistance / s + j * w_e * m.rotor_leakage_inductance;

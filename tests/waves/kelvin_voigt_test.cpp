@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "drillwave/bitrock/friction.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/model/schedule.hpp"
 #include "drillwave/waves/network_simulation.hpp"
 #include "modal_decay.hpp"
@@ -42,7 +43,7 @@ Network Chain(int m, double eta, Node top, Node bit) {
 //   cos q (1 + r sinh theta) = cosh theta + r sinh theta.
 // Newton from the continuum root s^2 + eta w^2 s + w^2 = 0, w = q / tau (which it tends to as m grows).
 std::complex<double> DiscreteRoot(int m, int mode, double eta, double travel_time) {
-  const double tau = travel_time / m, r = eta / tau, q = (mode - 0.5) * M_PI / m, w = q / tau;
+  const double tau = travel_time / m, r = eta / tau, q = (mode - 0.5) * kPi / m, w = q / tau;
   std::complex<double> theta =
       tau * std::complex<double>(-0.5 * eta * w * w, w * std::sqrt(1 - 0.25 * eta * eta * w * w));
   for (int it = 0; it < 50; ++it) {
@@ -80,9 +81,9 @@ Decay FirstModeDecay(int m, double eta) {
   for (double& v : y) v -= 1;
   const double travel = net.sections.size() * net.sections.front().travel_time_s;
   const std::complex<double> s = DiscreteRoot(m, 1, eta, travel);
-  const double w1 = M_PI / (2 * travel);
+  const double w1 = kPi / (2 * travel);
   const double decay =
-      testing::ModalDecay(run.trajectory.time_s, y, s.imag(), 2 * M_PI / s.imag(), 2, 11);
+      testing::ModalDecay(run.trajectory.time_s, y, s.imag(), 2 * kPi / s.imag(), 2, 11);
   std::printf("[ measured ] m = %d: first mode %.5f rad/s, decay %.6f 1/s; discrete closed form %.6f (%+.3f %%), "
               "continuum eta w1^2 / 2 = %.6f (%+.3f %%); %ld steps, %ld breakpoints\n",
               m, s.imag(), decay, -s.real(), 100 * (decay / -s.real() - 1), 0.5 * eta * w1 * w1,
@@ -107,7 +108,7 @@ TEST(KelvinVoigt, DiscreteClosedFormWithoutDashpotsIsTheLosslessString) {
   const double travel = kLength / std::sqrt(kG / kRho);
   const std::complex<double> s = DiscreteRoot(7, 1, 0.0, travel);
   EXPECT_NEAR(s.real(), 0.0, 1e-12);
-  EXPECT_NEAR(s.imag(), M_PI / (2 * travel), 1e-9);
+  EXPECT_NEAR(s.imag(), kPi / (2 * travel), 1e-9);
 }
 
 // Energy balance: after a torque pulse on the free string between two inertias, the stored energy (end inertias and

@@ -23,6 +23,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/statistics.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/waves/network_simulation.hpp"
 #include "lumped_reference.hpp"
 
@@ -126,7 +127,7 @@ TEST(LumpedReference, SmoothSolutionConvergesAtSecondOrder) {
   std::vector<std::pair<double, double>> knots;
   for (int i = 0; i <= 400; ++i) {
     const double t = 2.0 * i / 400;
-    knots.push_back({t, 5 * (1 - std::cos(M_PI * t / 2))});
+    knots.push_back({t, 5 * (1 - std::cos(kPi * t / 2))});
   }
   params.top_speed = model::Schedule(knots);
   params.friction = bitrock::FrictionLaw(bitrock::Viscous{500});

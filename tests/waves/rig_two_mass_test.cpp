@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/waves/network_simulation.hpp"
 #include "two_mass_reference.hpp"
 
@@ -72,7 +73,7 @@ TEST(RigTwoMass, FreeMotionIsTheExactSolutionOfTheTwoMassSystemOnADashpot) {
     if ((r0 < 0) != (r1 < 0)) crossings.push_back(tr.time_s[n - 1] + 1e-4 * r0 / (r0 - r1));
   }
   ASSERT_GE(crossings.size(), 11u);
-  const double measured = M_PI * (crossings.size() - 1) / (crossings.back() - crossings.front());
+  const double measured = kPi * (crossings.size() - 1) / (crossings.back() - crossings.front());
   const double damped = rig.DampedFrequency(), undamped = rig.UndampedFrequency();
   std::cout << "[ measured ] largest deviation from exp(A t): " << worst << " rad/s; two-mass mode " << measured
             << " rad/s (eigenvalue " << damped << ", undamped closed form " << undamped << ")\n";

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/integration/simulator.hpp"
@@ -419,7 +420,7 @@ PeriodicBranch ContinueFromHopf(const FieldFamily& family, const HopfPoint& hopf
   w.normalize();
   VectorXd z(n + 2), tangent = VectorXd::Zero(n + 2);
   z.head(n) = hopf.x + o.hopf_amplitude * w;
-  z[n] = 2 * M_PI / hopf.omega;
+  z[n] = 2 * kPi / hopf.omega;
   z[n + 1] = hopf.p / o.p_scale;
   tangent.head(n) = w;
   {
@@ -432,7 +433,7 @@ PeriodicBranch ContinueFromHopf(const FieldFamily& family, const HopfPoint& hopf
     }
   }
   VectorXd z_hopf(n + 2);
-  z_hopf << hopf.x, 2 * M_PI / hopf.omega, hopf.p / o.p_scale;
+  z_hopf << hopf.x, 2 * kPi / hopf.omega, hopf.p / o.p_scale;
   Continuation::Point current = cont.Finish(z, z_hopf);
   branch.points.push_back(current.point);
 

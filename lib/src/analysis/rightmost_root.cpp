@@ -5,11 +5,12 @@
 #include <limits>
 #include <numeric>
 
+#include "drillwave/core/constants.hpp"
+
 namespace drillwave::analysis {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 
 // Reverse Cuthill-McKee order of the symmetric pattern: breadth first from a node of least degree, neighbours by
 // ascending degree, then reversed.

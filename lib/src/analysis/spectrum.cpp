@@ -1,4 +1,5 @@
 #include "drillwave/analysis/spectrum.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/progress.hpp"
 
@@ -14,7 +15,6 @@ namespace drillwave::analysis {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 
 bool AllFinite(const Eigen::MatrixXd& m) { return m.allFinite(); }
 

@@ -5,9 +5,10 @@
 #include <random>
 #include <stdexcept>
 
+#include "drillwave/core/constants.hpp"
+
 namespace drillwave::bitrock {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 // The top 53 bits of a draw as a fraction in (0, 1] (std::uniform_real_distribution's and std::normal_distribution's
 // algorithms are the library's own; these are the same everywhere).

@@ -5,9 +5,10 @@
 
 #include <boost/math/tools/toms748_solve.hpp>
 
+#include "drillwave/core/constants.hpp"
+
 namespace drillwave::bitrock {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 

@@ -4,9 +4,10 @@
 #include <random>
 #include <stdexcept>
 
+#include "drillwave/core/constants.hpp"
+
 namespace drillwave::bitrock {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 BottomRoughness::BottomRoughness(double rms, std::uint64_t seed, int modes) {

@@ -7,6 +7,7 @@
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/sweep.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/io/json_reader.hpp"
@@ -118,7 +119,7 @@ void WriteOrbitsOutputs(const nlohmann::json& document, const OrbitsSpec& spec, 
   };
   for (const auto& e : result.equilibria.points)
     row("equilibrium", 0, e.p, nan, last(e.x), last(e.x), nan, e.stable, false);
-  for (const auto& h : result.equilibria.hopf) row("hopf", 0, h.p, 2 * M_PI / h.omega, last(h.x), last(h.x), 1, false, false);
+  for (const auto& h : result.equilibria.hopf) row("hopf", 0, h.p, 2 * kPi / h.omega, last(h.x), last(h.x), 1, false, false);
   for (std::size_t b = 0; b < result.branches.size(); ++b) {
     for (const auto& pt : result.branches[b].points)
       row("periodic", static_cast<int>(b), pt.p, pt.orbit.period, pt.amplitude_min, pt.amplitude_max,
@@ -172,7 +173,7 @@ void WriteOrbitsOutputs(const nlohmann::json& document, const OrbitsSpec& spec, 
   report << "| " << spec.pointer << " | frequency [rad/s] | period 2π/ω [s] | last state [rad/s] |\n|---|---|---|---|\n";
   for (const auto& h : result.equilibria.hopf)
     report << "| " << Significant(h.p, 10) << " | " << Significant(h.omega, 8) << " | "
-           << Significant(2 * M_PI / h.omega, 8) << " | " << Significant(last(h.x), 8) << " |\n";
+           << Significant(2 * kPi / h.omega, 8) << " | " << Significant(last(h.x), 8) << " |\n";
   const auto coexistence = CoexistenceRanges(result);
   if (!coexistence.empty()) {
     report << "\n## Coexisting attractors\n\nA stable steady state and a stable periodic orbit at the same value (which one "

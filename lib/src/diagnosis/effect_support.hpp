@@ -6,12 +6,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/diagnosis/effects.hpp"
 
 namespace drillwave::diagnosis::effect_support {
 
-inline constexpr double kPi = 3.14159265358979323846;
 inline const double kNaN = std::nan("");
 
 // The difference model - recording of a feature in its scales (NaN where either side lacks it).

@@ -12,7 +12,7 @@ using namespace effect_support;
 
 namespace {
 
-constexpr double kRpmPerRadS = 30 / kPi;
+constexpr double kRpmPerRadS = 1 / kRadPerSecondPerRpm;
 
 // A slope that is missing on the model's side (a disc that never slips cannot draw the line) counts as flat.
 double OrZero(double x) { return std::isfinite(x) ? x : 0.0; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/io/json_reader.hpp"
@@ -52,8 +53,8 @@ nlohmann::json CaseFromSidecar(const nlohmann::json& sidecar, nlohmann::json doc
       throw InputError(where(knot + "/0"), "times must not decrease: " + ReadableNumber(t) + " s after " +
                                                ReadableNumber(previous) + " s");
     previous = t;
-    if (i == 0) knots.push_back({0.0, rpm * M_PI / 30});
-    knots.push_back({t + warmup_s, rpm * M_PI / 30});
+    if (i == 0) knots.push_back({0.0, rpm * kPi / 30});
+    knots.push_back({t + warmup_s, rpm * kPi / 30});
   }
   doc["model"]["top"]["speed_rad_s"] = {{"knots", knots}};
   // BASELINE.md's start: the exact steady state plus a tiny bottom-hole roughness (unless the case brings its own).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/diagnosis/signals.hpp"
 #include "drillwave/estimation/smoothing.hpp"
@@ -62,8 +63,8 @@ WaveSection Section(const json& s, double length, double outer, double inner, do
                     double g_mod, double e_mod, double rho) {
   WaveSection w;
   w.length_m = length;
-  const double polar = M_PI / 32 * (std::pow(outer, 4) - std::pow(inner, 4));
-  const double area = M_PI / 4 * (outer * outer - inner * inner);
+  const double polar = kPi / 32 * (std::pow(outer, 4) - std::pow(inner, 4));
+  const double area = kPi / 4 * (outer * outer - inner * inner);
   w.torsional_impedance = polar * std::sqrt(g_mod * rho);
   w.torsional_speed_m_s = std::sqrt(g_mod / rho);
   w.axial_impedance = area * std::sqrt(e_mod * rho);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/diagnosis/signals.hpp"
@@ -26,7 +27,7 @@ double NaturalFrequency(const LumpedModel& m) { return std::sqrt(m.shaft_stiffne
 
 // Half-width in samples of each of the low-pass's three boxes (a box is an eighth of the bit's period).
 int BoxHalfWidth(const LumpedModel& m, double dt) {
-  const double period = 2 * M_PI / NaturalFrequency(m);
+  const double period = 2 * kPi / NaturalFrequency(m);
   return std::max(0, static_cast<int>(std::lround(period / 16 / dt)));
 }
 
@@ -235,7 +236,7 @@ BitEstimate EstimateHybrid(const LumpedModel& m, const SurfaceSignals& s, double
   const double sigma = slip_disagreement.empty() ? 0.0 : 1.4826 * diagnosis::Median(slip_disagreement);
   const double shaft_sigma = std::max(m.kp, m.shaft_damping_Nms_per_rad) * sigma;
   // Torque on bit from the bit's balance J_b w_b' = T_shaft - T_bit, the derivative over a tenth of the bit's period.
-  const int half = std::max(1, static_cast<int>(std::lround(0.1 * 2 * M_PI / NaturalFrequency(m) / dt)));
+  const int half = std::max(1, static_cast<int>(std::lround(0.1 * 2 * kPi / NaturalFrequency(m) / dt)));
   const Smoothed speed = SmoothQuadratic(e.bit_speed_rad_s, dt, half);
   for (std::size_t k = 0; k < n; ++k) {
     if (!std::isfinite(e.bit_speed_rad_s[k])) continue;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/diagnosis/signals.hpp"
@@ -203,7 +204,7 @@ BitEstimate EstimateLumped(const LumpedModel& m, const SurfaceSignals& s, double
   phi[n - 1] = Mat::Identity();
 
   // Fixed-lag RTS: the estimate for k from the filter at k + lag smoothed back to k.
-  const double lag_s = o.smoothing_lag_s >= 0 ? o.smoothing_lag_s : 2 * M_PI / omega_bit;
+  const double lag_s = o.smoothing_lag_s >= 0 ? o.smoothing_lag_s : 2 * kPi / omega_bit;
   const std::size_t lag = static_cast<std::size_t>(std::lround(lag_s / dt));
   std::vector<Mat> gain(n, Mat::Zero());
   for (std::size_t k = 0; k + 1 < n; ++k)
@@ -227,7 +228,7 @@ BitEstimate EstimateLumped(const LumpedModel& m, const SurfaceSignals& s, double
     shaft_sigma[k] = std::sqrt(std::max(dshaft.dot(ps * dshaft), 0.0));
   }
   // Torque on bit from the bit's balance, J_b w_b' = T_shaft - T_bit, the derivative over a tenth of the bit's period.
-  const int half = std::max(1, static_cast<int>(std::lround(0.1 * 2 * M_PI / omega_bit / dt)));
+  const int half = std::max(1, static_cast<int>(std::lround(0.1 * 2 * kPi / omega_bit / dt)));
   const Smoothed speed = SmoothQuadratic(e.bit_speed_rad_s, dt, half);
   e.bit_torque_Nm.assign(n, kNaN);
   e.bit_torque_band_Nm.assign(n, kNaN);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/estimation/metrics.hpp"
@@ -13,15 +14,13 @@
 namespace drillwave::estimation {
 namespace {
 
-constexpr double kRpm = M_PI / 30;  // rad/s per rpm
-
 bool EndsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // SI factor of a channel by its unit suffix, and its role: 's' speed, 't' torque, 'f' force; 0 if unknown.
 std::pair<char, double> RoleOf(const std::string& name) {
-  if (EndsWith(name, "_rpm")) return {'s', kRpm};
+  if (EndsWith(name, "_rpm")) return {'s', kRadPerSecondPerRpm};
   if (EndsWith(name, "_rad_s")) return {'s', 1};
   if (EndsWith(name, "_kNm")) return {'t', 1000};
   if (EndsWith(name, "_Nm")) return {'t', 1};
@@ -103,7 +102,7 @@ nlohmann::json EstimateSummary(const diagnosis::Recording& r, const BitEstimate&
   nlohmann::json j;
   j["method"] = e.method;
   j["latency_s"] = e.latency_s;
-  j["stuck_threshold_rpm"] = e.stuck_threshold_rad_s / kRpm;
+  j["stuck_threshold_rpm"] = e.stuck_threshold_rad_s / kRadPerSecondPerRpm;
   j["stuck_rule"] = "|bit speed| below 5 % of the median top speed, for the estimate and the measurement alike";
   j["notes"] = e.notes;
   nlohmann::json events = nlohmann::json::array();
@@ -119,7 +118,7 @@ nlohmann::json EstimateSummary(const diagnosis::Recording& r, const BitEstimate&
   nlohmann::json m = nlohmann::json::object();
   const auto [speed_name, speed] = Downhole(r, {"bit_rpm", "bit_rad_s"});
   if (!speed.empty()) {
-    m["bit_rpm"] = ErrorJson(CompareSeries(e.time_s, e.bit_speed_rad_s, speed, w.begin_s, w.end_s), kRpm);
+    m["bit_rpm"] = ErrorJson(CompareSeries(e.time_s, e.bit_speed_rad_s, speed, w.begin_s, w.end_s), kRadPerSecondPerRpm);
     m["bit_rpm"]["channel"] = speed_name;
     const StuckScore s = ScoreStuck(e.time_s, e.bit_speed_rad_s, e.stuck, speed, e.stuck_threshold_rad_s, w.begin_s,
                                     w.end_s);
@@ -132,7 +131,7 @@ nlohmann::json EstimateSummary(const diagnosis::Recording& r, const BitEstimate&
     if (delay > 0) {
       const std::size_t shift = static_cast<std::size_t>(std::lround(delay / r.sample_interval_s));
       const std::vector<double> aligned = Advanced(speed, shift);
-      nlohmann::json a = ErrorJson(CompareSeries(e.time_s, e.bit_speed_rad_s, aligned, w.begin_s, w.end_s), kRpm);
+      nlohmann::json a = ErrorJson(CompareSeries(e.time_s, e.bit_speed_rad_s, aligned, w.begin_s, w.end_s), kRadPerSecondPerRpm);
       const StuckScore sa = ScoreStuck(e.time_s, e.bit_speed_rad_s, e.stuck, aligned, e.stuck_threshold_rad_s,
                                        w.begin_s, w.end_s);
       a["stuck_f1"] = sa.f1;
@@ -165,7 +164,7 @@ void WriteEstimate(const diagnosis::Recording& r, const BitEstimate& e, const nl
   io::WriteCsv(out.Open("estimate.csv"),
                {"time_s", "bit_rpm", "bit_rpm_band", "bit_torque_Nm", "bit_torque_Nm_band", "wob_N", "wob_N_band",
                 "bit_stuck"},
-               {e.time_s, Scaled(e.bit_speed_rad_s, 1 / kRpm), Scaled(e.bit_speed_band_rad_s, 1 / kRpm),
+               {e.time_s, Scaled(e.bit_speed_rad_s, 1 / kRadPerSecondPerRpm), Scaled(e.bit_speed_band_rad_s, 1 / kRadPerSecondPerRpm),
                 e.bit_torque_Nm, e.bit_torque_band_Nm, e.wob_N, e.wob_band_N, stuck});
   out.Open("estimate.json") << summary.dump(2) << "\n";
   io::Figure figure;
@@ -190,7 +189,7 @@ void WriteEstimate(const diagnosis::Recording& r, const BitEstimate& e, const nl
     p.series.push_back({"estimate", e.time_s, Scaled(est, 1 / unit)});
     figure.panels.push_back(p);
   };
-  panel("bit speed [rpm]", e.bit_speed_rad_s, e.bit_speed_band_rad_s, kRpm, {"bit_rpm", "bit_rad_s"});
+  panel("bit speed [rpm]", e.bit_speed_rad_s, e.bit_speed_band_rad_s, kRadPerSecondPerRpm, {"bit_rpm", "bit_rad_s"});
   panel("torque on bit [N m]", e.bit_torque_Nm, e.bit_torque_band_Nm, 1, {"tob_Nm", "bit_torque_Nm", "tob_kNm"});
   panel("weight on bit [N]", e.wob_N, e.wob_band_N, 1, {"wob_N", "wob_kN"});
   figure.panels.push_back({"bit stuck", {{"estimated stuck", e.time_s, stuck}}});

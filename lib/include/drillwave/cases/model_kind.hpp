@@ -11,6 +11,7 @@
 
 #include "drillwave/analysis/periodic_orbits.hpp"
 #include "drillwave/analysis/spectrum.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/integration/options.hpp"
 #include "drillwave/io/json_reader.hpp"
 
@@ -45,7 +46,7 @@ struct RunResult {
 // Angular speeds [rad/s] as revolutions per minute, for the *_rpm channels every kind writes.
 inline std::vector<double> ToRpm(const std::vector<double>& rad_s) {
   std::vector<double> rpm(rad_s.size());
-  for (std::size_t i = 0; i < rad_s.size(); ++i) rpm[i] = rad_s[i] * (30.0 / M_PI);
+  for (std::size_t i = 0; i < rad_s.size(); ++i) rpm[i] = rad_s[i] * (30.0 / kPi);
   return rpm;
 }
 

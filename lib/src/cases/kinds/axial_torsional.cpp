@@ -19,7 +19,6 @@ namespace {
 // The model this file reads and linearizes.
 using axial_torsional::Channel;
 using axial_torsional::CheckSteadyStart;
-using axial_torsional::kPi;
 using axial_torsional::Model;
 using axial_torsional::Simulate;
 using axial_torsional::Steady;

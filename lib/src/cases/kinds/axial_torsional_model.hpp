@@ -48,6 +48,7 @@
 
 #include "drillwave/bitrock/rgd.hpp"
 #include "drillwave/cases/model_kind.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/model/gear.hpp"
 #include "drillwave/model/hoist_rig.hpp"
 #include "drillwave/model/induction_motor.hpp"
@@ -59,7 +60,6 @@
 
 namespace drillwave::cases::axial_torsional {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // One wave channel: the pipe's and the BHA's sub-sections as a chain (waves::WaveChain).
 using Channel = waves::ChainSpec;

@@ -14,6 +14,7 @@
 
 #include "drillwave/analysis/fatigue.hpp"
 #include "drillwave/cases/kinds.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/model/schedule.hpp"
@@ -23,7 +24,6 @@ namespace {
 
 using io::JsonReader;
 using Range = io::Range;
-constexpr double kPi = 3.14159265358979323846;
 
 struct Rotor {
   double rotor_mass = 1, rotor_inertia = 1, unbalance_mass = 0, eccentricity = 0;

@@ -22,6 +22,7 @@
 #include "rgd_reader.hpp"
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/cases/statistics.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/model/schedule.hpp"
@@ -35,7 +36,6 @@ using bitrock::Turn;
 using integration::Side;
 using io::JsonReader;
 using Range = io::Range;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct Model {

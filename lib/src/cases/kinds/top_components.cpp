@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 
 namespace drillwave::cases {
@@ -117,7 +118,7 @@ void FinishPiTopDrive(const JsonReader& r, const std::string& type, const model:
     throw InputError(r.PathOf("gear"), "the torque feedback of a " + type + " top reads the string torque at a top "
                                        "driven directly: expected a rigid gear (no stiffness_Nm_per_rad)");
   if (drive.tuning_period_s > 0) {
-    const double omega = 2 * M_PI / drive.tuning_period_s;
+    const double omega = 2 * kPi / drive.tuning_period_s;
     drive.pi.ki = lumped_inertia * omega * omega;
   }
   if (drive.law.handover.active() && !(drive.pi.ki > 0))

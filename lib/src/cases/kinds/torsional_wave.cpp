@@ -12,6 +12,7 @@
 #include "drillwave/analysis/torsional_linearization.hpp"
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/cases/statistics.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/waves/network_simulation.hpp"
 #include "string_components.hpp"
@@ -35,7 +36,7 @@ waves::Section ReadSection(const JsonReader& r) {
     const double ro = r.Number("outer_radius_m", Range::Positive());
     const double ri = r.Number("inner_radius_m", Range::Between(0, ro), 0.0);
     if (!(ri < ro)) throw InputError(r.PathOf("inner_radius_m"), "expected a number below outer_radius_m");
-    j = 0.5 * M_PI * (std::pow(ro, 4) - std::pow(ri, 4));
+    j = 0.5 * kPi * (std::pow(ro, 4) - std::pow(ri, 4));
   }
   r.Allow("name");
   r.Finish();
