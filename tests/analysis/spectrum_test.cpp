@@ -1,6 +1,8 @@
 // Characteristic roots of linear delay systems against closed forms: the scalar retarded DDE (Lambert W), a
-// neutral system whose characteristic function factorizes (an exact root chain), and the delay-free lumped limit
+// neutral system whose characteristic function factorizes (an exact root chain), incommensurate neutral delays (the
+// robust essential abscissa against its closed form and a fine phase grid), and the delay-free lumped limit
 // of the two-disc set-up (DESIGN.md §4).
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -96,6 +98,48 @@ TEST(Spectrum, NeutralChainOfAFactorizedSystemIsExact) {
   const Spectrum su = ComputeSpectrum(unstable, o);
   EXPECT_NEAR(su.essential_abscissa, std::log(1.2) / tau, 1e-12);
   EXPECT_FALSE(su.stable);
+}
+
+// Incommensurate neutral delays (1 and sqrt 2): no companion matrix exists, and the essential abscissa is the robust
+// one, the sigma where sup over the phase theta of rho(D_1 e^{-sigma} + D_2 e^{-sigma sqrt 2 + i theta}) falls to 1.
+// For scalars the phases align at the supremum, so |d_1| e^{-sigma} + |d_2| e^{-sigma sqrt 2} = 1 exactly; for a
+// non-normal pair of 2 x 2 matrices the reference is this test's own: bisection on sigma of a 20 000-point phase grid.
+TEST(Spectrum, IncommensurateNeutralDelaysGiveTheRobustEssentialAbscissa) {
+  const double tau_1 = 1.0, tau_2 = std::sqrt(2.0);
+  auto bisect = [](auto above_one) {  // the sigma in [-10, 10] where above_one turns false
+    double lo = -10, hi = 10;
+    for (int it = 0; it < 60; ++it) (above_one(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+    return 0.5 * (lo + hi);
+  };
+  SpectrumOptions o;
+  o.im_max = 30;
+  for (const double d_2 : {0.3, 0.9}) {  // the difference operator stable, then unstable
+    const double d_1 = -0.45;
+    LinearDelaySystem sys{Scalar(-2), {{tau_1, Scalar(0.1), Scalar(d_1)}, {tau_2, Scalar(0.2), Scalar(d_2)}}};
+    const double exact = bisect([&](double sigma) {
+      return std::abs(d_1) * std::exp(-sigma * tau_1) + std::abs(d_2) * std::exp(-sigma * tau_2) >= 1;
+    });
+    const double found = ComputeSpectrum(sys, o).essential_abscissa;
+    std::printf("[ measured ] scalar d = (%.2f, %.2f): essential abscissa %.10f, exact %.10f\n", d_1, d_2, found, exact);
+    EXPECT_NEAR(found, exact, 1e-7 * (1 + std::abs(exact)));
+  }
+  Eigen::MatrixXd d1(2, 2), d2(2, 2);
+  d1 << 0.3, 0.6, 0.0, -0.2;
+  d2 << 0.1, 0.0, 0.5, 0.35;
+  LinearDelaySystem sys{-Eigen::MatrixXd::Identity(2, 2), {{tau_1, 0.1 * d1, d1}, {tau_2, 0.1 * d2, d2}}};
+  const double reference = bisect([&](double sigma) {
+    double best = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const Eigen::MatrixXcd m = std::exp(-sigma * tau_1) * d1.cast<Complex>() +
+                                 std::polar(std::exp(-sigma * tau_2), 2 * kPi * i / 20000) * d2.cast<Complex>();
+      best = std::max(best, m.eigenvalues().cwiseAbs().maxCoeff());
+    }
+    return best >= 1;
+  });
+  const double found = ComputeSpectrum(sys, o).essential_abscissa;
+  std::printf("[ measured ] non-normal 2 x 2 pair: essential abscissa %.10f, 20 000-point reference %.10f\n", found,
+              reference);
+  EXPECT_NEAR(found, reference, 1e-6);
 }
 
 // The setup seed's lumped limit: x = (theta_u - theta_l, theta_u', theta_l'), characteristic polynomial

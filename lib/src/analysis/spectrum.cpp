@@ -205,29 +205,36 @@ std::vector<Complex> DifferenceOperatorMultipliers(const std::vector<NeutralTerm
   return std::vector<Complex>(ev.data(), ev.data() + ev.size());
 }
 
-// sup over theta of rho(sum_k B_k e^{-sigma tau_k + i theta_k}); theta_0 = 0 (a common phase leaves rho as it is).
-// A grid over the other phases, then golden-section refinement of the best point one phase at a time. Returns as
-// soon as a value reaches `enough` (the bisection only asks whether it reaches 1).
-double TorusSpectralRadius(const std::vector<NeutralTerm>& terms, double sigma, double enough) {
+// rho(sum_k B_k e^{-sigma tau_k + i theta_k}): the spectral radius of the difference operator's symbol at phases theta.
+double PhaseRadius(const std::vector<NeutralTerm>& terms, double sigma, const std::vector<double>& theta) {
+  Eigen::MatrixXcd m = std::exp(-sigma * terms[0].tau) * terms[0].b.cast<Complex>();
+  for (std::size_t k = 1; k < terms.size(); ++k)
+    m += std::polar(std::exp(-sigma * terms[k].tau), theta[k]) * terms[k].b.cast<Complex>();
+  const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(m, false);
+  return solver.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+struct PhasePeak {
+  double rho;                  // the largest radius found
+  std::vector<double> theta;   // where
+};
+
+// sup over theta of PhaseRadius; theta_0 = 0 (a common phase leaves rho as it is). A grid over the other phases, then
+// golden-section refinement of the best point one phase at a time. Returns as soon as a value reaches `enough`.
+PhasePeak TorusPeak(const std::vector<NeutralTerm>& terms, double sigma, double enough) {
   const int k_count = static_cast<int>(terms.size());
-  auto rho = [&](const std::vector<double>& theta) {
-    Eigen::MatrixXcd m = std::exp(-sigma * terms[0].tau) * terms[0].b.cast<Complex>();
-    for (int k = 1; k < k_count; ++k)
-      m += std::polar(std::exp(-sigma * terms[k].tau), theta[k]) * terms[k].b.cast<Complex>();
-    const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(m, false);
-    return solver.eigenvalues().cwiseAbs().maxCoeff();
-  };
+  auto rho = [&](const std::vector<double>& theta) { return PhaseRadius(terms, sigma, theta); };
   // About 4096 grid points in all (at least 8 per phase): a fine grid for two delays, a coarse one for six, where
   // the maximum found (and so the abscissa) may fall slightly short.
   const int per_phase = k_count == 2 ? 128 : std::max(8, static_cast<int>(std::pow(4096.0, 1.0 / (k_count - 1))));
-  std::vector<double> theta(k_count, 0.0), best_theta = theta;
-  double best = -1;
+  std::vector<double> theta(k_count, 0.0);
+  PhasePeak best{-1, theta};
   std::vector<int> index(k_count, 0);
   for (bool more = true; more;) {
     for (int k = 1; k < k_count; ++k) theta[k] = 2 * kPi * index[k] / per_phase;
     const double r = rho(theta);
-    if (r > best) best = r, best_theta = theta;
-    if (best >= enough) return best;
+    if (r > best.rho) best = {r, theta};
+    if (best.rho >= enough) return best;
     more = false;
     for (int k = 1; k < k_count && !more; ++k) {
       if (++index[k] < per_phase) more = true;
@@ -237,8 +244,8 @@ double TorusSpectralRadius(const std::vector<NeutralTerm>& terms, double sigma, 
   const double golden = 0.5 * (std::sqrt(5.0) - 1);
   for (int pass = 0; pass < 3; ++pass)
     for (int k = 1; k < k_count; ++k) {
-      double a = best_theta[k] - 2 * kPi / per_phase, b = best_theta[k] + 2 * kPi / per_phase;
-      std::vector<double> t = best_theta;
+      double a = best.theta[k] - 2 * kPi / per_phase, b = best.theta[k] + 2 * kPi / per_phase;
+      std::vector<double> t = best.theta;
       auto at = [&](double x) { t[k] = x; return rho(t); };
       double c = b - golden * (b - a), d = a + golden * (b - a), fc = at(c), fd = at(d);
       for (int it = 0; it < 40; ++it) {
@@ -246,14 +253,18 @@ double TorusSpectralRadius(const std::vector<NeutralTerm>& terms, double sigma, 
         else a = c, c = d, fc = fd, d = a + golden * (b - a), fd = at(d);
       }
       const double x = fc > fd ? c : d, f = std::max(fc, fd);
-      if (f > best) best = f, best_theta[k] = x;
-      if (best >= enough) return best;
+      if (f > best.rho) best.rho = f, best.theta[k] = x;
+      if (best.rho >= enough) return best;
     }
   return best;
 }
 
-// The robust essential abscissa: sup_theta rho(...) < 1 exactly for sigma above it (Hale & Verduyn Lunel, ch. 9), so
-// bisection finds it. -inf when it lies below `floor`.
+// The robust essential abscissa: sup_theta rho(...) < 1 exactly for sigma above it (Hale & Verduyn Lunel, ch. 9).
+// -inf when it lies below `floor`. Each search of the torus costs thousands of eigenvalue problems, so the bisection
+// runs on the phases found so far (cheap: a few eigenvalue problems a step) and the torus is searched only to
+// certify its upper end: where it finds a radius of 1 or more there, its phases join the set and the bisection goes
+// on above (a cutting-plane scheme; a few searches instead of one per bisection step). The bracket is exact for the
+// torus search: its lower end has a found radius >= 1, its upper end a searched torus below 1.
 double RobustEssentialAbscissa(const std::vector<NeutralTerm>& terms, double floor) {
   auto bound = [&](double sigma) {  // rho <= sum_k ||B_k|| e^{-sigma tau_k}
     double sum = 0;
@@ -262,17 +273,43 @@ double RobustEssentialAbscissa(const std::vector<NeutralTerm>& terms, double flo
   };
   double hi = 0;
   for (int i = 0; i < 200 && bound(hi) >= 1; ++i) hi = 2 * hi + 1;
-  double step = 1, lo = hi - step;
-  while (TorusSpectralRadius(terms, lo, 1.0) < 1) {
+  // The search starts low, at the floor (or where e^{-sigma tau} would near overflow), where the torus search ends
+  // at its first points: the bisection on phases costs little however wide the bracket, a search below 1 the whole
+  // torus (stepping down from the norm bound took eight of them on saldivar-bha).
+  double tau_max = 0;
+  for (const NeutralTerm& t : terms) tau_max = std::max(tau_max, t.tau);
+  double lo = std::max(floor, std::min(hi - 1, -600 / tau_max)), step = hi - lo;
+  PhasePeak peak = TorusPeak(terms, lo, 1.0);
+  while (peak.rho < 1) {
     if (lo <= floor) return -std::numeric_limits<double>::infinity();
     hi = lo;
     step *= 2;
     lo = std::max(floor, hi - step);
+    peak = TorusPeak(terms, lo, 1.0);
   }
+  std::vector<std::vector<double>> phases{peak.theta};
+  auto reaches_one = [&](double sigma) {
+    for (const std::vector<double>& theta : phases)
+      if (PhaseRadius(terms, sigma, theta) >= 1) return true;
+    return false;
+  };
   // Six digits, and 1e-10 absolute near zero where the verdict (kEssentialOnAxis) is decided.
-  for (int it = 0; it < 100 && hi - lo > std::max(1e-10, 1e-7 * std::abs(hi)); ++it) {
-    const double mid = 0.5 * (lo + hi);
-    (TorusSpectralRadius(terms, mid, 1.0) < 1 ? hi : lo) = mid;
+  auto resolved = [&] { return hi - lo <= std::max(1e-10, 1e-7 * std::abs(hi)); };
+  for (int search = 0; search < 100; ++search) {
+    double upper = hi;
+    for (int it = 0; it < 100 && upper - lo > std::max(1e-10, 1e-7 * std::abs(upper)); ++it) {
+      const double mid = 0.5 * (lo + upper);
+      (reaches_one(mid) ? lo : upper) = mid;
+    }
+    if (upper >= hi) break;  // the known phases reach 1 up to hi, whose torus is below 1
+    peak = TorusPeak(terms, upper, std::numeric_limits<double>::infinity());  // its peak: the next cut
+    if (peak.rho < 1) {
+      hi = upper;
+      break;
+    }
+    lo = upper;
+    phases.push_back(peak.theta);
+    if (resolved()) break;
   }
   return 0.5 * (lo + hi);
 }
