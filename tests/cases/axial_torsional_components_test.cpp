@@ -16,6 +16,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -23,7 +24,7 @@ namespace {
 // The baseline (BASELINE.md nominal point) at a constant set-point, run for `duration` s with statistics over its
 // last `window` s.
 nlohmann::json Nominal(double rpm, double duration, double window) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  nlohmann::json doc = testing::LoadCase("baseline-60rpm");
   doc["model"]["top"]["speed_rad_s"] = rpm * kPi / 30;
   doc["simulation"]["duration_s"] = duration;
   doc["statistics"]["window_s"] = {duration - window, duration};
@@ -431,7 +432,7 @@ TEST(AxialTorsionalHeterogeneity, OnePercentChangesTheRunAndZeroIsHomogeneousRoc
 // drilled depth, outside the time-invariant part).
 TEST(AxialTorsionalHeterogeneity, LinearizationIsAboutTheMeanRockAndSaysSo) {
   for (const char* name : {"baseline-coupled-stability", "rgd-lumped"}) {
-    nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/" + name + ".json");
+    nlohmann::json doc = testing::LoadCase(name);
     doc.erase("expect");
     const auto homogeneous = ParseCase(doc).model->Linearize();
     doc["model"]["rock"]["strength_heterogeneity"] = Heterogeneity(0.01, 9);

@@ -13,12 +13,13 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "refused_path.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
 nlohmann::json HoistStep() {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/hoist-step.json");
+  nlohmann::json doc = testing::LoadCase("hoist-step");
   doc.erase("expect");
   return doc;
 }
@@ -144,7 +145,7 @@ TEST(AxialTorsionalHoist, HoistDashpotIsQuietInSteadyDrilling) {
   EXPECT_LT(drift, 1e-3);
 
   nlohmann::json rig = doc;
-  rig["model"]["hoist"]["rig"] = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/hoist-rig.json")
+  rig["model"]["hoist"]["rig"] = testing::LoadCase("hoist-rig")
                                      ["model"]["hoist"]["rig"];
   EXPECT_EQ(testing::RefusedPath(rig), "/model/hoist/damping_Ns_per_m");
 }

@@ -15,12 +15,13 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "refused_path.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
 nlohmann::json RigCase() {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/hoist-rig.json");
+  nlohmann::json doc = testing::LoadCase("hoist-rig");
   doc.erase("expect");
   return doc;
 }

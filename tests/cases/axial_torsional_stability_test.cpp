@@ -28,6 +28,7 @@
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/model/hoist_rig.hpp"
 #include "complex_newton.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -35,7 +36,7 @@ namespace {
 using Complex = std::complex<double>;
 
 nlohmann::json Baseline() {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  return testing::LoadCase("baseline-60rpm");
 }
 
 std::vector<LinearizedOperatingPoint> Linearize(const nlohmann::json& doc) { return ParseCase(doc).model->Linearize(); }
@@ -250,7 +251,7 @@ TEST(AxialTorsionalStability, HoistDashpotIsTheZeroOfTheClosedForm) {
 // The top drive hanging from the two-mass hoisting rig of json-cases/hoist-rig.json (its derrick and block modes near
 // 23.8 and 62.7 rad/s join the string's).
 TEST(AxialTorsionalStability, HoistingRigIsTheZeroOfTheClosedForm) {
-  const nlohmann::json rig = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/hoist-rig.json");
+  const nlohmann::json rig = testing::LoadCase("hoist-rig");
   nlohmann::json doc = Undamped(2);
   doc["model"]["hoist"]["rig"] = rig["model"]["hoist"]["rig"];
   doc["model"]["hoist"]["rig"].erase("cable_tension_change_N");
@@ -261,7 +262,7 @@ TEST(AxialTorsionalStability, HoistingRigIsTheZeroOfTheClosedForm) {
 // stiffnesses a million times larger: the same frequencies), two roots sit at the rig's undamped natural frequencies
 // with the top drive's mass on the block (model::HoistRig::NaturalFrequencies).
 TEST(AxialTorsionalStability, HeavyHoistingRigRingsAtItsTwoMassFrequencies) {
-  const nlohmann::json rig = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/hoist-rig.json");
+  const nlohmann::json rig = testing::LoadCase("hoist-rig");
   nlohmann::json doc = Undamped(2);
   auto& r = doc["model"]["hoist"]["rig"] = rig["model"]["hoist"]["rig"];
   r.erase("cable_tension_change_N");
@@ -367,7 +368,7 @@ TEST(AxialTorsionalStability, KelvinVoigtAndRigRightmostRootIsTheGrowthRateOfThe
   kv["model"]["string"]["kelvin_voigt_s"] = 0.024;
   kv["model"]["string"]["axial_kelvin_voigt_s"] = 0.002;
   ExpectRightmostRootGrowsAsSimulated(kv, 2 * kPi, 2.5, 5, true, "Kelvin-Voigt, 60 rpm", 1e-3);
-  const nlohmann::json rig = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/hoist-rig.json");
+  const nlohmann::json rig = testing::LoadCase("hoist-rig");
   ExpectRightmostRootGrowsAsSimulated(rig, 2 * kPi, 2.5, 5, true, "hoisting rig, 60 rpm", 1e-3);
 }
 
@@ -472,7 +473,7 @@ TEST(AxialTorsionalStability, UnbalancedBhaModesDecayAsSimulatedAtALargeWhirl) {
 // apart (pi / tau), are read through 3-s windows. Held to 3 % + 3e-3 1/s; the relative errors are printed.
 TEST(AxialTorsionalStability, TopDriveLawsModesGrowOrDecayAsSimulated) {
   const nlohmann::json stribeck =
-      io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-stribeck.json");
+      testing::LoadCase("baseline-stribeck");
   const double w = 2 * kPi;
   struct Law {
     const char* what;

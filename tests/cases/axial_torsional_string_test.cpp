@@ -13,6 +13,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "modal_decay.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -28,7 +29,7 @@ double TorsionalImpedance(double od, double id) { return Polar(od, id) * std::sq
 double TorsionalTravelTime(double length) { return length / std::sqrt(kG / kRho); }
 
 nlohmann::json Baseline() {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  return testing::LoadCase("baseline-60rpm");
 }
 // The baseline-bha string: 2600 m to the bit, the lowest 189.4 m collars, bit 3 kg m^2 and 800 kg.
 nlohmann::json WithBha(double rpm) {

@@ -13,12 +13,13 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
 nlohmann::json Baseline(double rpm) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  nlohmann::json doc = testing::LoadCase("baseline-60rpm");
   const double w = rpm * kPi / 30;
   doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, w}, {1, 1.05 * w}, {2, w}}}};
   return doc;
@@ -140,7 +141,7 @@ TEST(AxialTorsional, RegimeMapOfTheBaseline) {
 // cycle not being exactly periodic (onsets 3.46-3.62 s apart) and is 30 times below the error fixed (630 N). And
 // no sample of a bit axially at rest on the rock reads the advancing bit's contact force a sigma l with no cutting.
 TEST(AxialTorsional, MeanWeightOnBitMeetsTheMomentumBalanceOverStickSlipCycles) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  nlohmann::json doc = testing::LoadCase("baseline-60rpm");
   doc["simulation"]["duration_s"] = 120;
   doc["simulation"]["output_interval_s"] = 1e-3;
   doc["statistics"]["window_s"] = {30, 120};
@@ -228,7 +229,7 @@ namespace {
 // onsets jumps when one short re-stick inside a cycle appears or not (3.57 s at tol 1e-3, 3.12 s at 1e-4 and below
 // for the same 3.56 s oscillation).
 TEST(AxialTorsional, OscillationPeriodConvergesWithTheTolerance) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  nlohmann::json doc = testing::LoadCase("baseline-60rpm");
   std::vector<double> periods;
   for (double tol : {1e-3, 1e-4, 1e-5}) {
     doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = tol;
@@ -248,7 +249,7 @@ TEST(AxialTorsional, OscillationPeriodConvergesWithTheTolerance) {
 // arrives, and steps stop where one reaches the top or the bit: measured 2 508 of 10 195 (25 %; the rest are the
 // curvature jumps that go with them). Counted, not timed.
 TEST(AxialTorsional, EventKinksCrossTheSubSectionsWithFewRedoneSteps) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  nlohmann::json doc = testing::LoadCase("baseline-60rpm");
   const auto s = RunCase(ParseCase(doc)).summary;
   const double steps = s["steps"].get<double>(), redone = s["history_rejections"].get<double>();
   std::printf("[ measured ] baseline-60rpm: %.0f steps, %.0f redone for the history, %.0f evaluations\n", steps,

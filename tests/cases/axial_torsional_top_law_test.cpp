@@ -12,6 +12,7 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "refused_path.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -19,7 +20,7 @@ namespace {
 using testing::RefusedPath;
 
 nlohmann::json Baseline() {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  return testing::LoadCase("baseline-60rpm");
 }
 nlohmann::json WithTop(const nlohmann::json& fields) {
   nlohmann::json doc = Baseline();
@@ -151,7 +152,7 @@ TEST(AxialTorsionalTopLaw, ALongStickBehindSoftSpeedRunsThrough) {
 // it was lifted at once, slipped back, fell and stuck again every 4e-11 s until the chattering check stopped the run.
 // A stuck bit whose cutters are a reaction lifts only when the string pulls it up: the run goes on.
 TEST(AxialTorsionalTopLaw, ZTorqueBehindADelayOnTheInclinedStringRunsThroughItsStickTwistedBack) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/inclined-2500m.json");
+  nlohmann::json doc = testing::LoadCase("inclined-2500m");
   doc.erase("expect");
   doc["simulation"]["duration_s"] = 59;
   doc["statistics"]["window_s"] = {30, 59};

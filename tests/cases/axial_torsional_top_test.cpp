@@ -14,6 +14,7 @@
 #include "drillwave/io/json_reader.hpp"
 #include "equivalent_circuit.hpp"
 #include "two_mass_reference.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -22,7 +23,7 @@ constexpr double kOmega = 150 * kPi / 30, kRatio = 8, kMotorInertia = 10, kStiff
 
 // The baseline at a constant 150 rpm (steady drilling from t = 0), run for `duration` s at tolerance 1e-9.
 nlohmann::json Steady(double duration, double interval) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-150rpm.json");
+  nlohmann::json doc = testing::LoadCase("baseline-150rpm");
   doc["model"]["top"]["speed_rad_s"] = kOmega;
   doc["simulation"]["duration_s"] = duration;
   doc["simulation"]["output_interval_s"] = interval;
@@ -156,7 +157,7 @@ TEST(AxialTorsionalTop, CompliantGearFreeMotionIsTheTwoMassSolution) {
 // A DC motor of constant K behind a rigid gear of ratio n is a motor of constant n K on a top drive heavier by
 // n^2 J_m, through a set-point bump that makes the bit stick and slip.
 TEST(AxialTorsionalTop, RigidGearIsTheMotorReferredToTheTopDrive) {
-  nlohmann::json geared = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  nlohmann::json geared = testing::LoadCase("baseline-60rpm");
   geared.erase("expect");
   geared["simulation"]["duration_s"] = 15;
   geared["statistics"]["window_s"] = {5, 15};

@@ -13,12 +13,13 @@
 
 #include "drillwave/cases/controller_comparison.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
 nlohmann::json SaldivarZTorque() {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-z-torque.json");
+  nlohmann::json doc = testing::LoadCase("saldivar-z-torque");
   doc["model"]["top"]["speed_rad_s"]["knots"][1][1] = 4;
   return doc;
 }

@@ -14,12 +14,13 @@
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/core/constants.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
 nlohmann::json Saldivar() {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+  return testing::LoadCase("saldivar-stickslip");
 }
 
 // Brought to the steady state at top speed omega from a fast rigid rotation (20 rad/s, where it slides), then a

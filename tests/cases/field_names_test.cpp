@@ -13,6 +13,7 @@
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -80,7 +81,7 @@ TEST(FieldNames, NoKindDocumentsAFormerName) {
 }
 
 TEST(FieldNames, AFormerNameIsRefusedWithItsNewPath) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/two-mass-stickslip.json");
+  nlohmann::json doc = testing::LoadCase("two-mass-stickslip");
   doc["model"]["bit_inertia_kgm2"] = 400.0;
   try {
     ParseCase(doc);

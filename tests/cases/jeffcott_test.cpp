@@ -13,12 +13,13 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
 nlohmann::json Rotor() {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/jeffcott-unbalance.json");
+  return testing::LoadCase("jeffcott-unbalance");
 }
 
 struct Constants {
@@ -110,7 +111,7 @@ TEST(Jeffcott, UndampedRotorAtItsCriticalSpeedGrowsLinearly) {
 // states 0.09 m and "about 0.13 m", so each must round to the seed's figure.
 TEST(Jeffcott, UnbalanceStudyPredictsTheSeedsWhirlFor3And5Kg) {
   const nlohmann::json doc =
-      io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/jeffcott-unbalance-study.json");
+      testing::LoadCase("jeffcott-unbalance-study");
   const SweepResult sweep = RunSweep(doc, {"/model/unbalance_mass_kg", {1, 3, 5}, 2}, nullptr);
   const double seed[] = {0.035, 0.09, 0.13}, rounding[] = {0.0005, 0.005, 0.005};
   for (int i = 0; i < 3; ++i) {
@@ -153,7 +154,7 @@ TEST(Jeffcott, BadInputNamesTheJsonPath) {
 // the total is the sum of the bending and torsion damage; a shaft given by stiffnesses alone has no stresses.
 TEST(Jeffcott, TransientsDoFatigueDamage) {
   nlohmann::json doc =
-      io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/jeffcott-reverse-torque.json");
+      testing::LoadCase("jeffcott-reverse-torque");
   doc["model"]["fatigue"] = {{"endurance_limit_Pa", 0.0}};
   doc["statistics"]["window_s"] = {0, 15};
   const auto s = RunCase(ParseCase(doc)).summary;

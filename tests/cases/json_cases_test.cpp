@@ -11,6 +11,7 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -45,12 +46,12 @@ INSTANTIATE_TEST_SUITE_P(AllCases, JsonCase, ::testing::ValuesIn(CaseFiles()),
 
 TEST(DefaultCase, IsTheSaldivarStickSlipCase) {
   const auto embedded = nlohmann::json::parse(DefaultCaseText());
-  const auto file = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+  const auto file = testing::LoadCase("saldivar-stickslip");
   EXPECT_EQ(embedded, file);
 }
 
 TEST(ParameterPaths, EveryParameterIsAddressableByItsJsonPointer) {
-  auto doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+  auto doc = testing::LoadCase("saldivar-stickslip");
   io::SetByPointer(doc, "/model/top/speed_rad_s", 20.0);
   io::SetByPointer(doc, "/simulation/duration_s", 30.0);
   io::SetByPointer(doc, "/statistics/window_s", nlohmann::json::array({20.0, 30.0}));
@@ -69,7 +70,7 @@ namespace {
 // --set reaches every documented optional field, also one the case leaves out; a misspelt one is refused by the
 // kind's reader with its path.
 TEST(SetOptionalFields, AMissingOptionalFieldCanBeSetAndAMisspeltOneIsRefused) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+  nlohmann::json doc = testing::LoadCase("saldivar-stickslip");
   io::SetByPointer(doc, "/model/initial/bit_speed_rad_s", 6.0);
   EXPECT_NO_THROW(ParseCase(doc));
   io::SetByPointer(doc, "/model/bit/inertia_kgm3", 1.0);

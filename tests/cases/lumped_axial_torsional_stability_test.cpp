@@ -41,6 +41,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "complex_newton.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -54,7 +55,7 @@ struct Groups {
 // The rgd-lumped case with its mass, weight on bit, top speed and damping set to give the groups (C, I, the bit and
 // the rock as in the case).
 nlohmann::json WithGroups(const Groups& g) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/rgd-lumped.json");
+  nlohmann::json doc = testing::LoadCase("rgd-lumped");
   auto& m = doc["model"];
   m["string"] = {{"stiffness_Nm_per_rad", 480.0}};
   const double c = 480.0, inertia = m["bit"]["inertia_kgm2"], w0 = std::sqrt(c / inertia);

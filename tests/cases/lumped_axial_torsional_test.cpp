@@ -13,12 +13,13 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
 nlohmann::json Lumped() {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/rgd-lumped.json");
+  return testing::LoadCase("rgd-lumped");
 }
 
 // Without a disturbance the run stays in steady drilling, which the RGD law gives in closed form:
@@ -93,7 +94,7 @@ TEST(LumpedAxialTorsional, BadInputIsRefusedByItsField) {
 // travel times of 31 and 19 ms) the two linearizations' roots agree.
 TEST(LumpedAxialTorsional, ShortStiffStringHasTheRootsOfTheWaveModel) {
   nlohmann::json wave =
-      io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-coupled-stability.json");
+      testing::LoadCase("baseline-coupled-stability");
   auto& w = wave["model"];
   const double length = 100, hoist = 10;
   w["string"]["length_m"] = length;

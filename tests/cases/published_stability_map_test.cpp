@@ -34,6 +34,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "complex_newton.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -103,7 +104,7 @@ struct Twin {
   nlohmann::json doc;
   double tau = 0;  // torsional travel time [s], the published time unit
   Twin(double v0, double omega0, double mu, bool axial_blocked = false) {
-    doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+    doc = testing::LoadCase("baseline-60rpm");
     doc.erase("expect");
     auto& m = doc["model"];
     auto& s = m["string"];

@@ -13,6 +13,7 @@
 #include "drillwave/cases/stability_map.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -20,7 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 nlohmann::json TwoMass() {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/two-mass-stickslip.json");
+  return testing::LoadCase("two-mass-stickslip");
 }
 
 std::string WriteFile(const std::string& name, const std::string& text) {
@@ -90,7 +91,7 @@ TEST(StabilityMapOverDraws, DrawsAreSpreadEvenlyOverTheFileAndBadFilesAreRefused
 
 // A value the case refuses is reported with the axis and the field's own message, its path said once.
 TEST(StabilityMapOverDraws, AnAxisValueTheCaseRefusesNamesItsFieldOnce) {
-  const nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  const nlohmann::json doc = testing::LoadCase("baseline-60rpm");
   try {
     ParseMapAxis("/model/hoist/weight_on_bit_N=1000:2000:3", doc);
     FAIL() << "not refused";

@@ -13,13 +13,12 @@
 #include "drillwave/cases/stability_map.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
-nlohmann::json LoadCase(const std::string& name) {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/" + name + ".json");
-}
+using testing::LoadCase;
 
 // The saldivar string built by hand (not from the case): the Hopf point of steady sliding by bisection on the
 // spectral abscissa of the scalar neutral form.

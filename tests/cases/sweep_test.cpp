@@ -12,6 +12,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -19,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 nlohmann::json ShortTwoDisc() {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/two-disc-setup.json");
+  nlohmann::json doc = testing::LoadCase("two-disc-setup");
   doc["simulation"]["duration_s"] = 60;
   doc["statistics"]["window_s"] = {30, 60};
   return doc;
@@ -117,7 +118,7 @@ TEST(Sweep, BadInputStopsBeforeAnyRunAndNamesTheValue) {
 TEST(Sweep, NumericalFailureIsRecordedAndTheSweepGoesOn) {
   // A top of 1e-300 kg·m² driven by 1e4 N·m cannot be integrated (infinite acceleration, or steps too short to
   // represent); the ordinary inertias run fine.
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+  nlohmann::json doc = testing::LoadCase("saldivar-stickslip");
   doc["simulation"]["duration_s"] = 5;
   doc["statistics"]["window_s"] = {0, 5};
   doc["model"]["top"] = {{"type", "torque"}, {"inertia_kgm2", 1000.0}, {"torque_Nm", 1e4}};

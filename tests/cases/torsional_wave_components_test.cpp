@@ -16,12 +16,13 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "refused_path.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
 nlohmann::json Load(const char* name) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/" + name + ".json");
+  nlohmann::json doc = testing::LoadCase(name);
   doc.erase("expect");
   return doc;
 }

@@ -14,15 +14,14 @@
 #include "drillwave/cases/orbits.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "two_disc_reference.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
-const char kVoltage[] = "/model/upper_disc/input_voltage_V";
+using testing::LoadCase;
 
-nlohmann::json LoadCase(const std::string& name) {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/" + name + ".json");
-}
+const char kVoltage[] = "/model/upper_disc/input_voltage_V";
 
 // A long run at voltage u from rest: its summary and the state (twist, upper speed, lower speed) where the lower disc
 // is fastest in the last statistics window.

@@ -16,13 +16,12 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "two_disc_reference.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
-nlohmann::json LoadCase(const std::string& name) {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/" + name + ".json");
-}
+using testing::LoadCase;
 
 RunResult RunDoc(const nlohmann::json& doc) { return RunCase(ParseCase(doc)).result; }
 

@@ -12,6 +12,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -22,7 +23,7 @@ RunResult RunDoc(const nlohmann::json& doc) { return RunCase(ParseCase(doc)).res
 // integral gain `ki` and a disc that cannot break free (static level 5 N m) until its weight falls at 6 s; at the
 // tolerance the bounds below were measured at.
 nlohmann::json StallingRig(double torque_limit_Nm, double ki) {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/ufrj-rig.json");
+  nlohmann::json doc = testing::LoadCase("ufrj-rig");
   doc.erase("expect");
   doc["model"]["top"]["kp_Nms_per_rad"] = 0.22;
   doc["model"]["top"]["ki_Nm_per_rad"] = ki;
@@ -86,7 +87,7 @@ TEST(TwoMassRigLaws, TheIntegralIsHeldWhileTheLimitActs) {
 // torque ramp at the top: the static level grows with the torque that holds the disc, s T_s = T_s W / 500, so it breaks
 // free where T = 2 (450 + 50 T) / 500, at T = 2.25 N m, with W = 562.5 N.
 nlohmann::json LoadedDisc() {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/ufrj-rig.json");
+  nlohmann::json doc = testing::LoadCase("ufrj-rig");
   doc.erase("expect");
   doc["model"]["top"] = {{"inertia_kgm2", 0.001}, {"type", "torque"}, {"torque_Nm", {{"knots", {{0, 0}, {30, 3}}}}}};
   doc["model"]["bit"]["friction"] = {{"law", "coulomb"}, {"T_s_Nm", 2.0}, {"T_c_Nm", 1.5}};

@@ -12,13 +12,12 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::cases {
 namespace {
 
-nlohmann::json LoadCase(const std::string& name) {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/" + name + ".json");
-}
+using testing::LoadCase;
 
 RunResult RunDoc(const nlohmann::json& doc) { return RunCase(ParseCase(doc)).result; }
 

@@ -15,6 +15,7 @@
 #include "drillwave/diagnosis/loop.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -27,7 +28,7 @@ nlohmann::json NominalCase(double duration_s) {
                                   {"wob_target_kN", 90.0},
                                   {"well", {{"measured_depth_m", 2000.0}, {"mud_density_kg_m3", 1200.0}}}};
   return CaseFromSidecar(sidecar,
-                         io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json"),
+                         testing::LoadCase("baseline-60rpm"),
                          kSidecarWarmupS);
 }
 

@@ -9,6 +9,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -16,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 nlohmann::json Saldivar() {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+  nlohmann::json doc = testing::LoadCase("saldivar-stickslip");
   doc["simulation"]["duration_s"] = 40;
   doc["simulation"]["output_interval_s"] = 0.01;
   doc["statistics"]["window_s"] = {20, 40};

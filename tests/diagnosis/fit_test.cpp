@@ -9,6 +9,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/diagnosis/fit.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -18,7 +19,7 @@ namespace fs = std::filesystem;
 class Fit : public ::testing::Test {
  protected:
   void SetUp() override {
-    truth_ = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-stickslip.json");
+    truth_ = testing::LoadCase("saldivar-stickslip");
     truth_["simulation"]["duration_s"] = 60;
     truth_["simulation"]["output_interval_s"] = 0.01;
     truth_["simulation"]["abs_tol"] = truth_["simulation"]["rel_tol"] = 1e-6;

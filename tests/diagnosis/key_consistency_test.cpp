@@ -23,6 +23,7 @@
 #include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -111,7 +112,7 @@ nlohmann::json KeyRecord(const std::string& name, const fs::path& set = kSynthet
 // The baseline case at the recording's operating point, as `diagnose` builds it from the sidecar.
 nlohmann::json SidecarCase(const std::string& name, const fs::path& set = kSynthetic) {
   return CaseFromSidecar(io::LoadJsonFile((set / (name + ".json")).string()),
-                         io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json"),
+                         testing::LoadCase("baseline-60rpm"),
                          kSidecarWarmupS);
 }
 

@@ -24,6 +24,7 @@
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "noisy_twin.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -104,7 +105,7 @@ nlohmann::json BouncingCase() {
                                   {"wob_target_kN", 150.0},
                                   {"well", {{"measured_depth_m", 3000.0}, {"mud_density_kg_m3", 1200.0}}}};
   return CaseFromSidecar(sidecar,
-                         io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json"), 30);
+                         testing::LoadCase("baseline-60rpm"), 30);
 }
 const std::vector<ChannelMap> kAxialMaps = {{"hookload_kN", "hookload_N", 1e-3}, {"wob_kN", "wob_N", 1e-3}};
 

@@ -10,6 +10,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -22,7 +23,7 @@ nlohmann::json Sidecar() {
           {"rpm_setpoint_schedule", {{0.0, 60.0}, {20.0, 60.0}, {30.0, 90.0}}}};
 }
 nlohmann::json Baseline() {
-  return io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  return testing::LoadCase("baseline-60rpm");
 }
 
 TEST(CaseFromSidecar, StartsFromSteadyDrillingOverATinyBottomRoughnessWithSteadyInputs) {

@@ -28,6 +28,7 @@
 #include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -44,7 +45,7 @@ TEST_P(ToleranceIndependence, TheHeldOutErrorDoesNotMoveWithTheTolerance) {
   const Recording recording = LoadRecording((kSynthetic / (name + ".csv")).string());
   const nlohmann::json baseline =
       CaseFromSidecar(io::LoadJsonFile((kSynthetic / (name + ".json")).string()),
-                      io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json"),
+                      testing::LoadCase("baseline-60rpm"),
                       kSidecarWarmupS);
   std::vector<double> errors;
   double chance = 0;

@@ -14,6 +14,7 @@
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/diagnosis/loop.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -52,7 +53,7 @@ TEST(UfrjRig, FittedCasePredictsTheHeldOutFeaturesBetterThanItsStart) {
   const std::string file = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/ufrj-rig/rig-0-30s.csv";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "the laboratory recording is not at " << file;
   const Recording rec = LoadRecording(file);
-  const nlohmann::json fitted = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/ufrj-rig-wob-input.json");
+  const nlohmann::json fitted = testing::LoadCase("ufrj-rig-wob-input");
   nlohmann::json start = fitted;
   for (const auto& [pointer, value] : kStartValues) start[nlohmann::json::json_pointer(pointer)] = value;
   ASSERT_NE(start, fitted);
@@ -94,7 +95,7 @@ TEST(UfrjRig, TheLoopAddsTheLinearVelocityWeakeningAndPredictsTheHeldOutPart) {
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "the laboratory recording is not at " << file;
   const Recording rec = LoadRecording(file);
   const DiagnosisLoop loop = RunDiagnosisLoop(
-      io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/ufrj-rig.json"), rec, RigLoopOptions());
+      testing::LoadCase("ufrj-rig"), rec, RigLoopOptions());
   ASSERT_GE(loop.kept, 0) << "nothing kept";
   const std::vector<std::string>& kept = loop.candidates[loop.kept].effects;
   const std::string names = KeptNames(loop);

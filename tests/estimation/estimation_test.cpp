@@ -23,6 +23,7 @@
 #include "drillwave/estimation/recording_estimate.hpp"
 #include "drillwave/estimation/wave_continuation.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace es = drillwave::estimation;
 
@@ -89,7 +90,7 @@ TEST(Metrics, StuckScoresCountSamples) {
 
 // drillwave's own coupled run (the baseline at 60 rpm sticks and slips from about 9 s): its top signals give its bit.
 TEST(WaveStringEstimate, RecoversTheBitOfDrillwavesOwnCoupledRun) {
-  nlohmann::json doc = drillwave::io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  nlohmann::json doc = drillwave::testing::LoadCase("baseline-60rpm");
   doc["simulation"]["duration_s"] = 40;
   doc["statistics"]["window_s"] = {0, 40};
   const auto run = drillwave::cases::RunCase(drillwave::cases::ParseCase(doc));
@@ -321,7 +322,7 @@ TEST(SurfaceChannels, RefusesDownholeChannelsAndUnknownUnits) {
 TEST(SyntheticRecordings, Rec03MeetsTheIssuesTargets) {
   const std::string dir = std::string(DRILLWAVE_SHARED_DIR) + "/recordings/synthetic/";
   if (!std::filesystem::exists(dir + "rec03.csv")) GTEST_SKIP() << dir << "rec03.csv is absent";
-  nlohmann::json doc = drillwave::io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/baseline-60rpm.json");
+  nlohmann::json doc = drillwave::testing::LoadCase("baseline-60rpm");
   const nlohmann::json sidecar = drillwave::io::LoadJsonFile(dir + "rec03.json");
   doc = drillwave::diagnosis::CaseFromSidecar(sidecar, doc, drillwave::diagnosis::kSidecarWarmupS);
   const auto rec = drillwave::diagnosis::LoadRecording(dir + "rec03.csv");

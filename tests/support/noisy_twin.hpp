@@ -7,11 +7,12 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/diagnosis/loop.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::testing {
 
 inline nlohmann::json TwoMassCase() {
-  nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/two-mass-stickslip.json");
+  nlohmann::json doc = testing::LoadCase("two-mass-stickslip");
   doc["simulation"]["duration_s"] = 200;
   doc["simulation"]["abs_tol"] = doc["simulation"]["rel_tol"] = 1e-7;
   doc["statistics"]["window_s"] = {100, 200};

@@ -11,6 +11,7 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/waves/network_simulation.hpp"
+#include "json_case.hpp"
 
 namespace drillwave::waves {
 namespace {
@@ -102,7 +103,7 @@ namespace {
 class SectionedStickSlip : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(SectionedStickSlip, StatisticsConvergeWithTheTolerance) {
-  const nlohmann::json doc = io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/" + GetParam() + ".json");
+  const nlohmann::json doc = testing::LoadCase(GetParam());
   struct Stats {
     double tol, period, fraction, mean;
   };
