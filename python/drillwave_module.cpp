@@ -28,6 +28,7 @@
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/sweep.hpp"
 #include "drillwave/core/cancellation.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
@@ -35,6 +36,8 @@
 #include "drillwave/diagnosis/loop.hpp"
 #include "drillwave/diagnosis/posterior.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
+#include "drillwave/estimation/estimate.hpp"
+#include "drillwave/estimation/recording_estimate.hpp"
 #include "drillwave/io/json_reader.hpp"
 
 namespace py = pybind11;
@@ -401,6 +404,55 @@ py::dict Diagnose(const py::object& case_, const py::object& recording_file, con
   return FromJson(result);
 }
 
+// As `drillwave estimate`: the bit seen from the surface channels named in from_channels, scored against the
+// downhole channels the recording holds (read only for the errors).
+py::dict Estimate(const py::object& case_, const py::object& recording_file, const std::string& from_channels,
+                  const py::object& sidecar, const py::object& overrides, const py::object& window) {
+  namespace es = drillwave::estimation;
+  namespace dg = drillwave::diagnosis;
+  json doc = CaseDocument(case_, overrides);
+  double hook_force_N = 0;
+  es::EstimateOptions options;
+  if (!sidecar.is_none()) {
+    const bool dict = py::isinstance<py::dict>(sidecar);
+    const std::string source = dict ? "sidecar" : FileName(sidecar, "sidecar");
+    const json given = dict ? ToJson(sidecar, "") : drillwave::io::LoadJsonFile(source);
+    doc = dg::CaseFromSidecar(given, doc, dg::kSidecarWarmupS, source);
+    hook_force_N = 1000 * given.value("hookload_setpoint_kN", 0.0);
+    options.model_time_offset_s = -dg::kSidecarWarmupS;
+  }
+  const std::string recording_name = FileName(recording_file, "recording");
+  const json window_given = window.is_none() ? json() : ToJson(window, "window");
+  const auto [summary, e] = WithoutGil(std::nullopt, [&] {
+    drillwave::cases::ParseCase(doc);  // every field checked (InputError names its path)
+    const es::EstimatorModel model = es::EstimatorModelFromCase(doc, hook_force_N);
+    es::ScoreWindow score;
+    if (!window_given.is_null()) std::tie(score.begin_s, score.end_s) = WindowArgument(window_given, "window");
+    const dg::Recording recording = dg::LoadRecording(recording_name);
+    const es::SurfaceSignals signals =
+        es::SignalsFromRecording(recording, es::ParseSurfaceChannels(from_channels, recording));
+    es::BitEstimate estimate = es::EstimateBit(model, signals, options);
+    return std::make_pair(es::EstimateSummary(recording, estimate, score), std::move(estimate));
+  });
+  auto rpm = [](std::vector<double> rad_s) {
+    for (double& v : rad_s) v /= drillwave::kRadPerSecondPerRpm;
+    return rad_s;
+  };
+  std::vector<double> stuck(e.stuck.begin(), e.stuck.end());
+  py::dict channels;
+  channels["time_s"] = ToArray(e.time_s);
+  channels["bit_rpm"] = ToArray(rpm(e.bit_speed_rad_s));
+  channels["bit_rpm_band"] = ToArray(rpm(e.bit_speed_band_rad_s));
+  channels["bit_torque_Nm"] = ToArray(e.bit_torque_Nm);
+  channels["bit_torque_Nm_band"] = ToArray(e.bit_torque_band_Nm);
+  channels["wob_N"] = ToArray(e.wob_N);
+  channels["wob_N_band"] = ToArray(e.wob_band_N);
+  channels["bit_stuck"] = ToArray(stuck);
+  py::dict out = FromJson(summary);
+  out["channels"] = channels;
+  return out;
+}
+
 // As `drillwave calibrate`: params ["/pointer:lower:upper", ...].
 py::dict Calibrate(const py::object& case_, const py::object& recording_file, const py::object& params,
                    const py::object& sidecar, const py::object& overrides, const py::object& map_texts,
@@ -520,6 +572,15 @@ kept when the held-out error falls by the margin. recording: a CSV file with tim
 recording's operator sidecar (file or dict). maps: ["recording_channel=model_channel[*scale]", ...]; fit_window,
 held_out: (begin, end) in recording time [s] (default: the usable recording's halves). Returns diagnosis.json's
 content ("hypotheses", "held_out", "fit", "candidates", "fitted_parameters", ...) and "fitted_case".)");
+  m.def("estimate", &Estimate, py::arg("case"), py::arg("recording"), py::arg("from_channels"),
+        py::arg("sidecar") = py::none(), py::arg("set") = py::none(), py::arg("window") = py::none(),
+        R"(A virtual downhole sensor, as `drillwave estimate`: the bit's speed, torque, weight on bit and stuck flag
+estimated from the surface channels named in from_channels (e.g. "top_rpm,top_torque_kNm,hookload_kN"; the downhole
+channels are never read for the estimate), with a case (typically diagnose's "fitted_case"; a sidecar moves it to a
+synthetic recording's operating point). window: (begin, end) [s] of the error figures (default: all). Returns
+estimate.json's content ("method", "latency_s", "events", "severity", "errors" against the downhole channels the
+recording holds, ...) and "channels": NumPy arrays time_s, bit_rpm, bit_rpm_band, bit_torque_Nm,
+bit_torque_Nm_band, wob_N, wob_N_band, bit_stuck (bands: two standard deviations; NaN where not estimated).)");
   m.def("calibrate", &Calibrate, py::arg("case"), py::arg("recording"), py::arg("params"),
         py::arg("sidecar") = py::none(), py::arg("set") = py::none(), py::arg("maps") = py::none(),
         py::arg("fit_window") = py::none(), py::arg("held_out") = py::none(), py::arg("walkers") = 16,

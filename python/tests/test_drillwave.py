@@ -156,6 +156,27 @@ def test_diagnose_a_recording_of_the_model_itself(tmp_path):
         drillwave.diagnose(CASE, str(recording), set=SHORT, maps=["bit_rpm=no_such"])
 
 
+def test_estimate_sees_the_bit_of_the_models_own_recording_as_the_command_line_does(tmp_path):
+    # The model's own run as a recording: its bit estimated from the top speed alone, scored against its bit speed.
+    recording = own_recording(tmp_path)
+    e = drillwave.estimate(CASE, str(recording), "top_rpm", set=SHORT, window=(20, 60))
+    errors = e["errors"]
+    assert errors["window_s"] == [20, 60]
+    assert errors["bit_rpm"]["rms_percent_of_mean"] < 15 and errors["stuck"]["f1"] > 0.9
+    channels = e["channels"]
+    assert len(channels["time_s"]) == len(channels["bit_rpm"]) == len(channels["bit_stuck"]) > 1000
+    assert set(np.unique(channels["bit_stuck"])) <= {0.0, 1.0}
+    out = tmp_path / "out"
+    args = [f"--set={p}={json.dumps(v)}" for p, v in SHORT.items()]
+    subprocess.run([CLI, "estimate", CASE, str(recording), "--from", "top_rpm", "--window", "20,60", "--out",
+                    str(out), *args], check=True, capture_output=True)
+    with open(out / "estimate.json") as f:
+        cli = json.load(f)
+    assert cli["errors"] == errors and cli["method"] == e["method"]  # the same library: the same numbers
+    with pytest.raises(ValueError, match="is a downhole channel"):
+        drillwave.estimate(CASE, str(recording), "bit_rpm", set=SHORT)
+
+
 def test_calibrate_samples_the_posterior_of_a_recording_of_the_model_itself(tmp_path):
     # The model's own run as a recording: the posterior of its static friction holds the case's value.
     recording = own_recording(tmp_path)
