@@ -18,8 +18,8 @@
 //      can model are fitted alone on the fit window (NLopt, bounded); then pairs (every pair of the three singles
 //      that predict the held-out window best, and the best with the fourth), since one missing effect may hide what
 //      another explains. A kept set of two or more is checked by backward elimination — each set without one of its
-//      effects refitted from the kept values — and, once it survives, extended by each other of the three singles
-//      (forward selection, up to max_effects).
+//      effects refitted from the kept values — and, once it survives, extended by each other single fitted alone and
+//      by the best of the other effects screened as its extensions (forward selection, up to max_effects).
 //   4. A candidate is kept only when its held-out error falls below (1 - margin) of the baseline's, by more than
 //      chance moves the error (sqrt(2 / K) over K features: see loop.cpp), and an information criterion on the fit
 //      window (AIC over the features) agrees; a set of effects only when it beats every fitted smaller set of its
@@ -135,7 +135,8 @@ struct DiagnosisLoop {
   std::vector<CalibratedParameter> calibration;  // the base's parameters as calibrated (empty: none for this kind)
   bool calibration_kept = false;  // a calibration was kept (CalibratedParameter::kept): the base differs from the case
   double plain_fit_error = 0, plain_held_out_error = 0;  // the case as given, before calibration (draw 0)
-  std::vector<Candidate> screening;  // every modelable effect's cheap fit (one draw judged), in proposal order
+  // Every modelable effect's cheap fit (one draw judged), in proposal order; then the kept sets' extensions screened.
+  std::vector<Candidate> screening;
   std::vector<Candidate> candidates;
   // Rival explanations: sets that lower the held-out error as the best one does, within chance of it (see loop.cpp).
   // Only the effects every rival shares are named; the rest are reported here, each rival with its held-out error.
