@@ -1,7 +1,8 @@
 #pragma once
 // The diagnosis loop's effect selection (internal to the loop): every effect the case can model screened cheaply,
 // the strongest fitted alone, then in pairs; a kept set checked against itself without each of its effects (backward
-// elimination) and extended by each other single and the best screened other effect (forward selection); rival sets within chance of the best contest
+// elimination) and extended by each other single and the best screened other effect (forward selection); each
+// effect of a kept set contested by the base's calibrations in its place; rival sets within chance of the best contest
 // it, and only what they share is named. Each decision: held-out error below (1 - margin) of the reference's, by
 // more than chance moves it, and a lower AIC on the fit window; a set against the baseline and every fitted smaller
 // set of its effects.
@@ -78,6 +79,7 @@ class EffectSelection {
 
   std::vector<int> Screen();  // the singles to fit in full
   void CheckAndExtend(const std::vector<int>& ranked);
+  void ContestWithTheBase();
   int BestScreenedExtension(const Candidate& lead, const std::vector<int>& ranked,
                             const std::function<std::vector<int>(int)>& extended,
                             const std::function<std::vector<double>(const std::vector<int>&)>& start);

@@ -484,6 +484,9 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
     const Candidate& c = loop.candidates[loop.kept];
     fitted = candidates[loop.kept]["parameters"];
     for (const std::string& name : c.effects) {
+      const bool calibration = std::any_of(loop.proposals.begin(), loop.proposals.end(),
+                                           [&](const Effect& e) { return e.name == name && e.calibration; });
+      if (calibration) continue;  // a base parameter moved beside the effects, not an effect: fitted_parameters has it
       double estimate = std::nan("");
       std::string unit;
       for (const FittedParameter& p : c.parameters)

@@ -42,6 +42,8 @@ struct Effect {
   std::function<void(nlohmann::json& document, const std::vector<double>& values)> apply;
   double strength = 0;    // how strongly the evidence points to it (in feature scales, see above); 0: none
   std::string evidence;   // the measured numbers behind it
+  // A base parameter (BaseCalibrations) re-estimated beside effects as a rival explanation: fitted, never named.
+  bool calibration = false;
   bool Proposed() const { return strength > kStrongEvidence; }
 };
 

@@ -19,7 +19,9 @@
 //      that predict the held-out window best, and the best with the fourth), since one missing effect may hide what
 //      another explains. A kept set of two or more is checked by backward elimination — each set without one of its
 //      effects refitted from the kept values — and, once it survives, extended by each other single fitted alone and
-//      by the best of the other effects screened as its extensions (forward selection, up to max_effects).
+//      by the best of the other effects screened as its extensions (forward selection, up to max_effects). Each effect of
+//      a kept set of two or more is contested by the base's calibrations in its place (the rock was calibrated before
+//      any effect), and rival sets within chance of the best contest it: only what they share is named.
 //   4. A candidate is kept only when its held-out error falls below (1 - margin) of the baseline's, by more than
 //      chance moves the error (sqrt(2 / K) over K features: see loop.cpp), and an information criterion on the fit
 //      window (AIC over the features) agrees; a set of effects only when it beats every fitted smaller set of its
