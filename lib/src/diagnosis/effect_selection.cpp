@@ -547,9 +547,8 @@ int EffectSelection::BestScreenedExtension(const Candidate& lead, const std::vec
 // or rock under them (train rec29: axial decoupling kept, then side friction lowering the held-out error 0.057 ->
 // 0.004, where the recording has no side friction; its rock had been calibrated with the coupling on). So each effect
 // of a kept set of two or more is contested by the base's calibrations in its place: the set without it plus one
-// calibration, fitted from the kept values and the case's value. Such a rival that qualifies as the set does and
-// predicts as well within chance (ContestRivals) or better leaves the effect unnamed. Sets of one are not contested
-// here: their base was calibrated for them before.
+// calibration, fitted from the kept values and the calibrated base's value. Sets of one are not contested here:
+// their base was calibrated for them before.
 void EffectSelection::ContestWithTheBase() {
   if (loop_.kept < 0 || loop_.candidates[loop_.kept].effects.size() < 2) return;
   const std::vector<Calibration> calibrations = BaseCalibrations(base_);
@@ -597,8 +596,7 @@ void EffectSelection::ContestWithTheBase() {
       return std::find(rock.begin(), rock.end(), m) != rock.end();
     });
     if (!from_the_base || !QualifiesAgainstSubsets(static_cast<int>(i))) continue;
-    const bool as_well =
-        c.held_out_error - lead.error <= DifferenceSpread(c, lead) || !Resolved(c, lead);
+    const bool as_well = c.held_out_error - lead.error <= DifferenceSpread(c, lead) || !Resolved(c, lead);
     if (as_well && (best < 0 || c.held_out_error < loop_.candidates[best].held_out_error)) best = static_cast<int>(i);
   }
   if (best < 0) return;
