@@ -328,6 +328,13 @@ std::pair<double, double> WindowArgument(const json& w, const std::string& name)
   return {begin, end};
 }
 
+// A synthetic recording's operator sidecar, given as a file name or a dict; `source` names it in errors.
+json SidecarDocument(const py::object& sidecar, std::string& source) {
+  const bool dict = py::isinstance<py::dict>(sidecar);
+  source = dict ? "sidecar" : FileName(sidecar, "sidecar");
+  return dict ? ToJson(sidecar, "") : drillwave::io::LoadJsonFile(source);
+}
+
 // What diagnose and calibrate read alike, with the GIL: the case (a sidecar, file or dict, sets the operating point
 // and a warm-up before the recording), the recording's file, the windows and channel maps as given.
 struct LoopArguments {
@@ -343,10 +350,9 @@ LoopArguments ReadLoopArguments(const py::object& case_, const py::object& recor
   LoopArguments a;
   a.doc = CaseDocument(case_, overrides);
   if (!sidecar.is_none()) {
-    const bool dict = py::isinstance<py::dict>(sidecar);
-    const std::string source = dict ? "sidecar" : FileName(sidecar, "sidecar");
-    a.doc = dg::CaseFromSidecar(dict ? ToJson(sidecar, "") : drillwave::io::LoadJsonFile(source), a.doc,
-                                dg::kSidecarWarmupS, source);
+    std::string source;
+    const json given = SidecarDocument(sidecar, source);
+    a.doc = dg::CaseFromSidecar(given, a.doc, dg::kSidecarWarmupS, source);
   }
   a.recording_name = FileName(recording_file, "recording");
   a.fit_given = fit_window.is_none() ? json() : ToJson(fit_window, "fit_window");
@@ -414,9 +420,8 @@ py::dict Estimate(const py::object& case_, const py::object& recording_file, con
   double hook_force_N = 0;
   es::EstimateOptions options;
   if (!sidecar.is_none()) {
-    const bool dict = py::isinstance<py::dict>(sidecar);
-    const std::string source = dict ? "sidecar" : FileName(sidecar, "sidecar");
-    const json given = dict ? ToJson(sidecar, "") : drillwave::io::LoadJsonFile(source);
+    std::string source;
+    const json given = SidecarDocument(sidecar, source);
     doc = dg::CaseFromSidecar(given, doc, dg::kSidecarWarmupS, source);
     hook_force_N = 1000 * given.value("hookload_setpoint_kN", 0.0);
     options.model_time_offset_s = -dg::kSidecarWarmupS;
@@ -578,8 +583,8 @@ content ("hypotheses", "held_out", "fit", "candidates", "fitted_parameters", ...
 estimated from the surface channels named in from_channels (e.g. "top_rpm,top_torque_kNm,hookload_kN"; the downhole
 channels are never read for the estimate), with a case (typically diagnose's "fitted_case"; a sidecar moves it to a
 synthetic recording's operating point). window: (begin, end) [s] of the error figures (default: all). Returns
-estimate.json's content ("method", "latency_s", "events", "severity", "errors" against the downhole channels the
-recording holds, ...) and "channels": NumPy arrays time_s, bit_rpm, bit_rpm_band, bit_torque_Nm,
+estimate.json's content ("method", "latency_s", "stuck_events", "severity_windows", "errors" against the downhole
+channels the recording holds, ...) and "channels": NumPy arrays time_s, bit_rpm, bit_rpm_band, bit_torque_Nm,
 bit_torque_Nm_band, wob_N, wob_N_band, bit_stuck (bands: two standard deviations; NaN where not estimated).)");
   m.def("calibrate", &Calibrate, py::arg("case"), py::arg("recording"), py::arg("params"),
         py::arg("sidecar") = py::none(), py::arg("set") = py::none(), py::arg("maps") = py::none(),
