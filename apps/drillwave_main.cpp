@@ -454,7 +454,7 @@ int Estimate(const std::string& file, const std::string& recording_file, const s
   report << "  throughput: " << recording.time_s.size() << " samples in " << estimating_s << " s of estimating, "
          << static_cast<double>(recording.time_s.size()) / std::max(estimating_s, 1e-9) << " samples/s, "
          << span_s / std::max(estimating_s, 1e-9) << " times real time\n";
-  report << "wrote " << std::filesystem::absolute(a.out).string() << "/estimate.csv, estimate.json, plot.svg"
+  report << "wrote " << std::filesystem::absolute(a.out).string() << "/estimate.csv, estimate.json, plot.svg, report.html"
          << std::endl;
   return 0;
 }

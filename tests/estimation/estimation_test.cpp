@@ -16,6 +16,7 @@
 #include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/estimation/estimate.hpp"
+#include "drillwave/estimation/estimate_report.hpp"
 #include "drillwave/estimation/follow.hpp"
 #include "drillwave/estimation/hybrid_observer.hpp"
 #include "drillwave/estimation/lumped_observer.hpp"
@@ -289,6 +290,42 @@ TEST(Follow, AFileWrittenInPiecesGivesTheBatchEstimateWithinTheLatency) {
   ASSERT_GT(count, 11000u);
   EXPECT_LT(std::sqrt(sum2 / static_cast<double>(count)), 1e-3) << "live against batch [rad/s]";
   EXPECT_EQ(agree, count);
+}
+
+// report.html reads estimate.json's content: its errors, the delay found, the events (counted, summed, the longest)
+// and the severity windows; a recording without downhole channels says there is nothing to score against.
+TEST(EstimateReport, ShowsTheSummarysErrorsEventsAndSeverity) {
+  const nlohmann::json summary = {
+      {"method", "downward continuation"},
+      {"latency_s", 0.75},
+      {"stuck_rule", "below 5 %"},
+      {"stuck_threshold_rpm", 3.5},
+      {"notes", {"a note <with> markup"}},
+      {"stuck_events", {{{"stick_begin_s", 2.0}, {"stick_end_s", 3.25}}, {{"stick_begin_s", 7.0}, {"stick_end_s", 7.5}}}},
+      {"severity_definition", "(max - min) / (2 mean)"},
+      {"severity_windows", {{{"begin_s", 0.0}, {"end_s", 5.0}, {"severity", 1.25}, {"stuck_fraction", 0.25}}}},
+      {"errors",
+       {{"bit_rpm", {{"channel", "bit_rpm"}, {"rms", 6.125}, {"rms_percent_of_mean", 8.61}, {"bias", -0.5},
+                     {"measured_mean", 71.2}, {"samples", 9000}}},
+        {"stuck", {{"precision", 0.9}, {"recall", 0.8}, {"f1", 0.847}, {"measured_stuck_fraction", 0.2}}},
+        {"bit_rpm_at_downhole_delay", {{"delay_s", 2.1}, {"rms", 16.3}, {"rms_percent_of_mean", 27.1}, {"stuck_f1", 0.69}}},
+        {"window_s", {0.0, 110.0}}}}};
+  drillwave::io::Figure figure;
+  figure.title = "estimate";
+  figure.panels.push_back({"bit speed [rpm]", {{"estimate", {0, 1, 2}, {60, 61, 62}}}});
+  std::ostringstream page;
+  es::WriteEstimateHtml("rec04", summary, figure, page);
+  const std::string html = page.str();
+  for (const char* text : {"rec04", "6.125 rpm", "8.61 %", "F1 0.847", "by 2.1 s", "16.3 rpm", "2 stuck episodes",
+                           "1.75 s stuck in all", "the longest 1.25 s", "<td>1.25</td>", "&lt;with&gt;", "<svg"})
+    EXPECT_NE(html.find(text), std::string::npos) << text;
+  nlohmann::json bare = summary;
+  bare["errors"] = nlohmann::json::object();
+  bare["stuck_events"] = nlohmann::json::array();
+  std::ostringstream plain;
+  es::WriteEstimateHtml("rig", bare, figure, plain);
+  EXPECT_NE(plain.str().find("holds no downhole channel"), std::string::npos);
+  EXPECT_NE(plain.str().find("never sticks"), std::string::npos);
 }
 
 TEST(EstimatorModel, RefusesKindsWithoutAnEstimatorNamingTheField) {

@@ -6,6 +6,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/estimation/estimate_report.hpp"
 #include "drillwave/estimation/metrics.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -194,6 +195,7 @@ void WriteEstimate(const diagnosis::Recording& r, const BitEstimate& e, const nl
   panel("weight on bit [N]", e.wob_N, e.wob_band_N, 1, {"wob_N", "wob_kN"});
   figure.panels.push_back({"bit stuck", {{"estimated stuck", e.time_s, stuck}}});
   io::WriteSvg(figure, out.Open("plot.svg"));
+  WriteEstimateHtml(r.source, summary, figure, out.Open("report.html"));
   out.Commit();
 }
 

@@ -40,8 +40,8 @@ nlohmann::json EstimateSummary(const diagnosis::Recording& recording, const BitE
                                const ScoreWindow& window);
 
 // estimate.csv (time_s, bit_rpm, bit_rpm_band, bit_torque_Nm, bit_torque_Nm_band, wob_N, wob_N_band, bit_stuck),
-// estimate.json and plot.svg (estimate against the measured downhole channels where present) into `dir`, all or
-// nothing.
+// estimate.json, plot.svg (estimate against the measured downhole channels where present) and report.html (the
+// figure with estimate.json's errors, events and severity: estimate_report.hpp) into `dir`, all or nothing.
 void WriteEstimate(const diagnosis::Recording& recording, const BitEstimate& estimate, const nlohmann::json& summary,
                    const std::string& dir);
 
