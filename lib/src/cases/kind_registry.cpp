@@ -10,6 +10,7 @@ const std::vector<std::unique_ptr<ModelKind>>& AllKinds() {
     std::vector<std::unique_ptr<ModelKind>> k;
     k.push_back(MakeTorsionalWaveKind());
     k.push_back(MakeTwoMassKind());
+    k.push_back(MakeLumpedChainKind());
     k.push_back(MakeTwoDiscKind());
     k.push_back(MakeJeffcottKind());
     k.push_back(MakeAxialTorsionalKind());

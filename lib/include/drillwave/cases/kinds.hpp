@@ -8,6 +8,7 @@ namespace drillwave::cases {
 
 std::unique_ptr<ModelKind> MakeTorsionalWaveKind();
 std::unique_ptr<ModelKind> MakeTwoMassKind();
+std::unique_ptr<ModelKind> MakeLumpedChainKind();
 std::unique_ptr<ModelKind> MakeTwoDiscKind();
 std::unique_ptr<ModelKind> MakeJeffcottKind();
 std::unique_ptr<ModelKind> MakeAxialTorsionalKind();
