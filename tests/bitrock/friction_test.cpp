@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "drillwave/cases/friction_json.hpp"
 #include "drillwave/core/error.hpp"
 
 namespace drillwave::bitrock {
@@ -51,7 +52,7 @@ std::vector<json> EveryLaw() {
   };
 }
 
-FrictionLaw Law(const json& j) { return FrictionLaw::FromJson(j, "/f"); }
+FrictionLaw Law(const json& j) { return cases::ReadFrictionLaw(j, "/f"); }
 
 json With(json j, const std::string& key, const json& value) {
   j[key] = value;
@@ -88,7 +89,7 @@ TEST(FrictionLaw, ViscousAndCoulombValues) {
 }
 
 TEST(FrictionLaw, StribeckMatchesHandValues) {
-  const FrictionLaw f = FrictionLaw::FromJson(kStribeck, "/bit/friction");
+  const FrictionLaw f = cases::ReadFrictionLaw(kStribeck, "/bit/friction");
   const double static_level = 12115.80762;  // W R mu_s = 97347 * 0.155575 * 0.8
   EXPECT_TRUE(f.IsSetValued());
   EXPECT_NEAR(f.StaticPositive(), static_level, 1e-8);
@@ -178,7 +179,7 @@ TEST(FrictionLaw, LinearWeakeningFallsLinearlyToItsFloor) {
 }
 
 TEST(FrictionLaw, HumpedLowerDiscLaw) {
-  const FrictionLaw f = FrictionLaw::FromJson(kHumped, "/lower");
+  const FrictionLaw f = cases::ReadFrictionLaw(kHumped, "/lower");
   EXPECT_TRUE(f.IsSetValued());
   EXPECT_NEAR(f.StaticPositive(), 0.32, 1e-15);  // T_sl + delta
   EXPECT_NEAR(f.StaticNegative(), 0.28, 1e-15);  // T_sl - delta
@@ -197,7 +198,7 @@ TEST(FrictionLaw, HumpedLowerDiscLaw) {
 }
 
 TEST(FrictionLaw, AsymmetricUpperDiscLawHasTwoStaticLimits) {
-  const FrictionLaw f = FrictionLaw::FromJson(kUpperDisc, "/upper");
+  const FrictionLaw f = cases::ReadFrictionLaw(kUpperDisc, "/upper");
   EXPECT_TRUE(f.IsSetValued());
   EXPECT_NEAR(f.StaticPositive(), 0.3307, 1e-15);  // T_s + dT_s
   EXPECT_NEAR(f.StaticNegative(), 0.3117, 1e-15);  // T_s - dT_s
@@ -266,14 +267,14 @@ TEST(FrictionLaw, JsonRoundTrip) {
   for (const json& j : EveryLaw()) {
     const FrictionLaw f = Law(j);
     EXPECT_EQ(f.Kind(), j.at("law").get<std::string>());
-    EXPECT_EQ(f.ToJson(), j) << f.Kind();  // every field was given, so nothing is added or lost
-    const FrictionLaw g = Law(f.ToJson());
-    EXPECT_EQ(g.ToJson(), f.ToJson()) << f.Kind();
+    EXPECT_EQ(cases::FrictionLawJson(f), j) << f.Kind();  // every field was given, so nothing is added or lost
+    const FrictionLaw g = Law(cases::FrictionLawJson(f));
+    EXPECT_EQ(cases::FrictionLawJson(g), cases::FrictionLawJson(f)) << f.Kind();
     EXPECT_EQ(g.StaticPositive(), f.StaticPositive()) << f.Kind();
     EXPECT_EQ(g.StaticNegative(), f.StaticNegative()) << f.Kind();
     for (double w : {-3.0, 0.7, 4.0}) EXPECT_EQ(g.SlipTorque(w), f.SlipTorque(w)) << f.Kind();
     // Through text as well: the numbers are written with enough digits to come back bit for bit.
-    EXPECT_EQ(Law(json::parse(f.ToJson().dump())).ToJson(), f.ToJson()) << f.Kind();
+    EXPECT_EQ(cases::FrictionLawJson(Law(json::parse(cases::FrictionLawJson(f).dump()))), cases::FrictionLawJson(f)) << f.Kind();
   }
 }
 
@@ -281,14 +282,14 @@ TEST(FrictionLaw, OptionalFieldsTakeTheirDefaults) {
   const FrictionLaw coulomb = Law({{"law", "coulomb"}, {"T_c_Nm", 7000}});
   EXPECT_EQ(coulomb.StaticPositive(), 7000.0);  // T_s defaults to T_c
   EXPECT_EQ(coulomb.SlipTorque(3.0), 7000.0);   // c defaults to 0
-  EXPECT_EQ(coulomb.ToJson(), json({{"law", "coulomb"}, {"T_c_Nm", 7000}, {"T_s_Nm", 7000}, {"c_Nms_per_rad", 0}}));
+  EXPECT_EQ(cases::FrictionLawJson(coulomb), json({{"law", "coulomb"}, {"T_c_Nm", 7000}, {"T_s_Nm", 7000}, {"c_Nms_per_rad", 0}}));
 
   json symmetric = kHumped;
   symmetric.erase("delta_T_sl_Nm");
   const FrictionLaw humped = Law(symmetric);
   EXPECT_EQ(humped.StaticPositive(), 0.3);
   EXPECT_EQ(humped.StaticNegative(), 0.3);
-  EXPECT_EQ(humped.ToJson().at("delta_T_sl_Nm"), 0.0);
+  EXPECT_EQ(cases::FrictionLawJson(humped).at("delta_T_sl_Nm"), 0.0);
 }
 
 TEST(FrictionLaw, ScaledScalesStaticAndSlipTorque) {
@@ -304,7 +305,7 @@ TEST(FrictionLaw, ScaledScalesStaticAndSlipTorque) {
       EXPECT_NEAR(s.SlipTorqueDerivative(w), 2.5 * f.SlipTorqueDerivative(w),
                   1e-12 * std::abs(f.SlipTorqueDerivative(w))) << f.Kind();
     }
-    EXPECT_EQ(f.ToJson(), j) << "Scaled() must not change the law it is called on";
+    EXPECT_EQ(cases::FrictionLawJson(f), j) << "Scaled() must not change the law it is called on";
   }
   const FrictionLaw f = Law(kStribeck);
   for (double bad : {0.0, -1.0, std::numeric_limits<double>::infinity(), std::nan("")})
@@ -327,11 +328,11 @@ TEST(FrictionLaw, ConstructorChecksTheParameters) {
   }
 }
 
-// FromJson must reject j with an InputError at path whose message mentions each of mentions.
+// ReadFrictionLaw must reject j with an InputError at path whose message mentions each of mentions.
 void ExpectRejected(const json& j, const std::string& path, std::initializer_list<std::string> mentions = {}) {
   SCOPED_TRACE(j.dump());
   try {
-    FrictionLaw::FromJson(j, "/bit/friction");
+    cases::ReadFrictionLaw(j, "/bit/friction");
     ADD_FAILURE() << "accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.json_path(), path) << e.what();
@@ -396,7 +397,7 @@ TEST(FrictionLaw, EveryFieldIsChecked) {
 }
 
 TEST(FrictionLaw, SchemaListsEveryLawWithItsFields) {
-  const json schema = FrictionLaw::Schema();
+  const json schema = cases::FrictionLawSchema();
   EXPECT_EQ(schema.size(), EveryLaw().size());
   for (const json& j : EveryLaw()) {
     const FrictionLaw f = Law(j);
@@ -414,7 +415,7 @@ TEST(FrictionLaw, SchemaListsEveryLawWithItsFields) {
       EXPECT_NE(text.find('['), std::string::npos) << field.key() << ": " << text;
       EXPECT_NE(text.find("number"), std::string::npos) << field.key() << ": " << text;
     }
-    const json written = f.ToJson();
+    const json written = cases::FrictionLawJson(f);
     for (const auto& item : written.items())
       if (item.key() != "law") json_keys.insert(item.key());
     EXPECT_EQ(schema_keys, json_keys) << f.Kind();

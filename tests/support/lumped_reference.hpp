@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/cases/friction_json.hpp"
 #include "drillwave/bitrock/friction.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/model/schedule.hpp"
@@ -282,7 +283,7 @@ inline LumpedStringParams LumpedStringParams::FromCase(const nlohmann::json& doc
   p.beta = top.at("beta_Nms_per_rad").get<double>();
   p.top_speed = model::Schedule::FromJson(top.at("speed_rad_s"), "/model/top/speed_rad_s");
   p.bit_inertia = bit.at("inertia_kgm2").get<double>();
-  p.friction = bitrock::FrictionLaw::FromJson(bit.at("friction"), "/model/bit/friction");
+  p.friction = cases::ReadFrictionLaw(bit.at("friction"), "/model/bit/friction");
   return p;
 }
 

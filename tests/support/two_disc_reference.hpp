@@ -4,6 +4,7 @@
 //   J_u J_l s^3 + (J_u d_l + J_l d_u) s^2 + (k (J_u + J_l) + d_u d_l) s + k (d_u + d_l),  d = dT/dw at w.
 #include <nlohmann/json.hpp>
 
+#include "drillwave/cases/friction_json.hpp"
 #include "drillwave/bitrock/friction.hpp"
 
 namespace drillwave::testing {
@@ -15,8 +16,8 @@ class TwoDiscRouthHurwitz {
         km_(model["upper_disc"]["motor_constant_Nm_per_V"]),
         k_(model["string"]["stiffness_Nm_per_rad"]),
         jl_(model["lower_disc"]["inertia_kgm2"]),
-        upper_(bitrock::FrictionLaw::FromJson(model["upper_disc"]["friction"], "/upper")),
-        lower_(bitrock::FrictionLaw::FromJson(model["lower_disc"]["friction"], "/lower")) {}
+        upper_(cases::ReadFrictionLaw(model["upper_disc"]["friction"], "/upper")),
+        lower_(cases::ReadFrictionLaw(model["lower_disc"]["friction"], "/lower")) {}
 
   bool Stable(double w) const {
     const double d = lower_.SlipTorqueDerivative(w), du = upper_.SlipTorqueDerivative(w);

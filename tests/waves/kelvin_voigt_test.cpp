@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "drillwave/cases/friction_json.hpp"
 #include "drillwave/bitrock/friction.hpp"
 #include "drillwave/core/constants.hpp"
 #include "drillwave/model/schedule.hpp"
@@ -193,7 +194,7 @@ std::vector<double> MasslessFrictionBitSpeed(double eta, const nlohmann::json& f
   Node bit;
   bit.name = "bit";
   bit.ground_damping = damper;
-  if (!friction.is_null()) bit.friction = bitrock::FrictionLaw::FromJson(friction, "/bit/friction");
+  if (!friction.is_null()) bit.friction = cases::ReadFrictionLaw(friction, "/bit/friction");
   Node top = RampedTop(10.0, 2.0);
   if (dissipative_top) top.drive = Drive::kSpeedDashpot, top.drive_damping = 400;
   const Network net = Chain(10, eta, top, bit);

@@ -1,6 +1,7 @@
 // waves::WaveChain on its own: the steady state it starts from balances its ends, and waves driven in at the top of
 // an undamped chain of several pieces come back as the closed-form d'Alembert sum (each round trip reflected at a
 // clamped bit and at the driven top), through the node histories, their split parts and the end forces.
+#include "drillwave/cases/friction_json.hpp"
 #include "drillwave/waves/wave_chain.hpp"
 
 #include <algorithm>
@@ -265,7 +266,7 @@ TEST(WaveChain, TheNetworkRefusesWhatItsChainCannotCarry) {
   heavy.inertia = 10;
   EXPECT_TRUE(refused(network(heavy, prescribed), "junction"));
   Node rubbing;
-  rubbing.friction = bitrock::FrictionLaw::FromJson({{"law", "viscous"}, {"c_Nms_per_rad", 10.0}}, "/f");
+  rubbing.friction = cases::ReadFrictionLaw({{"law", "viscous"}, {"c_Nms_per_rad", 10.0}}, "/f");
   EXPECT_TRUE(refused(network(rubbing, prescribed), "junction"));
   Node massless_top_with_friction;
   massless_top_with_friction.drive = Drive::kTorque, massless_top_with_friction.setpoint = model::Schedule(100.0);

@@ -9,15 +9,12 @@
 #include <type_traits>
 #include <utility>
 
-#include <nlohmann/json.hpp>
-
 #include "drillwave/core/error.hpp"
 
 namespace drillwave::bitrock {
 namespace {
 
 using Law = FrictionLaw::Law;
-using nlohmann::json;
 
 // ---------------------------------------------------------------------------------------------------------------
 // Field tables. Each law lists its fields once; reading, writing, validation, scaling and the schema all walk
@@ -31,7 +28,7 @@ template <class L>
 struct Field {
   const char* key;      // JSON key; carries the unit
   double L::*member;
-  const char* meaning;  // for Schema()
+  const char* meaning;  // for Describe()
   Bound bound = Bound::kAny;
   double L::*other = nullptr;  // the field a relative bound refers to; listed earlier
   bool is_torque_level = false;  // multiplied by Scaled()
@@ -401,12 +398,6 @@ std::string Format(double x) {
   return text;
 }
 
-std::string Found(const json& v) {
-  if (v.is_string()) return "a string " + v.dump();
-  if (v.is_number()) return Format(v.get<double>());
-  return std::string(v.type_name()) + " " + v.dump().substr(0, 60);
-}
-
 template <class L>
 std::string KeyOf(double L::*member) {
   for (const auto& f : Traits<L>::kFields)
@@ -457,66 +448,63 @@ bool HasField(const std::string& key) {
 }
 
 template <class L>
-L ReadLaw(const json& j, const std::string& path) {
+L ReadLaw(const FrictionLaw::FieldSource& source) {
   // Unknown keys first: a misspelt key would otherwise be reported as a missing one.
-  for (const auto& item : j.items()) {
-    if (item.key() == "law" || HasField<L>(item.key())) continue;
+  for (const std::string& key : source.keys) {
+    if (key == "law" || HasField<L>(key)) continue;
     std::string known = "law";
     for (const auto& f : Traits<L>::kFields) known += std::string(", ") + f.key;
-    throw InputError(path + "/" + item.key(), std::string("unknown field of friction law \"") + Traits<L>::kKind +
-                                                  "\"; expected one of: " + known);
+    throw FrictionFieldError(key, std::string("unknown field of friction law \"") + Traits<L>::kKind +
+                                      "\"; expected one of: " + known);
   }
   L law{};
   for (const auto& f : Traits<L>::kFields) {
-    const std::string field_path = path + "/" + f.key;
-    const json::const_iterator it = j.find(f.key);
-    if (it == j.end()) {
-      if (f.absent == Absent::kRequired) throw InputError(field_path, "missing required field (" + RangeText(f) + ")");
+    const FrictionLaw::Found found = source.find(f.key);
+    if (found.absent) {
+      if (f.absent == Absent::kRequired) throw FrictionFieldError(f.key, "missing required field (" + RangeText(f) + ")");
       law.*f.member = f.absent == Absent::kOther ? law.*f.default_from : 0.0;
       continue;
     }
-    if (!it->is_number()) throw InputError(field_path, "expected " + RangeText(f, law) + ", got " + Found(*it));
-    law.*f.member = it->get<double>();
+    if (!found.number) throw FrictionFieldError(f.key, "expected " + RangeText(f, law) + ", got " + found.text);
+    law.*f.member = *found.number;
     if (!std::isfinite(law.*f.member))
-      throw InputError(field_path, "expected a finite number (" + RangeText(f, law) + "), got " + Found(*it));
-    if (!InRange(f, law)) throw InputError(field_path, "expected " + RangeText(f, law) + ", got " + Found(*it));
+      throw FrictionFieldError(f.key, "expected a finite number (" + RangeText(f, law) + "), got " + found.text);
+    if (!InRange(f, law)) throw FrictionFieldError(f.key, "expected " + RangeText(f, law) + ", got " + found.text);
   }
   return law;
 }
 
 template <std::size_t... I>
-std::optional<Law> ReadKind(const std::string& kind, const json& j, const std::string& path,
+std::optional<Law> ReadKind(const std::string& kind, const FrictionLaw::FieldSource& source,
                             std::index_sequence<I...>) {
   std::optional<Law> law;
   (void)((kind == Traits<std::variant_alternative_t<I, Law>>::kKind
-              ? (law = ReadLaw<std::variant_alternative_t<I, Law>>(j, path), true)
+              ? (law = ReadLaw<std::variant_alternative_t<I, Law>>(source), true)
               : false) ||
          ...);
   return law;
 }
 
 template <class L>
-json SchemaOf() {
-  json fields = json::object();
+FrictionLaw::Description DescriptionOf() {
+  FrictionLaw::Description d;
+  d.kind = Traits<L>::kKind;
+  d.torque = Traits<L>::kTorque;
+  d.source = Traits<L>::kSource;
+  d.set_valued = IsSetValuedLaw<L>();
+  if (d.set_valued) d.static_range = Traits<L>::kStatic;
   for (const auto& f : Traits<L>::kFields) {
     std::string text = std::string(f.meaning) + "; " + RangeText(f);
     if (f.absent == Absent::kZero) text += "; optional, default 0";
     if (f.absent == Absent::kOther) text += "; optional, default " + KeyOf(f.default_from);
-    fields[f.key] = text;
+    d.fields.emplace_back(f.key, text);
   }
-  json schema = {{"set_valued", IsSetValuedLaw<L>()},
-                 {"torque", Traits<L>::kTorque},
-                 {"source", Traits<L>::kSource},
-                 {"fields", fields}};
-  if (IsSetValuedLaw<L>()) schema["static"] = Traits<L>::kStatic;
-  return schema;
+  return d;
 }
 
 template <std::size_t... I>
-json SchemaOfAll(std::index_sequence<I...>) {
-  json schema = json::object();
-  ((schema[Traits<std::variant_alternative_t<I, Law>>::kKind] = SchemaOf<std::variant_alternative_t<I, Law>>()), ...);
-  return schema;
+std::vector<FrictionLaw::Description> DescriptionsOfAll(std::index_sequence<I...>) {
+  return {DescriptionOf<std::variant_alternative_t<I, Law>>()...};
 }
 
 }  // namespace
@@ -556,28 +544,25 @@ double FrictionLaw::StaticNegative() const {
 
 const std::string& FrictionLaw::Kind() const { return Kinds()[law_.index()]; }
 
-FrictionLaw FrictionLaw::FromJson(const json& j, const std::string& json_path) {
-  if (!j.is_object())
-    throw InputError(json_path, "expected a friction law, an object {\"law\": \"<kind>\", ...}, got " + Found(j));
-  const std::string law_path = json_path + "/law";
-  const auto kind = j.find("law");
-  if (kind == j.end()) throw InputError(law_path, "missing required field (one of: " + KindList() + ")");
-  if (kind->is_string()) {
-    const std::optional<Law> law =
-        ReadKind(kind->get_ref<const std::string&>(), j, json_path, std::make_index_sequence<kNumLaws>());
-    if (law) return FrictionLaw(*law);
-  }
-  throw InputError(law_path, "expected one of: " + KindList() + ", got " + Found(*kind));
+const std::vector<std::string>& FrictionLaw::Kinds() {
+  static const std::vector<std::string> kinds(bitrock::Kinds().begin(), bitrock::Kinds().end());
+  return kinds;
 }
 
-json FrictionLaw::ToJson() const {
-  json j = {{"law", Kind()}};
+FrictionLaw FrictionLaw::Read(const std::string& kind, const FieldSource& source) {
+  const std::optional<Law> law = ReadKind(kind, source, std::make_index_sequence<kNumLaws>());
+  if (!law) throw FrictionFieldError("law", "expected one of: " + KindList() + ", got a string \"" + kind + "\"");
+  return FrictionLaw(*law);
+}
+
+std::vector<std::pair<std::string, double>> FrictionLaw::Values() const {
+  std::vector<std::pair<std::string, double>> values;
   std::visit(
-      [&j](const auto& l) {
-        for (const auto& f : TraitsOf<decltype(l)>::kFields) j[f.key] = l.*f.member;
+      [&values](const auto& l) {
+        for (const auto& f : TraitsOf<decltype(l)>::kFields) values.emplace_back(f.key, l.*f.member);
       },
       law_);
-  return j;
+  return values;
 }
 
 FrictionLaw FrictionLaw::Scaled(double factor) const {
@@ -592,6 +577,8 @@ FrictionLaw FrictionLaw::Scaled(double factor) const {
       law_));
 }
 
-json FrictionLaw::Schema() { return SchemaOfAll(std::make_index_sequence<kNumLaws>()); }
+std::vector<FrictionLaw::Description> FrictionLaw::Describe() {
+  return DescriptionsOfAll(std::make_index_sequence<kNumLaws>());
+}
 
 }  // namespace drillwave::bitrock

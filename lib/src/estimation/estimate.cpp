@@ -1,3 +1,4 @@
+#include "drillwave/cases/friction_json.hpp"
 #include "drillwave/estimation/estimate.hpp"
 
 #include <algorithm>
@@ -54,7 +55,7 @@ LumpedModel LumpedFromCase(const json& model) {
   m.weight_on_bit_N = bit.contains("nominal_weight_on_bit_N") || bit.contains("weight_on_bit_N") ? weight : 0.0;
   if (!bit.contains("friction"))
     throw InputError("/model/bit/friction", "the estimator needs the bit's friction law (the case has none)");
-  const bitrock::FrictionLaw law = bitrock::FrictionLaw::FromJson(bit.at("friction"), "/model/bit/friction");
+  const bitrock::FrictionLaw law = cases::ReadFrictionLaw(bit.at("friction"), "/model/bit/friction");
   m.friction = weight > 0 ? law.Scaled(weight / nominal) : law;
   return m;
 }

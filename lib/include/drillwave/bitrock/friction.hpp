@@ -5,11 +5,16 @@
 // at omega = 0; the integrator treats that as a stuck regime with events (DESIGN.md §2).
 //
 // Each law is a plain struct of its parameters (torques in N·m, speeds in rad/s); the comment on each member
-// names its JSON key. FrictionLaw holds one of them and is an immutable value.
+// names its key. FrictionLaw holds one of them and is an immutable value. It reads no input format: a reader hands it
+// the keys it found (FrictionLaw::Read; the JSON one is cases/friction_json.hpp) and maps FrictionFieldError's key to
+// its own path.
+#include <functional>
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <variant>
-
-#include <nlohmann/json_fwd.hpp>  // the JSON type only named here
+#include <vector>
 
 namespace drillwave::bitrock {
 
@@ -110,6 +115,18 @@ struct LinearWeakening {
   double c;      // c_Nms_per_rad >= 0 (optional, default 0)
 };
 
+// A friction parameter that is missing, unknown or out of its range: the key ("law" for the kind) and what was
+// expected, with the value found.
+class FrictionFieldError : public std::invalid_argument {
+ public:
+  FrictionFieldError(std::string key, const std::string& message)
+      : std::invalid_argument(message), key_(std::move(key)) {}
+  const std::string& key() const { return key_; }
+
+ private:
+  std::string key_;
+};
+
 class FrictionLaw {
  public:
   using Law = std::variant<Viscous, Coulomb, Stribeck, SqrtRegularized, TanhHump, Rational, Humped,
@@ -131,18 +148,38 @@ class FrictionLaw {
   const std::string& Kind() const;  // the JSON "law" name
   const Law& law() const { return law_; }
 
-  // Reads {"law": <kind>, <fields>...}. Throws InputError at json_path + "/<field>" for a missing, unknown,
-  // non-numeric, non-finite or out-of-range field, with the value found and the range expected.
-  static FrictionLaw FromJson(const nlohmann::json& j, const std::string& json_path);
-  nlohmann::json ToJson() const;  // every field, defaults included; FromJson(ToJson()) reproduces the law
+  // What a reader found under a key: nothing, a number (possibly not finite), or something else; `text` says what it
+  // was for messages ("0.4", "a string \"heavy\"", "boolean true").
+  struct Found {
+    bool absent = true;
+    std::optional<double> number;
+    std::string text;
+  };
+  // The keys a reader was given and a look-up of each.
+  struct FieldSource {
+    std::vector<std::string> keys;
+    std::function<Found(const std::string& key)> find;
+  };
+  static const std::vector<std::string>& Kinds();  // the law names, e.g. "stribeck"
+  // The law `kind` from the fields a reader found. Throws FrictionFieldError naming the key for an unknown kind
+  // ("law"), an unknown key, or a field that is missing, not a number, not finite or out of its range (with the value
+  // found and the range expected).
+  static FrictionLaw Read(const std::string& kind, const FieldSource& source);
+  // Every field's key and value, defaults included: Read of these reproduces the law.
+  std::vector<std::pair<std::string, double>> Values() const;
 
   // All torque levels (slip and static) times factor (finite, > 0), e.g. weight-on-bit scaling:
   // Scaled(f).SlipTorque(w) == f * SlipTorque(w). Throws std::invalid_argument for a bad factor.
   FrictionLaw Scaled(double factor) const;
 
-  // {"<kind>": {"set_valued", "torque", "static" (set-valued laws), "source", "fields": {"<key>": "meaning
-  // [unit]; range[; optional, default ...]"}}} for every law, for the "drillwave kinds" listing.
-  static nlohmann::json Schema();
+  // Every law: its name, torque formula, static range (set-valued laws), source, and each field's key with "meaning
+  // [unit]; range[; optional, default ...]", for the "drillwave kinds" listing.
+  struct Description {
+    std::string kind, torque, static_range, source;
+    bool set_valued = false;
+    std::vector<std::pair<std::string, std::string>> fields;
+  };
+  static std::vector<Description> Describe();
 
  private:
   Law law_;

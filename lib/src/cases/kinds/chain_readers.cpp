@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "drillwave/cases/friction_json.hpp"
 #include "drillwave/bitrock/friction.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/model/schedule.hpp"
@@ -62,7 +63,7 @@ double ReadChainBit(const JsonReader& bit, Inertia& bit_inertia) {
   bit_inertia.inertia_kgm2 = bit.Number("inertia_kgm2", Range::Positive());
   bit_inertia.damping_Nms_per_rad = bit.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
   if (bit.Has("friction"))
-    bit_inertia.friction = bitrock::FrictionLaw::FromJson(bit.Raw("friction"), bit.PathOf("friction"));
+    bit_inertia.friction = ReadFrictionLaw(bit.Raw("friction"), bit.PathOf("friction"));
   const double nominal = bit.Number("nominal_weight_on_bit_N", Range::Positive(), 1.0);
   const model::Schedule weight =
       bit.Has("weight_on_bit_N") ? model::Schedule::FromJson(bit.Raw("weight_on_bit_N"), bit.PathOf("weight_on_bit_N"))

@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 
+#include "drillwave/cases/friction_json.hpp"
 #include "drillwave/analysis/network_linearization.hpp"
 #include "drillwave/analysis/torsional_linearization.hpp"
 #include "drillwave/cases/kinds.hpp"
@@ -351,7 +352,7 @@ class TorsionalWaveKind : public ModelKind {
         {"bit/damping_Nms_per_rad", "local damper at the bit, >= 0, default 0"},
         {"bit/friction", "friction law, see below (optional: free bit)"},
         {"initial/bit_speed_rad_s", "rigid rotation at start, default 0 (at rest; a set-valued bit starts stuck)"},
-        {"friction laws", bitrock::FrictionLaw::Schema()},
+        {"friction laws", FrictionLawSchema()},
     };
     fields.update(TopComponentFields("top"));
     fields.update(PiTopDriveLawFields("top"));
@@ -401,7 +402,7 @@ class TorsionalWaveKind : public ModelKind {
     bit.inertia = bit_reader.Number("inertia_kgm2", Range::NonNegative());
     bit.ground_damping = bit_reader.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
     if (bit_reader.Has("friction"))
-      bit.friction = bitrock::FrictionLaw::FromJson(bit_reader.Raw("friction"), bit_reader.PathOf("friction"));
+      bit.friction = ReadFrictionLaw(bit_reader.Raw("friction"), bit_reader.PathOf("friction"));
     if (bit.has_set_valued_friction() && bit.massless())
       throw InputError(bit_reader.PathOf("inertia_kgm2"), "a set-valued friction law needs a bit inertia > 0");
     bit.lateral = ReadUnbalance(bit_reader);

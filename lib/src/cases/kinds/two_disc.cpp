@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "drillwave/cases/friction_json.hpp"
 #include "drillwave/bitrock/friction.hpp"
 #include "drillwave/cases/kinds.hpp"
 #include "drillwave/cases/statistics.hpp"
@@ -67,7 +68,7 @@ class TwoDiscModel : public PreparedModel {
 
 std::optional<bitrock::FrictionLaw> ReadFriction(const JsonReader& disc) {
   if (!disc.Has("friction")) return std::nullopt;
-  return bitrock::FrictionLaw::FromJson(disc.Raw("friction"), disc.PathOf("friction"));
+  return ReadFrictionLaw(disc.Raw("friction"), disc.PathOf("friction"));
 }
 
 class TwoDiscKind : public ModelKind {
@@ -91,7 +92,7 @@ class TwoDiscKind : public ModelKind {
         {"lower_disc/damping_Nms_per_rad", "extra damper to ground, >= 0, default 0"},
         {"friction_smoothing_rad_s",
          "0 (default) or >= 1e-6 rad/s; > 0 replaces sign(w) by tanh(w / eps) in both laws (smooth reference, no stick phases)"},
-        {"friction laws", bitrock::FrictionLaw::Schema()},
+        {"friction laws", FrictionLawSchema()},
     };
   }
 
