@@ -9,8 +9,6 @@
 #include <type_traits>
 #include <utility>
 
-#include "drillwave/core/error.hpp"
-
 namespace drillwave::bitrock {
 namespace {
 
