@@ -27,21 +27,9 @@ nlohmann::json IntervalsToJson(const std::vector<Interval>& v) {
   return out;
 }
 
-}  // namespace
-
-Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
-  rec.Channel(o.bit_speed);  // both are needed; fail early, naming the one that is missing
-  rec.Channel(o.top_speed);
-  Inspection ins;
-  ins.source = rec.source;
-  ins.bit_speed = o.bit_speed;
-  ins.top_speed = o.top_speed;
-  ins.duration_s = rec.time_s.back() - rec.time_s.front();
-  ins.sample_interval_s = rec.sample_interval_s;
+// Each channel's artefacts (Hampel outliers, bursts), its cleaned and its masked samples.
+void FindArtefacts(const Recording& rec, const InspectOptions& o, Progress& progress, Inspection& ins) {
   const int half_window = std::max(1, static_cast<int>(std::lround(o.hampel_half_window_s / rec.sample_interval_s)));
-
-  // Artefacts, channel by channel.
-  Progress progress("inspect " + ReadableText(rec.source, 200));
   for (std::size_t j = 0; j < rec.names.size(); ++j) {
     progress.Count("artefacts of each channel", static_cast<double>(j), static_cast<double>(rec.names.size()),
                    "channels");
@@ -65,29 +53,28 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
     ins.cleaned.push_back(std::move(h.cleaned));
     ins.masked.push_back(std::move(h.flagged));
   }
-  auto index = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(rec.names.begin(), rec.names.end(), name) - rec.names.begin());
-  };
-  // The bit speed for regimes and periods: cleaned, then averaged over smoothing_s so that sensor noise about zero
-  // does not cut a stuck episode into pieces.
-  std::vector<double> bit = ins.cleaned[index(o.bit_speed)];
-  {
-    const int half = static_cast<int>(std::lround(0.5 * o.smoothing_s / rec.sample_interval_s));
-    if (half >= 1) {
-      const std::vector<double>& raw = ins.cleaned[index(o.bit_speed)];
-      std::vector<double> prefix(raw.size() + 1, 0.0);
-      for (std::size_t i = 0; i < raw.size(); ++i) prefix[i + 1] = prefix[i] + raw[i];
-      const int n = static_cast<int>(raw.size());
-      for (int i = 0; i < n; ++i) {
-        const int lo = std::max(0, i - half), hi = std::min(n - 1, i + half);
-        bit[i] = (prefix[hi + 1] - prefix[lo]) / (hi - lo + 1);
-      }
+}
+
+// The bit speed for regimes and periods: cleaned, then averaged over smoothing_s so that sensor noise about zero does
+// not cut a stuck episode into pieces.
+std::vector<double> SmoothedBitSpeed(const Recording& rec, const InspectOptions& o, const std::vector<double>& cleaned) {
+  std::vector<double> bit = cleaned;
+  const int half = static_cast<int>(std::lround(0.5 * o.smoothing_s / rec.sample_interval_s));
+  if (half >= 1) {
+    std::vector<double> prefix(cleaned.size() + 1, 0.0);
+    for (std::size_t i = 0; i < cleaned.size(); ++i) prefix[i + 1] = prefix[i] + cleaned[i];
+    const int n = static_cast<int>(cleaned.size());
+    for (int i = 0; i < n; ++i) {
+      const int lo = std::max(0, i - half), hi = std::min(n - 1, i + half);
+      bit[i] = (prefix[hi + 1] - prefix[lo]) / (hi - lo + 1);
     }
   }
-  const std::vector<double>& top = ins.cleaned[index(o.top_speed)];
+  return bit;
+}
 
-  progress.Step("the bit's stuck episodes");
-  // Stuck episodes of the bit.
+// The bit's stuck episodes, stick fraction, median period between onsets and long slips without sticking; the
+// artefact bursts that fall in a stuck episode.
+void FindStuckEpisodes(const Recording& rec, const InspectOptions& o, const std::vector<double>& bit, Inspection& ins) {
   std::vector<double> magnitude(bit.size());
   for (std::size_t i = 0; i < bit.size(); ++i) magnitude[i] = std::abs(bit[i]);
   ins.stuck_threshold = std::max(o.stuck_floor, o.stuck_fraction * Median(magnitude));
@@ -114,7 +101,10 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
       if (std::any_of(ins.stuck.begin(), ins.stuck.end(), [&](const Interval& s) { return Overlaps(b, s); }))
         ++a.bursts_while_stuck;
 
-  // Speeds.
+}
+
+// Mean, extremes and spread of the two speeds.
+void MeasureSpeeds(const std::vector<double>& bit, const std::vector<double>& top, Inspection& ins) {
   double sum = 0, max_bit = -std::numeric_limits<double>::infinity();
   for (double v : bit) sum += v, max_bit = std::max(max_bit, v);
   ins.bit_speed_mean = sum / bit.size(), ins.bit_speed_max = max_bit;
@@ -127,55 +117,58 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
   ins.top_speed_min = *std::min_element(top.begin(), top.end());
   ins.top_speed_max = *std::max_element(top.begin(), top.end());
 
-  progress.Step("the top speed's fluctuation");
-  // Top speed: fluctuation about a slow trend (set-point changes are not softness) against the sensor noise.
-  {
-    const std::size_t n = top.size();
-    const int half = std::max(1, static_cast<int>(std::lround(0.5 * o.trend_window_s / rec.sample_interval_s)));
-    const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(half / 50));
-    std::vector<double> knots_t, knots_v, window;
-    for (std::size_t i = 0; i < n; i += stride) {
-      const std::size_t lo = i >= static_cast<std::size_t>(half) ? i - half : 0, hi = std::min(n - 1, i + half);
-      window.assign(top.begin() + static_cast<std::ptrdiff_t>(lo), top.begin() + static_cast<std::ptrdiff_t>(hi) + 1);
-      knots_t.push_back(static_cast<double>(i));
-      knots_v.push_back(Median(window));
-    }
-    double fluct = 0;
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      while (k + 1 < knots_t.size() && knots_t[k + 1] < i) ++k;
-      const double trend = k + 1 < knots_t.size()
-                               ? knots_v[k] + (knots_v[k + 1] - knots_v[k]) * (i - knots_t[k]) / (knots_t[k + 1] - knots_t[k])
-                               : knots_v.back();
-      fluct += (top[i] - trend) * (top[i] - trend);
-    }
-    ins.top_speed_fluctuation = std::sqrt(fluct / n);
-    std::vector<double> diffs;
-    for (std::size_t i = 1; i < n; ++i) diffs.push_back(std::abs(top[i] - top[i - 1]));
-    ins.top_speed_noise = 1.4826 * Median(diffs) / std::sqrt(2.0);
-    ins.top_speed_fluctuation_ratio = ins.top_speed_noise > 0 ? ins.top_speed_fluctuation / ins.top_speed_noise
-                                                              : std::numeric_limits<double>::infinity();
-    ins.top_drive_soft = ins.top_speed_fluctuation_ratio > o.soft_drive_ratio;
-  }
-  {  // Bit oscillation period: upward crossings of the mean with hysteresis (half a standard deviation either side),
-     // so that sensor noise about a steady speed does not count as oscillation.
-    double var_bit = 0;
-    for (double v : bit) var_bit += (v - ins.bit_speed_mean) * (v - ins.bit_speed_mean);
-    const double band = 0.5 * std::sqrt(var_bit / bit.size());
-    std::vector<double> crossings, gaps;
-    bool armed = false;
-    for (std::size_t i = 0; i < bit.size(); ++i) {
-      if (bit[i] < ins.bit_speed_mean - band) armed = true;
-      if (armed && bit[i] > ins.bit_speed_mean + band) crossings.push_back(rec.time_s[i]), armed = false;
-    }
-    for (std::size_t i = 1; i < crossings.size(); ++i) gaps.push_back(crossings[i] - crossings[i - 1]);
-    ins.bit_oscillation_period_s = gaps.empty() ? std::nan("") : Median(gaps);
-  }
+}
 
-  progress.Step("which channels move together");
-  // Which channels move together: every pair of a few channels; with many, each channel with the two speeds only,
-  // so that the cost (and the size of the outputs) grows linearly with the number of channels.
-  const std::size_t bit_index = index(o.bit_speed), top_index = index(o.top_speed);
+// Top speed: fluctuation about a slow trend (set-point changes are not softness) against the sensor noise.
+void MeasureTopFluctuation(const Recording& rec, const InspectOptions& o, const std::vector<double>& top,
+                           Inspection& ins) {
+  const std::size_t n = top.size();
+  const int half = std::max(1, static_cast<int>(std::lround(0.5 * o.trend_window_s / rec.sample_interval_s)));
+  const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(half / 50));
+  std::vector<double> knots_t, knots_v, window;
+  for (std::size_t i = 0; i < n; i += stride) {
+    const std::size_t lo = i >= static_cast<std::size_t>(half) ? i - half : 0, hi = std::min(n - 1, i + half);
+    window.assign(top.begin() + static_cast<std::ptrdiff_t>(lo), top.begin() + static_cast<std::ptrdiff_t>(hi) + 1);
+    knots_t.push_back(static_cast<double>(i));
+    knots_v.push_back(Median(window));
+  }
+  double fluct = 0;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    while (k + 1 < knots_t.size() && knots_t[k + 1] < i) ++k;
+    const double trend = k + 1 < knots_t.size()
+                             ? knots_v[k] + (knots_v[k + 1] - knots_v[k]) * (i - knots_t[k]) / (knots_t[k + 1] - knots_t[k])
+                             : knots_v.back();
+    fluct += (top[i] - trend) * (top[i] - trend);
+  }
+  ins.top_speed_fluctuation = std::sqrt(fluct / n);
+  std::vector<double> diffs;
+  for (std::size_t i = 1; i < n; ++i) diffs.push_back(std::abs(top[i] - top[i - 1]));
+  ins.top_speed_noise = 1.4826 * Median(diffs) / std::sqrt(2.0);
+  ins.top_speed_fluctuation_ratio = ins.top_speed_noise > 0 ? ins.top_speed_fluctuation / ins.top_speed_noise
+                                                            : std::numeric_limits<double>::infinity();
+  ins.top_drive_soft = ins.top_speed_fluctuation_ratio > o.soft_drive_ratio;
+}
+
+// Bit oscillation period: upward crossings of the mean with hysteresis (half a standard deviation either side), so
+// that sensor noise about a steady speed does not count as oscillation.
+void MeasureBitOscillation(const Recording& rec, const std::vector<double>& bit, Inspection& ins) {
+  double var_bit = 0;
+  for (double v : bit) var_bit += (v - ins.bit_speed_mean) * (v - ins.bit_speed_mean);
+  const double band = 0.5 * std::sqrt(var_bit / bit.size());
+  std::vector<double> crossings, gaps;
+  bool armed = false;
+  for (std::size_t i = 0; i < bit.size(); ++i) {
+    if (bit[i] < ins.bit_speed_mean - band) armed = true;
+    if (armed && bit[i] > ins.bit_speed_mean + band) crossings.push_back(rec.time_s[i]), armed = false;
+  }
+  for (std::size_t i = 1; i < crossings.size(); ++i) gaps.push_back(crossings[i] - crossings[i - 1]);
+  ins.bit_oscillation_period_s = gaps.empty() ? std::nan("") : Median(gaps);
+}
+
+// Which channels move together: every pair of a few channels; with many, each channel with the two speeds only, so
+// that the cost (and the size of the outputs) grows linearly with the number of channels.
+void Correlate(const Recording& rec, std::size_t bit_index, std::size_t top_index, Inspection& ins) {
   const bool all_pairs = rec.names.size() <= kAllPairsChannels;
   for (std::size_t a = 0; a < rec.names.size(); ++a)
     for (std::size_t b = a + 1; b < rec.names.size(); ++b)
@@ -185,7 +178,10 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
     return std::abs(x.correlation) > std::abs(y.correlation);
   });
 
-  // Findings, restating the numbers.
+}
+
+// The findings, restating the numbers.
+void WriteFindings(const Recording& rec, const InspectOptions& o, Inspection& ins) {
   auto& f = ins.findings;
   for (const ChannelArtefacts& a : ins.artefacts)
     if (a.left_whole)
@@ -223,6 +219,36 @@ Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
   for (const ChannelPair& p : ins.correlations)
     if (std::abs(p.correlation) >= 0.5)
       f.push_back(p.a + " and " + p.b + " move together: correlation " + Fixed(p.correlation, 2) + ".");
+}
+
+}  // namespace
+
+Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
+  rec.Channel(o.bit_speed);  // both are needed; fail early, naming the one that is missing
+  rec.Channel(o.top_speed);
+  Inspection ins;
+  ins.source = rec.source;
+  ins.bit_speed = o.bit_speed;
+  ins.top_speed = o.top_speed;
+  ins.duration_s = rec.time_s.back() - rec.time_s.front();
+  ins.sample_interval_s = rec.sample_interval_s;
+  Progress progress("inspect " + ReadableText(rec.source, 200));
+  FindArtefacts(rec, o, progress, ins);
+  auto index = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(rec.names.begin(), rec.names.end(), name) - rec.names.begin());
+  };
+  const std::size_t bit_index = index(o.bit_speed), top_index = index(o.top_speed);
+  const std::vector<double> bit = SmoothedBitSpeed(rec, o, ins.cleaned[bit_index]);
+  const std::vector<double>& top = ins.cleaned[top_index];
+  progress.Step("the bit's stuck episodes");
+  FindStuckEpisodes(rec, o, bit, ins);
+  MeasureSpeeds(bit, top, ins);
+  progress.Step("the top speed's fluctuation");
+  MeasureTopFluctuation(rec, o, top, ins);
+  MeasureBitOscillation(rec, bit, ins);
+  progress.Step("which channels move together");
+  Correlate(rec, bit_index, top_index, ins);
+  WriteFindings(rec, o, ins);
   return ins;
 }
 
