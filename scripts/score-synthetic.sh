@@ -3,7 +3,7 @@
 # scripts/score_recordings.py reads, never the tool. It prints one line per recording, then precision (named effects
 # that are concealed), recall (concealed effects that are named), names on base recordings and recordings named
 # without a lower held-out error; it exits non-zero below the floors given here or on any of the latter two.
-#   bash scripts/score-synthetic.sh        the 12 recordings of synthetic/ (CI; ~47 min on 2 cores, two at a time)
+#   bash scripts/score-synthetic.sh        the 12 recordings of synthetic/ (CI; 33 min on 2 cores)
 #   bash scripts/score-synthetic.sh all    and the 36 of synthetic-train/ (~2 h)
 # The floors guard against losing ground: this code measured precision 0.917 (11 of 12) and recall 0.846 (11 of 13)
 # on synthetic/ with BASELINE.md's rock heterogeneity in the base case (docs/diagnosis.md); one more miss (10 of 13 =
@@ -20,8 +20,8 @@ sets=(--set ../shared/recordings/synthetic)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 # Two recordings at a time, each with two threads: while both run they share the cores; the last one left, often the
-# longest (dev rec12, 1 313 s alone), then has both (its diagnosis.json is the same at any -j). At -j 1 the dev
-# twelve's times (stop 41) queue to 3 442 s in their order against 2 822 s of work per core; rec07 took 115 s at -j 1
-# beside another, 64 s at -j 2 alone.
+# longest, then has both (diagnosis.json is the same at any -j). At -j 1 the dev twelve's times queued to 3 442 s in
+# their order, rec12's 1 313 s last, against 2 822 s of work per core; at -j 2 the twelve took 1 979 s wall, rec12
+# 437 s, with the same names and errors.
 python3 scripts/score_recordings.py "${sets[@]}" --binary build/bin/drillwave --out "$out" --parallel 2 -j 2 \
     --min-precision "${SCORE_MIN_PRECISION:-0.9}" --min-recall "${SCORE_MIN_RECALL:-0.84}" --strict
