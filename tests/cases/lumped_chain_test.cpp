@@ -107,6 +107,33 @@ TEST(LumpedChain, TheFourInertiaChainKeepsItsEnergyBalanceThroughStickSlip) {
             1e-5 * r.summary.at("work_in_J").get<double>());
 }
 
+// A bit's normal load (two_mass's) runs, with its channel, but is no state of the linearization: refused there.
+TEST(LumpedChain, ANormalLoadRunsAndIsRefusedByTheLinearization) {
+  json doc = LoadCase("lumped-chain-4dof");
+  doc["simulation"]["duration_s"] = 20;
+  doc["statistics"] = {{"window_s", {5, 20}}};
+  doc.erase("expect");
+  doc["model"]["bit"]["normal_load"] = {{"torque_gain_N_per_Nm", 1.0}, {"time_constant_s", 0.05}};
+  const Case c = ParseCase(doc);
+  const RunResult r = RunCase(c).result;
+  EXPECT_GT(r.channel("normal_load_N").values.back(), 0.5 * 97347);
+  try {
+    c.model->Linearize();
+    FAIL() << "the normal load is not linearized";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "/model/bit/normal_load") << e.what();
+  }
+}
+
+// A long chain writes every inner inertia's speed but draws six of them.
+TEST(LumpedChain, ALongChainDrawsSixOfItsInnerInertias) {
+  json doc = FreeChain(std::vector<double>(40, 10.0), std::vector<double>(41, 1e5), 10.0);
+  doc["simulation"] = {{"duration_s", 0.5}, {"output_interval_s", 0.01}};
+  const RunResult r = RunCase(ParseCase(doc)).result;
+  EXPECT_NO_THROW(r.channel("inertia_40_rpm"));
+  EXPECT_EQ(r.plot_panels.front().size(), 8u);  // top, six inner, bit
+}
+
 TEST(LumpedChain, RefusesArraysThatDoNotMatchNamingTheField) {
   json doc = FreeChain({470, 750}, {900, 900}, 470);
   try {
