@@ -4,8 +4,9 @@
 #include <utility>
 #include <vector>
 
-#include "drillwave/cases/friction_json.hpp"
 #include "drillwave/bitrock/friction.hpp"
+#include "drillwave/cases/friction_json.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/model/schedule.hpp"
 #include "top_components.hpp"
@@ -37,6 +38,61 @@ NormalLoad ReadNormalLoad(const JsonReader& load, double nominal_N, const bitroc
   return n;
 }
 
+class ChainModel : public PreparedModel {
+ public:
+  ChainModel(Chain chain, double nominal_weight_N, std::string kind)
+      : chain_(std::move(chain)), nominal_weight_N_(nominal_weight_N), kind_(std::move(kind)) {}
+
+  RunResult Run(const RunSettings& settings) const override {
+    const ChainRun run = RunChain(chain_, settings);
+    RunResult result = ChainResult(run, settings);
+    // The inner inertias' speeds, top to bit, beside the top's and the bit's; the figure draws at most
+    // kPlottedInner of them, evenly spread along the chain.
+    constexpr std::size_t kPlottedInner = 6;
+    const std::size_t inner = run.speed_rad_s.size() - 2;
+    std::vector<std::string> panel = {"top_rpm"};
+    for (std::size_t j = 1; j <= inner; ++j) {
+      std::vector<double> rpm = run.speed_rad_s[j];
+      for (double& w : rpm) w /= kRadPerSecondPerRpm;
+      const std::string name = "inertia_" + std::to_string(j) + "_rpm";
+      result.channels.push_back({name, std::move(rpm)});
+      if (inner <= kPlottedInner || (j * kPlottedInner) % inner < kPlottedInner) panel.push_back(name);
+    }
+    panel.push_back("bit_rpm");
+    if (inner > 0) result.plot_panels.front() = panel;
+    // The simulated normal load in newtons, named apart from a recording's wob_N so that diagnose compares the two
+    // only where a --map asks it to.
+    if (chain_.HasNormalLoad()) {
+      std::vector<double> load = run.friction_scale.back();
+      for (double& w : load) w *= nominal_weight_N_;
+      result.channels.push_back({"normal_load_N", std::move(load)});
+      result.plot_panels.push_back({"normal_load_N"});
+    }
+    return result;
+  }
+  std::vector<LinearizedOperatingPoint> Linearize() const override {
+    RefuseNormalLoad();
+    return LinearizeChain(chain_);
+  }
+  std::shared_ptr<const analysis::PiecewiseSmoothField> OrbitField() const override {
+    RefuseNormalLoad();
+    return ChainOrbitField(chain_);
+  }
+
+ private:
+  // The load is a state of its own that the linearization and the orbit field do not carry (yet).
+  void RefuseNormalLoad() const {
+    if (chain_.HasNormalLoad())
+      throw InputError("/model/bit/normal_load", "stability and periodic orbits of " + kind_ +
+                                                     " do not include the simulated normal load yet: remove it to "
+                                                     "analyse the case");
+  }
+
+  Chain chain_;
+  double nominal_weight_N_;
+  std::string kind_;
+};
+
 }  // namespace
 
 void ReadChainTop(const JsonReader& top, Chain& m, Inertia& top_inertia) {
@@ -62,8 +118,7 @@ void ReadChainTop(const JsonReader& top, Chain& m, Inertia& top_inertia) {
 double ReadChainBit(const JsonReader& bit, Inertia& bit_inertia) {
   bit_inertia.inertia_kgm2 = bit.Number("inertia_kgm2", Range::Positive());
   bit_inertia.damping_Nms_per_rad = bit.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
-  if (bit.Has("friction"))
-    bit_inertia.friction = ReadFrictionLaw(bit.Raw("friction"), bit.PathOf("friction"));
+  if (bit.Has("friction")) bit_inertia.friction = ReadFrictionLaw(bit.Raw("friction"), bit.PathOf("friction"));
   const double nominal = bit.Number("nominal_weight_on_bit_N", Range::Positive(), 1.0);
   const model::Schedule weight =
       bit.Has("weight_on_bit_N") ? model::Schedule::FromJson(bit.Raw("weight_on_bit_N"), bit.PathOf("weight_on_bit_N"))
@@ -106,6 +161,10 @@ nlohmann::json ChainEndsSchema() {
           {"friction_smoothing_rad_s",
            "0 (default) or >= 1e-6 rad/s; > 0 replaces sign(w) by tanh(w / eps) in the bit law (smooth reference, no "
            "stick phases)"}};
+}
+
+std::unique_ptr<PreparedModel> MakeChainModel(Chain chain, double nominal_weight_N, std::string kind) {
+  return std::make_unique<ChainModel>(std::move(chain), nominal_weight_N, std::move(kind));
 }
 
 }  // namespace drillwave::cases::lumped

@@ -11,7 +11,6 @@
 
 #include "chain_readers.hpp"
 #include "drillwave/cases/kinds.hpp"
-#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "lumped_friction_process.hpp"
 
@@ -20,58 +19,6 @@ namespace {
 
 using io::JsonReader;
 using Range = io::Range;
-
-class LumpedChainModel : public PreparedModel {
- public:
-  LumpedChainModel(lumped::Chain chain, double nominal_weight_N)
-      : chain_(std::move(chain)), nominal_weight_N_(nominal_weight_N) {}
-
-  RunResult Run(const RunSettings& settings) const override {
-    const lumped::ChainRun run = lumped::RunChain(chain_, settings);
-    RunResult result = lumped::ChainResult(run, settings);
-    // The inner inertias' speeds, top to bit, beside the top's and the bit's; the figure draws at most
-    // kPlottedInner of them, evenly spread along the chain.
-    constexpr std::size_t kPlottedInner = 6;
-    const std::size_t inner = run.speed_rad_s.size() - 2;
-    std::vector<std::string> panel = {"top_rpm"};
-    for (std::size_t j = 1; j <= inner; ++j) {
-      std::vector<double> rpm = run.speed_rad_s[j];
-      for (double& w : rpm) w /= kRadPerSecondPerRpm;
-      const std::string name = "inertia_" + std::to_string(j) + "_rpm";
-      result.channels.push_back({name, std::move(rpm)});
-      if (inner <= kPlottedInner || (j * kPlottedInner) % inner < kPlottedInner) panel.push_back(name);
-    }
-    panel.push_back("bit_rpm");
-    if (inner > 0) result.plot_panels.front() = panel;
-    if (chain_.HasNormalLoad()) {  // as two_mass names it
-      std::vector<double> load = run.friction_scale.back();
-      for (double& w : load) w *= nominal_weight_N_;
-      result.channels.push_back({"normal_load_N", std::move(load)});
-      result.plot_panels.push_back({"normal_load_N"});
-    }
-    return result;
-  }
-  std::vector<LinearizedOperatingPoint> Linearize() const override {
-    RefuseNormalLoad();
-    return lumped::LinearizeChain(chain_);
-  }
-  std::shared_ptr<const analysis::PiecewiseSmoothField> OrbitField() const override {
-    RefuseNormalLoad();
-    return lumped::ChainOrbitField(chain_);
-  }
-
- private:
-  // The load is a state of its own that the linearization and the orbit field do not carry (as in two_mass).
-  void RefuseNormalLoad() const {
-    if (chain_.HasNormalLoad())
-      throw InputError("/model/bit/normal_load",
-                       "stability and periodic orbits of lumped_chain do not include the "
-                       "simulated normal load: remove it to analyse the case");
-  }
-
-  lumped::Chain chain_;
-  double nominal_weight_N_;
-};
 
 class LumpedChainKind : public ModelKind {
  public:
@@ -121,7 +68,7 @@ class LumpedChainKind : public ModelKind {
     lumped::ReadChainTop(r.Object("top"), m, m.inertias.front());
     const double nominal = lumped::ReadChainBit(r.Object("bit"), m.inertias.back());
     r.Finish();
-    return std::make_unique<LumpedChainModel>(std::move(m), nominal);
+    return lumped::MakeChainModel(std::move(m), nominal, name());
   }
 };
 

@@ -23,47 +23,6 @@ namespace {
 using io::JsonReader;
 using Range = io::Range;
 
-// The pendulum as a lumped chain of two: 0 the top, 1 the bit.
-class TwoMassModel : public PreparedModel {
- public:
-  TwoMassModel(lumped::Chain chain, double nominal_weight_N)
-      : chain_(std::move(chain)), nominal_weight_N_(nominal_weight_N) {}
-
-  RunResult Run(const RunSettings& settings) const override {
-    const lumped::ChainRun run = lumped::RunChain(chain_, settings);
-    RunResult result = lumped::ChainResult(run, settings);
-    // The simulated normal load in newtons, named apart from a recording's wob_N so that diagnose compares the two only
-    // where a --map asks it to.
-    if (chain_.HasNormalLoad()) {
-      std::vector<double> load = run.friction_scale[1];
-      for (double& w : load) w *= nominal_weight_N_;
-      result.channels.push_back({"normal_load_N", std::move(load)});
-      result.plot_panels.push_back({"normal_load_N"});
-    }
-    return result;
-  }
-
-  std::vector<LinearizedOperatingPoint> Linearize() const override {
-    RefuseNormalLoad();
-    return lumped::LinearizeChain(chain_);
-  }
-  std::shared_ptr<const analysis::PiecewiseSmoothField> OrbitField() const override {
-    RefuseNormalLoad();
-    return lumped::ChainOrbitField(chain_);
-  }
-
- private:
-  // The load is a state of its own that the linearization and the orbit field do not carry (yet).
-  void RefuseNormalLoad() const {
-    if (chain_.HasNormalLoad())
-      throw InputError("/model/bit/normal_load", "stability and periodic orbits of two_mass do not include the "
-                                                 "simulated normal load yet: remove it to analyse the case");
-  }
-
-  lumped::Chain chain_;
-  double nominal_weight_N_;
-};
-
 class TwoMassKind : public ModelKind {
  public:
   std::string name() const override { return "two_mass"; }
@@ -98,7 +57,7 @@ class TwoMassKind : public ModelKind {
     lumped::ReadChainTop(r.Object("top"), m, top_inertia);
     const double nominal = lumped::ReadChainBit(r.Object("bit"), bit_inertia);
     r.Finish();
-    return std::make_unique<TwoMassModel>(std::move(m), nominal);
+    return lumped::MakeChainModel(std::move(m), nominal, name());  // a chain of two: 0 the top, 1 the bit
   }
 };
 
