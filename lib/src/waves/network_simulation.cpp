@@ -290,7 +290,7 @@ class NetworkProcess {
     for (int i : {0, bit_})
       if (controllers_[i]) controllers_[i]->OnBreakpoint(t, x[integral_index_[i]]);
     chain_.ForgetStart();
-    while (!end_breaks_.empty() && end_breaks_.top() <= t + 1e-12 * std::max(1.0, std::abs(t))) end_breaks_.pop();
+    while (!end_breaks_.empty() && PassedWith(end_breaks_.top(), t)) end_breaks_.pop();
   }
 
   // Outputs at time t for a state x (interpolated by the caller).

@@ -25,6 +25,8 @@ bool Matters(const integration::HermiteHistory::Kink& k, double h, double scale)
 
 }  // namespace
 
+bool PassedWith(double kink_time, double t) { return kink_time <= t + 1e-9 * std::max(1.0, std::abs(t)); }
+
 double ChainSpec::ShortestPiece() const { return *std::min_element(tau.begin(), tau.end()); }
 double ChainSpec::LongestPiece() const { return *std::max_element(tau.begin(), tau.end()); }
 double ChainSpec::travel_time() const {

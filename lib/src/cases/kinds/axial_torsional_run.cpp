@@ -194,7 +194,7 @@ class Process {
     passed_ = t;
     top_drive_.OnBreakpoint(t, x[kZ]);
     for (waves::WaveChain& chain : chains_) chain.ForgetStart();  // an input may jump here, or a kink arrive at an end
-    while (!end_kinks_.empty() && end_kinks_.top() <= t + 1e-12 * std::max(1.0, std::abs(t))) end_kinks_.pop();
+    while (!end_kinks_.empty() && waves::PassedWith(end_kinks_.top(), t)) end_kinks_.pop();
   }
 
   // --- Outputs --------------------------------------------------------------------------------------------
