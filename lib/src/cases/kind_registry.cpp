@@ -15,6 +15,7 @@ const std::vector<std::unique_ptr<ModelKind>>& AllKinds() {
     k.push_back(MakeJeffcottKind());
     k.push_back(MakeAxialTorsionalKind());
     k.push_back(MakeLumpedAxialTorsionalKind());
+    k.push_back(MakeInterconnectedWavesKind());
     return k;
   }();
   return kinds;

@@ -13,5 +13,6 @@ std::unique_ptr<ModelKind> MakeTwoDiscKind();
 std::unique_ptr<ModelKind> MakeJeffcottKind();
 std::unique_ptr<ModelKind> MakeAxialTorsionalKind();
 std::unique_ptr<ModelKind> MakeLumpedAxialTorsionalKind();
+std::unique_ptr<ModelKind> MakeInterconnectedWavesKind();
 
 }  // namespace drillwave::cases
