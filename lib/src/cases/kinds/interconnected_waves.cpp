@@ -26,10 +26,14 @@
 // makes arrives at the bit tau later, a breakpoint the solver propagates. The inputs' knots reach the bit a travel time
 // after they leave the top: each arrival is an event, so the solver steps onto it and follows its kink.
 //
+// Linearization (`drillwave stability`): about every steady state at the inputs' last knots, a 2-state neutral system
+// whose characteristic function is the product of the two channels' (derived above LinearSystem below).
+//
 // Friction laws: smooth ones only. Set-valued laws would need stuck regimes of the axial bit, and the torque on bit,
 // a function of the axial speed, has no static range of its own to hold the rotation.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 
@@ -202,9 +206,114 @@ void AddWindowStatistics(const std::vector<double>& time, const std::vector<doub
   summary[name + "_max" + unit] = n ? hi : 0.0;
 }
 
+// --- Linearization (drillwave stability) ------------------------------------------------------------------------------
+// About steady drilling (v*, omega*) at the inputs' final values (constant I), with y, W the bit's speed perturbations,
+// the arriving waves' perturbations are what the bit's laws of motion give,
+//   w_a = (M y' + (Z_a + F') y) / (2 Z_a),   w_t = (J W' + Z_t W + F~' y) / (2 Z_t)   (F' = F'(v*), F~' = F~'(v*)),
+// and each obeys the channel's round trip w(t) = r (speed(t - 2 tau) - w(t - 2 tau)). Substituting, per channel:
+//   y' + r_a y'(t - 2 tau_a) = -(Z_a + F') / M y + r_a (Z_a - F') / M y(t - 2 tau_a),
+//   W' + r_t W'(t - 2 tau_t) = -Z_t / J W + r_t Z_t / J W(t - 2 tau_t) - F~' / J (y + r_t y(t - 2 tau_t)).
+// The torsional row is driven by the axial one and does not feed back (triangular), so
+//   det Delta(s) = [(M s + Z_a + F')(1 + r_a e^{-2 s tau_a}) - 2 Z_a r_a e^{-2 s tau_a}]
+//                * [(J s + Z_t)(1 + r_t e^{-2 s tau_t}) - 2 Z_t r_t e^{-2 s tau_t}] / (M J),
+// and the difference operator is diagonal: its essential spectrum lies at Re s = ln|r| / (2 tau) per channel (the
+// robust abscissa of two incommensurate delays is their maximum). At s = 0 the axial factor is 2 Z_a (alpha1 + F') /
+// (Z_a + alpha1): a steady state where alpha1 + F' < 0 (the falling side of a humped law) has a real root s > 0.
+
+double FinalInput(const WaveChannel& c) { return c.input.knots().back().second; }
+
+double WeightSlope(const Model& md, double v) { return md.weight_law ? md.weight_law->SlipTorqueDerivative(v) : 0.0; }
+double TorqueSlope(const Model& md, double v) { return md.torque_law ? md.torque_law->SlipTorqueDerivative(v) : 0.0; }
+
+// The root in [lo, hi] of f, whose signs differ there, by bisection to rounding.
+double Bisect(const std::function<double(double)>& f, double lo, double hi) {
+  const bool rising = f(hi) > 0;
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * std::max(std::abs(lo), std::abs(hi)); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    ((f(mid) > 0) == rising ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Every v with alpha1 v + F(v) = alpha2 H at the final H, ascending. alpha1 v + F(v) need not be monotone (a humped F
+// gives up to three roots): sign changes on a grid geometric in |v| on either side of 0 (relative spacing 0.5 %, from
+// 1e-9 of a bound beyond which alpha1 v dominates), refined by bisection.
+std::vector<double> SteadyAxialSpeeds(const Model& md) {
+  const double drive = md.axial.top_gain * FinalInput(md.axial);
+  const std::function<double(double)> excess = [&](double v) {
+    return md.axial.top_damping * v + md.WeightOnBit(v) - drive;
+  };
+  double bound = 1.0;
+  while ((excess(bound) <= 0 || excess(-bound) >= 0) && bound < 1e12) bound *= 2;
+  constexpr int kPerSide = 4000;
+  std::vector<double> grid;
+  for (int i = kPerSide; i >= 0; --i) grid.push_back(-bound * std::pow(1e-9, static_cast<double>(i) / kPerSide));
+  grid.push_back(0.0);
+  for (int i = kPerSide; i >= 0; --i) grid.push_back(bound * std::pow(1e-9, static_cast<double>(i) / kPerSide));
+  std::vector<double> speeds;
+  for (std::size_t i = 1; i < grid.size(); ++i) {
+    const double before = excess(grid[i - 1]), after = excess(grid[i]);
+    if (after == 0) speeds.push_back(grid[i]);
+    else if (before != 0 && (before > 0) != (after > 0)) speeds.push_back(Bisect(excess, grid[i - 1], grid[i]));
+  }
+  return speeds;
+}
+
+// The neutral system of the file's linearization about the bit's steady axial speed v.
+analysis::LinearDelaySystem LinearSystem(const Model& md, double v) {
+  const WaveChannel &a = md.axial, &t = md.torsion;
+  const double slope = WeightSlope(md, v), coupling = TorqueSlope(md, v) / t.bit_inertia;
+  const double ra = a.Reflection(), rt = t.Reflection();
+  analysis::LinearDelaySystem sys;
+  sys.a0 = Eigen::MatrixXd::Zero(2, 2);
+  sys.a0(kAxial, kAxial) = -(a.impedance + slope) / a.bit_inertia;
+  sys.a0(kTorsional, kTorsional) = -t.impedance / t.bit_inertia;
+  sys.a0(kTorsional, kAxial) = -coupling;
+  analysis::DelayTerm axial{2 * a.travel_time, Eigen::MatrixXd::Zero(2, 2), Eigen::MatrixXd::Zero(2, 2)};
+  axial.retarded(kAxial, kAxial) = ra * (a.impedance - slope) / a.bit_inertia;
+  axial.neutral(kAxial, kAxial) = -ra;
+  analysis::DelayTerm torsional{2 * t.travel_time, Eigen::MatrixXd::Zero(2, 2), Eigen::MatrixXd::Zero(2, 2)};
+  torsional.retarded(kTorsional, kTorsional) = rt * t.impedance / t.bit_inertia;
+  torsional.retarded(kTorsional, kAxial) = -rt * coupling;
+  torsional.neutral(kTorsional, kTorsional) = -rt;
+  sys.delays = {std::move(axial), std::move(torsional)};
+  return sys;
+}
+
+// Where a channel's difference operator puts its essential spectrum: ln|r| / (2 tau) (-inf for a matched top, r = 0).
+double EssentialAbscissa(const WaveChannel& c) { return std::log(std::abs(c.Reflection())) / (2 * c.travel_time); }
+
+LinearizedOperatingPoint LinearizeAt(const Model& md, double v) {
+  const double omega = (md.torsion.top_gain * FinalInput(md.torsion) - md.TorqueOnBit(v)) / md.torsion.top_damping;
+  nlohmann::json steady = {{"hook_force_N", FinalInput(md.axial)},
+                           {"top_speed_setpoint_rad_s", FinalInput(md.torsion)},
+                           {"bit_axial_speed_m_s", v},
+                           {"rop_m_h", 3600 * v},
+                           {"bit_speed_rad_s", omega},
+                           {"wob_N", md.WeightOnBit(v)},
+                           {"bit_torque_Nm", md.TorqueOnBit(v)},
+                           {"wob_slope_Ns_per_m", WeightSlope(md, v)},
+                           {"bit_torque_slope_Nms_per_m", TorqueSlope(md, v)}};
+  for (const auto& [name, c] : {std::pair{"axial", &md.axial}, std::pair{"torsional", &md.torsion}}) {
+    const double essential = EssentialAbscissa(*c);
+    steady[std::string(name) + "_top_reflection"] = c->Reflection();
+    steady[std::string(name) + "_round_trip_s"] = 2 * c->travel_time;
+    steady[std::string(name) + "_essential_abscissa_per_s"] = std::isfinite(essential) ? nlohmann::json(essential)
+                                                                                      : nlohmann::json(nullptr);
+  }
+  return {std::move(steady), {"bit_axial_speed_m_s", "bit_speed_rad_s"}, LinearSystem(md, v)};
+}
+
 class InterconnectedWavesModel : public PreparedModel {
  public:
   explicit InterconnectedWavesModel(Model md) : md_(std::move(md)) {}
+
+  // Every steady drilling state at the inputs' final values, with its linearization (see above).
+  std::vector<LinearizedOperatingPoint> Linearize() const override {
+    std::vector<LinearizedOperatingPoint> points;
+    for (const double v : SteadyAxialSpeeds(md_)) points.push_back(LinearizeAt(md_, v));
+    return points;
+  }
 
   RunResult Run(const RunSettings& settings) const override {
     const integration::DelayProblem problem = MakeProblem(md_);
