@@ -195,6 +195,13 @@ int Stability(const std::string& file, const std::string& out_dir, const std::ve
       std::cout << "      marginal: the essential spectrum lies on the imaginary axis (lossless reflections at both "
                    "ends at high frequency); no root found right of it up to |Im s| = 200, but no uniform decay rate"
                 << std::endl;
+    if (const auto& continuum = result[k].continuum) {
+      const auto& cs = continuum->spectrum;
+      std::cout << "      continuum string (exact Kelvin-Voigt sections; the verdict above is the discretized model's): "
+                << drillwave::analysis::VerdictName(cs.verdict) << ", rightmost root " << cs.spectral_abscissa
+                << (cs.roots.empty() ? "" : " + " + std::to_string(cs.roots[0].s.imag()) + "i")
+                << (continuum->certified ? "" : " (not certified)") << std::endl;
+    }
   }
   // A stable steady state may share the phase space with a stick-slip cycle: the run from the case's start tells.
   std::optional<drillwave::cases::RunFromStart> from_start;

@@ -45,9 +45,8 @@ double PhaseChange(Complex a, Complex b) { return std::arg(b * std::conj(a)); }
 // modulus by at most a factor e (a root near the segment then costs steps, not a missed turn). Steps are also at most
 // longest_step(s): a root passed within one step turns the argument by about pi, which the step's other changes must
 // not wrap back below 0.5 rad. False when a step falls below rounding (a root on the segment).
-template <typename LongestStep>
-bool ArgumentChange(const CharacteristicDeterminant& det, Complex a, Complex b, LongestStep longest_step,
-                    double& change) {
+template <typename Determinant, typename LongestStep>
+bool ArgumentChange(const Determinant& det, Complex a, Complex b, LongestStep longest_step, double& change) {
   const double length = std::abs(b - a);
   const Complex direction = (b - a) / length;
   CharacteristicDeterminant::Value from = det(a);
@@ -76,8 +75,8 @@ bool ArgumentChange(const CharacteristicDeterminant& det, Complex a, Complex b, 
 // cannot both end on one root when the roots moved far since the neighbouring point). The derivative of ln det Delta
 // by central differences (the banded LU gives the determinant, not Delta^{-1}); the difference step shrinks with
 // Newton's steps so that the root is resolved to about 1e-9 relative.
-bool NewtonOnDeterminant(const CharacteristicDeterminant& det, Complex& s, int iterations,
-                         const std::vector<Complex>& known) {
+template <typename Determinant>
+bool NewtonOnDeterminant(const Determinant& det, Complex& s, int iterations, const std::vector<Complex>& known) {
   double last_step = std::numeric_limits<double>::infinity();
   for (int it = 0; it < iterations; ++it) {
     const double scale = 1.0 + std::abs(s);
@@ -219,10 +218,13 @@ double RootRealPartBound(const LinearDelaySystem& sys) {
   return sigma;
 }
 
-int CountRootsInBox(const CharacteristicDeterminant& det, double re_left, double re_right, double im_max) {
-  // Near the left edge the steps turn each e^{-s tau_k} by at most 0.25 rad in all; farther right the exponentials
-  // fade and the roots thin out, and the steps grow with the distance.
-  const double near_step = 0.25 / std::max(1e-300, det.delay_sum());
+namespace {
+
+// The count of CountRootsInBox, for any determinant-like function; near_step: the longest step at the left edge.
+template <typename Determinant>
+int CountRootsInBoxOf(const Determinant& det, double near_step, double re_left, double re_right, double im_max) {
+  // Near the left edge the steps are at most near_step; farther right the exponentials fade and the roots thin out,
+  // and the steps grow with the distance.
   auto longest_step = [&](Complex s) { return near_step + 0.2 * (s.real() - re_left); };
   // Counter-clockwise upper half: (re_right, 0) up, across the top, down to (re_left, 0).
   double change = 0;
@@ -232,6 +234,24 @@ int CountRootsInBox(const CharacteristicDeterminant& det, double re_left, double
   const double count = change / kPi;  // the whole box winds twice the upper half's change
   const double whole = std::round(count);
   return std::abs(count - whole) < 0.05 && whole >= 0 ? static_cast<int>(whole) : -1;
+}
+
+}  // namespace
+
+int CountRootsInBox(const CharacteristicDeterminant& det, double re_left, double re_right, double im_max) {
+  // Near the left edge the steps turn each e^{-s tau_k} by at most 0.25 rad in all.
+  const double near_step = 0.25 / std::max(1e-300, det.delay_sum());
+  return CountRootsInBoxOf(det, near_step, re_left, re_right, im_max);
+}
+
+int CountRootsInBox(const CharacteristicFunction& f, double near_step, double re_left, double re_right,
+                    double im_max) {
+  return CountRootsInBoxOf(f, near_step, re_left, re_right, im_max);
+}
+
+bool NewtonOnFunction(const CharacteristicFunction& f, std::complex<double>& s, int iterations,
+                      const std::vector<std::complex<double>>& known) {
+  return NewtonOnDeterminant(f, s, iterations, known);
 }
 
 SeededSpectrum SpectrumFromSeeds(const LinearDelaySystem& sys, const std::vector<Complex>& seeds,

@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include "drillwave/analysis/kelvin_voigt_continuum.hpp"
 #include "drillwave/analysis/rightmost_root.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
@@ -27,6 +28,42 @@ double SteadySpeed(const nlohmann::json& steady) {
 
 // JSON has no infinities: -inf (no essential spectrum, no roots) is written as null.
 nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json RootsToJson(const analysis::Spectrum& sp, int max_roots) {
+  nlohmann::json roots = nlohmann::json::array();
+  for (std::size_t k = 0; k < sp.roots.size() && static_cast<int>(k) < max_roots; ++k)
+    roots.push_back({sp.roots[k].s.real(), sp.roots[k].s.imag(), sp.roots[k].residual});
+  return roots;
+}
+
+nlohmann::json ContinuumToJson(const analysis::ContinuumSpectrum& c, int max_roots) {
+  return {{"note", "the string as the continuum its pieces discretize (exact Kelvin-Voigt sections); the verdict "
+                   "above is the discretized model's, which the simulation integrates"},
+          {"stable", c.spectrum.stable},
+          {"verdict", analysis::VerdictName(c.spectrum.verdict)},
+          {"spectral_abscissa", Number(c.spectrum.spectral_abscissa)},
+          {"essential_abscissa", Number(c.spectrum.essential_abscissa)},
+          {"certified", c.certified},
+          {"box_re_left_re_right_im_max", {c.re_left, c.re_right, c.im_max}},
+          {"roots_re_im_residual", RootsToJson(c.spectrum, max_roots)}};
+}
+
+// The continuum's verdict beside the discretized one, in the report.
+void ReportContinuum(const analysis::ContinuumSpectrum& c, std::ostream& report) {
+  const analysis::Spectrum& sp = c.spectrum;
+  report << "The continuum string (exact Kelvin-Voigt sections, not the pieces the simulation integrates): "
+         << analysis::VerdictName(sp.verdict) << ", rightmost root " << Significant(sp.spectral_abscissa, 8);
+  if (!sp.roots.empty()) report << " + " << Significant(sp.roots.front().s.imag(), 8) << "i";
+  report << " 1/s; its roots accumulate at Re s = -1/eta = " << Significant(sp.essential_abscissa, 8) << " 1/s; "
+         << sp.roots.size() << " roots in " << Significant(c.re_left, 6) << " <= Re s <= " << Significant(c.re_right, 6)
+         << ", 0 <= Im s <= " << Significant(c.im_max, 6)
+         << (c.certified ? " (the argument principle counts no other)" : " (not certified: roots may be missing)")
+         << ". Where the two differ, the pieces are too coarse for those modes.\n\n| Re s [1/s] | Im s [rad/s] |\n"
+            "|---|---|\n";
+  for (std::size_t j = 0; j < sp.roots.size() && j < 12; ++j)
+    report << "| " << Significant(sp.roots[j].s.real(), 8) << " | " << Significant(sp.roots[j].s.imag(), 8) << " |\n";
+  report << "\n";
+}
 
 }  // namespace
 
@@ -65,7 +102,9 @@ std::vector<OperatingPointStability> AnalyzeStabilityFromNeighbour(const Case& c
     } catch (const std::invalid_argument& e) {  // parameters so extreme that the linearization is out of range
       throw InputError("/model", std::string("the linearization cannot be analysed: ") + e.what());
     }
-    out.push_back({std::move(p), std::move(sp)});
+    std::optional<analysis::ContinuumSpectrum> continuum;
+    if (p.continuum) continuum = analysis::ComputeContinuumSpectrum(*p.continuum, options);
+    out.push_back({std::move(p), std::move(sp), std::move(continuum)});
   }
   return out;
 }
@@ -73,16 +112,14 @@ std::vector<OperatingPointStability> AnalyzeStabilityFromNeighbour(const Case& c
 nlohmann::json StabilityToJson(const std::vector<OperatingPointStability>& result, int max_roots) {
   nlohmann::json points = nlohmann::json::array();
   for (const OperatingPointStability& r : result) {
-    nlohmann::json roots = nlohmann::json::array();
-    for (std::size_t k = 0; k < r.spectrum.roots.size() && static_cast<int>(k) < max_roots; ++k)
-      roots.push_back({r.spectrum.roots[k].s.real(), r.spectrum.roots[k].s.imag(), r.spectrum.roots[k].residual});
     points.push_back({{"steady_state", r.point.steady_state},
                       {"state", r.point.state_names},
                       {"stable", r.spectrum.stable},
                       {"verdict", analysis::VerdictName(r.spectrum.verdict)},
                       {"spectral_abscissa", Number(r.spectrum.spectral_abscissa)},
                       {"essential_abscissa", Number(r.spectrum.essential_abscissa)},
-                      {"roots_re_im_residual", roots}});
+                      {"roots_re_im_residual", RootsToJson(r.spectrum, max_roots)}});
+    if (r.continuum) points.back()["continuum_kelvin_voigt"] = ContinuumToJson(*r.continuum, max_roots);
   }
   return {{"operating_points", points}};
 }
@@ -127,6 +164,7 @@ void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStabil
       report << "| " << Significant(r.spectrum.roots[j].s.real(), 8) << " | " << Significant(r.spectrum.roots[j].s.imag(), 8) << " | "
              << Significant(r.spectrum.roots[j].residual, 8) << " |\n";
     report << "\n";
+    if (r.continuum) ReportContinuum(*r.continuum, report);
   }
   report << "A steady state is stable when every characteristic root and the essential spectrum lie in the left "
             "half plane. It is marginal when no root found (up to |Im s| = im_max) lies to the right but the essential "

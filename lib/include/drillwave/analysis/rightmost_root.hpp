@@ -14,6 +14,7 @@
 // of sections into a narrow band (about 4 on either side of the diagonal for the coupled model), a few thousand
 // flops where the dense LU of Delta costs tens of thousands.
 #include <complex>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -57,6 +58,17 @@ double RootRealPartBound(const LinearDelaySystem& system);
 // Delta along the box's upper half (det Delta is real on the real axis: the lower half mirrors it). -1 when a root
 // lies on the box's edge or the change of argument cannot be followed.
 int CountRootsInBox(const CharacteristicDeterminant& det, double re_left, double re_right, double im_max);
+
+// The same argument principle and Newton's method for a characteristic function given otherwise than as a delay
+// system's determinant (e.g. the continuum string of kelvin_voigt_continuum.hpp): its value at s as log modulus and
+// phase. It must be analytic in the box and real on the real axis (the lower half mirrors the upper).
+using CharacteristicFunction = std::function<CharacteristicDeterminant::Value(std::complex<double>)>;
+// near_step: the longest step along the box's left edge (about 0.25 / the longest travel time in the function).
+int CountRootsInBox(const CharacteristicFunction& f, double near_step, double re_left, double re_right, double im_max);
+// Newton from s on f / prod_j (s - r_j)(s - conj r_j), the roots `known` divided out; false without convergence
+// within `iterations` or on a known root.
+bool NewtonOnFunction(const CharacteristicFunction& f, std::complex<double>& s, int iterations,
+                      const std::vector<std::complex<double>>& known);
 
 struct SeededSpectrum {
   // roots: the seeds' roots in the region (Re s >= re_min, 0 <= Im s <= im_max), distinct, rightmost first; only

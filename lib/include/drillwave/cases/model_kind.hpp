@@ -4,11 +4,13 @@
 // touches neither the runner, nor the solvers, nor the output writers: only the list in kind_registry.cpp.
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/analysis/kelvin_voigt_continuum.hpp"
 #include "drillwave/analysis/periodic_orbits.hpp"
 #include "drillwave/analysis/spectrum.hpp"
 #include "drillwave/core/constants.hpp"
@@ -56,6 +58,9 @@ struct LinearizedOperatingPoint {
   nlohmann::json steady_state;  // named values with units, e.g. {"bit_speed_rad_s": 6.2, ...}
   std::vector<std::string> state_names;
   analysis::LinearDelaySystem system;
+  // A string with Kelvin-Voigt damping as the continuum it discretizes (exact sections), where the kind can close it:
+  // `stability` reports its verdict beside the discretized system's.
+  std::optional<analysis::KelvinVoigtString> continuum = std::nullopt;
 };
 
 // A validated model ready to run; immutable, so one prepared model can be run many times (sweeps, fits).

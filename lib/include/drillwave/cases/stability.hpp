@@ -1,6 +1,7 @@
 #pragma once
 // Linearized stability of a case (DESIGN.md §4): its steady states at the inputs' final values, the characteristic
 // roots of the linearization about each, and stability maps over one parameter addressed by its JSON pointer.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,9 @@ namespace drillwave::cases {
 
 struct OperatingPointStability {
   LinearizedOperatingPoint point;
-  analysis::Spectrum spectrum;
+  analysis::Spectrum spectrum;  // of point.system: the discretized model the simulation integrates
+  // Of point.continuum where the kind gives one (a Kelvin-Voigt string): the physics the pieces approximate.
+  std::optional<analysis::ContinuumSpectrum> continuum = std::nullopt;
 };
 
 // Every steady state of the case with its spectrum. Throws InputError if the kind has no linearization.
@@ -30,7 +33,8 @@ std::vector<OperatingPointStability> AnalyzeStabilityFromNeighbour(const Case& c
                                                                    int& full_spectra);
 
 // {"operating_points": [{"steady_state", "stable", "spectral_abscissa", "essential_abscissa", "roots": [[re, im,
-// residual], ...] (the rightmost max_roots)}]}
+// residual], ...] (the rightmost max_roots)}]}, each point with a continuum spectrum also "continuum_kelvin_voigt":
+// {"stable", "verdict", "spectral_abscissa", "essential_abscissa", "certified", "box", "roots_re_im_residual"}.
 nlohmann::json StabilityToJson(const std::vector<OperatingPointStability>& result, int max_roots = 12);
 
 // Beyond the linearization: the case run from its own start (as `run` runs it), and whether that motion and the

@@ -91,6 +91,34 @@ void AddSectionsWithDamping(const std::vector<waves::Section>& sections, double 
   }
 }
 
+// The string as the continuum its Kelvin-Voigt parts discretize (analysis/kelvin_voigt_continuum.hpp), for the tops
+// that close it (imposed speed, dashpot, a PI speed drive without torque feedback, actuator delay, handover or
+// compliant gear) and a bit without lateral BHA; the ends' own dampers, without the half parts of lumped viscous
+// damping. The bit's torque slope is set per operating point.
+std::optional<analysis::KelvinVoigtString> ContinuumString(const std::vector<waves::Section>& sections, double gamma,
+                                                           double eta, const waves::Node& top, const waves::Node& bit) {
+  if (!(eta > 0) || bit.lateral) return std::nullopt;
+  analysis::KelvinVoigtString out;
+  for (const waves::Section& s : sections) out.sections.push_back({s.travel_time_s, s.impedance, s.length_m});
+  out.kelvin_voigt_s = eta;
+  out.viscous_damping_Nms_per_rad_m = gamma;
+  out.bit_inertia_kgm2 = bit.LumpedInertia();
+  using Kind = analysis::ContinuumTop::Kind;
+  switch (top.drive) {
+    case waves::Drive::kPrescribedSpeed: out.top = {Kind::kImposedSpeed, 0, 0, 0}; return out;
+    case waves::Drive::kSpeedDashpot:
+      out.top = {Kind::kDashpot, top.drive_damping + top.ground_damping, 0, 0};
+      return out;
+    case waves::Drive::kPiSpeedController:
+      if (top.has_torque_feedback() || top.law.actuator_delay_s > 0 || top.law.handover.active() ||
+          top.has_compliant_gear())
+        return std::nullopt;
+      out.top = {Kind::kPiSpeed, top.ground_damping + top.pi.kp, top.LumpedInertia(), top.pi.ki};
+      return out;
+    default: return std::nullopt;
+  }
+}
+
 // How a motor top is commanded: open loop by a schedule (`open_loop_key`), or by a PI speed controller on speed_rad_s.
 struct MotorCommand {
   const char* motor;  // "a DC motor", for messages
@@ -170,7 +198,9 @@ waves::Node ReadTop(const JsonReader& r, const waves::Section& top_section) {
 
 class TorsionalWaveModel : public PreparedModel {
  public:
-  explicit TorsionalWaveModel(waves::Network net) : net_(std::move(net)) {}
+  TorsionalWaveModel(waves::Network net, std::optional<analysis::KelvinVoigtString> continuum,
+                     double bit_lumped_damping)
+      : net_(std::move(net)), continuum_(std::move(continuum)), bit_lumped_damping_(bit_lumped_damping) {}
 
   RunResult Run(const RunSettings& settings) const override {
     waves::NetworkRunOptions options;
@@ -276,6 +306,15 @@ class TorsionalWaveModel : public PreparedModel {
     return points;
   }
 
+  // The continuum at the operating point: the bit's slope is the network's less the half part of lumped viscous damping
+  // its node carries.
+  std::optional<analysis::KelvinVoigtString> ContinuumAt(const analysis::NetworkOperatingPoint& p) const {
+    if (!continuum_) return std::nullopt;
+    analysis::KelvinVoigtString out = *continuum_;
+    out.bit_torque_slope_Nms_per_rad = p.bit_torque_slope_Nms_per_rad - bit_lumped_damping_;
+    return out;
+  }
+
   std::vector<LinearizedOperatingPoint> LinearizeNetwork() const {
     std::vector<LinearizedOperatingPoint> points;
     std::vector<analysis::NetworkOperatingPoint> steady;
@@ -301,12 +340,14 @@ class TorsionalWaveModel : public PreparedModel {
       } catch (const std::invalid_argument& e) {
         throw InputError("/model", std::string("no linearization for this string: ") + e.what());
       }
-      points.push_back({std::move(values), std::move(lin.state_names), std::move(lin.system)});
+      points.push_back({std::move(values), std::move(lin.state_names), std::move(lin.system), ContinuumAt(p)});
     }
     return points;
   }
 
   waves::Network net_;
+  std::optional<analysis::KelvinVoigtString> continuum_;  // bit torque slope 0: the operating point's comes in
+  double bit_lumped_damping_;  // the bit's half part of lumped viscous damping (the continuum carries it distributed)
 };
 
 class TorsionalWaveKind : public ModelKind {
@@ -410,11 +451,12 @@ class TorsionalWaveKind : public ModelKind {
       throw InputError(bit_reader.PathOf("inertia_kgm2"), "a BHA unbalance (bit/unbalance) needs a bit inertia > 0");
     bit_reader.Finish();
     net.nodes.push_back(bit);
+    std::optional<analysis::KelvinVoigtString> continuum = ContinuumString(sections, gamma, eta, net.top(), bit);
     // Half a damping part at each end of the string, so the total equals gamma * length.
-    if (gamma > 0) {
-      net.nodes.front().ground_damping += 0.5 * gamma * sections.front().length_m / subsections;
-      net.nodes.back().ground_damping += 0.5 * gamma * sections.back().length_m / subsections;
-    }
+    const double top_half_part = 0.5 * gamma * sections.front().length_m / subsections;
+    const double bit_half_part = 0.5 * gamma * sections.back().length_m / subsections;
+    net.nodes.front().ground_damping += top_half_part;
+    net.nodes.back().ground_damping += bit_half_part;
 
     if (model.Has("initial")) {
       const JsonReader initial = model.Object("initial");
@@ -427,7 +469,7 @@ class TorsionalWaveKind : public ModelKind {
     } catch (const std::invalid_argument& e) {
       throw InputError(model.PathOf("top"), e.what());
     }
-    return std::make_unique<TorsionalWaveModel>(std::move(net));
+    return std::make_unique<TorsionalWaveModel>(std::move(net), std::move(continuum), bit_half_part);
   }
 };
 
