@@ -3,6 +3,7 @@
 // starts), 3 numerical failure (with time and state), 4 internal error (with its message), 5 the outputs could not be
 // written after the work (disk full, a file-size limit: the file and the cause; the output folder is left as it was).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -45,6 +46,37 @@
 #include "drillwave/io/json_reader.hpp"
 
 namespace {
+
+// The flag that sets a library parameter (drillwave::ParameterError names it as the library does): "max_samples"
+// -> "--max-samples"; a parameter with a qualifier ("map /model/bit/inertia_kgm2") keeps it.
+std::string FlagOf(const std::string& parameter) {
+  const std::size_t space = parameter.find(' ');
+  std::string flag = "--" + parameter.substr(0, space);
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return space == std::string::npos ? flag : flag + parameter.substr(space);
+}
+
+// An input error as this tool's user sets things: a library parameter it names, and those its message advises,
+// by their flags.
+std::string InTermsOfFlags(const drillwave::InputError& e) {
+  std::string message = e.message();
+  for (const std::string& parameter : e.mentioned_parameters()) {
+    const std::string flag = FlagOf(parameter);
+    auto is_word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (std::size_t at = message.find(parameter); at != std::string::npos; at = message.find(parameter, at)) {
+      const std::size_t end = at + parameter.size();
+      if ((at > 0 && is_word(message[at - 1])) || (end < message.size() && is_word(message[end]))) {
+        at = end;
+        continue;
+      }
+      message.replace(at, parameter.size(), flag);
+      at += flag.size();
+    }
+  }
+  const bool parameter = dynamic_cast<const drillwave::ParameterError*>(&e) != nullptr;
+  const std::string where = parameter ? FlagOf(e.json_path()) : e.json_path();
+  return where.empty() ? message : where + ": " + message;
+}
 
 using drillwave::cases::Case;
 
@@ -100,7 +132,7 @@ int RunAndWrite(const std::string& file, const std::string& out_dir, const std::
 int Sweep(const std::string& file, const std::string& out_dir, const std::vector<std::string>& overrides,
           const std::string& pointer, const std::string& values_text, int jobs) {
   const nlohmann::json doc = LoadCaseDocument(file, overrides);
-  drillwave::cases::SweepSpec spec{pointer, drillwave::cases::ParseSweepValues(values_text, "--values"), jobs};
+  drillwave::cases::SweepSpec spec{pointer, drillwave::cases::ParseSweepValues(values_text, "values"), jobs};
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: sweeping " << pointer << " over " << spec.values.size() << " values on " << jobs
             << " thread(s)" << (file.empty() ? " [embedded default case]" : "") << std::endl;
@@ -170,7 +202,7 @@ int Stability(const std::string& file, const std::string& out_dir, const std::ve
   const auto dir = std::filesystem::absolute(out_dir).string();
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   if (!pointer.empty()) {
-    const drillwave::cases::SweepSpec spec{pointer, drillwave::cases::ParseSweepValues(values_text, "--values"), jobs};
+    const drillwave::cases::SweepSpec spec{pointer, drillwave::cases::ParseSweepValues(values_text, "values"), jobs};
     const auto rows = drillwave::cases::StabilityMap(doc, spec);
     drillwave::cases::WriteStabilityMap(doc, spec, rows, out_dir);
     int stable = 0;
@@ -239,7 +271,7 @@ int Inspect(const std::string& file, const std::string& out_dir, const std::stri
 std::pair<double, double> Window(const std::string& text) {
   const double inf = std::numeric_limits<double>::infinity();
   if (text.empty()) return {-inf, inf};
-  const auto values = drillwave::cases::ParseSweepValues(text, "--window");
+  const auto values = drillwave::cases::ParseSweepValues(text, "window");
   if (values.size() != 2)
     throw drillwave::InputError("--window", "'" + drillwave::ReadableText(text) + "': expected begin,end [s]");
   if (values[1] < values[0])
@@ -683,7 +715,7 @@ std::optional<double> GivenOrNot(double v) { return std::isnan(v) ? std::nullopt
 // --actuator-delays: delays [s] in [0, 10] (the top's actuator_delay_s range); none if not given.
 std::vector<double> ActuatorDelays(const std::string& text) {
   if (text.empty()) return {};
-  const std::vector<double> delays = drillwave::cases::ParseSweepValues(text, "--actuator-delays");
+  const std::vector<double> delays = drillwave::cases::ParseSweepValues(text, "actuator_delays");
   for (double d : delays)
     if (!(d >= 0 && d <= 10))
       throw drillwave::InputError("--actuator-delays", "expected delays in [0, 10] s, got " +
@@ -720,7 +752,7 @@ int CompareControllers(const std::string& file, const std::string& out_dir, cons
     throw drillwave::InputError("--tuning-period",
                                 "expected a period > 0 s, got " + drillwave::Significant(args.tuning_period_s, 6));
   if (!args.stiff_pi.empty()) {
-    const std::vector<double> v = drillwave::cases::ParseSweepValues(args.stiff_pi, "--stiff-pi");
+    const std::vector<double> v = drillwave::cases::ParseSweepValues(args.stiff_pi, "stiff_pi");
     if (v.size() != 3)
       throw drillwave::InputError("--stiff-pi", "expected J,kp,ki (three numbers), got " + args.stiff_pi);
     spec.stiff_pi = drillwave::cases::StiffPi{v[0], v[1], v[2]};
@@ -740,12 +772,12 @@ int CompareControllers(const std::string& file, const std::string& out_dir, cons
       if (args.envelope.size() != 2)
         throw drillwave::InputError("--envelope", "expected two axes, POINTER1=first:last:n POINTER2=first:last:n");
       const nlohmann::json stiff = drillwave::cases::StiffPiCase(doc, spec);
-      envelope.emplace(drillwave::cases::ParseMapAxis(args.envelope[0], stiff, "--envelope"),
-                       drillwave::cases::ParseMapAxis(args.envelope[1], stiff, "--envelope"));
+      envelope.emplace(drillwave::cases::ParseMapAxis(args.envelope[0], stiff, "envelope"),
+                       drillwave::cases::ParseMapAxis(args.envelope[1], stiff, "envelope"));
     }
     if (!delays.empty())  // every law again at each delay: three runs a delay, estimated on the stiff PI's case
       drillwave::cases::CheckPointsWork(drillwave::cases::ParseCase(drillwave::cases::StiffPiCase(doc, spec)),
-                                        3.0 * static_cast<double>(delays.size()), true, "--actuator-delays");
+                                        3.0 * static_cast<double>(delays.size()), true, "actuator_delays");
     drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
     std::cout << "drillwave: top-drive laws on '" << doc.value("name", std::string("case")) << "' (stiff PI, "
               << "SoftSpeed, Z-Torque), each from the same stick-slip" << std::endl;
@@ -1106,7 +1138,7 @@ int main(int argc, char** argv) {
     if (sweep->parsed()) return Sweep(case_file, sweep_out, overrides, sweep_pointer, sweep_values, jobs);
     return RunAndWrite(case_file, out_dir, overrides, check);
   } catch (const drillwave::InputError& e) {
-    std::cerr << "drillwave: bad input: " << e.what() << std::endl;
+    std::cerr << "drillwave: bad input: " << InTermsOfFlags(e) << std::endl;
     return 2;
   } catch (const drillwave::NumericalError& e) {
     std::cerr << "drillwave: numerical failure: " << e.what() << std::endl;

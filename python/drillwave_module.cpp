@@ -42,6 +42,7 @@
 
 namespace py = pybind11;
 using drillwave::InputError;
+using drillwave::ParameterError;
 using nlohmann::json;
 
 namespace {
@@ -168,7 +169,7 @@ std::optional<double> SampleLimit(py::handle limit) {
   if (limit.is_none()) return std::nullopt;
   const json value = ToJson(limit, "max_samples");
   if (!value.is_number())
-    throw InputError("--max-samples", "expected a finite number >= 1, got " + drillwave::ReadableText(value.dump()));
+    throw ParameterError("max_samples", "expected a finite number >= 1, got " + drillwave::ReadableText(value.dump()));
   return value.get<double>();
 }
 

@@ -84,12 +84,12 @@ def test_an_unknown_field_in_a_dict_and_a_bad_file_are_value_errors():
         drillwave.run(case, set={"/model/top/inertia_kgm2": object()})
     with pytest.raises(ValueError, match=r"^--set: 'top=3': expected /json/pointer=value"):
         drillwave.run(CASE, set=["top=3"])
-    with pytest.raises(ValueError, match=r"^--max-samples: expected a finite number >= 1, got 0"):
+    with pytest.raises(ValueError, match=r"^max_samples: expected a finite number >= 1, got 0"):
         drillwave.run(CASE, max_samples=0)
 
 
 def test_max_samples_refuses_a_long_run_for_one_call_only():
-    with pytest.raises(ValueError, match="max-samples"):
+    with pytest.raises(ValueError, match="max_samples"):
         drillwave.run(CASE, set=SHORT, max_samples=1000)
     assert len(drillwave.run(CASE, set=SHORT)["channels"]["time_s"]) == 6001  # the default limit again
 

@@ -94,7 +94,7 @@ TEST_F(ErrorPolicy, WorkIsEstimatedAndRefusedAboveTheLimit) {
   doc["simulation"]["output_interval_s"] = 1e-7;  // 1e8 samples
   Expect("run " + Write(doc) + Out(), 2, "/simulation/output_interval_s: 10 s simulated every 1e-07 s: the number "
                                           "of output samples is 100000000, above the limit of 10000000");
-  Expect("validate " + Write(doc), 2, "raise the limit with --max-samples");
+  Expect("validate " + Write(doc), 2, "or raise --max-samples");
   EXPECT_EQ(RunTool("validate " + Write(doc) + " --max-samples 2e8").exit_code, 0);
   doc["simulation"]["output_interval_s"] = 0.01;
   doc["simulation"]["max_step_s"] = 1e-7;
@@ -110,7 +110,7 @@ TEST_F(ErrorPolicy, AHugeSweepIsRefusedBeforeAnyRun) {
       " -p /model/bit/inertia_kgm2 -v 50:150:1000000" + Out());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("--values: 1000000 runs of about"), std::string::npos) << o.output;
-  EXPECT_NE(o.output.find("raise the limit with --max-samples"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("or raise --max-samples"), std::string::npos) << o.output;
   EXPECT_FALSE(fs::exists(dir_ / "out"));
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }

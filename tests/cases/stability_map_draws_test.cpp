@@ -81,11 +81,11 @@ TEST(StabilityMapOverDraws, DrawsAreSpreadEvenlyOverTheFileAndBadFilesAreRefused
     }
     return std::string();
   };
-  EXPECT_EQ(refused("step,log_likelihood\n1,2\n"), "--draws");                 // no pointer column
-  EXPECT_EQ(refused("/model/bit/friction/law\n1\n"), "--draws");               // not a number in the case
-  EXPECT_EQ(refused("/model/bit/friction/mu_s\n"), "--draws");                 // no rows
-  EXPECT_EQ(refused("/model/bit/friction/mu_s\nnan\n"), "--draws");            // not finite
-  EXPECT_EQ(refused("/model/bit/friction/mu_s\n1\n", -1), "--draw-count");
+  EXPECT_EQ(refused("step,log_likelihood\n1,2\n"), "draws");                 // no pointer column
+  EXPECT_EQ(refused("/model/bit/friction/law\n1\n"), "draws");               // not a number in the case
+  EXPECT_EQ(refused("/model/bit/friction/mu_s\n"), "draws");                 // no rows
+  EXPECT_EQ(refused("/model/bit/friction/mu_s\nnan\n"), "draws");            // not finite
+  EXPECT_EQ(refused("/model/bit/friction/mu_s\n1\n", -1), "draw_count");
   fs::remove(file);
 }
 
@@ -97,7 +97,7 @@ TEST(StabilityMapOverDraws, AnAxisValueTheCaseRefusesNamesItsFieldOnce) {
     FAIL() << "not refused";
   } catch (const InputError& e) {
     const std::string what = e.what(), path = "/model/hoist/weight_on_bit_N";
-    EXPECT_EQ(e.json_path(), "--map");
+    EXPECT_EQ(e.json_path(), "map");
     const std::size_t first = what.find(path + ":");
     ASSERT_NE(first, std::string::npos) << what;
     EXPECT_EQ(what.find(path + ":", first + 1), std::string::npos) << what;

@@ -220,7 +220,7 @@ TEST(StabilityMap2D, BadAxesNameTheOption) {
       ParseMapAxis(text, doc);
       ADD_FAILURE() << text;
     } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.json_path()).find("--map"), std::string::npos) << text << ": " << e.json_path();
+      EXPECT_EQ(std::string(e.json_path()).rfind("map", 0), 0u) << text << ": " << e.json_path();
     }
   }
   // A value the field refuses: the message names both pointers and values of the point.

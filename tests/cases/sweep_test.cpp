@@ -29,15 +29,15 @@ nlohmann::json ShortTwoDisc() {
 constexpr const char* kVoltage = "/model/upper_disc/input_voltage_V";
 
 TEST(SweepValues, RangesAndLists) {
-  EXPECT_EQ(ParseSweepValues("0:1:5", "--values"), (std::vector<double>{0, 0.25, 0.5, 0.75, 1}));
-  EXPECT_EQ(ParseSweepValues("2:9:1", "--values"), (std::vector<double>{2}));
-  EXPECT_EQ(ParseSweepValues("0.5,2,-1e-3", "--values"), (std::vector<double>{0.5, 2, -1e-3}));
+  EXPECT_EQ(ParseSweepValues("0:1:5", "values"), (std::vector<double>{0, 0.25, 0.5, 0.75, 1}));
+  EXPECT_EQ(ParseSweepValues("2:9:1", "values"), (std::vector<double>{2}));
+  EXPECT_EQ(ParseSweepValues("0.5,2,-1e-3", "values"), (std::vector<double>{0.5, 2, -1e-3}));
   for (const char* bad : {"", "1:2", "1:2:0", "1:2:2.5", "a,b", "1,,2", "1,", "1:2:3:4", "nan", "1:inf:3"}) {
     try {
-      ParseSweepValues(bad, "--values");
+      ParseSweepValues(bad, "values");
       ADD_FAILURE() << "accepted '" << bad << "'";
     } catch (const InputError& e) {
-      EXPECT_EQ(e.json_path(), "--values") << bad;
+      EXPECT_EQ(e.json_path(), "values") << bad;
     }
   }
 }
@@ -52,16 +52,16 @@ TEST(Sweep, AHugeSweepIsRefusedFromItsWorkEstimateBeforeAnythingElseIsParsed) {
   SetMaxSamples(1e5);  // a sweep's limit of 1e7: 1000 runs
   EXPECT_THROW(RunSweep(ShortTwoDisc(), {kVoltage, std::vector<double>(1001, 1.0), 1}, nullptr), InputError);
   SetMaxSamples(1e7);
-  const std::vector<double> values = ParseSweepValues("0.1:6:1000000", "--values");
+  const std::vector<double> values = ParseSweepValues("0.1:6:1000000", "values");
   const auto start = std::chrono::steady_clock::now();
   try {
     RunSweep(ShortTwoDisc(), {kVoltage, values, 2}, nullptr);
     ADD_FAILURE() << "a sweep of 1e6 runs was accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.json_path(), "--values");
-    EXPECT_NE(std::string(e.what()).find("--values: 1000000 runs of about 6000 output samples or steps each (each run "
+    EXPECT_EQ(e.json_path(), "values");
+    EXPECT_NE(std::string(e.what()).find("values: 1000000 runs of about 6000 output samples or steps each (each run "
                                          "counted as at least 10000: 1e+10 in all) are above a sweep's limit of "
-                                         "1000000000 (100 x --max-samples)"),
+                                         "1000000000 (100 x max_samples)"),
               std::string::npos)
         << e.what();
   }

@@ -88,14 +88,14 @@ TEST(Posterior, BadOptionsAreRefusedNamingTheOptionBeforeAnyRun) {
   const nlohmann::json doc = TwoMassCase();
   const std::vector<FitParameter> mu = {{kMuS, 0.55, 1.2}};
   PosteriorOptions p;
-  EXPECT_EQ(RefusedOption(doc, {}, p), "--params");
+  EXPECT_EQ(RefusedOption(doc, {}, p), "params");
   p.walkers = 7;
-  EXPECT_EQ(RefusedOption(doc, mu, p), "--walkers");
+  EXPECT_EQ(RefusedOption(doc, mu, p), "walkers");
   p.walkers = 2;  // fewer than 2 p + 2
-  EXPECT_EQ(RefusedOption(doc, mu, p), "--walkers");
+  EXPECT_EQ(RefusedOption(doc, mu, p), "walkers");
   p = PosteriorOptions{};
   p.burn_in = p.steps;
-  EXPECT_EQ(RefusedOption(doc, mu, p), "--burn-in");
+  EXPECT_EQ(RefusedOption(doc, mu, p), "burn_in");
   p = PosteriorOptions{};
   EXPECT_EQ(RefusedOption(doc, {{"/model/bit/friction/law", 0, 1}}, p), "/model/bit/friction/law");
   EXPECT_EQ(RefusedOption(doc, {{kMuS, 1.2, 0.55}}, p), kMuS);
@@ -110,8 +110,8 @@ TEST(Posterior, WorkAboveTheLimitIsRefusedBeforeAnyRun) {
     SamplePosterior(doc, NoisyTwin(doc, 0.5), Options(), {{kMuS, 0.55, 1.2}}, p);
     FAIL() << "not refused";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.json_path(), "--steps");
-    EXPECT_NE(std::string(e.what()).find("--max-samples"), std::string::npos) << e.what();
+    EXPECT_EQ(e.json_path(), "steps");
+    EXPECT_NE(std::string(e.what()).find("max_samples"), std::string::npos) << e.what();
   }
 }
 

@@ -283,7 +283,7 @@ TEST(ApplySetOption, SetsTheValueAtThePointer) {
   EXPECT_EQ(doc.at("model").at("law"), "stribeck");
   EXPECT_EQ(doc.at("model").at("knots").at(1).at(1).get<double>(), 5);
   EXPECT_STREQ(ErrorOf([&] { ApplySetOption(doc, "model/k=2"); }).what(),
-               "--set: 'model/k=2': expected /json/pointer=value");
+               "set: 'model/k=2': expected /json/pointer=value");
 }
 
 TEST(ApplySetOption, RefusesWhatACaseFileMayNotContain) {
@@ -292,13 +292,13 @@ TEST(ApplySetOption, RefusesWhatACaseFileMayNotContain) {
   // A byte that is not UTF-8 passed every reader and failed only when case.json was written after the run
   // ("internal error: [json.exception.type_error.316] invalid UTF-8 byte", exit 4).
   EXPECT_STREQ(ErrorOf([&] { ApplySetOption(doc, "/name=caf\xE9"); }).what(),
-               "--set: '/name=caf\\xE9': byte 10 is not UTF-8 (\\xE9)");
+               "set: '/name=caf\\xE9': byte 10 is not UTF-8 (\\xE9)");
   const std::string deep = "/model/k=" + std::string(100000, '[') + std::string(100000, ']');
   EXPECT_NE(std::string(ErrorOf([&] { ApplySetOption(doc, deep); }).what())
                 .find("': the value is nested more than 64 levels deep"),
             std::string::npos);
   const std::string dup = ErrorOf([&] { ApplySetOption(doc, R"(/model={"k": 1, "k": 2})"); }).what();
-  EXPECT_NE(dup.find("--set: '/model={\"k\": 1, \"k\": 2}': "), std::string::npos) << dup;
+  EXPECT_NE(dup.find("set: '/model={\"k\": 1, \"k\": 2}': "), std::string::npos) << dup;
   EXPECT_NE(dup.find("duplicate key \"k\""), std::string::npos) << dup;
   EXPECT_EQ(doc, original);
 }

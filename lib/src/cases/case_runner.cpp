@@ -29,8 +29,8 @@ void CheckWork(const RunSettings& s, const JsonReader& sim) {
   auto refuse = [&](const std::string& key, double count, const std::string& what) {
     throw InputError(sim.PathOf(key), ReadableNumber(s.duration_s) + " s simulated " + what + " is " +
                                           ReadableNumber(count) + ", above the limit of " + ReadableNumber(limit) +
-                                          "; choose a larger " + key + ", a shorter duration_s, or raise the limit "
-                                          "with --max-samples");
+                                          "; choose a larger " + key + ", a shorter duration_s, or raise max_samples",
+                                      {"max_samples"});
   };
   if (s.output_interval_s > 0 && s.duration_s / s.output_interval_s > limit)
     refuse("output_interval_s", s.duration_s / s.output_interval_s,
@@ -99,7 +99,7 @@ void NullifySentinels(nlohmann::json& value) {
 
 void SetMaxSamples(double limit) {
   if (!(limit >= 1) || !std::isfinite(limit))
-    throw InputError("--max-samples", "expected a finite number >= 1, got " + ReadableNumber(limit));
+    throw ParameterError("max_samples", "expected a finite number >= 1, got " + ReadableNumber(limit));
   max_samples = limit;
 }
 

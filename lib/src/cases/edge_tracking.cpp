@@ -65,13 +65,13 @@ EdgeSpec ParseEdgeOption(const std::string& text, const nlohmann::json& document
   const auto eq = text.rfind('=');
   const auto colon = eq == std::string::npos ? std::string::npos : text.find(':', eq);
   if (eq == std::string::npos || eq == 0 || colon == std::string::npos)
-    throw InputError("--edge", "expected POINTER=decays:sticks (a value whose run decays, one whose run sticks), got '" +
+    throw ParameterError("edge", "expected POINTER=decays:sticks (a value whose run decays, one whose run sticks), got '" +
                                    text + "'");
   EdgeSpec spec;
   spec.pointer = text.substr(0, eq);
-  spec.decays = ParseNumber(text.substr(eq + 1, colon - eq - 1), "--edge");
-  spec.sticks = ParseNumber(text.substr(colon + 1), "--edge");
-  if (spec.decays == spec.sticks) throw InputError("--edge", "the two values must differ");
+  spec.decays = ParseNumber(text.substr(eq + 1, colon - eq - 1), "edge");
+  spec.sticks = ParseNumber(text.substr(colon + 1), "edge");
+  if (spec.decays == spec.sticks) throw ParameterError("edge", "the two values must differ");
   nlohmann::json probe = document;
   io::SetByPointer(probe, spec.pointer, spec.decays);  // names the pointer if the case has nothing there
   return spec;

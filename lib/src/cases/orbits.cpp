@@ -32,24 +32,24 @@ analysis::FieldFamily CaseFieldFamily(const nlohmann::json& document, const std:
 OrbitsSpec ParseContinueOption(const std::string& text, const nlohmann::json& document) {
   const auto eq = text.rfind('=');
   if (eq == std::string::npos || eq == 0 || text[0] != '/')
-    throw InputError("--continue", "'" + text + "': expected /json/pointer=first:last or /json/pointer=first:last:count");
+    throw ParameterError("continue", "'" + text + "': expected /json/pointer=first:last or /json/pointer=first:last:count");
   std::string range = text.substr(eq + 1);
   if (std::count(range.begin(), range.end(), ':') == 1) range += ":" + std::to_string(kDefaultGrid);
-  OrbitsSpec spec{text.substr(0, eq), ParseSweepValues(range, "--continue " + text.substr(0, eq))};
+  OrbitsSpec spec{text.substr(0, eq), ParseSweepValues(range, "continue " + text.substr(0, eq))};
   if (spec.grid.size() < 2 || !(spec.grid.front() < spec.grid.back()))
-    throw InputError("--continue", "'" + text + "': expected first < last and a count of at least 2");
+    throw ParameterError("continue", "'" + text + "': expected first < last and a count of at least 2");
   for (double v : {spec.grid.front(), spec.grid.back()}) {
     nlohmann::json probe = document;
     try {
       io::SetByPointer(probe, spec.pointer, v);
       ParseCase(probe).model->OrbitField();
     } catch (const InputError& e) {
-      throw InputError("--continue", "'" + text + "': " + e.what());  // what() names its path
+      throw ParameterError("continue", "'" + text + "': " + e.what());  // what() names its path
     }
   }
   nlohmann::json first = document;
   io::SetByPointer(first, spec.pointer, spec.grid.front());
-  CheckPointsWork(ParseCase(first), static_cast<double>(spec.grid.size()), false, "--continue");
+  CheckPointsWork(ParseCase(first), static_cast<double>(spec.grid.size()), false, "continue");
   return spec;
 }
 

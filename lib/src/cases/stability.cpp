@@ -187,11 +187,11 @@ void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStabil
 
 std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const SweepSpec& spec,
                                           const analysis::SpectrumOptions& options) {
-  if (spec.values.empty()) throw InputError("--values", "no values to sweep");
-  if (spec.jobs < 1) throw InputError("--jobs", std::to_string(spec.jobs) + " is not >= 1");
+  if (spec.values.empty()) throw ParameterError("values", "no values to sweep");
+  if (spec.jobs < 1) throw ParameterError("jobs", std::to_string(spec.jobs) + " is not >= 1");
   std::vector<Case> cases;
   for (double v : spec.values) {
-    if (cases.size() == 1) CheckPointsWork(cases.front(), static_cast<double>(spec.values.size()), false, "--values");
+    if (cases.size() == 1) CheckPointsWork(cases.front(), static_cast<double>(spec.values.size()), false, "values");
     nlohmann::json doc = document;
     io::SetByPointer(doc, spec.pointer, v);
     try {

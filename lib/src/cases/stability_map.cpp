@@ -84,10 +84,10 @@ io::Marker MarkerOf(Regime r) {
 MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document, const std::string& option) {
   const auto eq = text.rfind('=');
   if (eq == std::string::npos || eq == 0 || text[0] != '/')
-    throw InputError(option, "'" + text + "': expected /json/pointer=first:last:count");
+    throw ParameterError(option, "'" + text + "': expected /json/pointer=first:last:count");
   MapAxis axis{text.substr(0, eq), ParseSweepValues(text.substr(eq + 1), option + " " + text.substr(0, eq))};
   for (double v : axis.values)
-    if (!std::isfinite(v)) throw InputError(option, "'" + text + "': a value is not finite");
+    if (!std::isfinite(v)) throw ParameterError(option, "'" + text + "': a value is not finite");
   // The pointer must lead to a field the case reads: set the first value and parse (a misspelt optional field is
   // refused by the case's reader as unknown).
   nlohmann::json probe = document;
@@ -95,7 +95,7 @@ MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document, co
     io::SetByPointer(probe, axis.pointer, axis.values.front());
     ParseCase(probe);
   } catch (const InputError& e) {
-    throw InputError(option, "'" + text + "': " + e.what());  // what() names its path
+    throw ParameterError(option, "'" + text + "': " + e.what());  // what() names its path
   }
   return axis;
 }
@@ -130,8 +130,8 @@ bool LinearlySteady(const StabilityMapCell& cell) {
 
 StabilityMapResult StabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
                                   const analysis::SpectrumOptions& options) {
-  if (spec.jobs < 1) throw InputError("--jobs", std::to_string(spec.jobs) + " is not >= 1");
-  if (spec.x.values.empty() || spec.y.values.empty()) throw InputError("--map", "no values to map");
+  if (spec.jobs < 1) throw ParameterError("jobs", std::to_string(spec.jobs) + " is not >= 1");
+  if (spec.x.values.empty() || spec.y.values.empty()) throw ParameterError("map", "no values to map");
   const std::size_t nx = spec.x.values.size(), ny = spec.y.values.size();
   // Every grid point parsed first; the document copies are dropped (a 100 x 100 map would hold 10^4 of them).
   std::vector<Case> cases;
@@ -149,7 +149,7 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
       }
       cases.back().document = nullptr;
       // The work from the first point, before the others are parsed (issue 38: 1000 x 1000 with --simulate ran on).
-      if (cases.size() == 1) CheckPointsWork(cases.front(), static_cast<double>(nx) * ny, spec.simulate, "--map");
+      if (cases.size() == 1) CheckPointsWork(cases.front(), static_cast<double>(nx) * ny, spec.simulate, "map");
     }
   // A kind without linearization fails here, before the threads start; with simulate, its map holds the regimes only.
   bool linearizable = true;

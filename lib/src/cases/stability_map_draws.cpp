@@ -15,13 +15,13 @@ namespace drillwave::cases {
 
 ParameterDraws ReadParameterDraws(const std::string& file, const nlohmann::json& document, int count) {
   if (count < 0 || count > 100000)
-    throw InputError("--draw-count", "expected a whole number in [0, 100000] (0: every row), got " +
+    throw ParameterError("draw_count", "expected a whole number in [0, 100000] (0: every row), got " +
                                          std::to_string(count));
   io::CsvTable table;
   try {
     table = io::ReadCsv(file);
   } catch (const InputError& e) {
-    throw InputError("--draws", e.what());
+    throw ParameterError("draws", e.what());
   }
   ParameterDraws draws;
   std::vector<std::size_t> columns;
@@ -32,18 +32,18 @@ ParameterDraws ReadParameterDraws(const std::string& file, const nlohmann::json&
     try {
       ptr = nlohmann::json::json_pointer(name);
     } catch (const nlohmann::json::exception&) {
-      throw InputError("--draws", file + ": column " + name + " is not a JSON pointer");
+      throw ParameterError("draws", file + ": column " + name + " is not a JSON pointer");
     }
     if (!document.contains(ptr) || !document.at(ptr).is_number())
-      throw InputError("--draws", file + ": column " + name + " is no number in the case");
+      throw ParameterError("draws", file + ": column " + name + " is no number in the case");
     draws.pointers.push_back(name);
     columns.push_back(j);
   }
   if (columns.empty())
-    throw InputError("--draws", file + " has no column named by a JSON pointer (e.g. /model/bit/friction/mu), as "
+    throw ParameterError("draws", file + " has no column named by a JSON pointer (e.g. /model/bit/friction/mu), as "
                                        "calibrate's posterior_samples.csv has");
   const std::size_t rows = table.columns.empty() ? 0 : table.columns.front().size();
-  if (rows == 0) throw InputError("--draws", file + " has no rows");
+  if (rows == 0) throw ParameterError("draws", file + " has no rows");
   const std::size_t n = count == 0 ? rows : std::min<std::size_t>(rows, static_cast<std::size_t>(count));
   for (std::size_t d = 0; d < n; ++d) {
     const std::size_t row = d * rows / n;  // spread evenly: successive rows of a chain are correlated
@@ -51,7 +51,7 @@ ParameterDraws ReadParameterDraws(const std::string& file, const nlohmann::json&
     for (std::size_t j : columns) {
       const double v = table.columns[j][row];
       if (!std::isfinite(v))
-        throw InputError("--draws", file + ": row " + std::to_string(row + 2) + " of column " + table.header[j] +
+        throw ParameterError("draws", file + ": row " + std::to_string(row + 2) + " of column " + table.header[j] +
                                         " is not a finite number");
       values.push_back(v);
     }
@@ -62,9 +62,9 @@ ParameterDraws ReadParameterDraws(const std::string& file, const nlohmann::json&
 
 StabilityMapResult StabilityMapOverDraws(const nlohmann::json& document, const StabilityMapSpec& spec,
                                          const ParameterDraws& draws, const std::function<void(int, int)>& progress) {
-  if (draws.rows.empty()) throw InputError("--draws", "no draws to map over");
+  if (draws.rows.empty()) throw ParameterError("draws", "no draws to map over");
   const double points = static_cast<double>(spec.x.values.size() * spec.y.values.size());
-  CheckPointsWork(ParseCase(document), points * static_cast<double>(draws.rows.size() + 1), spec.simulate, "--draws");
+  CheckPointsWork(ParseCase(document), points * static_cast<double>(draws.rows.size() + 1), spec.simulate, "draws");
   StabilityMapResult result = StabilityMap2D(document, spec);
   const std::size_t cells = result.cells.size();
   std::vector<int> unstable(cells, 0), stick_slip(cells, 0), simulated(cells, 0);

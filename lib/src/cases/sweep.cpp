@@ -23,7 +23,7 @@ double ParseNumber(const std::string& text, const std::string& what) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
-    throw InputError(what, "'" + text + "' is not a finite number");
+    throw ParameterError(what, "'" + text + "' is not a finite number");
   return v;
 }
 
@@ -51,17 +51,17 @@ std::vector<double> ParseSweepValues(const std::string& text, const std::string&
   std::vector<double> values;
   if (text.find(':') != std::string::npos) {
     const auto parts = Split(text, ':');
-    if (parts.size() != 3) throw InputError(what, "'" + text + "': expected first:last:count or v1,v2,...");
+    if (parts.size() != 3) throw ParameterError(what, "'" + text + "': expected first:last:count or v1,v2,...");
     const double first = ParseNumber(parts[0], what), last = ParseNumber(parts[1], what);
     const double count = ParseNumber(parts[2], what);
     if (count < 1 || count != std::floor(count) || count > 1e6)
-      throw InputError(what, "'" + text + "': the count must be a whole number in [1, 1e6]");
+      throw ParameterError(what, "'" + text + "': the count must be a whole number in [1, 1e6]");
     const int n = static_cast<int>(count);
     for (int i = 0; i < n; ++i) values.push_back(n == 1 ? first : first + (last - first) * i / (n - 1));
   } else {
     for (const std::string& part : Split(text, ',')) values.push_back(ParseNumber(part, what));
   }
-  if (values.empty()) throw InputError(what, "no values given");
+  if (values.empty()) throw ParameterError(what, "no values given");
   return values;
 }
 
@@ -78,12 +78,13 @@ void CheckPointsWork(const Case& first, double points, bool runs_each, const std
   const double per_point = kSweepRunMinimumWork + (runs_each ? RunWork(first.settings) : 0.0);
   const double work = points * per_point, limit = kSweepWorkPerMaxSample * MaxSamples();
   if (work > limit)
-    throw InputError(option, ReadableNumber(points) + " points of about " + ReadableNumber(std::round(per_point)) +
+    throw ParameterError(option, ReadableNumber(points) + " points of about " + ReadableNumber(std::round(per_point)) +
                                  " work units each (" + ReadableNumber(kSweepRunMinimumWork) + " for its analysis" +
                                  (runs_each ? std::string(", the rest its run's output samples or steps") : "") +
                                  ": " + ReadableNumber(work) + " in all) are above the limit of " +
                                  ReadableNumber(limit) + " (" + ReadableNumber(kSweepWorkPerMaxSample) +
-                                 " x --max-samples); ask for fewer points, or raise the limit with --max-samples");
+                                 " x max_samples); ask for fewer points, or raise max_samples",
+                         {"max_samples"});
 }
 
 void CheckSweepWork(const Case& first, std::size_t runs) {
@@ -91,17 +92,18 @@ void CheckSweepWork(const Case& first, std::size_t runs) {
   const double work = static_cast<double>(runs) * std::max(per_run, kSweepRunMinimumWork);
   const double limit = kSweepWorkPerMaxSample * MaxSamples();
   if (work > limit)
-    throw InputError("--values", std::to_string(runs) + " runs of about " + ReadableNumber(std::round(per_run)) +
+    throw ParameterError("values", std::to_string(runs) + " runs of about " + ReadableNumber(std::round(per_run)) +
                                      " output samples or steps each (each run counted as at least " +
                                      ReadableNumber(kSweepRunMinimumWork) + ": " + ReadableNumber(work) +
                                      " in all) are above a sweep's limit of " + ReadableNumber(limit) + " (" +
-                                     ReadableNumber(kSweepWorkPerMaxSample) + " x --max-samples); sweep fewer "
-                                     "values, or raise the limit with --max-samples");
+                                     ReadableNumber(kSweepWorkPerMaxSample) + " x max_samples); sweep fewer "
+                                     "values, or raise max_samples",
+                         {"max_samples"});
 }
 
 SweepResult RunSweep(const nlohmann::json& document, const SweepSpec& spec, const SweepProgress& progress) {
-  if (spec.values.empty()) throw InputError("--values", "no values to sweep");
-  if (spec.jobs < 1) throw InputError("--jobs", std::to_string(spec.jobs) + " is not >= 1");
+  if (spec.values.empty()) throw ParameterError("values", "no values to sweep");
+  if (spec.jobs < 1) throw ParameterError("jobs", std::to_string(spec.jobs) + " is not >= 1");
   auto parse = [&](double v) {
     if (!std::isfinite(v)) throw InputError(spec.pointer, "a sweep value is not finite");
     try {

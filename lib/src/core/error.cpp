@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <sstream>
 
 namespace drillwave {
@@ -40,8 +41,11 @@ std::size_t Utf8SequenceLength(std::string_view text, std::size_t i) {
 
 }  // namespace
 
-InputError::InputError(std::string json_path, const std::string& message)
-    : std::runtime_error(json_path.empty() ? message : json_path + ": " + message), json_path_(std::move(json_path)) {}
+InputError::InputError(std::string json_path, const std::string& message, std::vector<std::string> mentioned_parameters)
+    : std::runtime_error(json_path.empty() ? message : json_path + ": " + message),
+      json_path_(std::move(json_path)),
+      message_(message),
+      mentioned_parameters_(std::move(mentioned_parameters)) {}
 
 NumericalError::NumericalError(const std::string& what, double time, std::vector<double> state)
     : std::runtime_error(DescribeNumericalFailure(what, time, state)), time_(time), state_(std::move(state)) {}

@@ -56,7 +56,7 @@ void CheckWindow(const Recording& rec, double model_begin_s, double model_end_s,
   for (double t : rec.time_s) samples += t >= lo && t <= hi ? 1 : 0;
   const bool whole = !(std::abs(window_begin_s) < 1e300) && !(std::abs(window_end_s) < 1e300);  // no --window
   if (samples < 10)
-    throw InputError("--window", "fewer than 10 recorded samples in [" + Fixed(lo, 3) + ", " + Fixed(hi, 3) +
+    throw ParameterError("window", "fewer than 10 recorded samples in [" + Fixed(lo, 3) + ", " + Fixed(hi, 3) +
                                      "] s, where " +
                                      (whole ? std::string()
                                             : "the window (" + ReadableNumber(window_begin_s) + " to " +
@@ -88,11 +88,11 @@ std::vector<ChannelMap> ResolveChannelMaps(const std::vector<std::string>& texts
   for (const std::string& m : texts) {
     const ChannelMap map = ParseChannelMap(m);
     if (!recording.Has(map.recording))
-      throw InputError("--map", "'" + ReadableText(m) + "': " + recording.source +
+      throw ParameterError("map", "'" + ReadableText(m) + "': " + recording.source +
                                                " has no channel " + ReadableText(map.recording) +
                                                " (it has: " + list(recording.names) + ")");
     if (std::find(model_names.begin(), model_names.end(), map.model) == model_names.end())
-      throw InputError("--map", "'" + ReadableText(m) + "': the model has no channel " +
+      throw ParameterError("map", "'" + ReadableText(m) + "': the model has no channel " +
                                                ReadableText(map.model) + " (it has: " + list(model_names) +
                                                ")");
     maps.push_back(map);
@@ -118,7 +118,7 @@ std::vector<ChannelMap> ResolveChannelMaps(const std::vector<std::string>& texts
 ChannelMap ParseChannelMap(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
-    throw InputError("--map", "'" + ReadableText(text) + "': expected recording_channel=model_channel[*scale]");
+    throw ParameterError("map", "'" + ReadableText(text) + "': expected recording_channel=model_channel[*scale]");
   ChannelMap m{text.substr(0, eq), text.substr(eq + 1), 1.0};
   const auto star = m.model.find('*');
   if (star != std::string::npos) {
@@ -127,21 +127,21 @@ ChannelMap ParseChannelMap(const std::string& text) {
     char* end = nullptr;
     m.scale = std::strtod(factor.c_str(), &end);
     if (factor.empty() || end != factor.c_str() + factor.size() || !std::isfinite(m.scale) || m.scale == 0)
-      throw InputError("--map", "'" + ReadableText(text) + "': the scale must be a finite non-zero number");
+      throw ParameterError("map", "'" + ReadableText(text) + "': the scale must be a finite non-zero number");
   }
   return m;
 }
 
 Comparison Compare(const Recording& rec, const cases::RunResult& model, const std::vector<ChannelMap>& maps,
                    double window_begin_s, double window_end_s, const InspectOptions& options) {
-  if (maps.empty()) throw InputError("--map", "no channels to compare");
+  if (maps.empty()) throw ParameterError("map", "no channels to compare");
   Comparison c;
   CheckWindow(rec, model.time_s.front(), model.time_s.back(), window_begin_s, window_end_s);
   c.window_begin_s = std::max({window_begin_s, rec.time_s.front(), model.time_s.front()});
   c.window_end_s = std::min({window_end_s, rec.time_s.back(), model.time_s.back()});
   for (const std::string& needed : {options.bit_speed, options.top_speed})
     if (std::none_of(maps.begin(), maps.end(), [&](const ChannelMap& m) { return m.recording == needed; }))
-      throw InputError("--map", "the comparison needs the recording's " + needed + " mapped to a model channel");
+      throw ParameterError("map", "the comparison needs the recording's " + needed + " mapped to a model channel");
 
   // Both sides on the recording's time grid within the window.
   Recording r, m;
@@ -161,7 +161,7 @@ Comparison Compare(const Recording& rec, const cases::RunResult& model, const st
     } catch (const std::out_of_range&) {
       std::string list;
       for (const auto& ch : model.channels) list += (list.empty() ? "" : ", ") + ch.name;
-      throw InputError("--map", "the model has no channel " + map.model + " (it has: " + list + ")");
+      throw ParameterError("map", "the model has no channel " + map.model + " (it has: " + list + ")");
     }
     for (double& v : simulated) v *= map.scale;
     m.names.push_back(map.recording);

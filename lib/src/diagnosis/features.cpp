@@ -310,7 +310,7 @@ FeatureSet MeasureFeatures(const Recording& r, double begin_s, double end_s, con
     if (r.time_s[i] >= begin_s && r.time_s[i] <= end_s) first = std::min(first, i), last = i + 1;
   const int parts = std::max(1, o.parts);
   if (first >= last || last - first < static_cast<std::size_t>(8 * parts))
-    throw InputError("--window", "fewer than " + std::to_string(8 * parts) + " samples of " + r.source + " in [" +
+    throw ParameterError("window", "fewer than " + std::to_string(8 * parts) + " samples of " + r.source + " in [" +
                                      ReadableNumber(begin_s) + ", " + ReadableNumber(end_s) + "] s");
   const std::map<std::string, double> whole = Measure(r, first, last, o);
   std::vector<std::map<std::string, double>> part_features;

@@ -35,7 +35,7 @@ double Objective(const Comparison& c, const std::vector<std::string>& features) 
 FitParameter ParseFitParameter(const std::string& text) {
   const auto a = text.find(':'), b = text.rfind(':');
   if (text.empty() || text[0] != '/' || a == std::string::npos || a == b)
-    throw InputError("--param", "'" + text + "': expected /json/pointer:lower:upper");
+    throw ParameterError("param", "'" + text + "': expected /json/pointer:lower:upper");
   FitParameter p{text.substr(0, a), 0, 0};
   char* end = nullptr;
   const std::string lo = text.substr(a + 1, b - a - 1), hi = text.substr(b + 1);
@@ -44,7 +44,7 @@ FitParameter ParseFitParameter(const std::string& text) {
   p.upper = std::strtod(hi.c_str(), &end);
   const bool hi_ok = !hi.empty() && end == hi.c_str() + hi.size();
   if (!lo_ok || !hi_ok || !std::isfinite(p.lower) || !std::isfinite(p.upper) || !(p.lower < p.upper))
-    throw InputError("--param", "'" + ReadableText(text) + "': " +
+    throw ParameterError("param", "'" + ReadableText(text) + "': " +
                                     (lo_ok && hi_ok && p.lower > p.upper ? "the bounds are reversed; " : "") +
                                     "the bounds must be finite numbers with lower < upper");
   return p;
@@ -65,7 +65,7 @@ double CaseValue(const nlohmann::json& document, const FitParameter& p) {
 
 FitResult FitFeatures(const nlohmann::json& document, const Recording& recording,
                       const std::vector<FitParameter>& parameters, const FitOptions& o, const FitProgress& progress) {
-  if (parameters.empty()) throw InputError("--param", "no parameter to fit");
+  if (parameters.empty()) throw ParameterError("param", "no parameter to fit");
   const std::size_t k = parameters.size();
   std::vector<double> start(k);
   for (std::size_t i = 0; i < k; ++i)
@@ -97,7 +97,7 @@ FitResult FitFeatures(const nlohmann::json& document, const Recording& recording
                      [&](const FeatureDifference& d) { return d.feature == name; })) {
       std::string list;
       for (const auto& d : result.before.features) list += (list.empty() ? "" : ", ") + d.feature;
-      throw InputError("--feature", "no feature named " + name + " (there are: " + list + ")");
+      throw ParameterError("feature", "no feature named " + name + " (there are: " + list + ")");
     }
   result.objective_start = Objective(result.before, o.features);
 

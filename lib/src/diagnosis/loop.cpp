@@ -94,15 +94,15 @@ double CheckLoopWork(const nlohmann::json& base, const LoopOptions& o, double fu
   const double runs = PlannedRuns(o), work = runs * per_run;
   const double limit = cases::kSweepWorkPerMaxSample * cases::MaxSamples();
   if (work > limit)
-    throw InputError("--evaluations",
+    throw ParameterError("evaluations",
                      "the diagnosis plans up to about " + ReadableNumber(std::round(runs)) + " model runs of " +
                          ReadableNumber(std::round(full_duration)) + " s simulated, each about " +
                          ReadableNumber(std::round(per_run)) + " output samples or integration steps (the steps " +
                          "measured on its first " + ReadableNumber(probe_s) + " s): " + ReadableNumber(work) +
                          " in all, above the limit of " + ReadableNumber(limit) + " (" +
                          ReadableNumber(cases::kSweepWorkPerMaxSample) +
-                         " x --max-samples); ask for fewer --draws or --evaluations, a shorter recording, a case "
-                         "with longer time steps, or raise the limit with --max-samples");
+                         " x max_samples); ask for fewer draws or evaluations, a shorter recording, a case "
+                         "with longer time steps, or raise max_samples", {"draws", "evaluations", "max_samples"});
   return runs;
 }
 
@@ -414,7 +414,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
 void CheckPredictionTime(const LoopOptions& o, double until_s) {
   const double span = o.held_out_end_s - o.fit_begin_s;
   if (!(until_s > o.held_out_end_s && until_s <= o.held_out_end_s + 100 * span))
-    throw InputError("--predict-until", "expected a recording time after the held-out window's end, " +
+    throw ParameterError("predict_until", "expected a recording time after the held-out window's end, " +
                                             ReadableNumber(o.held_out_end_s) + " s, and at most " +
                                             ReadableNumber(o.held_out_end_s + 100 * span) + " s, got " +
                                             ReadableNumber(until_s));

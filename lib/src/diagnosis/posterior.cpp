@@ -40,19 +40,19 @@ double Quantile(std::vector<double> v, double q) {
 bool IsCorrelogramLag(const std::string& name) { return name.rfind(kEnvelopeCorrelation, 0) == 0; }
 
 void CheckOptions(const std::vector<FitParameter>& parameters, const PosteriorOptions& p) {
-  if (parameters.empty()) throw InputError("--params", "no parameter to sample: give /pointer:lower:upper");
+  if (parameters.empty()) throw ParameterError("params", "no parameter to sample: give /pointer:lower:upper");
   const int needed = 2 * static_cast<int>(parameters.size()) + 2;
   if (p.walkers < needed || p.walkers % 2 != 0 || p.walkers > 1000)
-    throw InputError("--walkers", "expected an even number in [" + std::to_string(needed) + ", 1000] for " +
+    throw ParameterError("walkers", "expected an even number in [" + std::to_string(needed) + ", 1000] for " +
                                       std::to_string(parameters.size()) + " parameters, got " +
                                       std::to_string(p.walkers));
   if (p.steps < 1 || p.steps > 100000)
-    throw InputError("--steps", "expected a whole number in [1, 100000], got " + std::to_string(p.steps));
+    throw ParameterError("steps", "expected a whole number in [1, 100000], got " + std::to_string(p.steps));
   if (p.burn_in < 0 || p.burn_in >= p.steps)
-    throw InputError("--burn-in", "expected a whole number in [0, steps - 1 = " + std::to_string(p.steps - 1) +
+    throw ParameterError("burn_in", "expected a whole number in [0, steps - 1 = " + std::to_string(p.steps - 1) +
                                       "], got " + std::to_string(p.burn_in));
   if (p.predictive_draws < 0 || p.predictive_draws > 10000)
-    throw InputError("--predictive-draws", "expected a whole number in [0, 10000], got " +
+    throw ParameterError("predictive_draws", "expected a whole number in [0, 10000], got " +
                                                std::to_string(p.predictive_draws));
   if (!(p.stretch > 1 && p.stretch <= 10))
     throw InputError("stretch", "expected a number in (1, 10], got " + ReadableNumber(p.stretch));
@@ -80,7 +80,7 @@ Posterior SamplePosterior(const nlohmann::json& document, const Recording& raw, 
     whole["simulation"]["duration_s"] = runner.FullDuration();
     whole.erase("statistics");  // its window may lie past the span; the runs keep it inside (ModelRuns::Run)
     const double runs = static_cast<double>(p.walkers) * (p.steps + 1) + p.predictive_draws;
-    cases::CheckPointsWork(cases::ParseCase(whole), runs, true, "--steps");
+    cases::CheckPointsWork(cases::ParseCase(whole), runs, true, "steps");
   }
   Posterior post;
   post.parameters = parameters;

@@ -132,7 +132,7 @@ EstimatorModel EstimatorModelFromCase(const json& doc, double hook_force_N) {
 
 BitEstimate EstimateBit(const EstimatorModel& model, const SurfaceSignals& signals, const EstimateOptions& options) {
   if (signals.top_speed_rad_s.size() != signals.time_s.size() || signals.time_s.size() < 8)
-    throw InputError("--from", "the estimator needs the top speed at every sample of the recording (8 at least)");
+    throw ParameterError("from", "the estimator needs the top speed at every sample of the recording (8 at least)");
   // Stuck: |bit speed| below a fraction of the nominal speed, the median top speed (the set-point may be a droop
   // drive's no-load speed, far from the speed it turns at).
   const double threshold = options.stuck_threshold_rad_s > 0

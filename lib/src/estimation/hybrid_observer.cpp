@@ -200,7 +200,7 @@ double HybridLatency(const LumpedModel& m, double dt) {
 
 BitEstimate EstimateHybrid(const LumpedModel& m, const SurfaceSignals& s, double stuck_threshold_rad_s,
                            const HybridObserverOptions& o) {
-  if (s.top_speed_rad_s.empty()) throw InputError("--from", "the hybrid observer needs the top speed");
+  if (s.top_speed_rad_s.empty()) throw ParameterError("from", "the hybrid observer needs the top speed");
   if (!HasInvertibleDrive(m)) throw std::invalid_argument("EstimateHybrid: the drive law does not give the torque");
   const std::size_t n = s.time_s.size();
   const double dt = (s.time_s.back() - s.time_s.front()) / static_cast<double>(n - 1);

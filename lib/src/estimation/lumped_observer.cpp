@@ -122,7 +122,7 @@ std::vector<double> Despiked(const std::vector<double>& x, double dt) {
 
 BitEstimate EstimateLumped(const LumpedModel& m, const SurfaceSignals& s, double stuck_threshold_rad_s,
                            const LumpedObserverOptions& o) {
-  if (s.top_speed_rad_s.empty()) throw InputError("--from", "the lumped observer needs the top speed");
+  if (s.top_speed_rad_s.empty()) throw ParameterError("from", "the lumped observer needs the top speed");
   const std::size_t n = s.time_s.size();
   const double dt = (s.time_s.back() - s.time_s.front()) / static_cast<double>(n - 1);
   const Pendulum p(m);

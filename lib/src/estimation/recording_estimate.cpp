@@ -64,22 +64,22 @@ SurfaceChannels ParseSurfaceChannels(const std::string& from, const diagnosis::R
   std::string name;
   while (std::getline(in, name, ',')) {
     const std::string shown = "'" + ReadableText(name) + "' in '" + ReadableText(from) + "'";
-    if (name.empty()) throw InputError("--from", "an empty channel name in '" + ReadableText(from) + "'");
+    if (name.empty()) throw ParameterError("from", "an empty channel name in '" + ReadableText(from) + "'");
     if (IsDownhole(name))
-      throw InputError("--from", shown + " is a downhole channel: the estimate is made from surface channels only "
+      throw ParameterError("from", shown + " is a downhole channel: the estimate is made from surface channels only "
                                          "(downhole channels are only compared with it)");
     if (!recording.Has(name)) recording.Channel(name);  // throws, naming the channels there are
     const auto [role, factor] = RoleOf(name);
     std::string* slot = role == 's' ? &c.top_speed : role == 't' ? &c.top_torque : role == 'f' ? &c.hook_load : nullptr;
     if (!slot)
-      throw InputError("--from", shown + ": cannot tell its unit; expected a name ending in _rpm or _rad_s (top "
+      throw ParameterError("from", shown + ": cannot tell its unit; expected a name ending in _rpm or _rad_s (top "
                                          "speed), _Nm or _kNm (top torque), _N or _kN (hook load)");
     if (!slot->empty())
-      throw InputError("--from", shown + ": two channels of one kind ('" + *slot + "' already)");
+      throw ParameterError("from", shown + ": two channels of one kind ('" + *slot + "' already)");
     *slot = name;
   }
   if (c.top_speed.empty())
-    throw InputError("--from", "'" + ReadableText(from) + "': no top speed channel (a name ending in _rpm or _rad_s)");
+    throw ParameterError("from", "'" + ReadableText(from) + "': no top speed channel (a name ending in _rpm or _rad_s)");
   return c;
 }
 

@@ -56,8 +56,8 @@ std::vector<WavePiece> AxialPieces(const WaveStringModel& model) { return Pieces
 
 BitEstimate EstimateWaveString(const WaveStringModel& model, const SurfaceSignals& s, double stuck_threshold_rad_s) {
   if (s.top_torque_Nm.empty())
-    throw InputError("--from", "the wave-string estimator needs the top torque as well as the top speed (e.g. "
-                               "--from top_rpm,top_torque_kNm,hookload_kN)");
+    throw ParameterError("from", "the wave-string estimator needs the top torque as well as the top speed (e.g. "
+                               "top_rpm,top_torque_kNm,hookload_kN)");
   const std::size_t n = s.time_s.size();
   const double dt = (s.time_s.back() - s.time_s.front()) / static_cast<double>(n - 1);
   BitEstimate e;

@@ -410,23 +410,23 @@ nlohmann::json ParseScalarText(const std::string& text) {
 void ApplySetOption(nlohmann::json& doc, const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || text.empty() || text[0] != '/')
-    throw InputError("--set", "'" + ReadableText(text) + "': expected /json/pointer=value");
+    throw ParameterError("set", "'" + ReadableText(text) + "': expected /json/pointer=value");
   // The value joins the case, so it gets the checks a case file's text gets: bytes that are not UTF-8 would pass the
   // readers and only fail when case.json is written (after the run), deep nesting would overflow the stack.
   std::size_t bad_byte = 0;
   if (!IsValidUtf8(text, &bad_byte))
-    throw InputError("--set", "'" + ReadableText(text) + "': byte " + std::to_string(bad_byte + 1) +
+    throw ParameterError("set", "'" + ReadableText(text) + "': byte " + std::to_string(bad_byte + 1) +
                                   " is not UTF-8 (" + ReadableText(text.substr(bad_byte, 1)) + ")");
   const std::string value = text.substr(eq + 1);
   if (FirstTooDeep(value) != std::string::npos)
-    throw InputError("--set", "'" + ReadableText(text) + "': the value is nested more than " +
+    throw ParameterError("set", "'" + ReadableText(text) + "': the value is nested more than " +
                                   std::to_string(kMaxJsonDepth) + " levels deep");
   const nlohmann::json parsed = ParseScalarText(value);
   if (parsed.is_structured()) {
     try {
       CheckDuplicateKeys(value, "the value");
     } catch (const InputError& e) {
-      throw InputError("--set", "'" + ReadableText(text) + "': " + e.what());
+      throw ParameterError("set", "'" + ReadableText(text) + "': " + e.what());
     }
   }
   SetByPointer(doc, text.substr(0, eq), parsed);

@@ -131,11 +131,11 @@ std::string CheckedFileName(const std::string& file_name) {
 }
 
 fs::path NormalisedFolder(const std::string& dir) {
-  if (dir.empty()) throw InputError("--out", "empty folder name; expected the path of an output folder");
+  if (dir.empty()) throw ParameterError("out", "empty folder name; expected the path of an output folder");
   fs::path path = fs::absolute(dir).lexically_normal();
   if (!path.has_filename()) path = path.parent_path();
   if (!path.has_filename() || path == path.root_path())
-    throw InputError("--out", "not a usable output folder: " + ReadableText(dir));
+    throw ParameterError("out", "not a usable output folder: " + ReadableText(dir));
   return path;
 }
 
@@ -262,7 +262,7 @@ void CheckFolder(const fs::path& path) {
   const fs::file_status link_status = fs::symlink_status(path, error);
   if (fs::is_symlink(link_status)) {
     const fs::path target = fs::read_symlink(path, error);
-    throw InputError("--out", path.string() + " is a symbolic link (to " + ReadableText(target.string(), 200) +
+    throw ParameterError("out", path.string() + " is a symbolic link (to " + ReadableText(target.string(), 200) +
                                   "); drillwave replaces its output folder as a whole and neither replaces a link "
                                   "nor writes through one: give the folder itself or a new name");
   }
@@ -272,27 +272,27 @@ void CheckFolder(const fs::path& path) {
     fs::path above = path.parent_path();
     while (above.has_relative_path() && !fs::exists(fs::status(above, error))) above = above.parent_path();
     if (!fs::is_directory(fs::status(above, error)))
-      throw InputError("--out", "cannot create " + path.string() + ": " + above.string() + " is not a folder");
+      throw ParameterError("out", "cannot create " + path.string() + ": " + above.string() + " is not a folder");
     if (!MayWriteIn(above, cause))
-      throw InputError("--out", "cannot create " + path.string() + ": the folder " + above.string() +
+      throw ParameterError("out", "cannot create " + path.string() + ": the folder " + above.string() +
                                     " is not writable (" + cause + ")");
     return;
   }
   if (!fs::is_directory(link_status))
-    throw InputError("--out", path.string() + " exists and is not a folder");
+    throw ParameterError("out", path.string() + " exists and is not a folder");
   const std::string foreign = FirstForeignEntry(path, "", ReadListing(path), error);
-  if (error) throw InputError("--out", "cannot read the folder " + path.string() + ": " + error.message());
+  if (error) throw ParameterError("out", "cannot read the folder " + path.string() + ": " + error.message());
   if (!foreign.empty())
-    throw InputError("--out", path.string() + " holds " + foreign +
+    throw ParameterError("out", path.string() + " holds " + foreign +
                                   ", which drillwave did not write; outputs replace the whole folder, so choose a "
                                   "new or empty folder (or one drillwave wrote)");
   // The new folder is staged beside the old one and swapped in by a rename in the parent; the old one's files are
   // removed after.
   if (!MayWriteIn(path.parent_path(), cause))
-    throw InputError("--out", "cannot replace " + path.string() + ": its parent folder " +
+    throw ParameterError("out", "cannot replace " + path.string() + ": its parent folder " +
                                   path.parent_path().string() + " is not writable (" + cause + ")");
   if (!MayWriteIn(path, cause))
-    throw InputError("--out", "cannot replace " + path.string() + ": the folder is not writable (" + cause +
+    throw ParameterError("out", "cannot replace " + path.string() + ": the folder is not writable (" + cause +
                                   "), so its old files could not be removed");
 }
 

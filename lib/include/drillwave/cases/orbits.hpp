@@ -21,7 +21,7 @@ struct OrbitsSpec {
   std::vector<double> grid;  // steady states are computed here; the branches stay within [front, back]
 };
 
-// "POINTER=first:last" (201 grid values) or "POINTER=first:last:count". Throws InputError("--continue", ...) naming
+// "POINTER=first:last" (201 grid values) or "POINTER=first:last:count". Throws ParameterError("continue", ...) naming
 // the text for anything else, a pointer the case has no field at, a value the field refuses (both ends are parsed)
 // and a kind without an orbit field.
 OrbitsSpec ParseContinueOption(const std::string& text, const nlohmann::json& document);

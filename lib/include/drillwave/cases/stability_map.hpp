@@ -23,9 +23,9 @@ struct MapAxis {
 };
 
 // "POINTER=first:last:count" (or "POINTER=v1,v2,..."): the values as ParseSweepValues reads them. Throws
-// InputError(option, ...) naming the text for anything else, for a pointer the case has no field at, and for a first
+// ParameterError(option, ...) naming the text for anything else, for a pointer the case has no field at, and for a first
 // value the field refuses (the case is parsed with it).
-MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document, const std::string& option = "--map");
+MapAxis ParseMapAxis(const std::string& text, const nlohmann::json& document, const std::string& option = "map");
 
 struct StabilityMapSpec {
   MapAxis x, y;
@@ -90,7 +90,7 @@ struct ParameterDraws {
 
 // The draws in a CSV file whose JSON-pointer columns ("/model/...") hold the values (calibrate's
 // posterior_samples.csv; other columns are ignored): `count` rows spread evenly over the file (0: every row). Throws
-// InputError("--draws", ...) for a file without such columns or rows, and for a pointer the case has no number at.
+// ParameterError("draws", ...) for a file without such columns or rows, and for a pointer the case has no number at.
 ParameterDraws ReadParameterDraws(const std::string& file, const nlohmann::json& document, int count);
 
 // The map for every draw (the document with the draw's values), and the probabilities per cell over them, beside the

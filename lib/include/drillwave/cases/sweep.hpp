@@ -24,9 +24,9 @@ struct SweepSpec {
 };
 
 // "a:b:n" -> n values evenly spaced from a to b inclusive; "v1,v2,..." -> those values. Throws InputError naming
-// `what` (the option) for anything else, n < 1, or a non-finite value.
+// `what` (the parameter, named as ParameterError says) for anything else, n < 1, or a non-finite value.
 std::vector<double> ParseSweepValues(const std::string& text, const std::string& what);
-// One finite number, all of text; InputError naming `what` otherwise.
+// One finite number, all of text; ParameterError naming `what` otherwise.
 double ParseNumber(const std::string& text, const std::string& what);
 
 struct SweepPoint {
@@ -51,7 +51,7 @@ void CheckSweepWork(const Case& first, std::size_t runs);
 // The work of an analysis over many points of one case (a stability map, orbits' grid of steady states), estimated
 // the same way before anything else is parsed: each point counted as kSweepRunMinimumWork (its parse, linearization
 // and roots, or a steady state), plus its run's output samples or steps where it also runs the case (`runs_each`);
-// refused above kSweepWorkPerMaxSample x MaxSamples() with InputError naming `option` and the estimate.
+// refused above kSweepWorkPerMaxSample x MaxSamples() with ParameterError naming `option` and the estimate.
 void CheckPointsWork(const Case& first, double points, bool runs_each, const std::string& option);
 
 // Checks the work (above) and the spec, and parses every variant of the document before running anything, so bad

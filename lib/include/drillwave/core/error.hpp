@@ -5,19 +5,35 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace drillwave {
 
-// Bad input: names where (a JSON path such as "/model/sections/0/length_m", a file, a command-line option) and what
-// was expected. With an empty location the message stands alone.
+// Bad input: names where (a JSON path such as "/model/sections/0/length_m", a file, a library parameter) and what was
+// expected. With an empty location the message stands alone. A message that advises another parameter (raise
+// max_samples) lists it in `mentioned_parameters`, so that a front end can name it its own way.
 class InputError : public std::runtime_error {
  public:
-  InputError(std::string json_path, const std::string& message);
+  InputError(std::string json_path, const std::string& message, std::vector<std::string> mentioned_parameters = {});
   const std::string& json_path() const { return json_path_; }
+  const std::string& message() const { return message_; }  // what() without the location
+  const std::vector<std::string>& mentioned_parameters() const { return mentioned_parameters_; }
 
  private:
-  std::string json_path_;
+  std::string json_path_, message_;
+  std::vector<std::string> mentioned_parameters_;
+};
+
+// Bad value of a parameter of a library call (an options struct's field or a function's argument), named as the
+// library names it: snake_case, as Python's keywords ("max_samples", "draw_count"; "map /model/bit/inertia_kgm2" for
+// one of several). A front end names its own way of setting it: the command-line tool the flag (--max-samples), so
+// that no library message speaks of flags.
+class ParameterError : public InputError {
+ public:
+  ParameterError(std::string parameter, const std::string& message, std::vector<std::string> mentioned_parameters = {})
+      : InputError(std::move(parameter), message, std::move(mentioned_parameters)) {}
+  const std::string& parameter() const { return json_path(); }
 };
 
 // Numerical failure (step-size underflow, non-finite state): where in time it happened and the state there.

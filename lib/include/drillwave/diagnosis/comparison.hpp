@@ -37,7 +37,7 @@ std::vector<ChannelMap> ResolveChannelMaps(const std::vector<std::string>& texts
 // The names of the features Compare reports for these maps (for checking --feature before anything runs).
 std::vector<std::string> FeatureNames(const std::vector<ChannelMap>& maps);
 
-// Throws InputError("--window", ...) unless the window, the recording and the model's time span [model_begin_s,
+// Throws ParameterError("window", ...) unless the window, the recording and the model's time span [model_begin_s,
 // model_end_s] overlap in at least 10 recorded samples. Compare checks it too; callers check it before running.
 void CheckWindow(const Recording& recording, double model_begin_s, double model_end_s, double window_begin_s,
                  double window_end_s);

@@ -88,7 +88,7 @@ struct FastBands {
 };
 FastBands FastBandsOf(const FeatureOptions& options);
 
-// Features of every channel of `recording` over [begin_s, end_s] (the samples inside). Throws InputError("--window")
+// Features of every channel of `recording` over [begin_s, end_s] (the samples inside). Throws ParameterError("window")
 // for fewer than 8 samples per part.
 FeatureSet MeasureFeatures(const Recording& recording, double begin_s, double end_s, const FeatureOptions& options = {});
 

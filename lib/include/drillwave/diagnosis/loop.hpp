@@ -179,7 +179,7 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop);
 // The fitted model (the baseline where nothing is kept) run freely from its start to `until_s` of recording time: its
 // mapped channels named and scaled as the recording's, on the recording's sample interval from the fit window's
 // start, without sensor noise — a forecast to hold against what is recorded after the recording's end. Throws
-// InputError("--predict-until") unless until_s lies after the held-out window and within 100 times the span from the fit
+// ParameterError("predict_until") unless until_s lies after the held-out window and within 100 times the span from the fit
 // window's start past it (CheckPredictionTime, which a caller runs before the loop).
 void CheckPredictionTime(const LoopOptions& options, double until_s);
 Recording PredictFitted(const DiagnosisLoop& loop, const LoopOptions& options, const Recording& recording, double until_s);

@@ -46,7 +46,7 @@ struct HybridObserverOptions {
   bool despike = true;
 };
 
-// Throws InputError("--from", ...) if the top speed is missing, std::invalid_argument for a drive without
+// Throws ParameterError("from", ...) if the top speed is missing, std::invalid_argument for a drive without
 // HasInvertibleDrive.
 BitEstimate EstimateHybrid(const LumpedModel& model, const SurfaceSignals& signals, double stuck_threshold_rad_s,
                            const HybridObserverOptions& options);

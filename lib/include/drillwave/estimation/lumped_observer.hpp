@@ -26,7 +26,7 @@ struct LumpedObserverOptions {
   bool despike = true;  // Hampel-filter the top speed first (encoder glitches)
 };
 
-// Throws InputError("--from", ...) if the top speed is missing.
+// Throws ParameterError("from", ...) if the top speed is missing.
 BitEstimate EstimateLumped(const LumpedModel& model, const SurfaceSignals& signals, double stuck_threshold_rad_s,
                            const LumpedObserverOptions& options);
 

@@ -17,7 +17,7 @@ struct SurfaceChannels {
   std::string top_speed, top_torque, hook_load;
 };
 
-// Parses "top_rpm,top_torque_kNm,hookload_kN". Throws InputError("--from", ...) naming the value for an unknown
+// Parses "top_rpm,top_torque_kNm,hookload_kN". Throws ParameterError("from", ...) naming the value for an unknown
 // channel, a unit it cannot read, two channels of one role, a missing speed, or a downhole channel (a name starting
 // with bit_, tob or wob: the estimate never reads them).
 SurfaceChannels ParseSurfaceChannels(const std::string& from, const diagnosis::Recording& recording);

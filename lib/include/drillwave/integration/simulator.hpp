@@ -198,7 +198,7 @@ typename Simulator<Process>::State Simulator<Process>::Integrate(double t0, Stat
                                    ReadableNumber(t_end - t0) + " s need at least " +
                                    ReadableNumber((t_end - t0) / max_step) + " steps, above the limit of " +
                                    ReadableNumber(options_.max_planned_steps) +
-                                   " (--max-samples); check the model's lengths, moduli and densities");
+                                   " (max_samples); check the model's lengths, moduli and densities", {"max_samples"});
   auto dense = odeint::make_dense_output(options_.abs_tol, options_.rel_tol,
                                          std::isfinite(max_step) ? max_step : 0.0, Stepper());
 

@@ -103,7 +103,7 @@ void SetByPointer(nlohmann::json& doc, const std::string& pointer, const nlohman
 nlohmann::json ParseScalarText(const std::string& text);
 
 // A command line's override "/json/pointer=value": the value (ParseScalarText) set at the pointer (SetByPointer).
-// Throws InputError("--set", ...) for text of any other form.
+// Throws ParameterError("set", ...) for text of any other form.
 void ApplySetOption(nlohmann::json& doc, const std::string& text);
 
 }  // namespace drillwave::io

@@ -415,8 +415,9 @@ void CheckTopDamping(const Model& md, const RunSettings& settings) {
                          "), which explicit steps follow only below " + Significant(kStableStepTimesRate / rate, 4) +
                          " s: the " + Significant(settings.duration_s, 4) + " s run needs at least " +
                          Significant(settings.duration_s * rate / kStableStepTimesRate, 4) + " steps, above the limit of " +
-                         Significant(steps_allowed, 4) + " (--max-samples); expected a number in [0, " + Significant(most, 4) +
-                         "] for this run");
+                         Significant(steps_allowed, 4) + " (max_samples); expected a number in [0, " + Significant(most, 4) +
+                         "] for this run",
+                     {"max_samples"});
   }
 }
 
