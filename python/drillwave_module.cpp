@@ -500,10 +500,26 @@ py::dict Calibrate(const py::object& case_, const py::object& recording_file, co
 py::object* input_error_type = nullptr;
 py::object* numerical_error_type = nullptr;
 
-// drillwave.InputError(message) with .path, drillwave.NumericalError(message) with .time and .state.
+// The keyword that sets a library parameter (ParameterError names it as the library does) where this module's differs:
+// "map /model/x" -> "maps /model/x".
+std::string KeywordOf(const std::string& parameter) {
+  const std::size_t space = parameter.find(' ');
+  const std::string name = parameter.substr(0, space), rest = space == std::string::npos ? "" : parameter.substr(space);
+  if (name == "map") return "maps" + rest;
+  if (name == "from") return "from_channels" + rest;
+  return parameter;
+}
+
+// drillwave.InputError(message) with .path (a bad parameter: its keyword), drillwave.NumericalError(message) with .time
+// and .state.
 void TranslateErrors(std::exception_ptr p) {
   try {
     if (p) std::rethrow_exception(p);
+  } catch (const ParameterError& e) {
+    const std::string keyword = KeywordOf(e.parameter());
+    py::object error = (*input_error_type)(keyword + ": " + e.message());
+    error.attr("path") = keyword;
+    PyErr_SetObject(input_error_type->ptr(), error.ptr());
   } catch (const InputError& e) {
     py::object error = (*input_error_type)(e.what());
     error.attr("path") = e.json_path();
