@@ -145,5 +145,20 @@ TEST(Sweep, WritesTheTableTheFigureAndTheReport) {
   fs::remove_all(dir);
 }
 
+// A value refused by the case says its path once, then which sweep value it was.
+TEST(Sweep, ARefusedValueSaysItsPathOnce) {
+  const nlohmann::json doc = testing::LoadCase("two-disc-setup");
+  try {
+    RunSweep(doc, SweepSpec{"/model/lower_disc/inertia_kgm2", {-1.0}, 1}, nullptr);
+    FAIL() << "a negative inertia was not refused";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(e.json_path(), "/model/lower_disc/inertia_kgm2");
+    EXPECT_EQ(what.find("/model/lower_disc/inertia_kgm2: "), 0u) << what;
+    EXPECT_EQ(what.find("/model/lower_disc/inertia_kgm2: ", 1), std::string::npos) << what;
+    EXPECT_NE(what.find("(sweep value /model/lower_disc/inertia_kgm2 = -1)"), std::string::npos) << what;
+  }
+}
+
 }  // namespace
 }  // namespace drillwave::cases

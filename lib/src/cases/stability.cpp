@@ -197,7 +197,8 @@ std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const 
     try {
       cases.push_back(ParseCase(doc));
     } catch (const InputError& e) {
-      throw InputError(e.json_path(), std::string(e.what()) + " (sweep value " + spec.pointer + " = " + Significant(v, 8) + ")");
+      throw InputError(e.json_path(), e.message() + " (sweep value " + spec.pointer + " = " + Significant(v, 8) + ")",
+                       e.mentioned_parameters());
     }
   }
   cases.front().model->Linearize();  // a kind without linearization fails here, before the threads start

@@ -144,8 +144,10 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
       try {
         cases.push_back(ParseCase(doc));
       } catch (const InputError& e) {
-        throw InputError(e.json_path(), std::string(e.what()) + " (map point " + spec.x.pointer + " = " +
-                                            Significant(x, 8) + ", " + spec.y.pointer + " = " + Significant(y, 8) + ")");
+        throw InputError(e.json_path(),
+                         e.message() + " (map point " + spec.x.pointer + " = " + Significant(x, 8) + ", " +
+                             spec.y.pointer + " = " + Significant(y, 8) + ")",
+                         e.mentioned_parameters());
       }
       cases.back().document = nullptr;
       // The work from the first point, before the others are parsed (issue 38: 1000 x 1000 with --simulate ran on).

@@ -109,7 +109,8 @@ SweepResult RunSweep(const nlohmann::json& document, const SweepSpec& spec, cons
     try {
       return ParseCase(Variant(document, spec.pointer, v));
     } catch (const InputError& e) {
-      throw InputError(e.json_path(), std::string(e.what()) + " (sweep value " + spec.pointer + " = " + Significant(v, 10) + ")");
+      throw InputError(e.json_path(), e.message() + " (sweep value " + spec.pointer + " = " + Significant(v, 10) + ")",
+                       e.mentioned_parameters());
     }
   };
   // The work is estimated from the first value's case before anything else is parsed or allocated (issue 41: 1e6
