@@ -63,10 +63,217 @@ void CheckOptions(const std::vector<FitParameter>& parameters, const PosteriorOp
 
 }  // namespace
 
+namespace {
+
+// The log-likelihood of a point of the parameters' box: the fit window's features of one run of the case with them,
+// -inf outside the box or where the case rejects the values or the run fails.
+struct Likelihood {
+  const std::vector<FitParameter>& parameters;
+  const nlohmann::json& base;
+  ModelRuns& runner;
+  const FeatureSet& fit;
+  double k_features;  // the fit window's independent features
+
+  nlohmann::json With(const std::vector<double>& v) const {
+    nlohmann::json doc = base;
+    for (std::size_t i = 0; i < parameters.size(); ++i) io::SetByPointer(doc, parameters[i].pointer, v[i]);
+    return doc;
+  }
+  bool Inside(const std::vector<double>& v) const {
+    for (std::size_t i = 0; i < parameters.size(); ++i)
+      if (!(v[i] >= parameters[i].lower && v[i] <= parameters[i].upper)) return false;
+    return true;
+  }
+  double At(const std::vector<double>& v, int& failed) const {
+    if (!Inside(v)) return kMinusInf;
+    try {
+      const double d =
+          FeatureDistance(runner.FitFeatures(runner.Run(With(v), runner.FitDuration(), ModelRuns::Tolerance::kFit)), fit);
+      return std::isfinite(d) ? -0.5 * k_features * d : kMinusInf;
+    } catch (const InputError&) {  // a combination the case rejects
+    } catch (const NumericalError&) {
+    }
+    ++failed;
+    return kMinusInf;
+  }
+  // A batch of positions in parallel, their runs counted in the posterior. The random numbers are drawn before, so
+  // the chain is the same for any number of threads.
+  std::vector<double> Batch(const std::vector<std::vector<double>>& positions, int threads, Posterior& post) const {
+    std::vector<int> failed(positions.size(), 0);
+    std::vector<double> values =
+        ParallelMap(positions.size(), threads, [&](std::size_t w) { return At(positions[w], failed[w]); });
+    for (std::size_t w = 0; w < positions.size(); ++w)
+      post.runs += Inside(positions[w]) ? 1 : 0, post.failed_runs += failed[w];
+    return values;
+  }
+};
+
+struct Random {
+  std::mt19937_64 engine;
+  std::uniform_real_distribution<double> unit{0.0, 1.0};
+  double Unit() { return unit(engine); }
+};
+
+// The walkers' start: uniform within start_spread of each range around the case's value, kept inside the bounds;
+// walkers whose run fails start again (up to 10 times). The start is the chain's first step.
+void StartWalkers(const Likelihood& likelihood, const std::vector<double>& case_value, const PosteriorOptions& p,
+                  Random& random, Posterior& post) {
+  const std::vector<FitParameter>& parameters = likelihood.parameters;
+  const std::size_t dim = parameters.size(), walkers = static_cast<std::size_t>(p.walkers);
+  auto draw_start = [&](std::vector<double>& v) {
+    for (std::size_t i = 0; i < dim; ++i) {
+      const double range = parameters[i].upper - parameters[i].lower;
+      const double centre = std::clamp(case_value[i], parameters[i].lower, parameters[i].upper);
+      const double lo = std::max(parameters[i].lower, centre - 0.5 * p.start_spread * range);
+      const double hi = std::min(parameters[i].upper, centre + 0.5 * p.start_spread * range);
+      v[i] = lo + random.Unit() * (hi - lo);
+    }
+  };
+  std::vector<std::vector<double>> x(walkers, std::vector<double>(dim));
+  for (auto& v : x) draw_start(v);
+  std::vector<double> logl = likelihood.Batch(x, p.threads, post);
+  for (int attempt = 0; attempt < 10; ++attempt) {
+    std::vector<std::size_t> bad;
+    for (std::size_t w = 0; w < walkers; ++w)
+      if (!std::isfinite(logl[w])) bad.push_back(w);
+    if (bad.empty()) break;
+    std::vector<std::vector<double>> again(bad.size(), std::vector<double>(dim));
+    for (auto& v : again) draw_start(v);
+    const std::vector<double> values = likelihood.Batch(again, p.threads, post);
+    for (std::size_t b = 0; b < bad.size(); ++b) x[bad[b]] = again[b], logl[bad[b]] = values[b];
+  }
+  if (std::none_of(logl.begin(), logl.end(), [](double l) { return std::isfinite(l); }))
+    throw NumericalError("no walker's start runs (every model run near the case's values failed)", 0, case_value);
+  post.chain.push_back(std::move(x));
+  post.log_likelihood.push_back(std::move(logl));
+}
+
+// Goodman and Weare's stretch move, half the walkers at a time: walker k moves along the line through a walker j of
+// the other half, to x_j + z (x_k - x_j), z from g(z) ~ 1 / sqrt(z) on [1 / a, a]; accepted with probability
+// min(1, z^(d - 1) L(y) / L(x_k)). Each step is appended to the chain.
+void Stretch(const Likelihood& likelihood, const PosteriorOptions& p, Random& random, Posterior& post,
+             const PosteriorProgress& say) {
+  const std::size_t dim = likelihood.parameters.size(), walkers = static_cast<std::size_t>(p.walkers);
+  std::vector<std::vector<double>> x = post.chain.back();
+  std::vector<double> logl = post.log_likelihood.back();
+  long accepted = 0, proposed = 0;
+  const double a = p.stretch;
+  for (int step = 1; step <= p.steps; ++step) {
+    for (std::size_t half = 0; half < 2; ++half) {
+      std::vector<std::size_t> movers;
+      for (std::size_t w = half; w < walkers; w += 2) movers.push_back(w);
+      std::vector<std::vector<double>> proposals(movers.size(), std::vector<double>(dim));
+      std::vector<double> z(movers.size()), r(movers.size());
+      for (std::size_t m = 0; m < movers.size(); ++m) {
+        const auto m_other =
+            std::min(walkers / 2 - 1, static_cast<std::size_t>(random.Unit() * static_cast<double>(walkers / 2)));
+        const std::size_t j = (1 - half) + 2 * m_other;
+        const double root = (a - 1) * random.Unit() + 1;
+        z[m] = root * root / a;
+        r[m] = random.Unit();
+        for (std::size_t i = 0; i < dim; ++i) proposals[m][i] = x[j][i] + z[m] * (x[movers[m]][i] - x[j][i]);
+      }
+      const std::vector<double> values = likelihood.Batch(proposals, p.threads, post);
+      for (std::size_t m = 0; m < movers.size(); ++m) {
+        ++proposed;
+        const std::size_t k = movers[m];
+        const double log_ratio = (static_cast<double>(dim) - 1) * std::log(z[m]) + values[m] - logl[k];
+        if (std::isfinite(values[m]) && std::log(r[m]) < log_ratio) x[k] = proposals[m], logl[k] = values[m], ++accepted;
+      }
+    }
+    post.chain.push_back(x);
+    post.log_likelihood.push_back(logl);
+    if (step % std::max(1, p.steps / 10) == 0 || step == p.steps) {
+      const double best = *std::max_element(logl.begin(), logl.end());
+      say("step " + std::to_string(step) + " of " + std::to_string(p.steps) + ": acceptance " +
+          Fixed(100.0 * static_cast<double>(accepted) / static_cast<double>(std::max(1L, proposed)), 0) +
+          " %, best log-likelihood " + Significant(best, 5) + ", " + std::to_string(post.runs) + " runs (" +
+          std::to_string(post.failed_runs) + " failed)");
+    }
+  }
+  post.acceptance = static_cast<double>(accepted) / static_cast<double>(std::max(1L, proposed));
+}
+
+// One parameter's summary over the kept samples (v runs step by step, every walker of a step together).
+ParameterSummary Summary(const FitParameter& parameter, double case_value, const std::vector<double>& v) {
+  ParameterSummary s;
+  s.pointer = parameter.pointer, s.case_value = case_value;
+  s.lower = parameter.lower, s.upper = parameter.upper;
+  double sum = 0, sum2 = 0;
+  for (double value : v) sum += value;
+  s.mean = sum / static_cast<double>(v.size());
+  for (double value : v) sum2 += (value - s.mean) * (value - s.mean);
+  s.sd = std::sqrt(sum2 / static_cast<double>(std::max<std::size_t>(1, v.size() - 1)));
+  s.q05 = Quantile(v, 0.05), s.q50 = Quantile(v, 0.5), s.q95 = Quantile(v, 0.95);
+  const std::size_t quarter = v.size() / 4;
+  if (quarter > 0 && s.sd > 0) {
+    const std::vector<double> first(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(quarter));
+    const std::vector<double> last(v.end() - static_cast<std::ptrdiff_t>(quarter), v.end());
+    s.drift_sd = (Quantile(last, 0.5) - Quantile(first, 0.5)) / s.sd;
+  }
+  return s;
+}
+
+// The posterior predictive of the held-out window: samples spread evenly over the kept ones, each with its own draw
+// of the random inputs, over the whole span at the case's tolerance; each held-out feature's 90 % band, the model's
+// spread with the feature's own noise (its scale) added.
+void PredictHeldOut(const Likelihood& likelihood, const std::vector<std::vector<double>>& samples,
+                    const FeatureSet& recorded_held_out, const PosteriorOptions& p, Posterior& post,
+                    const PosteriorProgress& say) {
+  ModelRuns& runner = likelihood.runner;
+  const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(p.predictive_draws), samples.size());
+  say("posterior predictive: " + std::to_string(n) + " samples over " + Fixed(runner.FullDuration(), 0) +
+      " s simulated each");
+  std::vector<int> failed(n, 0);
+  const std::vector<FeatureSet> held_out = ParallelMap(n, p.threads, [&](std::size_t d) {
+    const std::size_t pick = d * samples.size() / n;
+    try {
+      return runner.HeldOutFeatures(runner.Run(Drawn(likelihood.With(samples[pick]), static_cast<int>(d) + 1),
+                                               runner.FullDuration(), ModelRuns::Tolerance::kCase,
+                                               loop_internal::kJudgingWorkFactor));
+    } catch (const InputError&) {
+    } catch (const NumericalError&) {
+    }
+    failed[d] = 1;
+    return FeatureSet{};
+  });
+  post.predictive_runs = static_cast<int>(n);
+  for (int f : failed) post.failed_predictive_runs += f;
+  std::mt19937_64 noise_rng(p.seed + 7919);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  int counted = 0, covered = 0;
+  for (const Feature& f : recorded_held_out.features) {
+    if (!std::isfinite(f.value) || IsCorrelogramLag(f.name)) continue;
+    PredictiveFeature pf;
+    pf.name = f.name, pf.recorded = f.value, pf.scale = f.scale;
+    std::vector<double> values;
+    int undefined = 0, runs = 0;
+    for (std::size_t d = 0; d < n; ++d) {
+      if (failed[d]) continue;
+      ++runs;
+      const double model = held_out[d].Value(f.name);
+      if (!std::isfinite(model)) {
+        ++undefined;
+        continue;
+      }
+      for (int e = 0; e < kNoisePerDraw; ++e) values.push_back(model + f.scale * gauss(noise_rng));
+    }
+    pf.undefined_share = runs > 0 ? static_cast<double>(undefined) / runs : 1.0;
+    pf.q05 = Quantile(values, 0.05), pf.q50 = Quantile(values, 0.5), pf.q95 = Quantile(values, 0.95);
+    pf.inside = !values.empty() && f.value >= pf.q05 && f.value <= pf.q95;
+    ++counted, covered += pf.inside ? 1 : 0;
+    post.predictive.push_back(pf);
+  }
+  post.coverage = counted > 0 ? static_cast<double>(covered) / counted : std::numeric_limits<double>::quiet_NaN();
+  say("held-out features inside their 90 % band: " + std::to_string(covered) + " of " + std::to_string(counted));
+}
+
+}  // namespace
+
 Posterior SamplePosterior(const nlohmann::json& document, const Recording& raw, const LoopOptions& o,
                           const std::vector<FitParameter>& parameters, const PosteriorOptions& p,
                           const PosteriorProgress& progress) {
-  auto say = [&](const std::string& s) {
+  const PosteriorProgress say = [&](const std::string& s) {
     if (progress) progress(s);
   };
   CheckOptions(parameters, p);
@@ -86,201 +293,39 @@ Posterior SamplePosterior(const nlohmann::json& document, const Recording& raw, 
   post.parameters = parameters;
   post.walkers = p.walkers, post.steps = p.steps, post.burn_in = p.burn_in;
   post.recording_features = FeatureCount(prepared.fit);
-  const double k_features = post.recording_features;
+  const Likelihood likelihood{parameters, prepared.base, runner, prepared.fit, post.recording_features};
 
-  auto with = [&](const std::vector<double>& v) {
-    nlohmann::json doc = prepared.base;
-    for (std::size_t i = 0; i < dim; ++i) io::SetByPointer(doc, parameters[i].pointer, v[i]);
-    return doc;
-  };
-  auto inside = [&](const std::vector<double>& v) {
-    for (std::size_t i = 0; i < dim; ++i)
-      if (!(v[i] >= parameters[i].lower && v[i] <= parameters[i].upper)) return false;
-    return true;
-  };
   // The case as given sets the work budget: a corner of the box that makes the model stiff fails as a run.
   say("the case as given: " + Fixed(runner.FitDuration(), 0) + " s simulated for the fit window");
   const double case_distance = FeatureDistance(runner.FitFeatures(runner.Run(prepared.base, runner.FitDuration(),
                                                                              ModelRuns::Tolerance::kFit)),
                                                prepared.fit);
   runner.SetWorkBudget();
-  say("  its log-likelihood " + Significant(-0.5 * k_features * case_distance, 5) + " over " +
-      Significant(k_features, 3) + " features");
-  auto log_likelihood = [&](const std::vector<double>& v, int& failed) {
-    if (!inside(v)) return kMinusInf;
-    try {
-      const double d = FeatureDistance(
-          runner.FitFeatures(runner.Run(with(v), runner.FitDuration(), ModelRuns::Tolerance::kFit)), prepared.fit);
-      return std::isfinite(d) ? -0.5 * k_features * d : kMinusInf;
-    } catch (const InputError&) {  // a combination the case rejects
-    } catch (const NumericalError&) {
-    }
-    ++failed;
-    return kMinusInf;
-  };
-  // Each batch of positions in parallel; the random numbers are drawn before, so the chain is the same for any
-  // number of threads.
-  auto evaluate = [&](const std::vector<std::vector<double>>& positions) {
-    std::vector<int> failed(positions.size(), 0);
-    std::vector<double> values = ParallelMap(positions.size(), p.threads, [&](std::size_t w) {
-      return log_likelihood(positions[w], failed[w]);
-    });
-    for (std::size_t w = 0; w < positions.size(); ++w)
-      post.runs += inside(positions[w]) ? 1 : 0, post.failed_runs += failed[w];
-    return values;
-  };
+  say("  its log-likelihood " + Significant(-0.5 * likelihood.k_features * case_distance, 5) + " over " +
+      Significant(likelihood.k_features, 3) + " features");
 
-  std::mt19937_64 rng(p.seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const auto walkers = static_cast<std::size_t>(p.walkers);
-  // The start: uniform within start_spread of each range around the case's value, kept inside the bounds; walkers
-  // whose run fails start again (up to 10 times).
-  std::vector<std::vector<double>> x(walkers, std::vector<double>(dim));
-  auto draw_start = [&](std::vector<double>& v) {
-    for (std::size_t i = 0; i < dim; ++i) {
-      const double range = parameters[i].upper - parameters[i].lower;
-      const double centre = std::clamp(case_value[i], parameters[i].lower, parameters[i].upper);
-      const double lo = std::max(parameters[i].lower, centre - 0.5 * p.start_spread * range);
-      const double hi = std::min(parameters[i].upper, centre + 0.5 * p.start_spread * range);
-      v[i] = lo + unit(rng) * (hi - lo);
-    }
-  };
-  for (auto& v : x) draw_start(v);
-  say("start: " + std::to_string(walkers) + " walkers within " + Fixed(100 * p.start_spread, 0) +
+  Random random{std::mt19937_64(p.seed)};
+  say("start: " + std::to_string(p.walkers) + " walkers within " + Fixed(100 * p.start_spread, 0) +
       " % of each range around the case's values");
-  std::vector<double> logl = evaluate(x);
-  for (int attempt = 0; attempt < 10; ++attempt) {
-    std::vector<std::size_t> bad;
-    for (std::size_t w = 0; w < walkers; ++w)
-      if (!std::isfinite(logl[w])) bad.push_back(w);
-    if (bad.empty()) break;
-    std::vector<std::vector<double>> again(bad.size(), std::vector<double>(dim));
-    for (auto& v : again) draw_start(v);
-    const std::vector<double> values = evaluate(again);
-    for (std::size_t b = 0; b < bad.size(); ++b) x[bad[b]] = again[b], logl[bad[b]] = values[b];
-  }
-  if (std::none_of(logl.begin(), logl.end(), [](double l) { return std::isfinite(l); }))
-    throw NumericalError("no walker's start runs (every model run near the case's values failed)", 0, case_value);
-  post.chain.push_back(x);
-  post.log_likelihood.push_back(logl);
+  StartWalkers(likelihood, case_value, p, random, post);
+  Stretch(likelihood, p, random, post, say);
 
-  // The stretch move: walker k moves along the line through a walker j of the other half, to x_j + z (x_k - x_j),
-  // z from g(z) ~ 1 / sqrt(z) on [1 / a, a]; accepted with probability min(1, z^(d - 1) L(y) / L(x_k)).
-  long accepted = 0, proposed = 0;
-  const double a = p.stretch;
-  for (int step = 1; step <= p.steps; ++step) {
-    for (std::size_t half = 0; half < 2; ++half) {
-      std::vector<std::size_t> movers;
-      for (std::size_t w = half; w < walkers; w += 2) movers.push_back(w);
-      std::vector<std::vector<double>> proposals(movers.size(), std::vector<double>(dim));
-      std::vector<double> z(movers.size()), r(movers.size());
-      for (std::size_t m = 0; m < movers.size(); ++m) {
-        const auto m_other = std::min(walkers / 2 - 1, static_cast<std::size_t>(unit(rng) * static_cast<double>(walkers / 2)));
-        const std::size_t j = (1 - half) + 2 * m_other;
-        const double root = (a - 1) * unit(rng) + 1;
-        z[m] = root * root / a;
-        r[m] = unit(rng);
-        for (std::size_t i = 0; i < dim; ++i) proposals[m][i] = x[j][i] + z[m] * (x[movers[m]][i] - x[j][i]);
-      }
-      const std::vector<double> values = evaluate(proposals);
-      for (std::size_t m = 0; m < movers.size(); ++m) {
-        ++proposed;
-        const std::size_t k = movers[m];
-        const double log_ratio = (static_cast<double>(dim) - 1) * std::log(z[m]) + values[m] - logl[k];
-        if (std::isfinite(values[m]) && std::log(r[m]) < log_ratio) x[k] = proposals[m], logl[k] = values[m], ++accepted;
-      }
-    }
-    post.chain.push_back(x);
-    post.log_likelihood.push_back(logl);
-    if (step % std::max(1, p.steps / 10) == 0 || step == p.steps) {
-      const double best = *std::max_element(logl.begin(), logl.end());
-      say("step " + std::to_string(step) + " of " + std::to_string(p.steps) + ": acceptance " +
-          Fixed(100.0 * static_cast<double>(accepted) / static_cast<double>(std::max(1L, proposed)), 0) +
-          " %, best log-likelihood " + Significant(best, 5) + ", " + std::to_string(post.runs) + " runs (" +
-          std::to_string(post.failed_runs) + " failed)");
-    }
-  }
-  post.acceptance = static_cast<double>(accepted) / static_cast<double>(std::max(1L, proposed));
-
-  // Summaries over the samples after burn-in.
-  std::vector<std::vector<double>> samples;  // every walker of every kept step
+  // Summaries over the samples after burn-in: every walker of every kept step.
+  std::vector<std::vector<double>> samples;
   std::vector<double> sample_logl;
   for (int s = p.burn_in + 1; s <= p.steps; ++s)
-    for (std::size_t w = 0; w < walkers; ++w) samples.push_back(post.chain[s][w]), sample_logl.push_back(post.log_likelihood[s][w]);
+    for (std::size_t w = 0; w < post.chain[s].size(); ++w)
+      samples.push_back(post.chain[s][w]), sample_logl.push_back(post.log_likelihood[s][w]);
   for (std::size_t i = 0; i < dim; ++i) {
     std::vector<double> v;
     for (const auto& sample : samples) v.push_back(sample[i]);
-    ParameterSummary s;
-    s.pointer = parameters[i].pointer, s.case_value = case_value[i];
-    s.lower = parameters[i].lower, s.upper = parameters[i].upper;
-    double sum = 0, sum2 = 0;
-    for (double value : v) sum += value;
-    s.mean = sum / static_cast<double>(v.size());
-    for (double value : v) sum2 += (value - s.mean) * (value - s.mean);
-    s.sd = std::sqrt(sum2 / static_cast<double>(std::max<std::size_t>(1, v.size() - 1)));
-    s.q05 = Quantile(v, 0.05), s.q50 = Quantile(v, 0.5), s.q95 = Quantile(v, 0.95);
-    const std::size_t quarter = v.size() / 4;  // v runs step by step, every walker of a step together
-    if (quarter > 0 && s.sd > 0) {
-      const std::vector<double> first(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(quarter));
-      const std::vector<double> last(v.end() - static_cast<std::ptrdiff_t>(quarter), v.end());
-      s.drift_sd = (Quantile(last, 0.5) - Quantile(first, 0.5)) / s.sd;
-    }
-    post.summaries.push_back(s);
+    post.summaries.push_back(Summary(parameters[i], case_value[i], v));
   }
   const std::size_t best = static_cast<std::size_t>(
       std::max_element(sample_logl.begin(), sample_logl.end()) - sample_logl.begin());
-  post.map_document = with(samples[best]);
+  post.map_document = likelihood.With(samples[best]);
   post.map_log_likelihood = sample_logl[best];
-
-  // The posterior predictive of the held-out window: samples spread evenly over the kept ones, each with its own
-  // draw of the random inputs, over the whole span at the case's tolerance.
-  if (p.predictive_draws > 0) {
-    const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(p.predictive_draws), samples.size());
-    say("posterior predictive: " + std::to_string(n) + " samples over " + Fixed(runner.FullDuration(), 0) +
-        " s simulated each");
-    std::vector<int> failed(n, 0);
-    const std::vector<FeatureSet> held_out = ParallelMap(n, p.threads, [&](std::size_t d) {
-      const std::size_t pick = d * samples.size() / n;
-      try {
-        return runner.HeldOutFeatures(runner.Run(Drawn(with(samples[pick]), static_cast<int>(d) + 1),
-                                                 runner.FullDuration(), ModelRuns::Tolerance::kCase,
-                                                 loop_internal::kJudgingWorkFactor));
-      } catch (const InputError&) {
-      } catch (const NumericalError&) {
-      }
-      failed[d] = 1;
-      return FeatureSet{};
-    });
-    post.predictive_runs = static_cast<int>(n);
-    for (int f : failed) post.failed_predictive_runs += f;
-    std::mt19937_64 noise_rng(p.seed + 7919);
-    std::normal_distribution<double> gauss(0.0, 1.0);
-    int counted = 0, covered = 0;
-    for (const Feature& f : prepared.held_out.features) {
-      if (!std::isfinite(f.value) || IsCorrelogramLag(f.name)) continue;
-      PredictiveFeature pf;
-      pf.name = f.name, pf.recorded = f.value, pf.scale = f.scale;
-      std::vector<double> values;
-      int undefined = 0, runs = 0;
-      for (std::size_t d = 0; d < n; ++d) {
-        if (failed[d]) continue;
-        ++runs;
-        const double model = held_out[d].Value(f.name);
-        if (!std::isfinite(model)) {
-          ++undefined;
-          continue;
-        }
-        for (int e = 0; e < kNoisePerDraw; ++e) values.push_back(model + f.scale * gauss(noise_rng));
-      }
-      pf.undefined_share = runs > 0 ? static_cast<double>(undefined) / runs : 1.0;
-      pf.q05 = Quantile(values, 0.05), pf.q50 = Quantile(values, 0.5), pf.q95 = Quantile(values, 0.95);
-      pf.inside = !values.empty() && f.value >= pf.q05 && f.value <= pf.q95;
-      ++counted, covered += pf.inside ? 1 : 0;
-      post.predictive.push_back(pf);
-    }
-    post.coverage = counted > 0 ? static_cast<double>(covered) / counted : std::numeric_limits<double>::quiet_NaN();
-    say("held-out features inside their 90 % band: " + std::to_string(covered) + " of " + std::to_string(counted));
-  }
+  if (p.predictive_draws > 0) PredictHeldOut(likelihood, samples, prepared.held_out, p, post, say);
   return post;
 }
 
