@@ -69,7 +69,7 @@ void LinearVerdict(const Case& c, ControllerResult& r) {
   r.rightmost_re = r.rightmost_im = kNaN;
   std::vector<OperatingPointStability> points;
   try {
-    points = AnalyzeStability(c);
+    points = AnalyzeStability(c, {}, ContinuumRoots::kSkipped);
   } catch (const InputError&) {  // a kind or string without a linearization
     r.verdict = "no linearization";
     return;

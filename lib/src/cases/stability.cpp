@@ -67,15 +67,16 @@ void ReportContinuum(const analysis::ContinuumSpectrum& c, std::ostream& report)
 
 }  // namespace
 
-std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analysis::SpectrumOptions& options) {
+std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analysis::SpectrumOptions& options,
+                                                      ContinuumRoots continuum) {
   int full_spectra = 0;
-  return AnalyzeStabilityFromNeighbour(c, {}, options, full_spectra);
+  return AnalyzeStabilityFromNeighbour(c, {}, options, full_spectra, continuum);
 }
 
 std::vector<OperatingPointStability> AnalyzeStabilityFromNeighbour(const Case& c,
                                                                    const std::vector<OperatingPointStability>& neighbour,
                                                                    const analysis::SpectrumOptions& options,
-                                                                   int& full_spectra) {
+                                                                   int& full_spectra, ContinuumRoots continuum) {
   constexpr std::size_t kSeedRoots = 24;  // the neighbour's rightmost roots Newton starts from
   std::vector<OperatingPointStability> out;
   for (LinearizedOperatingPoint& p : c.model->Linearize()) {
@@ -102,9 +103,10 @@ std::vector<OperatingPointStability> AnalyzeStabilityFromNeighbour(const Case& c
     } catch (const std::invalid_argument& e) {  // parameters so extreme that the linearization is out of range
       throw InputError("/model", std::string("the linearization cannot be analysed: ") + e.what());
     }
-    std::optional<analysis::ContinuumSpectrum> continuum;
-    if (p.continuum) continuum = analysis::ComputeContinuumSpectrum(*p.continuum, options);
-    out.push_back({std::move(p), std::move(sp), std::move(continuum)});
+    std::optional<analysis::ContinuumSpectrum> exact;
+    if (p.continuum && continuum == ContinuumRoots::kComputed)
+      exact = analysis::ComputeContinuumSpectrum(*p.continuum, options);
+    out.push_back({std::move(p), std::move(sp), std::move(exact)});
   }
   return out;
 }
@@ -204,7 +206,7 @@ std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const 
   cases.front().model->Linearize();  // a kind without linearization fails here, before the threads start
   const auto per_value = ParallelMap(cases.size(), spec.jobs, [&](std::size_t i) {
     std::vector<StabilityMapRow> rows;
-    const auto analysis = AnalyzeStability(cases[i], options);
+    const auto analysis = AnalyzeStability(cases[i], options, ContinuumRoots::kSkipped);
     for (std::size_t b = 0; b < analysis.size(); ++b) {
       const auto& sp = analysis[b].spectrum;
       rows.push_back({spec.values[i], static_cast<int>(b), SteadySpeed(analysis[b].point.steady_state),
@@ -342,7 +344,7 @@ void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
     // `stability` answers there.
     for (const LinearizedOperatingPoint& p : c.model->Linearize())
       if (p.system.dimension() > kLinearVerdictStates) return;
-    points = AnalyzeStability(c);
+    points = AnalyzeStability(c, {}, ContinuumRoots::kSkipped);  // the note sets the run against the pieces' roots
   } catch (const InputError&) {
     return;  // this kind or configuration has no linearization
   }

@@ -177,7 +177,7 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
     result.cells = ParallelMap(cases.size(), spec.jobs, [&](std::size_t k) {
       StabilityMapCell cell = blank_cell(k);
       if (linearizable) {
-        const auto points = AnalyzeStability(cases[k], options);
+        const auto points = AnalyzeStability(cases[k], options, ContinuumRoots::kSkipped);
         TakeBestSteadyState(points, cell);
       }
       return cell;
@@ -190,10 +190,12 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
     // neighbours, Newton may miss one and the point needs the full spectrum).
     int full_spectra = 0;
     const std::vector<OperatingPointStability> no_neighbour;
-    const auto origin = AnalyzeStabilityFromNeighbour(cases[0], no_neighbour, options, full_spectra);
+    const auto origin =
+        AnalyzeStabilityFromNeighbour(cases[0], no_neighbour, options, full_spectra, ContinuumRoots::kSkipped);
     auto rightmost_moves = [&](std::size_t k) {
       const int full_before = full_spectra;
-      const auto next = AnalyzeStabilityFromNeighbour(cases[k], origin, options, full_spectra);
+      const auto next =
+          AnalyzeStabilityFromNeighbour(cases[k], origin, options, full_spectra, ContinuumRoots::kSkipped);
       if (full_spectra > full_before || next.empty() || origin.empty() || next[0].spectrum.roots.empty() ||
           origin[0].spectrum.roots.empty())
         return std::numeric_limits<double>::infinity();
@@ -206,7 +208,7 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
     for (std::size_t l = 0; l < lines; ++l) {
       spine[l] = l == 0 ? origin
                         : AnalyzeStabilityFromNeighbour(cases[cell_index(l, 0)], line_seeds[l - 1], options,
-                                                        full_spectra);
+                                                        full_spectra, ContinuumRoots::kSkipped);
       line_seeds[l] = !spine[l].empty() || l == 0 ? spine[l] : line_seeds[l - 1];
     }
     const auto walked = ParallelMap(lines, spec.jobs, [&](std::size_t l) {
@@ -215,7 +217,8 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
       for (std::size_t p = 0; p < length; ++p) {
         const std::size_t k = cell_index(l, p);
         std::vector<OperatingPointStability> points =
-            p == 0 ? spine[l] : AnalyzeStabilityFromNeighbour(cases[k], previous, options, line.second);
+            p == 0 ? spine[l]
+                   : AnalyzeStabilityFromNeighbour(cases[k], previous, options, line.second, ContinuumRoots::kSkipped);
         line.first.push_back(blank_cell(k));
         TakeBestSteadyState(points, line.first.back());
         if (!points.empty()) previous = std::move(points);

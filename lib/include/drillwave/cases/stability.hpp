@@ -20,8 +20,13 @@ struct OperatingPointStability {
   std::optional<analysis::ContinuumSpectrum> continuum = std::nullopt;
 };
 
+// Whether a Kelvin-Voigt string's continuum spectrum is computed beside the discretized one: maps, whose verdicts are
+// the discretized model's (the one `--simulate` runs), skip it.
+enum class ContinuumRoots { kComputed, kSkipped };
+
 // Every steady state of the case with its spectrum. Throws InputError if the kind has no linearization.
-std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analysis::SpectrumOptions& options = {});
+std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analysis::SpectrumOptions& options = {},
+                                                      ContinuumRoots continuum = ContinuumRoots::kComputed);
 // As AnalyzeStability, with each steady state's roots found again from the same steady state's rightmost roots at a
 // neighbouring parameter value (analysis/rightmost_root.hpp): where the argument principle certifies the rightmost
 // root, the spectrum holds the roots found so (the verdict, the spectral and essential abscissae are ComputeSpectrum's;
@@ -30,7 +35,8 @@ std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analy
 std::vector<OperatingPointStability> AnalyzeStabilityFromNeighbour(const Case& c,
                                                                    const std::vector<OperatingPointStability>& neighbour,
                                                                    const analysis::SpectrumOptions& options,
-                                                                   int& full_spectra);
+                                                                   int& full_spectra,
+                                                                   ContinuumRoots continuum = ContinuumRoots::kComputed);
 
 // {"operating_points": [{"steady_state", "stable", "spectral_abscissa", "essential_abscissa", "roots": [[re, im,
 // residual], ...] (the rightmost max_roots)}]}, each point with a continuum spectrum also "continuum_kelvin_voigt":
