@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Dense>
+
 #include "drillwave/diagnosis/signals.hpp"
 
 namespace drillwave::estimation {
@@ -39,6 +41,31 @@ Smoothed SmoothQuadratic(const std::vector<double>& x, double dt, int half_width
       dv += d[k + m] * x[i + k];
     }
     s.value[i] = v;  // NaN in the window stays NaN
+    s.derivative[i] = dv;
+  }
+  return s;
+}
+
+Smoothed SmoothPolynomial(const std::vector<double>& x, double dt, int half_width, int order) {
+  const long n = static_cast<long>(x.size()), m = std::max(half_width, 1);
+  const int p = std::clamp(order, 1, static_cast<int>(2 * m));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Smoothed s{std::vector<double>(x.size(), nan), std::vector<double>(x.size(), nan), 1, 0};
+  // The centre's value and slope are the first two rows of the least-squares fit's pseudo-inverse.
+  Eigen::MatrixXd vandermonde(2 * m + 1, p + 1);
+  for (long k = -m; k <= m; ++k)
+    for (int j = 0; j <= p; ++j) vandermonde(k + m, j) = std::pow(static_cast<double>(k), j);
+  const Eigen::MatrixXd fit = vandermonde.completeOrthogonalDecomposition().pseudoInverse();
+  const Eigen::VectorXd c = fit.row(0).transpose(), d = fit.row(1).transpose() / dt;
+  s.noise_gain = c.norm();
+  s.derivative_noise_gain = d.norm();
+  for (long i = m; i + m < n; ++i) {
+    double v = 0, dv = 0;
+    for (long k = -m; k <= m; ++k) {
+      v += c[k + m] * x[i + k];
+      dv += d[k + m] * x[i + k];
+    }
+    s.value[i] = v;
     s.derivative[i] = dv;
   }
   return s;

@@ -69,7 +69,8 @@ BitEstimate EstimateWaveString(const WaveStringModel& model, const SurfaceSignal
   // (the case's gain holds the speed within what the torque's swing allows) gives J w' = -(J / kp)(T_m' - ki e), so
   // T_0(t) = T_m(t + J / kp) to first order: a time advance that, unlike the derivative of the measured speed (whose
   // noise J w' multiplies by J / dt), adds no noise. A drive that lets the speed swing further than that is softer
-  // than the case says (by an order of magnitude: a stiff drive's ripple is within a few times the torque's swing over kp and the noise): then w' is read from the measured speed, smoothed over the bit's time constant J_b / Z.
+  // than the case says (by an order of magnitude: a stiff drive's ripple is within a few times the torque's swing over
+  // kp and the noise): then w' is read from the measured speed.
   const double z_bottom = TorsionalPieces(model).back().impedance;
   std::vector<double> top_string_torque = s.top_torque_Nm;
   double advance = 0;
@@ -86,12 +87,20 @@ BitEstimate EstimateWaveString(const WaveStringModel& model, const SurfaceSignal
                         ReadableNumber(std::max(allowed, noise)) + "): string torque at the top = the motor torque " +
                         ReadableNumber(advance) + " s later (top inertia / kp)");
     } else {
+      // J_td / Z (seconds for a top drive on a pipe) multiplies the slope's noise, so the slope is a least-squares
+      // quartic's over +-tau, the string's travel time: a soft top swings with the string's modes, the slowest a
+      // quarter wave of period 4 tau, which a quartic over half that period follows where a quadratic's straight-line
+      // slope flattens its turns (the soft-drive recordings of ../shared: bit-speed RMS 19.3 -> 9.0 rpm, stuck F1
+      // 0.25 -> 0.88 on train rec18 against a quadratic over +-4 J_b / Z, docs/results.md).
+      const int slope_half = std::max(2, static_cast<int>(std::lround(TravelTime(TorsionalPieces(model)) / dt)));
+      const Smoothed top_slope = SmoothPolynomial(s.top_speed_rad_s, dt, slope_half, 4);
       for (std::size_t i = 0; i < n; ++i)
-        top_string_torque[i] = s.top_torque_Nm[i] - model.top_inertia_kgm2 * top.derivative[i];
-      advance = top_half * dt;
+        top_string_torque[i] = s.top_torque_Nm[i] - model.top_inertia_kgm2 * top_slope.derivative[i];
+      advance = slope_half * dt;
       e.notes.push_back("soft drive (top speed swing " + ReadableNumber(swing) + " rad/s, more than 10 times the " +
                         ReadableNumber(std::max(allowed, noise)) + " the case's kp allows): the top inertia's torque "
-                        "from the measured speed's derivative over +-" + ReadableNumber(advance) + " s");
+                        "from the measured speed's slope, a quartic's over +-" + ReadableNumber(advance) +
+                        " s (the string's travel time)");
     }
   }
   const std::vector<WavePiece> torsion = TorsionalPieces(model);

@@ -15,6 +15,10 @@ struct Smoothed {
 // derivative at the centre. half_width 0 returns the input and a central-difference derivative.
 Smoothed SmoothQuadratic(const std::vector<double>& x, double dt, int half_width);
 
+// The same with a polynomial of the given order (>= 1) fitted over the window: a quartic's slope at the centre follows
+// a curved signal whose slope a quadratic's (a straight line's) flattens, at more noise for the same window.
+Smoothed SmoothPolynomial(const std::vector<double>& x, double dt, int half_width, int order);
+
 // White-noise standard deviation of a sampled signal read from its successive differences (robust: 1.4826 MAD of the
 // differences over sqrt 2), which the signal's own motion barely moves when it is sampled well above its bandwidth.
 double NoiseStd(const std::vector<double>& x);
