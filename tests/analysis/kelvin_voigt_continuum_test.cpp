@@ -146,10 +146,11 @@ TEST(KelvinVoigtContinuum, DiscretizedRootsConvergeToTheContinuum) {
 
 // Imposed top and massless free bit: the continuum's modes w_k = (2k + 1) pi / (2 tau) each give
 // s^2 + eta w_k^2 s + w_k^2 = 0 exactly (the Kelvin-Voigt term is proportional to the stiffness).
-std::vector<Complex> ModalRoots(double eta, const SpectrumOptions& o) {
+// With distributed viscous damping a = gamma / (rho J) as well: s^2 + (a + eta w^2) s + w^2 = 0.
+std::vector<Complex> ModalRoots(double eta, const SpectrumOptions& o, double a = 0) {
   std::vector<Complex> roots;
   for (int k = 0;; ++k) {
-    const double w = (2 * k + 1) * kPi / (2 * kPipe.travel_time_s), half = eta * w * w / 2;
+    const double w = (2 * k + 1) * kPi / (2 * kPipe.travel_time_s), half = (a + eta * w * w) / 2;
     if (-half < o.re_min && half > w) break;  // overdamped and out of the box from here on
     const Complex root = std::sqrt(Complex(half * half - w * w));
     for (const Complex s : {-half + root, -half - root})
@@ -186,6 +187,28 @@ TEST(KelvinVoigtContinuum, RootsAreTheModalClosedForm) {
               0.05 * eta * near_chain.s.imag() * near_chain.s.imag());
   EXPECT_NEAR(lowest.real(), -0.017806, 5e-7);
   EXPECT_NEAR(lowest.real(), -eta * w0 * w0 / 2, 1e-12);
+}
+
+// gamma > 0 (the distributed viscous damping of the string's equation) shifts every modal root by the same -a / 2 where
+// eta alone would leave them: a = gamma / (rho J) = gamma L / (Z0 tau).
+TEST(KelvinVoigtContinuum, ViscousDampingShiftsTheModalRoots) {
+  SpectrumOptions o;
+  o.im_max = 100;
+  const double eta = 0.002, a = 0.8;
+  KelvinVoigtString string = PipeWithImposedTop(eta, 0);
+  string.viscous_damping_Nms_per_rad_m = a * kPipe.impedance * kPipe.travel_time_s / kPipe.length_m;
+  const ContinuumSpectrum c = ComputeContinuumSpectrum(string, o);
+  const std::vector<Complex> modal = ModalRoots(eta, o, a);
+  double worst = 0;
+  for (const Complex z : modal) worst = std::max(worst, RelativeDistance(c.spectrum.roots, z));
+  std::printf("[ measured ] eta %g s, a %g 1/s: %zu continuum roots, %zu modal, largest distance %.2e; lowest "
+              "%.9f%+.6fi\n", eta, a, c.spectrum.roots.size(), modal.size(), worst, c.spectrum.roots.front().s.real(),
+              c.spectrum.roots.front().s.imag());
+  EXPECT_TRUE(c.certified);
+  EXPECT_EQ(c.spectrum.roots.size(), modal.size());
+  EXPECT_LT(worst, 1e-10);
+  const double w0 = kPi / (2 * kPipe.travel_time_s);
+  EXPECT_NEAR(c.spectrum.roots.front().s.real(), -(a + eta * w0 * w0) / 2, 1e-10);
 }
 
 // The continuum costs the same whatever the parts: its function has one two-port per section.
