@@ -7,8 +7,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <new>
 #include <optional>
 #include <string>
@@ -34,6 +36,7 @@
 #include "drillwave/core/memory.hpp"
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/core/progress.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/diagnosis/loop_report.hpp"
@@ -47,11 +50,28 @@
 
 namespace {
 
+// Options fields (core/validity.hpp) this tool sets by a flag of another name.
+const std::map<std::string, std::string> kFlagsOfFields = {
+    {"threads", "--jobs"},
+    {"evaluations_per_parameter", "--evaluations"},
+    {"sample_window_s", "--sample-window"},
+    {"fit_begin_s", "--fit-window"},
+    {"fit_end_s", "--fit-window"},
+    {"held_out_begin_s", "--held-out"},
+    {"held_out_end_s", "--held-out"},
+    {"window_begin_s", "--window"},
+    {"window_end_s", "--window"},
+    {"bit_speed", "--bit"},
+    {"top_speed", "--top"}};
+
 // The flag that sets a library parameter (drillwave::ParameterError names it as the library does): "max_samples"
-// -> "--max-samples"; a parameter with a qualifier ("map /model/bit/inertia_kgm2") keeps it.
+// -> "--max-samples", an options field by kFlagsOfFields; a parameter with a qualifier ("map /model/bit/inertia_kgm2")
+// keeps it.
 std::string FlagOf(const std::string& parameter) {
   const std::size_t space = parameter.find(' ');
-  std::string flag = "--" + parameter.substr(0, space);
+  const std::string name = parameter.substr(0, space);
+  const auto other = kFlagsOfFields.find(name);
+  std::string flag = other != kFlagsOfFields.end() ? other->second : "--" + name;
   std::replace(flag.begin(), flag.end(), '_', '-');
   return space == std::string::npos ? flag : flag + parameter.substr(space);
 }
@@ -252,11 +272,12 @@ int Stability(const std::string& file, const std::string& out_dir, const std::ve
 }
 
 int Inspect(const std::string& file, const std::string& out_dir, const std::string& bit, const std::string& top) {
-  const auto recording = drillwave::diagnosis::LoadRecording(file);
-  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   drillwave::diagnosis::InspectOptions options;
   options.bit_speed = bit;
   options.top_speed = top;
+  drillwave::ThrowIfInvalid(options);
+  const auto recording = drillwave::diagnosis::LoadRecording(file);
+  drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   const auto inspection = drillwave::diagnosis::InspectRecording(recording, options);
   drillwave::diagnosis::WriteInspection(recording, inspection, out_dir);
   std::cout << "drillwave: inspected " << file << " (" << recording.names.size() << " channels, "
@@ -333,13 +354,15 @@ int Fit(const std::string& file, const std::string& recording_file, const std::s
     options.model_time_offset_s = dg::kSidecarWarmupS;
     options.window_begin_s = 5;
   }
+  if (!window.empty()) std::tie(options.window_begin_s, options.window_end_s) = Window(window);
+  if (!features.empty()) options.features = features;
+  options.max_evaluations = max_evaluations;
+  drillwave::ThrowIfInvalid(options);
   const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
   const dg::Recording recording = dg::LoadRecording(recording_file);
-  if (!window.empty()) std::tie(options.window_begin_s, options.window_end_s) = Window(window);
   const auto [model_begin, model_end] = ModelSpan(c, options.model_time_offset_s);
   dg::CheckWindow(recording, model_begin, model_end, options.window_begin_s, options.window_end_s);
   options.maps = dg::ResolveChannelMaps(map_texts, recording, dg::ProbeChannels(c));
-  if (!features.empty()) options.features = features;
   const std::vector<std::string> known = dg::FeatureNames(options.maps);
   for (const std::string& f : options.features)
     if (std::find(known.begin(), known.end(), f) == known.end()) {
@@ -348,10 +371,6 @@ int Fit(const std::string& file, const std::string& recording_file, const std::s
       throw drillwave::InputError("--feature", "no feature named '" + drillwave::ReadableText(f) +
                                                    "' (with these channel maps there are: " + list + ")");
     }
-  if (max_evaluations < 1)
-    throw drillwave::InputError("--max-evaluations", "expected a whole number >= 1, got " +
-                                                         std::to_string(max_evaluations));
-  options.max_evaluations = max_evaluations;
   std::vector<dg::FitParameter> parameters;
   for (const std::string& p : params) {
     parameters.push_back(dg::ParseFitParameter(p));
@@ -464,6 +483,7 @@ int Estimate(const std::string& file, const std::string& recording_file, const s
     hook_force_N = 1000 * sidecar.value("hookload_setpoint_kN", 0.0);
     options.model_time_offset_s = -drillwave::diagnosis::kSidecarWarmupS;
   }
+  drillwave::ThrowIfInvalid(options);
   drillwave::cases::ParseCase(doc);  // validates every field (InputError names its path)
   const es::EstimatorModel model = es::EstimatorModelFromCase(doc, hook_force_N);
   es::ScoreWindow score;
@@ -510,7 +530,8 @@ struct DiagnoseArguments {
 };
 
 // The case, recording and loop options diagnose and calibrate share: the case (with a sidecar's operating point), the
-// recording, its fit and held-out windows (checked against the model's span) and channel maps, its sample window.
+// recording, its fit and held-out windows and sample window, the options a command sets (`set_options`), all checked
+// (LoopOptions::IsValid) before the windows are checked against the model's span and the channel maps resolved.
 struct LoopInputs {
   nlohmann::json doc;
   std::string case_name;
@@ -520,7 +541,8 @@ struct LoopInputs {
 
 LoopInputs ReadLoopInputs(const std::string& file, const std::string& recording_file, const std::string& sidecar_file,
                           const std::vector<std::string>& overrides, const std::vector<std::string>& map_texts,
-                          const std::string& fit_window, const std::string& held_out, double sample_window_s) {
+                          const std::string& fit_window, const std::string& held_out, double sample_window_s,
+                          const std::function<void(drillwave::diagnosis::LoopOptions&)>& set_options = nullptr) {
   namespace dg = drillwave::diagnosis;
   LoopInputs in;
   in.doc = LoadCaseDocument(file, overrides);
@@ -532,15 +554,12 @@ LoopInputs ReadLoopInputs(const std::string& file, const std::string& recording_
   o = dg::DefaultLoopOptions(c, in.recording, sidecar_file.empty() ? 0 : dg::kSidecarWarmupS);
   if (!fit_window.empty()) std::tie(o.fit_begin_s, o.fit_end_s) = Window(fit_window);
   if (!held_out.empty()) std::tie(o.held_out_begin_s, o.held_out_end_s) = Window(held_out);
+  if (sample_window_s != -1) o.sample_window_s = sample_window_s;  // given
+  if (set_options) set_options(o);
+  drillwave::ThrowIfInvalid(o);
   const auto [model_begin, model_end] = ModelSpan(c, o.model_time_offset_s);
   dg::CheckWindow(in.recording, model_begin, model_end, o.fit_begin_s, o.fit_end_s);
   dg::CheckWindow(in.recording, model_begin, model_end, o.held_out_begin_s, o.held_out_end_s);
-  if (sample_window_s != -1) {  // given
-    if (!(sample_window_s >= 0 && sample_window_s <= 60))
-      throw drillwave::InputError("--sample-window", "expected seconds in [0, 60], got " +
-                                                         drillwave::ReadableNumber(sample_window_s));
-    o.sample_window_s = sample_window_s;
-  }
   o.maps = dg::ResolveChannelMaps(map_texts, in.recording, dg::ProbeChannels(c));
   return in;
 }
@@ -549,29 +568,19 @@ int Diagnose(const std::string& file, const std::string& recording_file, const s
              const std::vector<std::string>& overrides, const std::vector<std::string>& map_texts,
              const DiagnoseArguments& a, const std::string& out_dir) {
   namespace dg = drillwave::diagnosis;
-  LoopInputs in =
-      ReadLoopInputs(file, recording_file, sidecar_file, overrides, map_texts, a.fit_window, a.held_out,
-                     a.sample_window_s);
+  const auto set_options = [&](dg::LoopOptions& o) {
+    o.draws = a.draws;
+    o.margin = a.margin;
+    o.fit_tolerance = a.fit_tolerance;
+    o.threads = a.threads;
+    o.evaluations_per_parameter = a.evaluations_per_parameter;
+  };
+  LoopInputs in = ReadLoopInputs(file, recording_file, sidecar_file, overrides, map_texts, a.fit_window, a.held_out,
+                                 a.sample_window_s, set_options);
   const nlohmann::json& doc = in.doc;
   const dg::Recording& recording = in.recording;
-  dg::LoopOptions& o = in.o;
-  if (!(a.margin >= 0 && a.margin < 1))
-    throw drillwave::InputError("--margin", "expected a fraction in [0, 1), got " + drillwave::ReadableNumber(a.margin));
-  if (a.threads < 1) throw drillwave::InputError("-j", "expected a whole number >= 1, got " + std::to_string(a.threads));
-  if (a.evaluations_per_parameter < 1)
-    throw drillwave::InputError("--evaluations", "expected a whole number >= 1, got " +
-                                                     std::to_string(a.evaluations_per_parameter));
-  if (!(a.fit_tolerance == 0 || (a.fit_tolerance >= 1e-14 && a.fit_tolerance <= 1e-2)))
-    throw drillwave::InputError("--fit-tolerance", "expected 0 (the case's) or a tolerance in [1e-14, 1e-2], got " +
-                                                       drillwave::ReadableNumber(a.fit_tolerance));
+  const dg::LoopOptions& o = in.o;
   if (a.predict_until_s != 0) dg::CheckPredictionTime(o, a.predict_until_s);
-  if (!(a.draws >= 1 && a.draws <= 20))
-    throw drillwave::InputError("--draws", "expected a whole number in [1, 20], got " + std::to_string(a.draws));
-  o.draws = a.draws;
-  o.margin = a.margin;
-  o.fit_tolerance = a.fit_tolerance;
-  o.threads = a.threads;
-  o.evaluations_per_parameter = a.evaluations_per_parameter;
   drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
   std::cout << "drillwave: diagnosing " << recording_file << " with '" << in.case_name << "': fit window ["
             << o.fit_begin_s << ", " << o.fit_end_s << "] s, held out [" << o.held_out_begin_s << ", "
@@ -603,6 +612,7 @@ int Calibrate(const std::string& file, const std::string& recording_file, const 
               const std::vector<std::string>& overrides, const std::vector<std::string>& map_texts,
               const CalibrateArguments& a, const std::string& out_dir) {
   namespace dg = drillwave::diagnosis;
+  drillwave::ThrowIfInvalid(a.posterior);
   const LoopInputs in =
       ReadLoopInputs(file, recording_file, sidecar_file, overrides, map_texts, a.fit_window, a.held_out,
                      a.sample_window_s);

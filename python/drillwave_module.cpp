@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <future>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <shared_mutex>
@@ -31,6 +33,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/parallel.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/diagnosis/fit.hpp"
 #include "drillwave/diagnosis/loop.hpp"
@@ -363,9 +366,10 @@ LoopArguments ReadLoopArguments(const py::object& case_, const py::object& recor
   return a;
 }
 
-// Without the GIL: the recording loaded, the loop's options with the windows checked against the model's span and
-// the channel maps resolved.
-std::pair<drillwave::diagnosis::Recording, drillwave::diagnosis::LoopOptions> LoopInputs(const LoopArguments& a) {
+// Without the GIL: the recording loaded, the loop's options with those a call sets (`set_options`) checked
+// (LoopOptions::IsValid), then the windows checked against the model's span and the channel maps resolved.
+std::pair<drillwave::diagnosis::Recording, drillwave::diagnosis::LoopOptions> LoopInputs(
+    const LoopArguments& a, const std::function<void(drillwave::diagnosis::LoopOptions&)>& set_options = nullptr) {
   namespace dg = drillwave::diagnosis;
   const drillwave::cases::Case c = drillwave::cases::ParseCase(a.doc);
   dg::Recording recording = dg::LoadRecording(a.recording_name);
@@ -373,6 +377,8 @@ std::pair<drillwave::diagnosis::Recording, drillwave::diagnosis::LoopOptions> Lo
   if (!a.fit_given.is_null()) std::tie(o.fit_begin_s, o.fit_end_s) = WindowArgument(a.fit_given, "fit_window");
   if (!a.held_out_given.is_null())
     std::tie(o.held_out_begin_s, o.held_out_end_s) = WindowArgument(a.held_out_given, "held_out");
+  if (set_options) set_options(o);
+  drillwave::ThrowIfInvalid(o);
   const double offset = o.model_time_offset_s;
   dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.fit_begin_s, o.fit_end_s);
   dg::CheckWindow(recording, -offset, c.settings.duration_s - offset, o.held_out_begin_s, o.held_out_end_s);
@@ -398,11 +404,10 @@ py::dict Diagnose(const py::object& case_, const py::object& recording_file, con
       ReadLoopArguments(case_, recording_file, sidecar, overrides, map_texts, fit_window, held_out);
   const int threads = Jobs(jobs);
   const json result = WithoutGil(limit, [&] {
-    auto [recording, o] = LoopInputs(args);
-    if (!(margin >= 0 && margin < 1))
-      throw InputError("margin", "expected a fraction in [0, 1), got " + drillwave::ReadableNumber(margin));
-    o.margin = margin;
-    o.threads = threads;
+    const auto [recording, o] = LoopInputs(args, [&](dg::LoopOptions& given) {
+      given.margin = margin;
+      given.threads = threads;
+    });
     const dg::DiagnosisLoop loop = dg::RunDiagnosisLoop(args.doc, recording, o);
     json out = dg::DiagnosisLoopToJson(loop);
     out["fitted_case"] = loop.fitted_document;
@@ -427,6 +432,7 @@ py::dict Estimate(const py::object& case_, const py::object& recording_file, con
     hook_force_N = 1000 * given.value("hookload_setpoint_kN", 0.0);
     options.model_time_offset_s = -dg::kSidecarWarmupS;
   }
+  drillwave::ThrowIfInvalid(options);
   const std::string recording_name = FileName(recording_file, "recording");
   const json window_given = window.is_none() ? json() : ToJson(window, "window");
   const auto [summary, e] = WithoutGil(std::nullopt, [&] {
@@ -466,12 +472,13 @@ py::dict Calibrate(const py::object& case_, const py::object& recording_file, co
                    int predictive_draws, unsigned seed, const py::object& jobs, const py::object& max_samples) {
   namespace dg = drillwave::diagnosis;
   const std::optional<double> limit = SampleLimit(max_samples);
-  const LoopArguments args =
-      ReadLoopArguments(case_, recording_file, sidecar, overrides, map_texts, fit_window, held_out);
-  const json params_given = ToJson(params, "params");
   dg::PosteriorOptions p;
   p.walkers = walkers, p.steps = steps, p.burn_in = burn_in, p.predictive_draws = predictive_draws, p.seed = seed;
   p.threads = Jobs(jobs);
+  drillwave::ThrowIfInvalid(p);
+  const LoopArguments args =
+      ReadLoopArguments(case_, recording_file, sidecar, overrides, map_texts, fit_window, held_out);
+  const json params_given = ToJson(params, "params");
   const json result = WithoutGil(limit, [&] {
     std::vector<dg::FitParameter> parameters;
     for (const json& q : params_given.is_array() ? params_given : json::array({nullptr})) {
@@ -500,14 +507,21 @@ py::dict Calibrate(const py::object& case_, const py::object& recording_file, co
 py::object* input_error_type = nullptr;
 py::object* numerical_error_type = nullptr;
 
-// The keyword that sets a library parameter (ParameterError names it as the library does) where this module's differs:
-// "map /model/x" -> "maps /model/x".
+// The keyword that sets a library parameter (ParameterError names it as the library does, an options field by its own
+// name) where this module's differs: "map /model/x" -> "maps /model/x", "threads" -> "jobs".
 std::string KeywordOf(const std::string& parameter) {
+  static const std::map<std::string, std::string> keywords = {
+      {"map", "maps"},
+      {"from", "from_channels"},
+      {"threads", "jobs"},
+      {"fit_begin_s", "fit_window"},
+      {"fit_end_s", "fit_window"},
+      {"held_out_begin_s", "held_out"},
+      {"held_out_end_s", "held_out"}};
   const std::size_t space = parameter.find(' ');
-  const std::string name = parameter.substr(0, space), rest = space == std::string::npos ? "" : parameter.substr(space);
-  if (name == "map") return "maps" + rest;
-  if (name == "from") return "from_channels" + rest;
-  return parameter;
+  const auto keyword = keywords.find(parameter.substr(0, space));
+  if (keyword == keywords.end()) return parameter;
+  return keyword->second + (space == std::string::npos ? "" : parameter.substr(space));
 }
 
 // drillwave.InputError(message) with .path (a bad parameter: its keyword), drillwave.NumericalError(message) with .time

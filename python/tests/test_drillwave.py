@@ -156,6 +156,21 @@ def test_diagnose_a_recording_of_the_model_itself(tmp_path):
         drillwave.diagnose(CASE, str(recording), set=SHORT, maps=["bit_rpm=no_such"])
 
 
+def test_option_values_out_of_range_raise_input_error_naming_the_keyword(tmp_path):
+    # The library's options check their own fields (IsValid) before any run; an options field is named by the keyword
+    # that sets it (the fit window's end by fit_window, the held-out window's start by held_out).
+    recording = own_recording(tmp_path)
+    with pytest.raises(drillwave.InputError, match=r"^margin: expected a fraction in \[0, 1\), got 1$") as e:
+        drillwave.diagnose(CASE, str(recording), set=SHORT, margin=1)
+    assert e.value.path == "margin"
+    with pytest.raises(drillwave.InputError, match=r"^held_out: the held-out window must not begin before the fit "
+                                                   r"window ends \(fit_end_s 45, held_out_begin_s 40\)$") as e:
+        drillwave.diagnose(CASE, str(recording), set=SHORT, fit_window=(20, 45), held_out=(40, 60))
+    assert e.value.path == "held_out"
+    with pytest.raises(drillwave.InputError, match=r"^burn_in: expected a whole number in \[0, steps - 1 = 11\]"):
+        drillwave.calibrate(CASE, str(recording), ["/model/bit/friction/mu_s:0.5:1"], set=SHORT, steps=12, burn_in=12)
+
+
 def test_estimate_sees_the_bit_of_the_models_own_recording_as_the_command_line_does(tmp_path):
     # The model's own run as a recording: its bit estimated from the top speed alone, scored against its bit speed.
     recording = own_recording(tmp_path)

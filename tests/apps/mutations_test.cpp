@@ -344,6 +344,37 @@ TEST_F(Mutations, ADiagnosisOfHoursIsRefusedBeforeItsRuns) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+// Option values out of their range (issue 36 item 5): the library's options check their own fields (IsValid), and
+// the tool calls that check as soon as the options are filled, so a bad value exits 2 before any run, named by the
+// flag that sets it, with the value and what was expected; nothing is written.
+TEST_F(Mutations, FlagValuesOutOfRangeAreNamedByTheirFlags) {
+  std::map<std::string, Tally> tallies;
+  std::string rows = "time_s,top_rpm,bit_rpm\n";
+  for (int i = 0; i < 1000; ++i) rows += std::to_string(0.01 * i) + ",60,60\n";
+  const std::string inputs = (kCases / "two-mass-stickslip.json").string() + " " + WriteText("rec.csv", rows) + " ";
+  const std::string mu = " -p /model/bit/friction/mu_s:0.6:0.9", params = " --params /model/bit/friction/mu_s:0.6:0.9";
+  for (const auto& [command, flags, refusal] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"diagnose", "--margin 1", "--margin: expected a fraction in [0, 1), got 1"},
+           {"diagnose", "-j 0", "--jobs: expected a whole number >= 1, got 0"},
+           {"diagnose", "--evaluations 0", "--evaluations: expected a whole number >= 1, got 0"},
+           {"diagnose", "--draws 21", "--draws: expected a whole number in [1, 20], got 21"},
+           {"diagnose", "--fit-tolerance 0.5",
+            "--fit-tolerance: expected 0 (the case's) or a tolerance in [1e-14, 1e-2], got 0.5"},
+           {"diagnose", "--sample-window 61", "--sample-window: expected seconds in [0, 60], got 61"},
+           {"diagnose", "--fit-window 1,6 --held-out 4,9",
+            "--held-out: the held-out window must not begin before the fit window ends (fit_end_s 6, held_out_begin_s 4)"},
+           {"fit", mu + " --max-evaluations 0", "--max-evaluations: expected a whole number >= 1, got 0"},
+           {"calibrate", params + " --burn-in 60", "--burn-in: expected a whole number in [0, steps - 1 = 59], got 60"},
+           {"calibrate", params + " --walkers 5", "--walkers: expected an even number in [4, 1000]"},
+           {"calibrate", params + " -j 0", "--jobs: expected a whole number >= 1, got 0"}}) {
+    const Outcome o = RunTool(command + " " + inputs + flags + " -o " + (dir_ / "out").string());
+    tallies[command].Add(o.exit_code == 2 && o.output.find("bad input: " + refusal) != std::string::npos &&
+                             !fs::exists(dir_ / "out"),
+                         flags + ": exit " + std::to_string(o.exit_code) + ": " + o.output);
+  }
+  Report(tallies);
+}
+
 // Recordings: every cell a finite number, unique UTF-8 names, increasing finite time. Each mutation of each
 // synthetic recording (its first 300 lines) is refused with exit 2 naming the file and, for cells, line and column.
 TEST_F(Mutations, RecordingsAreValidatedLikeCases) {

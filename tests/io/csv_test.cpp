@@ -49,6 +49,14 @@ std::string ReadErrorOf(const std::string& path) {
   return "";
 }
 
+// A flag has nothing out of range: CsvOptions are valid either way (core/validity.hpp's common contract).
+TEST(CsvOptions, AreValidEitherWay) {
+  std::string error;
+  EXPECT_TRUE(CsvOptions{}.IsValid(&error));
+  EXPECT_TRUE(CsvOptions{true}.IsValid(&error));
+  EXPECT_EQ(error, "");
+}
+
 TEST(WriteCsv, WritesHeaderAndTenSignificantDigits) {
   std::ostringstream out;
   WriteCsv(out, {"time_s", "v"},

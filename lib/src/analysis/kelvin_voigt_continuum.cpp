@@ -8,6 +8,7 @@
 
 #include "drillwave/analysis/rightmost_root.hpp"
 #include "drillwave/core/constants.hpp"
+#include "drillwave/core/validity.hpp"
 
 namespace drillwave::analysis {
 namespace {
@@ -135,6 +136,7 @@ ContinuumValue ContinuumCharacteristic(const KelvinVoigtString& str, Complex s) 
 
 ContinuumSpectrum ComputeContinuumSpectrum(const KelvinVoigtString& str, const SpectrumOptions& o) {
   CheckString(str);
+  ThrowIfInvalid(o);
   const double eta = str.kelvin_voigt_s, total_tau = TotalTravelTime(str);
   const CharacteristicFunction f = [&str](Complex s) {
     const Complex v = ContinuumCharacteristic(str, s).value();

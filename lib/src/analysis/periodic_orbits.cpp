@@ -8,6 +8,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/integration/simulator.hpp"
 
 namespace drillwave::analysis {
@@ -116,8 +117,29 @@ Eigen::RowVectorXd PiecewiseSmoothField::SwitchGradient(int mode, int k, const V
   return g;
 }
 
+bool ShootingOptions::IsValid(std::string* error) const {
+  return PositiveField(error, "abs_tol", abs_tol) && PositiveField(error, "rel_tol", rel_tol) &&
+         PositiveField(error, "newton_tol", newton_tol) && WholeField(error, "max_newton", max_newton, 1) &&
+         WholeField(error, "samples_per_period", samples_per_period, 1);
+}
+
+bool ContinuationOptions::IsValid(std::string* error) const {
+  return OrderedFields(error, "p_min", p_min, "p_max", p_max, "the parameter range must end after it begins") &&
+         PositiveField(error, "min_step", min_step) &&
+         OrderedFields(error, "min_step", min_step, "initial_step", initial_step,
+                       "the first step must lie within the step range", true) &&
+         OrderedFields(error, "initial_step", initial_step, "max_step", max_step,
+                       "the first step must lie within the step range", true) &&
+         FiniteField(error, "max_step", max_step) && PositiveField(error, "p_scale", p_scale) &&
+         WholeField(error, "max_points", max_points, 1) && PositiveField(error, "hopf_amplitude", hopf_amplitude) &&
+         NonNegativeField(error, "end_amplitude", end_amplitude) &&
+         WholeField(error, "amplitude_component", amplitude_component, -1) && PositiveField(error, "dp_fd", dp_fd) &&
+         NestedValid(error, "shooting", shooting.IsValid(error));
+}
+
 FlowResult Flow(const PiecewiseSmoothField& field, const VectorXd& x0, double duration, bool sensitivity,
                 const ShootingOptions& options) {
+  ThrowIfInvalid(options);
   const int n = field.Dimension();
   VectorXd start = x0;
   const int mode = field.ModeAt(start);
@@ -137,7 +159,7 @@ FlowResult Flow(const PiecewiseSmoothField& field, const VectorXd& x0, double du
   FlowResult result;
   result.time_s.push_back(0);
   result.states.push_back(start);
-  const double interval = duration / std::max(1, options.samples_per_period);
+  const double interval = duration / options.samples_per_period;
   const auto observer = integration::SampleEvery(interval, [&](double t, const std::vector<double>& state) {
     result.time_s.push_back(t);
     result.states.push_back(Eigen::Map<const VectorXd>(state.data(), n));
@@ -188,6 +210,7 @@ PeriodicOrbit OrbitFromFlow(const VectorXd& x0, double period, FlowResult&& flow
 
 PeriodicOrbit FindPeriodicOrbit(const PiecewiseSmoothField& field, const VectorXd& guess, double period_guess,
                                 const ShootingOptions& options) {
+  ThrowIfInvalid(options);
   const int n = field.Dimension();
   if (guess.size() != n || !(period_guess > 0))
     throw std::invalid_argument("FindPeriodicOrbit: guess of the wrong size or period not > 0");
@@ -215,6 +238,7 @@ PeriodicOrbit FindPeriodicOrbit(const PiecewiseSmoothField& field, const VectorX
 
 MatrixXd FiniteDifferenceMonodromy(const PiecewiseSmoothField& field, const VectorXd& x0, double period, double h,
                                    const ShootingOptions& options) {
+  ThrowIfInvalid(options);
   const int n = field.Dimension();
   MatrixXd m(n, n);
   for (int c = 0; c < n; ++c) {
@@ -410,7 +434,12 @@ double Range(const BranchPoint& b) { return b.amplitude_max - b.amplitude_min; }
 }  // namespace
 
 PeriodicBranch ContinueFromHopf(const FieldFamily& family, const HopfPoint& hopf, const ContinuationOptions& o) {
+  ThrowIfInvalid(o);
   const int n = static_cast<int>(hopf.x.size());
+  if (o.amplitude_component >= n)
+    throw ParameterError("amplitude_component", "expected -1 (the last state) or a state in [0, " +
+                                                    std::to_string(n - 1) + "], got " +
+                                                    std::to_string(o.amplitude_component));
   Continuation cont{family, o, n};
   PeriodicBranch branch;
 

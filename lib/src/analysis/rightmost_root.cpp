@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "drillwave/core/constants.hpp"
+#include "drillwave/core/validity.hpp"
 
 namespace drillwave::analysis {
 namespace {
@@ -257,6 +258,7 @@ bool NewtonOnFunction(const CharacteristicFunction& f, std::complex<double>& s, 
 SeededSpectrum SpectrumFromSeeds(const LinearDelaySystem& sys, const std::vector<Complex>& seeds,
                                  const SpectrumOptions& o, std::optional<double> known_essential_abscissa) {
   sys.Validate();
+  ThrowIfInvalid(o);
   SeededSpectrum out;
   Spectrum& sp = out.spectrum;
   std::vector<Complex> chain_starts;

@@ -2,6 +2,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/progress.hpp"
+#include "drillwave/core/validity.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -523,9 +524,15 @@ const char* VerdictName(Spectrum::Verdict v) {
   return "unstable";
 }
 
+bool SpectrumOptions::IsValid(std::string* error) const {
+  return WholeField(error, "collocation_nodes", collocation_nodes, 4) && FiniteField(error, "re_min", re_min) &&
+         PositiveField(error, "im_max", im_max) && WholeField(error, "newton_iterations", newton_iterations, 1) &&
+         PositiveField(error, "root_tolerance", root_tolerance);
+}
+
 Spectrum ComputeSpectrum(const LinearDelaySystem& sys, const SpectrumOptions& o) {
   sys.Validate();
-  if (o.collocation_nodes < 4) throw std::invalid_argument("collocation_nodes must be >= 4");
+  ThrowIfInvalid(o);
   Spectrum out;
   out.essential_abscissa = -std::numeric_limits<double>::infinity();
   Progress progress("characteristic roots of a linear system of " + std::to_string(sys.dimension()) + " states");

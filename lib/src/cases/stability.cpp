@@ -11,6 +11,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -69,6 +70,7 @@ void ReportContinuum(const analysis::ContinuumSpectrum& c, std::ostream& report)
 
 std::vector<OperatingPointStability> AnalyzeStability(const Case& c, const analysis::SpectrumOptions& options,
                                                       ContinuumRoots continuum) {
+  ThrowIfInvalid(options);
   int full_spectra = 0;
   return AnalyzeStabilityFromNeighbour(c, {}, options, full_spectra, continuum);
 }
@@ -189,6 +191,7 @@ void WriteStabilityOutputs(const Case& c, const std::vector<OperatingPointStabil
 
 std::vector<StabilityMapRow> StabilityMap(const nlohmann::json& document, const SweepSpec& spec,
                                           const analysis::SpectrumOptions& options) {
+  ThrowIfInvalid(options);
   if (spec.values.empty()) throw ParameterError("values", "no values to sweep");
   if (spec.jobs < 1) throw ParameterError("jobs", std::to_string(spec.jobs) + " is not >= 1");
   std::vector<Case> cases;

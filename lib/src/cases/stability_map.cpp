@@ -12,6 +12,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/axis_label.hpp"
@@ -130,6 +131,7 @@ bool LinearlySteady(const StabilityMapCell& cell) {
 
 StabilityMapResult StabilityMap2D(const nlohmann::json& document, const StabilityMapSpec& spec,
                                   const analysis::SpectrumOptions& options) {
+  ThrowIfInvalid(options);
   if (spec.jobs < 1) throw ParameterError("jobs", std::to_string(spec.jobs) + " is not >= 1");
   if (spec.x.values.empty() || spec.y.values.empty()) throw ParameterError("map", "no values to map");
   const std::size_t nx = spec.x.values.size(), ny = spec.y.values.size();

@@ -6,6 +6,7 @@
 
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
@@ -134,6 +135,7 @@ ChannelMap ParseChannelMap(const std::string& text) {
 
 Comparison Compare(const Recording& rec, const cases::RunResult& model, const std::vector<ChannelMap>& maps,
                    double window_begin_s, double window_end_s, const InspectOptions& options) {
+  ThrowIfInvalid(options);
   if (maps.empty()) throw ParameterError("map", "no channels to compare");
   Comparison c;
   CheckWindow(rec, model.time_s.front(), model.time_s.back(), window_begin_s, window_end_s);

@@ -198,7 +198,7 @@ Candidate EffectSelection::Fit(const std::vector<int>& set, std::vector<double> 
 void EffectSelection::FitAll(const std::vector<std::vector<int>>& sets,
                              const std::function<std::vector<double>(std::size_t)>& start) {
   // Fewer sets than threads: the threads left over run a fit's starts and its judging draws side by side.
-  const int threads = std::max(1, o_.threads), per_fit = std::max(1, threads / std::max<int>(1, sets.size()));
+  const int threads = o_.threads, per_fit = std::max(1, threads / std::max<int>(1, sets.size()));
   for (Candidate& c :
        ParallelMap(sets.size(), threads, [&](std::size_t i) { return Fit(sets[i], start(i), per_fit, false); }))
     loop_.candidates.push_back(std::move(c));
@@ -391,7 +391,7 @@ std::vector<int> EffectSelection::Screen() {
   const int max_singles = o_.fit_effects ? o_.max_singles : 0;
   const std::size_t screened = max_singles > 0 ? modelable_.size() : 0;
   if (screened) say_("screening " + std::to_string(screened) + " effect(s), each fitted cheaply and run over the whole span");
-  loop_.screening = ParallelMap(screened, std::max(1, o_.threads), [&](std::size_t i) {
+  loop_.screening = ParallelMap(screened, o_.threads, [&](std::size_t i) {
     return Fit({modelable_[i]}, StartOfSet({modelable_[i]}), 1, true);
   });
   std::vector<std::size_t> screening_order(screened);
@@ -528,7 +528,7 @@ int EffectSelection::BestScreenedExtension(const Candidate& lead, const std::vec
   if (others.empty()) return -1;
   say_("screening " + std::to_string(others.size()) + " extension(s) of " + Joined(lead.effects) +
        " by the effects not fitted alone");
-  std::vector<Candidate> screens = ParallelMap(others.size(), std::max(1, o_.threads), [&](std::size_t k) {
+  std::vector<Candidate> screens = ParallelMap(others.size(), o_.threads, [&](std::size_t k) {
     return Fit(extended(others[k]), start(extended(others[k])), 1, true);
   });
   int best = -1;

@@ -10,6 +10,7 @@
 
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/signals.hpp"
 
 namespace drillwave::diagnosis {
@@ -304,11 +305,33 @@ double FeatureSet::Value(const std::string& name) const {
   return f ? f->value : kNaN;
 }
 
+bool FeatureOptions::IsValid(std::string* error) const {
+  auto lags_finite = [&] {
+    return std::all_of(envelope_lags_s.begin(), envelope_lags_s.end(),
+                       [&](double lag) { return FiniteField(error, "envelope_lags_s", lag); });
+  };
+  return FiniteField(error, "min_axial_lag_s", min_axial_lag_s) &&
+         FiniteField(error, "max_axial_lag_s", max_axial_lag_s) &&
+         OrderedFields(error, "min_axial_lag_s", min_axial_lag_s, "max_axial_lag_s", max_axial_lag_s,
+                       "the lags looked at must end after they begin") &&
+         ((min_axial_correlation >= 0 && min_axial_correlation <= 1) ||
+          Invalid(error, "min_axial_correlation",
+                  "expected a correlation in [0, 1], got " + ReadableNumber(min_axial_correlation))) &&
+         lags_finite() && PositiveField(error, "envelope_window_s", envelope_window_s) &&
+         PositiveField(error, "envelope_detrend_s", envelope_detrend_s) && WholeField(error, "parts", parts, 1) &&
+         PositiveField(error, "smoothing_s", smoothing_s) && PositiveField(error, "fast_window_s", fast_window_s) &&
+         OrderedFields(error, "2 smoothing_s", 2 * smoothing_s, "fast_window_s", fast_window_s,
+                       "the fast band, from 1 / fast_window_s to 1 / (2 smoothing_s), must have some width") &&
+         FractionField(error, "stuck_fraction", stuck_fraction) &&
+         NonNegativeField(error, "stuck_floor", stuck_floor) && PositiveField(error, "max_period_s", max_period_s);
+}
+
 FeatureSet MeasureFeatures(const Recording& r, double begin_s, double end_s, const FeatureOptions& o) {
+  ThrowIfInvalid(o);
   std::size_t first = r.time_s.size(), last = 0;
   for (std::size_t i = 0; i < r.time_s.size(); ++i)
     if (r.time_s[i] >= begin_s && r.time_s[i] <= end_s) first = std::min(first, i), last = i + 1;
-  const int parts = std::max(1, o.parts);
+  const int parts = o.parts;
   if (first >= last || last - first < static_cast<std::size_t>(8 * parts))
     throw ParameterError("window", "fewer than " + std::to_string(8 * parts) + " samples of " + r.source + " in [" +
                                      ReadableNumber(begin_s) + ", " + ReadableNumber(end_s) + "] s");
@@ -450,6 +473,7 @@ double FeatureCount(const FeatureSet& s) {
 }
 
 double OffBottomShare(const Recording& r, double begin_s, double end_s, const FeatureOptions& o) {
+  ThrowIfInvalid(o);
   const auto wob = std::find(r.names.begin(), r.names.end(), o.weight_on_bit);
   if (wob == r.names.end()) return kNaN;
   std::vector<double> x;

@@ -7,6 +7,7 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/minimize.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -63,8 +64,21 @@ double CaseValue(const nlohmann::json& document, const FitParameter& p) {
   return document.at(ptr).get<double>();
 }
 
+bool FitOptions::IsValid(std::string* error) const {
+  return OrderedFields(error, "window_begin_s", window_begin_s, "window_end_s", window_end_s,
+                       "the window must end after it begins") &&
+         (!features.empty() || Invalid(error, "features", "expected at least one feature to match, got none")) &&
+         FiniteField(error, "model_time_offset_s", model_time_offset_s) &&
+         WholeField(error, "max_evaluations", max_evaluations, 1) &&
+         ((tolerance > 0 && tolerance <= 1) ||
+          Invalid(error, "tolerance", "expected a share of each parameter's range in (0, 1], got " +
+                                          ReadableNumber(tolerance))) &&
+         WholeField(error, "starts", starts, 1);
+}
+
 FitResult FitFeatures(const nlohmann::json& document, const Recording& recording,
                       const std::vector<FitParameter>& parameters, const FitOptions& o, const FitProgress& progress) {
+  ThrowIfInvalid(o);
   if (parameters.empty()) throw ParameterError("param", "no parameter to fit");
   const std::size_t k = parameters.size();
   std::vector<double> start(k);

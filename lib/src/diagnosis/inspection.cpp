@@ -8,6 +8,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/progress.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
@@ -223,7 +224,25 @@ void WriteFindings(const Recording& rec, const InspectOptions& o, Inspection& in
 
 }  // namespace
 
+bool InspectOptions::IsValid(std::string* error) const {
+  auto named = [&](const char* parameter, const std::string& channel) {
+    return !channel.empty() || Invalid(error, parameter, "expected a channel name, got an empty one");
+  };
+  return named("bit_speed", bit_speed) && named("top_speed", top_speed) &&
+         PositiveField(error, "hampel_half_window_s", hampel_half_window_s) &&
+         PositiveField(error, "hampel_threshold", hampel_threshold) &&
+         PositiveField(error, "hampel_grow_threshold", hampel_grow_threshold) &&
+         NonNegativeField(error, "hampel_floor_fraction", hampel_floor_fraction) &&
+         FractionField(error, "stuck_fraction", stuck_fraction) &&
+         NonNegativeField(error, "stuck_floor", stuck_floor) && NonNegativeField(error, "stuck_min_s", stuck_min_s) &&
+         NonNegativeField(error, "smoothing_s", smoothing_s) &&
+         PositiveField(error, "slip_stretch_periods", slip_stretch_periods) &&
+         PositiveField(error, "trend_window_s", trend_window_s) &&
+         PositiveField(error, "soft_drive_ratio", soft_drive_ratio);
+}
+
 Inspection InspectRecording(const Recording& rec, const InspectOptions& o) {
+  ThrowIfInvalid(o);
   rec.Channel(o.bit_speed);  // both are needed; fail early, naming the one that is missing
   rec.Channel(o.top_speed);
   Inspection ins;

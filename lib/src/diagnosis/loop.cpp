@@ -20,6 +20,7 @@
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/core/progress.hpp"
 #include "drillwave/core/sampled.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/minimize.hpp"
 #include "drillwave/diagnosis/signals.hpp"
 #include "model_runs.hpp"
@@ -64,7 +65,7 @@ constexpr int kParametersPerEffect = 2;
 // every fitted set (the singles, their pairs, and up to max_effects extensions or eliminations of each single), the
 // model kept; the calibrations' grids; the screening fits and the full fits with their runs per parameter.
 double PlannedRuns(const LoopOptions& o) {
-  const double draw_runs = kMaxDrawFactor * std::max(1, o.draws);
+  const double draw_runs = kMaxDrawFactor * o.draws;
   if (o.max_singles <= 0) return 1 + draw_runs;
   const double singles = o.max_singles, pairs = singles * (singles - 1) / 2, larger = o.max_effects * singles;
   const double p = kParametersPerEffect;
@@ -173,7 +174,7 @@ void CalibrateBase(const ModelRuns& runner, const LoopOptions& o, const std::fun
   const std::vector<Calibration> calibrations = BaseCalibrations(base);
   if (calibrations.empty()) return;
   const auto judge = [&](const nlohmann::json& doc) {
-    Draws draws = runner.RunDraws(doc, std::max(1, o.threads));
+    Draws draws = runner.RunDraws(doc, o.threads);
     loop.model_runs += static_cast<int>(draws.models.size()) + draws.failed;
     return runner.Judge(std::move(draws));
   };
@@ -259,7 +260,34 @@ void CalibrateBase(const ModelRuns& runner, const LoopOptions& o, const std::fun
   }
 }
 
+// The windows in order and finite: the fit window, then the held-out window from its end on.
+bool WindowsAreValid(const LoopOptions& o, std::string* error) {
+  return FiniteField(error, "fit_begin_s", o.fit_begin_s) &&
+         OrderedFields(error, "fit_begin_s", o.fit_begin_s, "fit_end_s", o.fit_end_s,
+                       "the fit window must end after it begins") &&
+         OrderedFields(error, "fit_end_s", o.fit_end_s, "held_out_begin_s", o.held_out_begin_s,
+                       "the held-out window must not begin before the fit window ends", true) &&
+         OrderedFields(error, "held_out_begin_s", o.held_out_begin_s, "held_out_end_s", o.held_out_end_s,
+                       "the held-out window must end after it begins") &&
+         FiniteField(error, "held_out_end_s", o.held_out_end_s);
+}
+
 }  // namespace
+
+bool LoopOptions::IsValid(std::string* error) const {
+  return FiniteField(error, "model_time_offset_s", model_time_offset_s) && WindowsAreValid(*this, error) &&
+         FractionField(error, "margin", margin) &&
+         WholeField(error, "evaluations_per_parameter", evaluations_per_parameter, 1) &&
+         WholeField(error, "screening_evaluations_per_parameter", screening_evaluations_per_parameter, 1) &&
+         WholeField(error, "max_singles", max_singles, 0) && WholeField(error, "max_effects", max_effects, 1) &&
+         (fit_tolerance == 0 || (fit_tolerance >= 1e-14 && fit_tolerance <= 1e-2) ||
+          Invalid(error, "fit_tolerance", "expected 0 (the case's) or a tolerance in [1e-14, 1e-2], got " +
+                                              ReadableNumber(fit_tolerance))) &&
+         WholeField(error, "threads", threads, 1) &&
+         ((sample_window_s >= 0 && sample_window_s <= 60) ||
+          Invalid(error, "sample_window_s", "expected seconds in [0, 60], got " + ReadableNumber(sample_window_s))) &&
+         WholeField(error, "draws", draws, 1, 20) && NestedValid(error, "features", features.IsValid(error));
+}
 
 LoopOptions DefaultLoopOptions(const cases::Case& c, const Recording& rec, double offset_s, double settle_s) {
   LoopOptions o;
@@ -275,6 +303,7 @@ LoopOptions DefaultLoopOptions(const cases::Case& c, const Recording& rec, doubl
 
 DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& raw, const LoopOptions& o,
                                const LoopProgress& progress) {
+  ThrowIfInvalid(o);
   // What the loop does, said as it happens, and every 5 s on long steps (core/progress.hpp, where a program shows
   // it): the step it is in and the model runs started of those planned.
   Progress long_work("diagnosis");
@@ -304,7 +333,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   const double full_duration = runner.FullDuration();
   loop.recorded_off_bottom_share = runner.RecordedOffBottomShare();
   loop.recording_bounces = runner.RecordingBounces();
-  const int draws = std::max(1, o.draws);
+  const int draws = o.draws;
   const double planned_runs = CheckLoopWork(base, o, full_duration);
   runner.OnRun([&](int started) {
     const std::lock_guard<std::mutex> lock(step_mutex);
@@ -326,7 +355,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   loop.plain_held_out_error = FeatureDistance(runner.HeldOutFeatures(plain), loop.recording_held_out);
   // 2a. A calibrated base before effects (none where only the case's own errors are asked for).
   if (o.max_singles > 0 && o.calibrate_base) CalibrateBase(runner, o, say, base, loop);
-  Draws baseline_draws = runner.RunDraws(base, std::max(1, o.threads));
+  Draws baseline_draws = runner.RunDraws(base, o.threads);
   // The candidates' work budget: the costliest of the baseline's draws (one that bounces costs more than one that
   // drills).
   runner.SetWorkBudget();
@@ -384,7 +413,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
           for (std::size_t j = 0; j < e.parameters.size(); ++j) values.push_back(c.parameters[k++].value);
           e.apply(loop.fitted_document, values);
         }
-    Draws models = runner.RunDraws(loop.fitted_document, std::max(1, o.threads));
+    Draws models = runner.RunDraws(loop.fitted_document, o.threads);
     loop.model_runs += static_cast<int>(models.models.size());
     fitted = runner.Judge(std::move(models));
   }

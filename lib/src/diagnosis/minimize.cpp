@@ -8,11 +8,23 @@
 #include <nlopt.hpp>
 
 #include "drillwave/core/parallel.hpp"
+#include "drillwave/core/validity.hpp"
 
 namespace drillwave::diagnosis {
 
+bool MinimizeOptions::IsValid(std::string* error) const {
+  auto in_unit_cube = [&](const char* parameter, double value) {
+    return (value > 0 && value <= 1) ||
+           Invalid(error, parameter, "expected a share of the unit cube in (0, 1], got " + ReadableNumber(value));
+  };
+  return WholeField(error, "max_evaluations", max_evaluations, 1) && WholeField(error, "starts", starts, 1) &&
+         WholeField(error, "threads", threads, 1) && in_unit_cube("initial_step", initial_step) &&
+         in_unit_cube("x_tolerance", x_tolerance);
+}
+
 MinimizeResult MinimizeInUnitCube(const UnitObjective& f, const std::vector<double>& start,
                                   const MinimizeOptions& o) {
+  ThrowIfInvalid(o);
   MinimizeResult result;
   result.best = start;
   for (double& x : result.best) x = std::clamp(x, 0.0, 1.0);
@@ -22,7 +34,7 @@ MinimizeResult MinimizeInUnitCube(const UnitObjective& f, const std::vector<doub
   if (n == 0) return result;
 
   // The start points, drawn up front: the given one, then seeded random ones.
-  const int starts = std::max(1, o.starts);
+  const int starts = o.starts;
   std::vector<std::vector<double>> points(static_cast<std::size_t>(starts), result.best);
   std::mt19937 random(o.seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -62,7 +74,7 @@ MinimizeResult MinimizeInUnitCube(const UnitObjective& f, const std::vector<doub
     }
     return local;
   };
-  for (const MinimizeResult& local : ParallelMap(points.size(), std::max(1, o.threads), from)) {
+  for (const MinimizeResult& local : ParallelMap(points.size(), o.threads, from)) {
     result.evaluations += local.evaluations;
     if (local.value < result.value) result.value = local.value, result.best = local.best;  // ties: the earlier start
   }

@@ -142,7 +142,7 @@ FeatureSet ModelRuns::HeldOutFeatures(const Recording& model) const {
 }
 
 Draws ModelRuns::RunDraws(const nlohmann::json& doc, int threads) const {
-  const int draws = std::max(1, o_.draws);
+  const int draws = o_.draws;
   Draws runs;
   int matched = 0, attempted = 0;
   std::mutex failure_mutex;

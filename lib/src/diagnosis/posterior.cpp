@@ -9,6 +9,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
@@ -39,26 +40,16 @@ double Quantile(std::vector<double> v, double q) {
 
 bool IsCorrelogramLag(const std::string& name) { return name.rfind(kEnvelopeCorrelation, 0) == 0; }
 
-void CheckOptions(const std::vector<FitParameter>& parameters, const PosteriorOptions& p) {
+// The options alone (IsValid), then what they must be for these parameters.
+void CheckOptions(const std::vector<FitParameter>& parameters, const LoopOptions& o, const PosteriorOptions& p) {
+  ThrowIfInvalid(o);
+  ThrowIfInvalid(p);
   if (parameters.empty()) throw ParameterError("params", "no parameter to sample: give /pointer:lower:upper");
   const int needed = 2 * static_cast<int>(parameters.size()) + 2;
-  if (p.walkers < needed || p.walkers % 2 != 0 || p.walkers > 1000)
+  if (p.walkers < needed)
     throw ParameterError("walkers", "expected an even number in [" + std::to_string(needed) + ", 1000] for " +
                                       std::to_string(parameters.size()) + " parameters, got " +
                                       std::to_string(p.walkers));
-  if (p.steps < 1 || p.steps > 100000)
-    throw ParameterError("steps", "expected a whole number in [1, 100000], got " + std::to_string(p.steps));
-  if (p.burn_in < 0 || p.burn_in >= p.steps)
-    throw ParameterError("burn_in", "expected a whole number in [0, steps - 1 = " + std::to_string(p.steps - 1) +
-                                      "], got " + std::to_string(p.burn_in));
-  if (p.predictive_draws < 0 || p.predictive_draws > 10000)
-    throw ParameterError("predictive_draws", "expected a whole number in [0, 10000], got " +
-                                               std::to_string(p.predictive_draws));
-  if (!(p.stretch > 1 && p.stretch <= 10))
-    throw InputError("stretch", "expected a number in (1, 10], got " + ReadableNumber(p.stretch));
-  if (!(p.start_spread > 0 && p.start_spread <= 1))
-    throw InputError("start_spread", "expected a share in (0, 1], got " + ReadableNumber(p.start_spread));
-  if (p.threads < 1) throw InputError("-j", "expected a whole number >= 1, got " + std::to_string(p.threads));
 }
 
 }  // namespace
@@ -270,13 +261,31 @@ void PredictHeldOut(const Likelihood& likelihood, const std::vector<std::vector<
 
 }  // namespace
 
+bool PosteriorOptions::IsValid(std::string* error) const {
+  // The fewest walkers any sampling takes: 2 * 1 + 2 for one parameter.
+  constexpr int kFewestWalkers = 4;
+  return ((walkers % 2 == 0 && walkers >= kFewestWalkers && walkers <= 1000) ||
+          Invalid(error, "walkers", "expected an even number in [" + std::to_string(kFewestWalkers) +
+                                        ", 1000] (2 * parameters + 2 at least), got " + std::to_string(walkers))) &&
+         WholeField(error, "steps", steps, 1, 100000) &&
+         ((burn_in >= 0 && burn_in < steps) ||
+          Invalid(error, "burn_in", "expected a whole number in [0, steps - 1 = " + std::to_string(steps - 1) +
+                                        "], got " + std::to_string(burn_in))) &&
+         WholeField(error, "predictive_draws", predictive_draws, 0, 10000) &&
+         ((stretch > 1 && stretch <= 10) ||
+          Invalid(error, "stretch", "expected a number in (1, 10], got " + ReadableNumber(stretch))) &&
+         ((start_spread > 0 && start_spread <= 1) ||
+          Invalid(error, "start_spread", "expected a share in (0, 1], got " + ReadableNumber(start_spread))) &&
+         WholeField(error, "threads", threads, 1);
+}
+
 Posterior SamplePosterior(const nlohmann::json& document, const Recording& raw, const LoopOptions& o,
                           const std::vector<FitParameter>& parameters, const PosteriorOptions& p,
                           const PosteriorProgress& progress) {
   const PosteriorProgress say = [&](const std::string& s) {
     if (progress) progress(s);
   };
-  CheckOptions(parameters, p);
+  CheckOptions(parameters, o, p);
   const std::size_t dim = parameters.size();
   std::vector<double> case_value(dim);
   for (std::size_t i = 0; i < dim; ++i) case_value[i] = CaseValue(document, parameters[i]);

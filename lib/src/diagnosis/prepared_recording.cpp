@@ -14,11 +14,6 @@ constexpr double kOutputsPerWindow = 5;
 }  // namespace
 
 PreparedRecording PrepareRecording(const nlohmann::json& document, const Recording& raw, const LoopOptions& o) {
-  if (!(o.fit_begin_s < o.fit_end_s && o.fit_end_s <= o.held_out_begin_s && o.held_out_begin_s < o.held_out_end_s))
-    throw ParameterError("fit_window", "expected fit window [" + ReadableNumber(o.fit_begin_s) + ", " +
-                                         ReadableNumber(o.fit_end_s) + "] s before the held-out window [" +
-                                         ReadableNumber(o.held_out_begin_s) + ", " + ReadableNumber(o.held_out_end_s) +
-                                         "] s, each with begin < end");
   if (o.maps.empty()) throw ParameterError("map", "no channels to compare");
   PreparedRecording p;
   // Only the mapped channels take part: a channel the model does not have says nothing about it.

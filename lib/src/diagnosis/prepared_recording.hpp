@@ -26,7 +26,8 @@ struct PreparedRecording {
   std::vector<std::string> channels_left_whole;
 };
 
-// Throws InputError for windows out of order or no channel maps.
+// Throws InputError for no channel maps; the options must be valid (LoopOptions::IsValid, which the loop's and the
+// posterior's entry points check first).
 PreparedRecording PrepareRecording(const nlohmann::json& document, const Recording& raw, const LoopOptions& o);
 
 }  // namespace drillwave::diagnosis::loop_internal

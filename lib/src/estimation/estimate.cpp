@@ -6,6 +6,7 @@
 
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/signals.hpp"
 #include "drillwave/estimation/smoothing.hpp"
 #include "drillwave/estimation/hybrid_observer.hpp"
@@ -130,7 +131,15 @@ EstimatorModel EstimatorModelFromCase(const json& doc, double hook_force_N) {
   return m;
 }
 
+bool EstimateOptions::IsValid(std::string* error) const {
+  return FractionField(error, "stuck_fraction", stuck_fraction) &&
+         FiniteField(error, "stuck_threshold_rad_s", stuck_threshold_rad_s) &&
+         FiniteField(error, "smoothing_lag_s", smoothing_lag_s) &&
+         FiniteField(error, "model_time_offset_s", model_time_offset_s);
+}
+
 BitEstimate EstimateBit(const EstimatorModel& model, const SurfaceSignals& signals, const EstimateOptions& options) {
+  ThrowIfInvalid(options);
   if (signals.top_speed_rad_s.size() != signals.time_s.size() || signals.time_s.size() < 8)
     throw ParameterError("from", "the estimator needs the top speed at every sample of the recording (8 at least)");
   // Stuck: |bit speed| below a fraction of the nominal speed, the median top speed (the set-point may be a droop

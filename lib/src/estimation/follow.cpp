@@ -14,6 +14,7 @@
 
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/signals.hpp"
 #include "drillwave/estimation/smoothing.hpp"
 
@@ -113,7 +114,9 @@ void GrowingCsv::ParseLine(const std::string& raw, std::vector<std::vector<doubl
 LiveEstimator::LiveEstimator(EstimatorModel model, EstimateOptions options, std::vector<std::string> names,
                              SurfaceChannels channels)
     : model_(std::move(model)), options_(options), names_(std::move(names)), channels_(std::move(channels)),
-      columns_(names_.size()) {}
+      columns_(names_.size()) {
+  ThrowIfInvalid(options_);
+}
 
 std::vector<EstimateRow> LiveEstimator::Push(const std::vector<std::vector<double>>& rows) {
   for (const std::vector<double>& row : rows)

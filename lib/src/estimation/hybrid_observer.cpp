@@ -8,6 +8,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/signals.hpp"
 #include "drillwave/estimation/smoothing.hpp"
 
@@ -198,8 +199,15 @@ double HybridLatency(const LumpedModel& m, double dt) {
   return HampelHalfWidth(dt) * dt + 1.1 * kBurstReachS + (3 * BoxHalfWidth(m, dt) + 1) * dt;
 }
 
+bool HybridObserverOptions::IsValid(std::string* error) const {
+  return FiniteField(error, "model_time_offset_s", model_time_offset_s) &&
+         FiniteField(error, "initial_bit_speed_rad_s", initial_bit_speed_rad_s) &&
+         FiniteField(error, "initial_twist_rad", initial_twist_rad);
+}
+
 BitEstimate EstimateHybrid(const LumpedModel& m, const SurfaceSignals& s, double stuck_threshold_rad_s,
                            const HybridObserverOptions& o) {
+  ThrowIfInvalid(o);
   if (s.top_speed_rad_s.empty()) throw ParameterError("from", "the hybrid observer needs the top speed");
   if (!HasInvertibleDrive(m)) throw std::invalid_argument("EstimateHybrid: the drive law does not give the torque");
   const std::size_t n = s.time_s.size();

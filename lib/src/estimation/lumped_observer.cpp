@@ -9,6 +9,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/signals.hpp"
 #include "drillwave/estimation/smoothing.hpp"
 
@@ -120,8 +121,16 @@ std::vector<double> Despiked(const std::vector<double>& x, double dt) {
 
 }  // namespace
 
+bool LumpedObserverOptions::IsValid(std::string* error) const {
+  return FiniteField(error, "smoothing_lag_s", smoothing_lag_s) &&
+         FiniteField(error, "model_time_offset_s", model_time_offset_s) &&
+         FiniteField(error, "initial_bit_speed_rad_s", initial_bit_speed_rad_s) &&
+         FiniteField(error, "initial_twist_rad", initial_twist_rad);
+}
+
 BitEstimate EstimateLumped(const LumpedModel& m, const SurfaceSignals& s, double stuck_threshold_rad_s,
                            const LumpedObserverOptions& o) {
+  ThrowIfInvalid(o);
   if (s.top_speed_rad_s.empty()) throw ParameterError("from", "the lumped observer needs the top speed");
   const std::size_t n = s.time_s.size();
   const double dt = (s.time_s.back() - s.time_s.front()) / static_cast<double>(n - 1);

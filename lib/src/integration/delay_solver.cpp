@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "drillwave/core/validity.hpp"
 #include "drillwave/integration/breakpoints.hpp"
 #include "drillwave/integration/simulator.hpp"
 
@@ -350,12 +351,7 @@ DelaySolution SolveDelayProblem(const DelayProblem& problem, double t_end, const
   for (const HistoryBreakpoint& b : problem.history_breakpoints)
     if (!(b.time < problem.t0) || b.order < 0)
       throw std::invalid_argument("DelayProblem: history breakpoints lie before t0 and have an order >= 0");
-  if (!(options.abs_tol > 0) || !(options.rel_tol > 0))
-    throw std::invalid_argument("IntegratorOptions: abs_tol and rel_tol must be positive");
-  if (!(options.initial_step > 0) || !(options.max_step > 0))
-    throw std::invalid_argument("IntegratorOptions: initial_step and max_step must be positive");
-  if (options.max_steps < 0 || options.max_evaluations < 0)
-    throw std::invalid_argument("IntegratorOptions: budgets must be >= 0 (0: none)");
+  ThrowIfInvalid(options);
   if (!(t_end > problem.t0)) throw std::invalid_argument("SolveDelayProblem: t_end must be after t0");
 
   DelayProcess process(problem, t_end, options);

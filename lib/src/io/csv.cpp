@@ -13,6 +13,7 @@
 
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/progress.hpp"
+#include "drillwave/core/validity.hpp"
 
 namespace drillwave::io {
 namespace {
@@ -74,6 +75,7 @@ const std::vector<double>& CsvTable::Column(const std::string& name) const {
 }
 
 CsvTable ReadCsv(const std::string& file, const CsvOptions& options) {
+  ThrowIfInvalid(options);
   if (file.empty()) throw InputError("", "empty file name; expected the path of a CSV file");
   Progress progress("reading " + ReadableText(file, 200));
   progress.Step("loading the file");

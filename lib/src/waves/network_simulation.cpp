@@ -11,6 +11,7 @@
 
 #include <boost/math/tools/roots.hpp>
 
+#include "drillwave/core/validity.hpp"
 #include "drillwave/dynamics/pi_top_drive.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/waves/wave_chain.hpp"
@@ -621,7 +622,13 @@ class NetworkProcess {
 
 }  // namespace
 
+bool NetworkRunOptions::IsValid(std::string* error) const {
+  return PositiveField(error, "t_end_s", t_end_s) && NonNegativeField(error, "output_interval_s", output_interval_s) &&
+         NestedValid(error, "integrator", integrator.IsValid(error));
+}
+
 NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& options) {
+  ThrowIfInvalid(options);
   network.Validate();
   NetworkProcess process(network, options);
   process.set_t_end(options.t_end_s);

@@ -47,6 +47,9 @@ struct ShootingOptions {
   double newton_tol = 1e-8;                  // max-norm of the residual (state units) at convergence
   int max_newton = 25;
   int samples_per_period = 2000;             // resolution of the orbit's extrema
+
+  // Tolerances finite and > 0, max_newton and samples_per_period >= 1 (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
 struct FlowResult {
@@ -59,7 +62,8 @@ struct FlowResult {
 };
 
 // Integrates x0 over [0, duration] from its ModeAt mode, with the sensitivity (variational equations and saltation
-// matrices) if asked for. Throws NumericalError on failure.
+// matrices) if asked for. Throws NumericalError on failure; ParameterError for options that are not valid, as every
+// function here that takes options.
 FlowResult Flow(const PiecewiseSmoothField& field, const Eigen::VectorXd& x0, double duration, bool sensitivity,
                 const ShootingOptions& options = {});
 
@@ -128,6 +132,11 @@ struct ContinuationOptions {
   double dp_fd = 1e-7;           // relative step of the finite difference in p
   ShootingOptions shooting;
   std::function<void(int points, double p, double period)> progress;  // after each point, if set
+
+  // p_min < p_max; steps finite with 0 < min_step <= initial_step <= max_step; p_scale, hopf_amplitude and dp_fd
+  // finite and > 0, end_amplitude finite and >= 0; max_points >= 1; amplitude_component >= -1 (below the field's
+  // dimension is the field's to say); valid shooting options (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
 struct BranchPoint {

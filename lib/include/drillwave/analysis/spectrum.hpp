@@ -60,6 +60,10 @@ struct SpectrumOptions {
   double im_max = 200;          // ... and |Im s| <= im_max
   int newton_iterations = 60;
   double root_tolerance = 1e-10;  // relative Newton step at convergence; also the merge distance of duplicates
+
+  // collocation_nodes >= 4, re_min finite, im_max and root_tolerance finite and > 0, newton_iterations >= 1
+  // (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
 struct CharacteristicRoot {
@@ -86,6 +90,8 @@ struct Spectrum {
 constexpr double kEssentialOnAxis = 1e-8;  // 1/s
 const char* VerdictName(Spectrum::Verdict v);  // "stable", "marginal", "unstable"
 
+// Throws std::invalid_argument for a system that is not valid (LinearDelaySystem::Validate), ParameterError for options
+// that are not valid.
 Spectrum ComputeSpectrum(const LinearDelaySystem& system, const SpectrumOptions& options = {});
 
 // The pieces ComputeSpectrum is made of, for methods that find the roots otherwise (rightmost_root.hpp).

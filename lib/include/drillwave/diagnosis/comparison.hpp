@@ -64,7 +64,8 @@ struct Comparison {
 };
 
 // The model's sampled channels (scaled and renamed by `maps`) become a recording over the same window; both are
-// inspected with `options`. Throws InputError for a channel missing on either side or a window without samples.
+// inspected with `options`. Throws InputError for a channel missing on either side or a window without samples,
+// ParameterError for options that are not valid.
 Comparison Compare(const Recording& recording, const cases::RunResult& model, const std::vector<ChannelMap>& maps,
                    double window_begin_s, double window_end_s, const InspectOptions& options = {});
 

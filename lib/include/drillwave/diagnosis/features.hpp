@@ -80,6 +80,11 @@ struct FeatureOptions {
   double stuck_fraction = 0.05;          // stuck while |bit speed| < max(stuck_floor, fraction * mean |speed|)
   double stuck_floor = 2.0;              // in the bit speed's unit
   double max_period_s = 20;              // longest oscillation period looked for
+
+  // Finite axial lags in order and a correlation in [0, 1]; finite envelope lags; windows, smoothing and max_period_s
+  // > 0 with fast_window_s above 2 smoothing_s (a band of some width); parts >= 1; stuck_fraction in [0, 1) and
+  // stuck_floor >= 0 (core/validity.hpp). The channel names are the recording's to have or not.
+  bool IsValid(std::string* error) const;
 };
 
 // The fast band and where it is split in two (FeatureOptions::fast_window_s), in Hz.
@@ -89,7 +94,7 @@ struct FastBands {
 FastBands FastBandsOf(const FeatureOptions& options);
 
 // Features of every channel of `recording` over [begin_s, end_s] (the samples inside). Throws ParameterError("window")
-// for fewer than 8 samples per part.
+// for fewer than 8 samples per part, ParameterError for options that are not valid.
 FeatureSet MeasureFeatures(const Recording& recording, double begin_s, double end_s, const FeatureOptions& options = {});
 
 // Mean over the recording's defined features of ((model - recording) / scale)^2; a feature the recording defines
@@ -126,7 +131,8 @@ CorrelogramDifference CompareCorrelograms(const FeatureSet& model, const Feature
 double FeatureCount(const FeatureSet& features);
 
 // The share of [begin_s, end_s] in which the bit is off the bottom: its weight on bit, averaged over smoothing_s,
-// below kOffBottomLevel of the window's mean |weight on bit|. NaN without a weight-on-bit channel.
+// below kOffBottomLevel of the window's mean |weight on bit|. NaN without a weight-on-bit channel. Throws
+// ParameterError for options that are not valid.
 inline constexpr double kOffBottomLevel = 0.05;
 double OffBottomShare(const Recording& recording, double begin_s, double end_s, const FeatureOptions& options = {});
 

@@ -35,6 +35,10 @@ struct FitOptions {
   int max_evaluations = 200;
   double tolerance = 1e-4;  // on the parameters, in units of each parameter's range
   int starts = 1;           // the case's values, then seeded random points within the bounds
+
+  // The window in order, at least one feature, a finite offset, counts >= 1, tolerance in (0, 1]
+  // (core/validity.hpp); the maps and feature names are checked against the recording by FitFeatures.
+  bool IsValid(std::string* error) const;
 };
 
 struct FitResult {
@@ -47,7 +51,8 @@ struct FitResult {
 
 using FitProgress = std::function<void(int evaluation, double objective, const std::vector<double>& values)>;
 
-// Throws InputError for a bad pointer, bound or feature name, before anything runs.
+// Throws InputError for a bad pointer, bound or feature name, ParameterError for options that are not valid, before
+// anything runs.
 FitResult FitFeatures(const nlohmann::json& document, const Recording& recording,
                       const std::vector<FitParameter>& parameters, const FitOptions& options,
                       const FitProgress& progress = nullptr);

@@ -31,6 +31,11 @@ struct InspectOptions {
   double slip_stretch_periods = 3;
   double trend_window_s = 5;
   double soft_drive_ratio = 2.5;
+
+  // Channel names given; the Hampel filter's window and thresholds, the periods, trend window and drive ratio finite
+  // and > 0; the floor fraction, stuck floor, stuck time and smoothing finite and >= 0; stuck_fraction in [0, 1)
+  // (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
 struct ChannelArtefacts {
@@ -74,8 +79,8 @@ struct Inspection {
   std::vector<std::vector<char>> masked;  // per channel, 1 where a sample was masked (replaced in `cleaned`)
 };
 
-// Throws InputError if the bit or top speed channel is missing. Linear in the number of channels: with more than 24,
-// correlations are taken with the two speeds only.
+// Throws InputError if the bit or top speed channel is missing, ParameterError for options that are not valid. Linear
+// in the number of channels: with more than 24, correlations are taken with the two speeds only.
 Inspection InspectRecording(const Recording& recording, const InspectOptions& options = {});
 
 nlohmann::json InspectionToJson(const Inspection& inspection);

@@ -78,6 +78,12 @@ struct LoopOptions {
   // runs are a tenth of a diagnosis's.
   int draws = 5;
   FeatureOptions features;
+
+  // A finite offset; the windows finite and in order, the held-out one from the fit window's end on (left at 0 they
+  // are not: DefaultLoopOptions or the caller sets them); margin in [0, 1); the budgets and counts >= 1 (max_singles
+  // >= 0); fit_tolerance 0 or in [1e-14, 1e-2]; sample_window_s in [0, 60]; draws in [1, 20]; valid features
+  // (core/validity.hpp). The maps and windows are checked against the recording by the loop's preparation.
+  bool IsValid(std::string* error) const;
 };
 
 struct FittedParameter {
@@ -160,8 +166,9 @@ LoopOptions DefaultLoopOptions(const cases::Case& c, const Recording& recording,
 using LoopProgress = std::function<void(const std::string&)>;
 
 // `document` is the case to diagnose (its duration must cover the held-out window after the offset). Throws
-// InputError for windows outside the recording or overlapping, an unmapped channel, or a model whose scale is far
-// from the recording's (a channel's typical level differing by more than a factor 10).
+// ParameterError for options that are not valid (windows overlapping among them), InputError for windows outside the
+// recording, an unmapped channel, or a model whose scale is far from the recording's (a channel's typical level
+// differing by more than a factor 10).
 DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& recording, const LoopOptions& options,
                                const LoopProgress& progress = nullptr);
 

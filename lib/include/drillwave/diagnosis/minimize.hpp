@@ -5,6 +5,7 @@
 // (so the starts are independent, and may run side by side with the same result), and the curvature at the best
 // point for the uncertainty of each parameter.
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace drillwave::diagnosis {
@@ -16,6 +17,9 @@ struct MinimizeOptions {
   double initial_step = 0.15;  // of the unit cube
   double x_tolerance = 0.01;   // of the unit cube
   unsigned seed = 1;
+
+  // Counts >= 1; initial_step and x_tolerance in (0, 1] (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
 struct MinimizeResult {
@@ -26,7 +30,8 @@ struct MinimizeResult {
 
 using UnitObjective = std::function<double(const std::vector<double>&)>;
 
-// Minimizes f over [0, 1]^n from `start` (n = start.size() >= 1; n = 0 evaluates f once).
+// Minimizes f over [0, 1]^n from `start` (n = start.size() >= 1; n = 0 evaluates f once). Throws ParameterError for
+// options that are not valid.
 MinimizeResult MinimizeInUnitCube(const UnitObjective& f, const std::vector<double>& start,
                                   const MinimizeOptions& options = {});
 

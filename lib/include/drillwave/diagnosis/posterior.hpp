@@ -32,6 +32,11 @@ struct PosteriorOptions {
   int predictive_draws = 40;   // posterior samples run over the whole span for the predictive band
   unsigned seed = 1;
   int threads = 1;
+
+  // walkers even in [4, 1000] (SamplePosterior asks 2 * parameters + 2 of them), steps in [1, 100000], burn_in below
+  // steps, predictive_draws in [0, 10000], stretch in (1, 10], start_spread in (0, 1], threads >= 1
+  // (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
 struct ParameterSummary {
@@ -71,9 +76,10 @@ struct Posterior {
 
 using PosteriorProgress = std::function<void(const std::string& line)>;
 
-// Throws InputError for a pointer that does not hold a number in the case, bounds out of order, too few walkers or
-// steps, and (through the loop's preparation) windows or channel maps the recording does not have; NumericalError
-// when no walker's start runs.
+// Throws ParameterError for options that are not valid (either struct's IsValid) or too few walkers for the
+// parameters, InputError for a pointer that does not hold a number in the case, bounds out of order, and (through the
+// loop's preparation) windows or channel maps the recording does not have; NumericalError when no walker's start
+// runs.
 Posterior SamplePosterior(const nlohmann::json& document, const Recording& recording, const LoopOptions& loop_options,
                           const std::vector<FitParameter>& parameters, const PosteriorOptions& options,
                           const PosteriorProgress& progress = nullptr);

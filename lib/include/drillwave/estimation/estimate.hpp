@@ -78,6 +78,9 @@ struct EstimateOptions {
   double smoothing_lag_s = -1;  // < 0: the observer's own, from the model (lumped_observer.hpp)
   // The recording's time where the model's time 0 falls (a sidecar's warm-up: the case's schedules run 30 s earlier).
   double model_time_offset_s = 0;
+
+  // stuck_fraction in [0, 1); the threshold, lag and offset finite (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
 struct BitEstimate {
@@ -93,7 +96,8 @@ struct BitEstimate {
   std::vector<std::string> notes;  // how the noise levels were read, what was not estimated and why
 };
 
-// Throws InputError naming the missing signal (e.g. "top torque") when the model's estimator needs it.
+// Throws InputError naming the missing signal (e.g. "top torque") when the model's estimator needs it, ParameterError
+// for options that are not valid.
 BitEstimate EstimateBit(const EstimatorModel& model, const SurfaceSignals& signals, const EstimateOptions& options);
 
 }  // namespace drillwave::estimation

@@ -53,6 +53,7 @@ struct EstimateRow {
 
 class LiveEstimator {
  public:
+  // Throws ParameterError for options that are not valid.
   LiveEstimator(EstimatorModel model, EstimateOptions options, std::vector<std::string> names,
                 SurfaceChannels channels);
   // Adds rows (the recording's columns in `names` order) and returns the estimates that became final.

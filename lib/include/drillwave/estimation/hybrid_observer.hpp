@@ -17,6 +17,7 @@
 // drive) is kept, because there the raw mean is the motion; then a low-pass (three boxes of an eighth of the bit's
 // period on the shaft, -3 dB near twice its natural frequency: above that the bit barely answers the shaft torque and
 // the inversion would only amplify noise).
+#include <string>
 #include <vector>
 
 #include "drillwave/estimation/estimate.hpp"
@@ -44,10 +45,13 @@ struct HybridObserverOptions {
   double initial_bit_speed_rad_s = -1e300;
   double initial_twist_rad = -1e300;
   bool despike = true;
+
+  // The offset and initial state finite (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
-// Throws ParameterError("from", ...) if the top speed is missing, std::invalid_argument for a drive without
-// HasInvertibleDrive.
+// Throws ParameterError("from", ...) if the top speed is missing, ParameterError for options that are not valid,
+// std::invalid_argument for a drive without HasInvertibleDrive.
 BitEstimate EstimateHybrid(const LumpedModel& model, const SurfaceSignals& signals, double stuck_threshold_rad_s,
                            const HybridObserverOptions& options);
 

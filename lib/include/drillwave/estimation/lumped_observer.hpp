@@ -11,6 +11,7 @@
 // correlation time of the shaft-and-bit oscillation. A wrong initial state decays at the rate of the filter's
 // closed loop; the information about the bit at t reaches the top over about one shaft-and-bit period, so the
 // estimate is smoothed over that lag (its latency).
+#include <string>
 #include <vector>
 
 #include "drillwave/estimation/estimate.hpp"
@@ -24,9 +25,12 @@ struct LumpedObserverOptions {
   double initial_bit_speed_rad_s = -1e300;
   double initial_twist_rad = -1e300;
   bool despike = true;  // Hampel-filter the top speed first (encoder glitches)
+
+  // The lag, offset and initial state finite (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
-// Throws ParameterError("from", ...) if the top speed is missing.
+// Throws ParameterError("from", ...) if the top speed is missing, ParameterError for options that are not valid.
 BitEstimate EstimateLumped(const LumpedModel& model, const SurfaceSignals& signals, double stuck_threshold_rad_s,
                            const LumpedObserverOptions& options);
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "drillwave/integration/quartic.hpp"
@@ -32,6 +33,10 @@ struct IntegratorOptions {
   // The most steps a run may need at the longest step the process allows (its shortest delay): refused before the
   // first step, with InputError("/model", ...), rather than integrated for hours (a string of G = 1e300 Pa).
   double max_planned_steps = std::numeric_limits<double>::infinity();
+
+  // Tolerances, initial_step and event_time_tol finite and > 0; max_step and max_planned_steps > 0 (infinite: no
+  // limit); max_events_at_one_instant >= 1; history_step_floor finite and >= 0; the budgets >= 0 (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
 // One accepted piece of the solution: values and derivatives at both ends (one-sided limits) and the value at the

@@ -27,6 +27,9 @@ struct CsvTable {
 struct CsvOptions {
   // Recordings: every cell must be a finite number (no blank cells, nan, inf or 1e999), and there must be a row.
   bool finite_only = false;
+
+  // Nothing of a flag to check: always true. There for the options structs' common contract (core/validity.hpp).
+  bool IsValid(std::string* /*error*/) const { return true; }
 };
 
 // Reads a header line and rows of comma-separated numbers. Unless options.finite_only, empty fields and "nan" read

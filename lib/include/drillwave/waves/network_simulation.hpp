@@ -16,6 +16,9 @@ struct NetworkRunOptions {
   double output_interval_s = 1e-3;  // trajectory sampling; 0 samples only the integrator's steps
   integration::IntegratorOptions integrator;
   bool record_energy = false;           // sample the mechanical energy (for conservation checks; costs time)
+
+  // t_end_s finite and > 0, output_interval_s finite and >= 0, valid integrator options (core/validity.hpp).
+  bool IsValid(std::string* error) const;
 };
 
 // A change of the friction regime of a node with set-valued friction.
@@ -48,6 +51,7 @@ struct NetworkRun {
   double t_end_s = 0;
 };
 
+// Throws ParameterError for options that are not valid, before the network is run.
 NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& options);
 
 }  // namespace drillwave::waves
