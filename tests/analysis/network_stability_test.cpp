@@ -19,6 +19,7 @@
 #include "drillwave/analysis/torsional_linearization.hpp"
 #include "drillwave/core/constants.hpp"
 #include "drillwave/waves/network_simulation.hpp"
+#include "wave_cancelling_top.hpp"
 
 namespace drillwave::analysis {
 namespace {
@@ -57,6 +58,15 @@ waves::Node SoftTorqueTop(double speed, double gain, double time_constant) {
   return top;
 }
 waves::Node ZTorqueTop(double speed) { return SoftTorqueTop(speed, 1 / kPipe.impedance, 5); }
+
+// The wave-cancelling top (model::WaveCancellation): the stiff PI's drive (J 500, kp 5000) absorbing the arriving wave,
+// its slow speed loop's corner k (ki = 2 Z k), behind an actuator delay.
+waves::Node WaveCancellingTop(double speed, double corner, double delay = 0) {
+  waves::Node top = PiTop(speed, 500, 5000, 2 * kPipe.impedance * corner);
+  top.law.wave_cancellation.impedance = kPipe.impedance;
+  top.law.actuator_delay_s = delay;
+  return top;
+}
 
 // The rig's two-mass top (json-cases/rig-two-mass.json): the PI acts on the motor's speed behind an 8:1 gear.
 waves::Node CompliantGearTop(double speed) {
@@ -130,13 +140,22 @@ struct Fraction {
   Complex num, den;
 };
 
+// The wave-cancelling top's impedance (tests/support/wave_cancelling_top.hpp) from the top section's impedance z.
+Fraction WaveCancellingTopImpedance(const waves::Node& top, double z, Complex s) {
+  const testing::WaveCancellingTop closed{top.LumpedInertia(), top.pi.kp, top.law.wave_cancellation.Corner(top.pi.ki),
+                                          top.ground_damping, top.law.actuator_delay_s};
+  const auto [num, den] = closed.Impedance(z, s);
+  return {num, den};
+}
+
 // The top's impedance Y_top (torque it takes per speed, Laplace domain) as numerator and denominator. A rigid gear
 // adds n^2 J_m to the top's inertia J. PI: J s + kp + ki / s. DC motor under a PI in volts, torque n k I with
 // (L s + R) I = -(kp + ki / s + n k) w: J s + n k (kp + ki / s + n k) / (L s + R). A PI on the motor behind a
 // compliant gear: the gear's K = k / s + c in series with the motor side M = J_r s + kp + ki / s,
 // Y = J s + K M / (K + M). A PI with torque feedback tracks -g H T - v, H = tau_f s / (1 + tau_f s) the high-pass: with
 // C = kp + ki / s and the string torque T = Z_in v, J s v = -T - C (g H T + v), so Y = (J s + C) / (1 + g C H).
-Fraction TopImpedance(const waves::Node& top, Complex s) {
+// The wave-cancelling top: WaveCancellingTopImpedance, with the top section's impedance.
+Fraction TopImpedance(const waves::Node& top, double top_section_impedance, Complex s) {
   const double j = top.LumpedInertia();
   const Complex pi_poly = top.pi.kp * s + top.pi.ki;  // s (kp + ki / s)
   if (top.has_compliant_gear()) {
@@ -147,6 +166,7 @@ Fraction TopImpedance(const waves::Node& top, Complex s) {
   switch (top.drive) {
     case waves::Drive::kSpeedDashpot: return {top.drive_damping, 1.0};
     case waves::Drive::kPiSpeedController: {
+      if (top.law.wave_cancellation.active()) return WaveCancellingTopImpedance(top, top_section_impedance, s);
       const double g = top.law.torque_feedback.gain, tf = top.law.torque_feedback.time_constant_s;
       if (g == 0) return {j * s * s + pi_poly, s};
       return {(j * s * s + pi_poly) * (1.0 + tf * s), s * (1.0 + tf * s) + g * pi_poly * tf * s};
@@ -171,7 +191,7 @@ std::function<Complex(Complex)> ClosedForm(const waves::Network& net, double bit
       z = {zk * (z.num * ch + zk * z.den * sh), zk * z.den * ch + z.num * sh};
     }
     if (net.top().drive == waves::Drive::kPrescribedSpeed) return z.den;
-    const Fraction top = TopImpedance(net.top(), s);
+    const Fraction top = TopImpedance(net.top(), net.sections.front().impedance, s);
     return top.num * z.den + top.den * z.num;
   };
 }
@@ -187,14 +207,15 @@ Complex NewtonRoot(const std::function<Complex(Complex)>& f, Complex s) {
   return {NAN, NAN};
 }
 
-// Every root the spectrum finds is a zero of the closed form f (Newton on it moves the root by < 1e-8), and every zero
-// of the closed form in the box, found by Newton from a grid of starts, is among the spectrum's roots.
-void ExpectRootsAreZerosOf(const waves::Network& net, const std::function<Complex(Complex)>& f, const char* what) {
+// Every root the spectrum finds right of re_min is a zero of the closed form f (Newton on it moves the root by < 1e-8),
+// and every zero of the closed form in the box, found by Newton from a grid of starts, is among the spectrum's roots.
+void ExpectRootsAreZerosOf(const waves::Network& net, const std::function<Complex(Complex)>& f, const char* what,
+                           double re_min = -5) {
   const auto points = NetworkSteadyStates(net);
   ASSERT_EQ(points.size(), 1u) << what;
   SpectrumOptions o;
   o.im_max = 60;
-  o.re_min = -5;
+  o.re_min = re_min;
   const Spectrum sp = ComputeSpectrum(LinearizeNetwork(net, points[0]).system, o);
   ASSERT_GE(sp.roots.size(), 5u) << what;
   double worst = 0;
@@ -219,8 +240,8 @@ void ExpectRootsAreZerosOf(const waves::Network& net, const std::function<Comple
   EXPECT_LT(worst, 1e-8) << what;
 }
 
-void ExpectRootsOfClosedForm(const waves::Network& net, double bit_damping, const char* what) {
-  ExpectRootsAreZerosOf(net, ClosedForm(net, bit_damping), what);
+void ExpectRootsOfClosedForm(const waves::Network& net, double bit_damping, const char* what, double re_min = -5) {
+  ExpectRootsAreZerosOf(net, ClosedForm(net, bit_damping), what, re_min);
 }
 
 TEST(NetworkStability, RootsAreTheZerosOfTheTransferMatrixClosedForm) {
@@ -238,6 +259,19 @@ TEST(NetworkStability, TorqueFeedbackTopsRootsAreTheZerosOfTheTransferMatrixClos
   ExpectRootsOfClosedForm(Chain(SoftTorqueTop(10, 1e-3, 5), {kPipe}, DampedBit(50)), 50, "SoftTorque top, one section");
   ExpectRootsOfClosedForm(Chain(ZTorqueTop(10), {kPipe}, DampedBit(50)), 50, "Z-Torque top, one section");
   ExpectRootsOfClosedForm(Chain(ZTorqueTop(10), {kPipe, kCollars}, DampedBit(50)), 50, "Z-Torque top, pipe + collars");
+}
+
+// The wave-cancelling top: its state is its speed's error to the law's, the arriving wave enters its speed as read
+// (neutral terms at tau, and at tau + d and tau + 2 d behind an actuator delay d). Without a delay the junction to the
+// collars is the only reflection left besides the slow loop's and the bit's, and the string's modes decay fast: four
+// roots lie right of -5 1/s, so the box reaches to -10.
+TEST(NetworkStability, WaveCancellingTopRootsAreTheZerosOfTheTransferMatrixClosedForm) {
+  ExpectRootsOfClosedForm(Chain(WaveCancellingTop(10, 0.2), {kPipe, kCollars}, DampedBit(50)), 50,
+                          "wave-cancelling top, pipe + collars", -10);
+  ExpectRootsOfClosedForm(Chain(WaveCancellingTop(10, 0.2, 0.02), {kPipe}, DampedBit(50)), 50,
+                          "wave-cancelling top behind 20 ms, one section");
+  ExpectRootsOfClosedForm(Chain(WaveCancellingTop(10, 0.2, 0.02), {kPipe, kCollars}, DampedBit(50)), 50,
+                          "wave-cancelling top behind 20 ms, pipe + collars");
 }
 
 // The rig's two-mass top (a PI on the motor speed behind a compliant gear) and a DC motor through a rigid gear with
@@ -578,6 +612,61 @@ TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedDelayedTopDrive) {
   soft.law.actuator_delay_s = 0.02;
   ExpectGrowthRatesOfSimulation(Chain(soft, {kPipe, kCollars}, StribeckBit()), 1e-3, 2, 30,
                                 "SoftTorque top, 20 ms delay, pipe + collars at 6 rad/s");
+  // The wave cancellation read a delay delta late sends down D = v - w = w(t - delta) - w(t) + ...: |e^{-i omega
+  // delta} - 1| up to 2 against the inertial bit's -1, so its essential spectrum lies near ln 2 / 2 tau whatever delta;
+  // with 100 ms its rightmost root is the chain's near 18 rad/s, which the simulation follows to 2 % (the chain's next
+  // roots, 7 rad/s apart, leak through the window).
+  ExpectGrowthRatesOfSimulation(Chain(WaveCancellingTop(4, 0.2, 0.1), {kPipe}, StribeckBit()), 1e-9, 1, 11,
+                                "wave-cancelling top, 100 ms delay, 4 rad/s", 1);
+}
+
+// The rate of a real mode in the simulation: the least-squares slope of ln |bit speed - w0| over [t0, t1], where the
+// mode has outlived (or outgrown) the others.
+double RealModeRate(const waves::NetworkTrajectory& tr, double w0, double t0, double t1) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < tr.time_s.size(); ++i) {
+    const double t = tr.time_s[i];
+    if (t < t0 || t > t1) continue;
+    const double y = std::log(std::abs(tr.bit_speed_rad_s[i] - w0));
+    sx += t, sy += y, sxx += t * t, sxy += t * y;
+    ++n;
+  }
+  EXPECT_GE(n, 100);
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// Under the wave-cancelling top a wave reaching the top is not sent back (but for the slow loop's -k / (s + k)), so
+// the string's modes die within a few trips and, with a slow loop, the rightmost root is real: the loop's (k = 0.05 at
+// 4 rad/s), or, where the Stribeck curve falls faster than the pipe's impedance (dT/dw < -Z, at 2 rad/s), the bit's
+// own near -(Z + dT/dw) / I > 0, which grows: no top law gives the bit more damping than the pipe's Z. After a rigid
+// kick the bit speed's deviation decays or grows at the rightmost root's real part. (The string itself is retarded
+// under the law, its essential spectrum at -inf; behind an actuator delay see
+// RootsAreTheGrowthRatesOfTheSimulatedDelayedTopDrive.)
+TEST(NetworkStability, RealRightmostRootIsTheRateOfTheSimulatedWaveCancellingTop) {
+  struct Point {
+    const char* what;
+    waves::Node top;
+    double kick, t0, t1;
+  };
+  const Point points[] = {{"wave-cancelling top (k 0.05) at 4 rad/s", WaveCancellingTop(4, 0.05), 1e-3, 5, 20},
+                          {"wave-cancelling top (k 0.2) at 2 rad/s", WaveCancellingTop(2, 0.2), 1e-13, 2.5, 5}};
+  for (const Point& p : points) {
+    const waves::Network net = Chain(p.top, {kPipe}, StribeckBit());
+    const auto steady = NetworkSteadyStates(net);
+    ASSERT_EQ(steady.size(), 1u) << p.what;
+    const Spectrum sp = ComputeSpectrum(LinearizeNetwork(net, steady[0]).system);
+    const CharacteristicRoot& rightmost = sp.roots.front();
+    ASSERT_LT(std::abs(rightmost.s.imag()), 1e-9) << p.what << ": " << rightmost.s;
+    const double w0 = steady[0].speed_rad_s;
+    const double measured = RealModeRate(KickedRun(net, w0, p.kick, p.t1), w0, p.t0, p.t1);
+    const double next = sp.roots.size() > 1 ? sp.roots[1].s.real() : -INFINITY;
+    std::printf("[ measured ] %s: dT/dw = %.3f N m s; rightmost root %.6f (next %.4f, essential %.3e, %s); simulated "
+                "rate over [%.1f, %.0f] s %.6f 1/s, relative error %.1e\n", p.what,
+                steady[0].bit_torque_slope_Nms_per_rad, rightmost.s.real(), next, sp.essential_abscissa,
+                VerdictName(sp.verdict), p.t0, p.t1, measured, std::abs(measured / rightmost.s.real() - 1));
+    EXPECT_NEAR(measured, rightmost.s.real(), 1e-3 * std::abs(rightmost.s.real())) << p.what;
+  }
 }
 
 // The largest real part among the roots of the band 1 < Im s < 30 (the stick-slip mode and the string's first

@@ -1,8 +1,9 @@
 // `drillwave compare-controllers`: the Saldivar string's stiff PI top drive (J 500 kg m^2, kp = ki = 5000) at 4 rad/s,
-// where its steady rotation is unstable (+0.333 1/s) and the bit sticks and slips, against SoftSpeed and Z-Torque
-// taking over at 20 s (three 20-s windows after it). A law whose operating point is not unstable (stable, or marginal:
-// the inertial top reflects the string's highest harmonics without loss) must leave a lower median severity. The
-// envelopes and the delay study are checked against what `drillwave stability` says of each law's case.
+// where its steady rotation is unstable (+0.333 1/s) and the bit sticks and slips, against SoftSpeed, Z-Torque and the
+// wave cancellation taking over at 20 s (three 20-s windows after it). A law whose operating point is not unstable
+// (stable, or marginal: the inertial top reflects the string's highest harmonics without loss) must leave a lower
+// median severity. The envelopes and the delay study are checked against what `drillwave stability` says of each
+// law's case.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -85,7 +86,7 @@ TEST_F(CompareControllers, WritesTheTableAndAStableLawSticksLessThanTheUnstableS
   for (const char* f : {"controllers.csv", "controllers.md", "controllers.svg", "case.json"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const auto rows = ReadRows(out / "controllers.csv");
-  ASSERT_EQ(rows.size(), 3u);
+  ASSERT_EQ(rows.size(), 4u);
   EXPECT_EQ(rows[0].at("law"), "stiff PI");
   EXPECT_EQ(rows[0].at("verdict"), "unstable");
   EXPECT_EQ(rows[0].at("time_to_suppress_s"), "not suppressed");
@@ -104,6 +105,7 @@ TEST_F(CompareControllers, WritesTheTableAndAStableLawSticksLessThanTheUnstableS
   std::ifstream md(out / "controllers.md");
   const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("| Z-Torque |"), std::string::npos) << text;
+  EXPECT_NE(text.find("| wave cancellation |"), std::string::npos) << text;
 }
 
 // A dissipative top has no stiff PI to compare with unless one is given; bad options exit 2 naming them and write
@@ -125,14 +127,15 @@ TEST_F(CompareControllers, NeedsAStiffPiAndRefusesBadOptions) {
   }
   const Outcome o = RunTool("compare-controllers " + pi + "500,5000,5000 --handover 20 --after 20 -o " + out.string());
   EXPECT_EQ(o.exit_code, 0) << o.output;
-  EXPECT_EQ(ReadRows(out / "controllers.csv").size(), 3u);
+  EXPECT_EQ(ReadRows(out / "controllers.csv").size(), 4u);
 }
 
 // The stiff PI's stick-slip at 4 rad/s handed over at 20 s; every law mapped on 3 x 3 points of the set-point and the
 // weight on bit, across the stiff PI's boundary (unstable at 3 rad/s, marginal above).
 constexpr const char* kSpeedAxis = "/model/top/speed_rad_s/knots/1/1=3:9:3";
 constexpr const char* kWeightAxis = "/model/bit/friction/W_N=80000:120000:3";
-constexpr const char* kLaws[] = {"stiff PI", "SoftSpeed", "Z-Torque"};
+constexpr const char* kLaws[] = {"stiff PI", "SoftSpeed", "Z-Torque", "wave cancellation"};
+constexpr std::size_t kNumLaws = std::size(kLaws);
 
 // Each law's envelope holds the linear verdicts and rightmost roots `drillwave stability --map` gives for the law's
 // own case, and the fractions and boundary counts of controllers.md are those of envelopes.csv's rows.
@@ -144,9 +147,9 @@ TEST_F(CompareControllers, EnvelopesAreTheStabilityMapsOfTheLawsCasesAndTheirCou
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_TRUE(fs::exists(out / "envelopes.svg"));
   const auto rows = ReadRows(out / "envelopes.csv");
-  ASSERT_EQ(rows.size(), 27u);
+  ASSERT_EQ(rows.size(), 9 * kNumLaws);
   const std::string md = ReadText(out / "controllers.md");
-  for (std::size_t law = 0; law < std::size(kLaws); ++law) {
+  for (std::size_t law = 0; law < kNumLaws; ++law) {
     const std::vector<std::map<std::string, std::string>> envelope(rows.begin() + 9 * law, rows.begin() + 9 * law + 9);
     ASSERT_EQ(envelope.front().at("law"), kLaws[law]);
     const nlohmann::json law_case = LawCase(out, kLaws[law]);
@@ -191,7 +194,7 @@ TEST_F(CompareControllers, EnvelopesAreTheStabilityMapsOfTheLawsCasesAndTheirCou
 
 // At every delay every law runs; the rows at the case's own delay (0) are the comparison's, and the verdict at a
 // delay is the one `drillwave stability` gives for the law's case with that actuator delay: the linearization holds
-// the delay (it turns the marginal Z-Torque unstable).
+// the delay (it turns the marginal Z-Torque and the stable wave cancellation unstable).
 TEST_F(CompareControllers, ActuatorDelaysRerunEveryLawAndTheVerdictsHoldTheDelay) {
   const fs::path out = dir_ / "out";
   const Outcome o = RunTool("compare-controllers " + Case("saldivar-z-torque") +
@@ -199,13 +202,13 @@ TEST_F(CompareControllers, ActuatorDelaysRerunEveryLawAndTheVerdictsHoldTheDelay
                             "--actuator-delays 0,0.1 -o " + out.string());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto nominal = ReadRows(out / "controllers.csv"), delays = ReadRows(out / "delays.csv");
-  ASSERT_EQ(delays.size(), 6u);
-  for (std::size_t law = 0; law < 3; ++law) {
+  ASSERT_EQ(delays.size(), 2 * kNumLaws);
+  for (std::size_t law = 0; law < kNumLaws; ++law) {
     auto at_zero = delays[law];
     EXPECT_EQ(at_zero.at("actuator_delay_s"), "0");
     at_zero.erase("actuator_delay_s");
     EXPECT_EQ(at_zero, nominal[law]) << kLaws[law];
-    const auto& delayed = delays[3 + law];
+    const auto& delayed = delays[kNumLaws + law];
     ASSERT_EQ(delayed.at("law"), kLaws[law]);
     EXPECT_EQ(delayed.at("actuator_delay_s"), "0.1");
     nlohmann::json law_case = LawCase(out, kLaws[law]);
@@ -218,7 +221,8 @@ TEST_F(CompareControllers, ActuatorDelaysRerunEveryLawAndTheVerdictsHoldTheDelay
     EXPECT_NEAR(std::stod(delayed.at("rightmost_re_per_s")), re, 1e-3 * std::abs(re)) << kLaws[law];
     fs::remove_all(roots);
   }
-  EXPECT_EQ(delays[5].at("verdict"), "unstable");
+  EXPECT_EQ(delays[kNumLaws + 2].at("verdict"), "unstable");  // Z-Torque
+  EXPECT_EQ(delays[kNumLaws + 3].at("verdict"), "unstable");  // the wave cancellation
   EXPECT_NE(ReadText(out / "controllers.md").find("## Actuator delay"), std::string::npos);
 }
 

@@ -29,6 +29,7 @@
 #include "drillwave/model/hoist_rig.hpp"
 #include "complex_newton.hpp"
 #include "json_case.hpp"
+#include "wave_cancelling_top.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -58,6 +59,7 @@ struct ClosedForm {
   double rig_m1 = 0, rig_m2 = 0, rig_g1 = 0, rig_g2 = 0, rig_k01 = 0, rig_k12 = 0;            // optional hoisting rig
   double hoist_c = 0;                                                                          // optional hoist dashpot
   double feedback_gain = 0, feedback_tau = 0, delay = 0;                                       // optional top-drive law
+  double wave_corner = 0;                                                              // the wave cancellation's k
   int pieces = 1;
   double kv_t = 0, kv_a = 0;  // optional Kelvin-Voigt dashpots eta K / piece length across each piece
   explicit ClosedForm(const nlohmann::json& doc) {
@@ -71,7 +73,7 @@ struct ClosedForm {
     pieces = s.value("subsections", 20);
     kv_t = s.value("kelvin_voigt_s", 0.0) * g * polar / (length / pieces);
     kv_a = s.value("axial_kelvin_voigt_s", 0.0) * e * area / (length / pieces);
-    j_top = m["top"]["inertia_kgm2"], kp = m["top"]["kp_Nms_per_rad"], ki = m["top"]["ki_Nm_per_rad"];
+    j_top = m["top"]["inertia_kgm2"], kp = m["top"]["kp_Nms_per_rad"], ki = m["top"].value("ki_Nm_per_rad", 0.0);
     j_bit = m["bit"]["inertia_kgm2"], m_bit = m["bit"]["mass_kg"], m_hoist = m["hoist"]["mass_kg"];
     hoist_c = m["hoist"].value("damping_Ns_per_m", 0.0);
     const double a = m["bit"]["radius_m"], eps = m["rock"]["intrinsic_specific_energy_Pa"], zeta = m["rock"]["zeta"];
@@ -95,6 +97,7 @@ struct ClosedForm {
     const std::string type = top.value("type", std::string("top_drive"));
     if (type == "soft_torque") feedback_gain = top.value("feedback_gain_rad_per_Nms", 0.0);
     if (type == "z_torque") feedback_gain = 1 / top.value("impedance_Nms_per_rad", zt);
+    if (type == "wave_cancellation") wave_corner = top["speed_loop_corner_rad_s"], ki = 2 * zt * wave_corner;
     feedback_tau = top.value("feedback_time_constant_s", 0.0), delay = top.value("actuator_delay_s", 0.0);
     if (top.contains("motor")) {
       dc_k = gear_ratio * top["motor"]["motor_constant_Nm_per_A"].get<double>();
@@ -106,6 +109,11 @@ struct ClosedForm {
   // A rigid gear adds n^2 J_m to J; behind a compliant one the motor side M = n^2 J_m s + drive is in series with the
   // gear's k / s + c.
   Complex TopImpedance(Complex s) const {
+    if (wave_corner > 0) {  // tests/support/wave_cancelling_top.hpp, the undamped top node
+      const testing::WaveCancellingTop top{j_top + gear_ratio * gear_ratio * j_motor, kp, wave_corner, 0, delay};
+      const auto [num, den] = top.Impedance(zt, s);
+      return num / den;
+    }
     const Complex drive = dc_k > 0 ? (dc_r * (kp + ki / s) + dc_k * dc_k) / (dc_l * s + dc_r) : kp + ki / s;
     const double j_referred = gear_ratio * gear_ratio * j_motor;
     if (feedback_gain > 0 || delay > 0) {  // a law: rigid gear, no motor
@@ -222,9 +230,10 @@ TEST(AxialTorsionalStability, GearedAndMotorTopsAreTheZerosOfTheClosedForm) {
 }
 
 // The top-drive laws of issue 35 on the coupled string: SoftTorque with explicit gains, Z-Torque matched to the
-// pipe, and Z-Torque behind a 20 ms actuator delay (its retarded terms carried into the coupled system; 50 ms make the
-// stiff speed loop, kp / J = 40 1/s, itself unstable with a root near 14 + 38i from which Newton on F, whose value
-// there is 4e-8 of its size 0.01 away, leaves).
+// pipe, the wave cancellation (tests/support/wave_cancelling_top.hpp), each of the last two also behind a 20 ms
+// actuator delay (its retarded terms carried into the coupled system; 50 ms make Z-Torque's stiff speed loop,
+// kp / J = 40 1/s, itself unstable with a root near 14 + 38i from which Newton on F, whose value there is 4e-8 of its
+// size 0.01 away, leaves).
 TEST(AxialTorsionalStability, TopDriveLawsAreTheZerosOfTheClosedForm) {
   nlohmann::json soft = Undamped(2);
   soft["model"]["top"]["type"] = "soft_torque";
@@ -237,6 +246,12 @@ TEST(AxialTorsionalStability, TopDriveLawsAreTheZerosOfTheClosedForm) {
   ExpectRootsAreTheZerosOfTheClosedForm(z, "undamped string in 2 pieces, Z-Torque top");
   z["model"]["top"]["actuator_delay_s"] = 0.02;
   ExpectRootsAreTheZerosOfTheClosedForm(z, "undamped string in 2 pieces, Z-Torque top behind 20 ms");
+  nlohmann::json wave = Undamped(2);
+  wave["model"]["top"].erase("ki_Nm_per_rad");
+  wave["model"]["top"].update({{"type", "wave_cancellation"}, {"speed_loop_corner_rad_s", 0.2}});
+  ExpectRootsAreTheZerosOfTheClosedForm(wave, "undamped string in 2 pieces, wave-cancelling top");
+  wave["model"]["top"]["actuator_delay_s"] = 0.02;
+  ExpectRootsAreTheZerosOfTheClosedForm(wave, "undamped string in 2 pieces, wave-cancelling top behind 20 ms");
 }
 
 // The hoist's dashpot to the block paying out at the steady rate (hoist/damping_Ns_per_m), matched to the axial

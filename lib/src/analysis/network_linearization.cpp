@@ -231,8 +231,12 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
   // compliant gear the motor's speed (referred to the node) and the gear's twist.
   std::vector<int> speed(nodes, -1), integral(nodes, -1), filter(nodes, -1), current(nodes, -1), flux(nodes, -1),
       motor(nodes, -1);
+  // A wave-cancelling top's state is its speed's error to the law's speed (see its rows below).
+  auto speed_name = [&](int i) {
+    return node_label(i) + (net.nodes[i].law.wave_cancellation.active() ? "_speed_off_wave_law_rad_s" : "_speed_rad_s");
+  };
   for (int i = 0; i < nodes; ++i)
-    if (!net.nodes[i].massless()) speed[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_speed_rad_s");
+    if (!net.nodes[i].massless()) speed[i] = static_cast<int>(names.size()), names.push_back(speed_name(i));
   for (int i = 0; i < nodes; ++i)
     if (net.nodes[i].has_speed_integral() && net.nodes[i].pi.ki > 0)
       integral[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_speed_error_integral_rad");
@@ -293,8 +297,13 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
   // (diagonal without dashpots).
   struct SpeedForm {
     Eigen::RowVectorXd state, wave;  // wave: by the arriving wave's column
+    // What it holds `late` ago (a wave-cancelling top's speed follows what its law read an actuator delay ago):
+    // retarded coefficients of the states and neutral ones of the arriving waves, that much later still.
+    double late = 0;
+    Eigen::RowVectorXd late_state, late_wave;
   };
-  std::vector<SpeedForm> speed_form(nodes, {Eigen::RowVectorXd::Zero(n), Eigen::RowVectorXd::Zero(n)});
+  const Eigen::RowVectorXd none = Eigen::RowVectorXd::Zero(n);
+  std::vector<SpeedForm> speed_form(nodes, {none, none, 0.0, none, none});
   std::vector<int> unknown(nodes, -1);  // massless nodes of free speed, numbered
   int unknowns = 0;
   for (int i = 0; i < nodes; ++i) {
@@ -341,12 +350,38 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
     if (it->neutral.size() == 0) it->neutral = Eigen::MatrixXd::Zero(n, n);
     return *it;
   };
-  // factor * (speed of node i) into row `row`.
-  auto add_speed = [&](int row, int i, double factor) {
-    sys.a0.row(row) += factor * speed_form[i].state;
-    for (int c = first_wave; c < n; ++c)
-      if (speed_form[i].wave(c) != 0) sys.delays[section_of(c)].neutral(row, c) += factor * speed_form[i].wave(c);
+  // value * (state `column`, `lag` ago) and value * (the wave of `column` arriving `lag` ago) into row `row`.
+  auto add_state = [&](int row, int column, double value, double lag) {
+    if (lag == 0) sys.a0(row, column) += value;
+    else delay_term(lag).retarded(row, column) += value;
   };
+  auto add_wave = [&](int row, int column, double value, double lag) {
+    const int k = section_of(column);
+    if (lag == 0) sys.delays[k].neutral(row, column) += value;
+    else delay_term(net.sections[k].travel_time_s + lag).neutral(row, column) += value;
+  };
+  // factor * (speed of node i, `lag` ago) into row `row`.
+  auto add_speed = [&](int row, int i, double factor, double lag = 0) {
+    const SpeedForm& form = speed_form[i];
+    if (lag == 0) sys.a0.row(row) += factor * form.state;
+    else delay_term(lag).retarded.row(row) += factor * form.state;
+    for (int c = first_wave; c < n; ++c)
+      if (form.wave(c) != 0) add_wave(row, c, factor * form.wave(c), lag);
+    if (form.late == 0) return;
+    for (int c = 0; c < n; ++c) {
+      if (form.late_state(c) != 0) add_state(row, c, factor * form.late_state(c), lag + form.late);
+      if (form.late_wave(c) != 0) add_wave(row, c, factor * form.late_wave(c), lag + form.late);
+    }
+  };
+  // A wave-cancelling top turns at v = e + w(t - late) + k I(t - late): the speed its law asked for an actuator delay
+  // ago (model::WaveCancellation: the arriving wave w plus d, whose perturbation is k I) and the error e, its state.
+  if (net.top().law.wave_cancellation.active()) {
+    const Node& top = net.top();
+    SpeedForm& form = speed_form[0];
+    form.late = top.law.actuator_delay_s;
+    (form.late > 0 ? form.late_state : form.state)(integral[0]) += top.law.wave_cancellation.Corner(top.pi.ki);
+    (form.late > 0 ? form.late_wave : form.wave)(up(0)) += 1;
+  }
 
   for (int i = 0; i < nodes; ++i) {
     const Node& node = net.nodes[i];
@@ -358,6 +393,21 @@ NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperating
     }
     if (speed[i] < 0) continue;
     const int v = speed[i];
+    if (node.law.wave_cancellation.active()) {
+      // Its torque cancels g, the torque of the string and its dampers, as read: J e' = g(t) - g(t - late) -
+      // kp (v - w - d)(t - late), g = sum 2 Z w_in - (sum Z + c) v (without a delay e' = -kp e / J); I' = -v, as read.
+      const double late = node.law.actuator_delay_s, inertia = node.LumpedInertia(), kp = node.pi.kp;
+      auto add_string_and_dampers = [&](double factor, double lag) {
+        for (const Arrival& a : arrivals(i)) add_wave(v, a.column, factor * 2 * a.impedance, lag);
+        add_speed(v, i, -factor * (impedance_sum(i) + NodeTorqueSlope(node, w0)), lag);
+      };
+      if (late > 0) add_string_and_dampers(1 / inertia, 0), add_string_and_dampers(-1 / inertia, late);
+      add_speed(v, i, -kp / inertia, late);
+      add_wave(v, up(0), kp / inertia, late);
+      add_state(v, integral[i], kp / inertia * node.law.wave_cancellation.Corner(node.pi.ki), late);
+      add_speed(integral[i], i, -1, late);
+      continue;
+    }
     // The speed the drive sees (referred to the node's side): the node's, or its motor's behind a compliant gear.
     const int vd = motor[i] >= 0 ? motor[i] : v;
     const double n_gear = node.gear.ratio;

@@ -8,6 +8,7 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/statistics.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/median.hpp"
@@ -19,7 +20,9 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kFigureLeadS = 10;  // the figure shows the stiff PI's stick-slip this long before the handover
 
-bool IsPiTop(const std::string& type) { return type == "top_drive" || type == "soft_torque" || type == "z_torque"; }
+bool IsPiTop(const std::string& type) {
+  return type == "top_drive" || type == "soft_torque" || type == "z_torque" || type == "wave_cancellation";
+}
 
 // The case's top as every law keeps it (inertia, set-point, torque limit, actuator delay, gear, dampers), and the
 // stiff PI's gains.
@@ -31,8 +34,8 @@ StiffTop StiffTopOf(const nlohmann::json& top, const std::optional<StiffPi>& giv
   const std::string type = top.value("type", std::string("top_drive"));
   if (!IsPiTop(type) && !given)
     throw InputError("/model/top/type", "compare-controllers compares the laws of a PI top drive (top_drive, "
-                                        "soft_torque or z_torque), got " + type + ": give the stiff PI that replaces "
-                                        "it (inertia, kp, ki)");
+                                        "soft_torque, z_torque or wave_cancellation), got " + type + ": give the stiff "
+                                        "PI that replaces it (inertia, kp, ki)");
   if (!top.contains("speed_rad_s"))
     throw InputError("/model/top/speed_rad_s", "the laws track a speed set-point: expected one in the case's top");
   StiffTop stiff;
@@ -40,7 +43,7 @@ StiffTop StiffTopOf(const nlohmann::json& top, const std::optional<StiffPi>& giv
     stiff.drive = top;
     for (const char* law_field : {"type", "kp_Nms_per_rad", "ki_Nm_per_rad", "tuning_period_s",
                                   "feedback_gain_rad_per_Nms", "feedback_time_constant_s", "impedance_Nms_per_rad",
-                                  "handover"})
+                                  "speed_loop_corner_rad_s", "handover"})
       stiff.drive.erase(law_field);
   } else {  // a top of another kind: only its set-point carries over
     stiff.drive = {{"speed_rad_s", top["speed_rad_s"]}};
@@ -214,6 +217,13 @@ ControllerComparison CompareControllers(const nlohmann::json& document, const Co
       Evaluate("SoftSpeed", WithTop(p.base, stiff.drive, soft_speed), out.handover_s, out.end_s, spec.max_steps));
   out.laws.push_back(
       Evaluate("Z-Torque", WithTop(p.base, stiff.drive, z_torque), out.handover_s, out.end_s, spec.max_steps));
+  // The wave cancellation pulls the top onto its law's speed with the stiff PI's kp; its slow speed loop reflects
+  // only below a tenth of the stick-slip frequency.
+  out.wave_corner_rad_s = 2 * kPi / out.tuning_period_s / 10;
+  nlohmann::json wave = {{"type", "wave_cancellation"}, {"kp_Nms_per_rad", stiff.kp},
+                         {"speed_loop_corner_rad_s", out.wave_corner_rad_s}, {"handover", handover}};
+  out.laws.push_back(Evaluate("wave cancellation", WithTop(p.base, stiff.drive, wave), out.handover_s, out.end_s,
+                              spec.max_steps));
   const double reference = out.laws.front().torque_std_Nm;
   for (ControllerResult& r : out.laws) r.torque_reduction_pct = 100 * (1 - r.torque_std_Nm / reference);
   return out;

@@ -89,14 +89,16 @@ void WriteMarkdown(const std::string& name, const ControllerComparison& c, std::
       << "stiff PI's period P = " << Number(c.tuning_period_s) << " s (kp = Z of the top section, ki = J (2 pi / P)^2);"
       << " "
       << "Z-Torque: the stiff PI tracking the set-point less the string torque over Z, high-passed with tau_f = "
-      << Number(c.feedback_time_constant_s) << " s. Severity (max - min) / (2 mean) of the bit speed and the top "
-      << "torque's standard deviation are medians over the " << Number(kSeverityWindowS) << "-s windows after the "
-      << "handover (top torque: the kind's top_torque_Nm, the torque the top feeds into the string in torsional_wave, "
-      << "the drive's torque, which also turns the top drive's inertia, in axial_torsional); the time to suppress "
-      << "runs from the handover to the end of the last stick (0: the bit does not stick after it; not suppressed: it "
-      << "still sticks in the last " << Number(kSeverityWindowS) << " s). The linear verdict is the rightmost "
-      << "characteristic root at the operating point (in the coupled kind it may be the axial regenerative mode, "
-      << "which no top-drive law moves).\n\n";
+      << Number(c.feedback_time_constant_s) << " s; wave cancellation: the top absorbing the arriving torsional wave "
+      << "exactly and injecting a down-going one, with the stiff PI's kp and a slow speed loop of corner k = "
+      << Number(c.wave_corner_rad_s) << " rad/s (2 pi / 10 P). Severity (max - min) / (2 mean) of the bit speed and "
+      << "the top torque's standard deviation are medians over the " << Number(kSeverityWindowS) << "-s windows after "
+      << "the handover (top torque: the kind's top_torque_Nm, the torque the top feeds into the string in "
+      << "torsional_wave, the drive's torque, which also turns the top drive's inertia, in axial_torsional); the time "
+      << "to suppress runs from the handover to the end of the last stick (0: the bit does not stick after it; not "
+      << "suppressed: it still sticks in the last " << Number(kSeverityWindowS) << " s). The linear verdict is the "
+      << "rightmost characteristic root at the operating point (in the coupled kind it may be the axial regenerative "
+      << "mode, which no top-drive law moves).\n\n";
   WriteMarkdownHeader("", out);
   for (const ControllerResult& r : c.laws) WriteMarkdownRow("", r, out);
   out << "\nThe tops as run (/model/top):\n\n";
@@ -114,7 +116,8 @@ bool Benefits(const ControllerComparison& c, const ControllerResult& r) {
 void WriteDelayMarkdown(const std::vector<ControllerComparison>& delays, std::ostream& out) {
   out << "\n## Actuator delay\n\n"
       << "Every law with the drive's torque acting the delay after its controller computes it (the stiff PI too, "
-      << "before and after the handover), SoftSpeed and Z-Torque tuned as above (at the nominal delay) and held; the "
+      << "before and after the handover), SoftSpeed, Z-Torque and the wave cancellation tuned as above (at the "
+      << "nominal delay) and held; the "
       << "reduction is against the stiff PI at the same delay; benefit: a median severity below the stiff PI's at the "
       << "same delay (nan, the bit turned backwards, the run blew up or took more than " << kDelayedWorkFactor
       << " times the costliest nominal run's steps, is worse than any). The linear verdict "

@@ -6,8 +6,8 @@
 namespace drillwave::dynamics {
 
 PiTopDrive::PiTopDrive(const model::PiController& pi, const model::TopDriveLaw& law, const model::Schedule& setpoint,
-                       double initial_speed)
-    : pi_(pi), law_(law), setpoint_(setpoint) {
+                       double initial_speed, double inertia)
+    : pi_(pi), law_(law), setpoint_(setpoint), inertia_(inertia) {
   if (delay() > 0)  // the drive's speed as its delayed controller reads it; steady before the start
     speed_history_.emplace(1, [initial_speed](double, double* value, double* rate) {
       *value = initial_speed, *rate = 0;
@@ -17,6 +17,21 @@ PiTopDrive::PiTopDrive(const model::PiController& pi, const model::TopDriveLaw& 
 bool PiTopDrive::Engaged(double t, Side side) const {
   const model::Handover& h = law_.handover;
   return !h.active() || t > h.time_s || (t == h.time_s && side == Side::kRight);
+}
+
+double PiTopDrive::InitialIntegral(double held, double string_torque) const {
+  if (CancelsWaves(0.0, Side::kRight)) return pi_.IntegralHolding(string_torque);
+  return PiAt(0.0, Side::kRight).IntegralHolding(held);
+}
+
+// u = T_load + J (w' + d') + kp (w + d - v) (model::WaveCancellation), everything as read; d' from the set-point's
+// slope and the integral's rate, through the same linear DownWave.
+double PiTopDrive::WaveCancellingTorque(const Reading& in, double integral) const {
+  const model::WaveCancellation& law = law_.wave_cancellation;
+  const double down = law.DownWave(in.command, pi_.ki * integral);
+  const double down_rate = law.DownWave(in.command_rate, pi_.ki * IntegralRate(in));
+  const double absorbing_speed = in.wave.arriving + down;
+  return in.wave.load + inertia_ * (in.wave.arriving_rate + down_rate) + pi_.kp * (absorbing_speed - in.speed);
 }
 
 double PiTopDrive::MaxStep(double process_max_step) const {

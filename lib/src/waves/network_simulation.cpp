@@ -95,7 +95,8 @@ class NetworkProcess {
     controllers_.resize(num_nodes_);
     for (int i : ends)
       if (net.nodes[i].has_speed_integral())
-        controllers_[i].emplace(net.nodes[i].pi, net.nodes[i].law, net.nodes[i].setpoint, net.initial.speed_rad_s);
+        controllers_[i].emplace(net.nodes[i].pi, net.nodes[i].law, net.nodes[i].setpoint, net.initial.speed_rad_s,
+                                net.nodes[i].LumpedInertia());
     // What the delays can still reach, output look-ups.
     read_back_ = 2.0 * net.LargestTravelTime() + 1.0 + net.top().law.actuator_delay_s;
     if (!kelvin_voigt_) {
@@ -140,9 +141,10 @@ class NetworkProcess {
         if (node.drive == Drive::kInductionMotorSpeed)  // the demand that asks for this supply
           held = n * node.induction.TorqueDemandFor(supply, n * v0);
       }
-      if (integral_index_[i] != kNone) x[integral_index_[i]] = controllers_[i]->InitialIntegral(held);
+      const double string_torque = steady_torque_ - node.SteadyLoad(v0);
+      if (integral_index_[i] != kNone) x[integral_index_[i]] = controllers_[i]->InitialIntegral(held, string_torque);
       // The filter has settled on the steady string torque: no correction of the set-point at the start.
-      if (filter_index_[i] != kNone) x[filter_index_[i]] = steady_torque_ - node.SteadyLoad(v0);
+      if (filter_index_[i] != kNone) x[filter_index_[i]] = string_torque;
       if (motor_speed_index_[i] != kNone) {
         x[motor_speed_index_[i]] = v0;
         x[motor_speed_index_[i] + 1] = steady_torque_ / node.gear.stiffness;
@@ -390,8 +392,15 @@ class NetworkProcess {
   using Reading = dynamics::PiTopDrive::Reading;
   Reading ReadController(int i, const State& x, double vd, double t, Side side) const {
     const double low_passed = filter_index_[i] != kNone ? x[filter_index_[i]] : 0.0;
-    return controllers_[i]->Read(t, side, vd, low_passed,
-                                 [&](double when, double speed) { return TopStringTorque(x, when, side, speed); });
+    return controllers_[i]->Read(
+        t, side, vd, low_passed, [&](double when, double speed) { return TopStringTorque(x, when, side, speed); },
+        [&](double when, double speed) { return TopWave(x, when, side, speed); });
+  }
+  // What a wave-cancelling top reads at time t turning at v: the torque the string and its own dampers take from it,
+  // and the wave arriving there (the law refuses Kelvin-Voigt dashpots, whose pull would be part of the string's say).
+  dynamics::PiTopDrive::TopWave TopWave(const State& x, double t, Side side, double v) const {
+    const WaveChain::Wave arriving = chain_.TopArrival(t, side);
+    return {TopStringTorque(x, t, side, v) + net_.top().ground_damping * v, arriving.value, arriving.rate};
   }
   // The torque the top feeds into the string at time t turning at v (what a torque sub there measures): minus the
   // string's force on it. Without dashpots that force reads only the wave arriving at the top; with them both ends'

@@ -257,6 +257,11 @@ double WaveChain::TopForce(double t, Side side, ChainEnds speeds) const {
   return EndForce(0, Arrival(0, t, side, false), speeds.top, 0.0);
 }
 
+WaveChain::Wave WaveChain::TopArrival(double t, Side side) const {
+  const double sent = t - spec_.tau[0];  // U_0, sent by node 1
+  return {NodeHistory(1).Value(sent, 0, side), NodeHistory(1).Derivative(sent, 0, side)};
+}
+
 double WaveChain::BitForce(double t, Side side, ChainEnds speeds) const {
   if (spec_.kelvin_voigt()) return EndForces(t, side, speeds).bit;
   return EndForce(m_, Arrival(m_, t, side, true), speeds.bit, 0.0);

@@ -8,8 +8,11 @@
 // (LinearDelaySystem::derivative_only_states): a wave arriving at a node is p_k' or q_k' one travel time ago, so every
 // scattering is a neutral term. Nodes with inertia add their speed, PI controllers their integral, DC motors their
 // current, induction motors their four fluxes (about the fluxes that hold still in the simulation's own equations),
-// and a motor behind a compliant gear its speed (referred to the node) and the gear's twist. A rigid gear adds
-// n^2 J_m to the node's inertia; the drives' constants are referred to the node's side as the simulation refers them.
+// and a motor behind a compliant gear its speed (referred to the node) and the gear's twist; a wave-cancelling top
+// (model::WaveCancellation) has its speed's error to the law's speed instead of its speed, which then reads the
+// arriving wave and the integral an actuator delay late (retarded and neutral terms at d, tau + d, 2 d, tau + 2 d).
+// A rigid gear adds n^2 J_m to the node's inertia; the drives' constants are referred to the node's side as the
+// simulation refers them.
 // A massless node's speed is algebraic in the arriving waves and is substituted; Kelvin-Voigt dashpots across the
 // sections (waves::Section::dashpot) tie it to its neighbours' speeds, and the massless nodes' speeds then solve one
 // linear system (as in the simulation), substituted likewise; an inertial node feels kv (v_neighbour - v). A lateral

@@ -2,11 +2,13 @@
 // `drillwave compare-controllers` (issue 35): one string under each top-drive law against stick-slip, side by side.
 // The laws: the stiff PI as the case gives it; SoftSpeed, a soft_torque top whose PI is tuned to the stick-slip
 // period the stiff PI shows (kp = Z, ki = J (2 pi / P)^2); Z-Torque, the stiff PI tracking the set-point less the
-// high-passed string torque over the top section's impedance Z. Each law takes over from the stiff PI at the same
-// instant of its stick-slip (model::Handover), so every law starts from the same stick-slip state; the stiff PI runs
-// on unchanged. Per law: the linear verdict and rightmost root at the operating point, and over the 20-s windows
-// after the handover the median stick-slip severity and the median standard deviation of the top torque, its
-// reduction against the stiff PI's, and how long the stick-slip takes to die out.
+// high-passed string torque over the top section's impedance Z; wave cancellation, the top absorbing the arriving
+// wave exactly (model::WaveCancellation) with the stiff PI's kp and its slow speed loop's corner at 2 pi / (10 P).
+// Each law takes over from the stiff PI at the same instant of its stick-slip (model::Handover), so every law starts
+// from the same stick-slip state; the stiff PI runs on unchanged. Per law: the linear verdict and rightmost root at
+// the operating point, and over the 20-s windows after the handover the median stick-slip severity and the median
+// standard deviation of the top torque, its reduction against the stiff PI's, and how long the stick-slip takes to
+// die out.
 //
 //   ControllerComparison c = CompareControllers(document, {});  // handover at the case's statistics window
 //   WriteControllerComparison(document, c, "out/controllers");   // controllers.csv, .md, .svg, case.json
@@ -35,7 +37,7 @@ struct ControllerComparisonSpec {
 };
 
 struct ControllerResult {
-  std::string law;               // "stiff PI", "SoftSpeed", "Z-Torque"
+  std::string law;               // "stiff PI", "SoftSpeed", "Z-Torque", "wave cancellation"
   nlohmann::json document;       // the case it ran: the law's /model/top, the comparison's duration and window
   std::string verdict;           // stable | marginal | unstable | no steady state
   double rightmost_re = 0, rightmost_im = 0;  // the rightmost characteristic root [1/s, rad/s] (NaN: none)
@@ -57,6 +59,7 @@ struct ControllerComparison {
   double handover_s = 0, end_s = 0;
   double tuning_period_s = 0;          // SoftSpeed's P
   double feedback_time_constant_s = 0; // Z-Torque's high-pass filter
+  double wave_corner_rad_s = 0;        // the wave cancellation's speed loop corner k
   double actuator_delay_s = 0;         // of the drive every law runs on
   std::vector<ControllerResult> laws;  // the stiff PI first
 };
@@ -72,8 +75,9 @@ ControllerComparison CompareControllers(const nlohmann::json& document, const Co
 // does before its runs.
 nlohmann::json StiffPiCase(const nlohmann::json& document, const ControllerComparisonSpec& spec);
 
-// Every law again at each actuator delay (spec.actuator_delay_s replaced), with SoftSpeed's period and Z-Torque's
-// filter held at the nominal comparison's: the drive is commissioned once and then lives with its delay. A delay
+// Every law again at each actuator delay (spec.actuator_delay_s replaced), with SoftSpeed's period, Z-Torque's
+// filter and the wave cancellation's corner held at the nominal comparison's: the drive is commissioned once and then
+// lives with its delay. A delay
 // equal to the nominal's reuses it. A delayed run may take at most kDelayedWorkFactor times the steps of the
 // costliest nominal run: beyond, it is recorded as failed (a bit bouncing off the rock with 28-MN impacts once took
 // 1e-8-s steps, whose wave histories filled 4 GB).

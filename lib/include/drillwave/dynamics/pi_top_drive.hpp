@@ -1,7 +1,8 @@
 #pragma once
 // A PI speed controller with its law against stick-slip (model::TopDriveLaw) as a component of a process: what the
 // controller reads (an actuator delay late), the speed it tracks, its torque and the rates of its two states (the
-// integral of the speed error and, with torque feedback, the low-passed string torque). The first component of the
+// integral of the speed error and, with torque feedback, the low-passed string torque); under wave cancellation the
+// torque that absorbs the arriving wave instead of the PI's output. The first component of the
 // dynamics layer issue 36 asks for: the wave network's process (torsional_wave, every PI speed loop of its ends) and
 // the coupled kind's (axial_torsional) both run their top's controller through it, so a law written here works in
 // both. It depends on model and integration only; the process keeps the state slots and tells it the string torque.
@@ -18,25 +19,34 @@ namespace drillwave::dynamics {
 class PiTopDrive {
  public:
   using Side = integration::Side;
+  // What a wave-cancelling drive reads besides (model::WaveCancellation): the torque the string and the top's own
+  // dampers take from it, and the up-going wave arriving at the top and its rate.
+  struct TopWave {
+    double load = 0, arriving = 0, arriving_rate = 0;
+  };
   // What the controller reads at one instant: the speed it tracks (the set-point less the torque feedback), the
-  // drive's speed and the string torque at the top (0 without feedback), all one actuator delay late.
+  // drive's speed and the string torque at the top (0 without feedback), all one actuator delay late; under wave
+  // cancellation also the set-point's slope and the top's wave.
   struct Reading {
     double command, speed, torque;
+    double command_rate = 0;
+    TopWave wave{};
   };
 
   // The controller of a drive turning steadily at initial_speed before the start (what a delayed controller reads
-  // then). The references must outlive it.
+  // then), whose speed carries `inertia` (wave cancellation's feed-forward). The references must outlive it.
   PiTopDrive(const model::PiController& pi, const model::TopDriveLaw& law, const model::Schedule& setpoint,
-             double initial_speed);
+             double initial_speed, double inertia);
 
   bool has_filter() const { return law_.torque_feedback.active(); }
   double delay() const { return law_.actuator_delay_s; }
 
   // The reading at time t for a drive now turning at drive_speed, the filter's state low_passed (ignored without
   // feedback); string_torque(when, speed) is the torque the top feeds into the string at `when` turning at `speed`
-  // (asked only with feedback).
-  template <class StringTorque>
-  Reading Read(double t, Side side, double drive_speed, double low_passed, const StringTorque& string_torque) const {
+  // (asked only with feedback), top_wave(when, speed) the TopWave there (asked only under wave cancellation).
+  template <class StringTorque, class ReadTopWave>
+  Reading Read(double t, Side side, double drive_speed, double low_passed, const StringTorque& string_torque,
+               const ReadTopWave& top_wave) const {
     Reading in{0.0, drive_speed, 0.0};
     double when = t;
     if (speed_history_) when = t - delay(), in.speed = speed_history_->Value(when, 0, side);
@@ -45,10 +55,13 @@ class PiTopDrive {
       in.torque = string_torque(when, in.speed);
       if (Engaged(t, side)) in.command = law_.Command(in.command, in.torque, low_passed);
     }
+    if (CancelsWaves(t, side)) in.command_rate = SetpointRate(when, side), in.wave = top_wave(when, in.speed);
     return in;
   }
-  // The PI's output for the reading (a torque, or a motor's voltage or torque demand), with the gains in force at t.
+  // The PI's output for the reading (a torque, or a motor's voltage or torque demand), with the gains in force at t;
+  // under wave cancellation the torque that absorbs the arriving wave.
   double Output(double t, Side side, const Reading& in, double integral) const {
+    if (CancelsWaves(t, side)) return WaveCancellingTorque(in, integral);
     return PiAt(t, side).Output(in.command, in.speed, integral);
   }
   // The output as the drive's torque: clamped to the torque limit.
@@ -57,8 +70,10 @@ class PiTopDrive {
   }
   static double IntegralRate(const Reading& in) { return in.command - in.speed; }
   double FilterRate(const Reading& in, double low_passed) const { return law_.FilterRate(in.torque, low_passed); }
-  // Steady start: the integral that holds `held` with no speed error (the gains in force at 0).
-  double InitialIntegral(double held) const { return PiAt(0.0, Side::kRight).IntegralHolding(held); }
+  // Steady start: the integral that holds `held`, the drive's output, with no speed error (the gains in force at 0);
+  // under wave cancellation the one whose torque ki I is string_torque, what the string takes from the top (the law's
+  // torque carries the top's dampers itself).
+  double InitialIntegral(double held, double string_torque) const;
 
   // The process's step cap, lowered to the delay (delayed look-ups come from committed history).
   double MaxStep(double process_max_step) const;
@@ -74,14 +89,20 @@ class PiTopDrive {
 
  private:
   bool Engaged(double t, Side side) const;
+  bool CancelsWaves(double t, Side side) const { return law_.wave_cancellation.active() && Engaged(t, side); }
   const model::PiController& PiAt(double t, Side side) const { return Engaged(t, side) ? pi_ : law_.handover.before; }
   double Setpoint(double t, Side side) const {
     return side == Side::kLeft ? setpoint_.ValueBefore(t) : setpoint_.Value(t);
   }
+  double SetpointRate(double t, Side side) const {
+    return side == Side::kLeft ? setpoint_.SlopeBefore(t) : setpoint_.Slope(t);
+  }
+  double WaveCancellingTorque(const Reading& in, double integral) const;
 
   const model::PiController& pi_;
   const model::TopDriveLaw& law_;
   const model::Schedule& setpoint_;
+  double inertia_;
   std::optional<integration::HermiteHistory> speed_history_;  // with a delay
   bool restarted_ = true;    // the next committed piece starts after an event or a breakpoint
   bool handed_over_ = false;

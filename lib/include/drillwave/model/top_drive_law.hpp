@@ -1,8 +1,9 @@
 #pragma once
 // The law of a PI top drive against stick-slip (issue 35), one set of parameters for every kind with such a top: its
-// torque limit, the torque feedback of the soft-torque family (SoftTorque, SoftSpeed, Z-Torque), the actuator delay
-// and the hand-over from the stiff PI it replaces. The PI's own gains stay in model::PiController beside it (motors'
-// speed loops share them); dynamics::PiTopDrive runs the law inside a process.
+// torque limit, the torque feedback of the soft-torque family (SoftTorque, SoftSpeed, Z-Torque) or the wave
+// cancellation on the d'Alembert form, the actuator delay and the hand-over from the stiff PI it replaces. The PI's
+// own gains stay in model::PiController beside it (motors' speed loops share them); dynamics::PiTopDrive runs the law
+// inside a process.
 #include <algorithm>
 
 #include "drillwave/model/pi_controller.hpp"
@@ -22,6 +23,31 @@ struct TorqueFeedback {
   bool active() const { return gain != 0; }
 };
 
+// Wave cancellation on the d'Alembert form (DESIGN.md §1: v = D + U, T = Z (D - U) at the top): the drive reads the
+// up-going wave w arriving at the top and turns the top at v = w + d, so that the wave it sends down is d whatever w:
+// w is absorbed, not reflected (the top is an infinite pipe for it; the chapter's top boundary, eq. 2.10 family, with
+// beta = Z, whose reflection (beta - Z) / (beta + Z) and so the neutral term of its DDE vanish), and d is the wave
+// the drive chooses to inject,
+//   d = setpoint / 2 + k I,   I' = setpoint - v   (the slow speed loop, k = ki / 2 Z [1/s]),
+// which the string feels as the torque Z (setpoint - v) + ki I: its integral holds the mean speed at the set-point.
+// Below k the loop reflects what arrives (reflection -k / (s + k)). The drive's torque (dynamics::PiTopDrive)
+//   u = T_load + J (w' + d') + kp (w + d - v),
+// T_load what the string and the top's own dampers take from it, J the inertia its speed carries: the feed-forward
+// keeps v = w + d exactly, kp pulls the top back onto it after a jump, the clamp or an actuator delay. The wave and
+// its rate are read from the wave arriving at the top (a drive estimates w = (v - T / Z) / 2 from its torque sub).
+// Only on a top without a compliant gear, friction or Kelvin-Voigt dashpots next to it.
+struct WaveCancellation {
+  double impedance = 0;  // Z of the top section [N·m·s/rad], which turns the integral torque into a wave; 0: off
+
+  bool active() const { return impedance > 0; }
+  // The down-going wave for the set-point and the integral torque ki I; linear, so also its rate for their rates.
+  double DownWave(double setpoint, double integral_torque) const {
+    return 0.5 * (setpoint + integral_torque / impedance);
+  }
+  // The slow speed loop's corner k = ki / 2 Z [1/s] for the integral gain ki.
+  double Corner(double ki) const { return 0.5 * ki / impedance; }
+};
+
 // The law takes over at time_s from a plain PI with the gains `before` and no torque feedback: a drive switched to
 // SoftTorque while the string sticks and slips. The integral torque carries over (the integral of the speed error is
 // rescaled by before.ki / pi.ki), so only the proportional part and the feedback change the torque at time_s.
@@ -35,6 +61,7 @@ struct Handover {
 struct TopDriveLaw {
   double torque_limit = 0;          // [N·m], 0: unlimited
   TorqueFeedback torque_feedback;   // SoftTorque / Z-Torque set-point correction
+  WaveCancellation wave_cancellation;  // instead of the PI's output (its gains: kp the pull onto w + d, ki = 2 Z k)
   // The drive's torque acts this pure delay [s] after the controller computes it (0: none). Simulated as the same
   // delay on the controller's inputs (set-point, speed, string torque), which gives the same torque for a linear
   // controller; the clamp commutes with the delay.

@@ -84,6 +84,12 @@ class WaveChain {
   // does not matter then).
   double TopForce(double t, Side side, ChainEnds speeds) const;
   double BitForce(double t, Side side, ChainEnds speeds) const;
+  // The up-going wave arriving at the top at t and its rate: what a wave-cancelling drive absorbs (without Kelvin-Voigt
+  // dashpots the string's whole say at the top).
+  struct Wave {
+    double value, rate;
+  };
+  Wave TopArrival(double t, Side side) const;
 
   // EndForces is affine in the end speeds (without side friction): its constant slopes, for ends whose speed is
   // algebraic (a massless end balances the string's force against its own). Without Kelvin-Voigt dashpots the two

@@ -86,8 +86,8 @@ double TorsionalImpedance(const StringSpec& sp, const Section& section) {
 }
 
 // What this kind's top-drive law may not be: behind a motor the PI gives a voltage or a torque demand, not the top's
-// torque; a delayed controller reads the string torque from the wave arriving at the top alone (neither a
-// compliant gear's twist nor Kelvin-Voigt dashpots), as in the torsional_wave kind.
+// torque; a delayed controller and the wave cancellation read the string torque from the wave arriving at the top
+// alone (neither a compliant gear's twist nor Kelvin-Voigt dashpots), as in the torsional_wave kind.
 void CheckTopDriveLaw(const JsonReader& top, const std::string& type, const StringSpec& string, const Model& md) {
   const model::TopDriveLaw& law = md.law;
   if (md.motor.on || md.induction_on) {
@@ -98,6 +98,7 @@ void CheckTopDriveLaw(const JsonReader& top, const std::string& type, const Stri
                                           "an induction motor (top/induction_motor)") + " here, not the top's torque: "
                                           "expected top/type top_drive without torque_limit_Nm or actuator_delay_s");
   }
+  CheckWaveCancellationString(top, law, string.eta_t);
   if (law.actuator_delay_s > 0 && (md.gear.compliant() || string.eta_t > 0)) {
     const std::string with = md.gear.compliant() ? "a compliant gear" : "string/kelvin_voigt_s > 0";
     throw InputError(top.PathOf("actuator_delay_s"), "the delayed controller reads the string torque from the wave "
@@ -340,7 +341,8 @@ class AxialTorsionalKind : public ModelKind {
   std::string description() const override {
     return "coupled axial-torsional waves in a pipe with a lumped bit and the Richard-Germay-Detournay bit-rock law "
            "(state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); PI top drive (stiff, "
-           "SoftTorque/SoftSpeed or Z-Torque, with torque limit and actuator delay), hoist under constant hook force; "
+           "SoftTorque/SoftSpeed, Z-Torque or wave cancellation, with torque limit and actuator delay), hoist under "
+           "constant hook force; "
            "optional BHA section, Kelvin-Voigt damping, Stribeck bit friction, DC motor, "
            "BHA mass unbalance (Jeffcott rotor at the bit), two-mass hoisting rig, axial coupling off";
   }
@@ -375,9 +377,12 @@ class AxialTorsionalKind : public ModelKind {
                                "of cut what W0 cuts in the rock under the bit (the steady one in homogeneous rock)"},
             {"top/type", "top_drive (default: the stiff PI speed controller) | soft_torque (the PI tracking the "
                          "set-point less the high-passed string torque; kp/ki or tuning_period_s) | z_torque (the same "
-                         "matched to the pipe's impedance); the two laws drive the top's torque (no motor)"},
+                         "matched to the pipe's impedance) | wave_cancellation (the top absorbs the arriving torsional "
+                         "wave exactly and injects a down-going one under a slow speed loop, see "
+                         "speed_loop_corner_rad_s); the laws drive the top's torque (no motor)"},
             {"top/inertia_kgm2", "J_td > 0"},
-            {"top/kp_Nms_per_rad", ">= 0"},
+            {"top/kp_Nms_per_rad", ">= 0; wave_cancellation: > 0, the torque per rad/s that pulls the top onto the "
+                                   "speed absorbing the arriving wave"},
             {"top/ki_Nm_per_rad", ">= 0; the run starts, and `stability` linearizes, in steady drilling at the "
                                   "set-point, which only integral action holds: with 0 (a proportional drive) the "
                                   "start is out of balance and the drive settles below its set-point"},
@@ -435,7 +440,8 @@ class AxialTorsionalKind : public ModelKind {
     ReadRgdRock(r.Object("rock"), md);
     r.RefuseRenamed("top_drive", "/model/top");
     const JsonReader td = r.Object("top");
-    const std::string type = td.String("type", {"top_drive", "soft_torque", "z_torque"}, "top_drive");
+    const std::string type = td.String("type", {"top_drive", "soft_torque", "z_torque", "wave_cancellation"},
+                                       "top_drive");
     PiTopDriveSpec drive = ReadPiTopDrive(td, type, TorsionalImpedance(string, string.sections[0]));
     md.top_inertia = drive.inertia;
     md.top_speed = drive.speed;

@@ -9,10 +9,11 @@
 // friction and Kelvin-Voigt damping as that chain carries them; this kind assembles the two chains with the top, the
 // hoist and the bit.
 // Top: a top drive of inertia J_td under a PI speed controller, with a law against stick-slip (model::TopDriveLaw:
-// torque limit, SoftTorque / Z-Torque feedback of the string torque at the top, actuator delay, handover), run by
-// dynamics::PiTopDrive as the torsional_wave kind's top is; a hoist of mass M_td held by the hook force H: constant,
-// set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0) + H(t)); or, with
-// hoist/rig, hanging from the two-mass hoisting rig of eq. 2.22 (model::HoistRig: rigid hook, constant pay-out).
+// torque limit, SoftTorque / Z-Torque feedback of the string torque at the top or wave cancellation, actuator delay,
+// handover), run by dynamics::PiTopDrive as the torsional_wave kind's top is; a hoist of mass M_td held by the hook
+// force H: constant, set for a target weight on bit, or a schedule H(t) (chapter eq. 2.23: M_top U_tt(0) = E A U_s(0)
+// + H(t)); or, with hoist/rig, hanging from the two-mass hoisting rig of eq. 2.22 (model::HoistRig: rigid hook,
+// constant pay-out).
 // Under the hook force the hoist may also have a dashpot c_h to the travelling block, which pays out line at the
 // steady rate of penetration V0: -c_h (v_top - V0), nothing in steady drilling. It gives the axial top the partial
 // reflection of Aarsnes & van de Wouw's distributed model (eta_a = (c_h - Z_a) / (c_h + Z_a) for a light hoist).

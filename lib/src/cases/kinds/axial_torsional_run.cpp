@@ -41,7 +41,7 @@ class Process {
   explicit Process(const Model& md)
       : md_(md), steady_(SteadyDrilling(md, md.top_speed.Value(0.0))),
         cut_(md.blades, steady_.omega, steady_.rop, md.surface_passes, md.bottom_roughness),
-        top_drive_(md.pi, md.law, md.top_speed, steady_.omega) {
+        top_drive_(md.pi, md.law, md.top_speed, steady_.omega, md.TopInertia()) {
     InitializeWaves();
     if (top_drive_.has_filter()) filter_index_ = LayoutDimension();
     // Throws std::domain_error when the motor cannot carry the steady torque (below its pull-out torque).
@@ -64,16 +64,16 @@ class Process {
     x[kVtop] = x[kVbit] = steady_.rop;
     // The PI holds the steady top torque with its integral part, the motor with its steady current (DC) or fluxes
     // (induction: at the supply frequency that gives the steady torque), the gear with its twist.
-    x[kZ] = top_drive_.InitialIntegral(top_torque0_);
+    x[kZ] = top_drive_.InitialIntegral(top_torque0_, SteadyStringTorque());
     if (md_.motor.on) x[kCurrent] = top_torque0_ / md_.motor.k;
     if (md_.induction_on) {
       const auto psi = md_.induction.SteadyFluxes(steady_supply_hz_, md_.gear.ratio * steady_.omega);
       std::copy(psi.begin(), psi.end(), x.begin() + kFlux);
       const double n = md_.gear.ratio, u = n * md_.induction.TorqueDemandFor(steady_supply_hz_, n * steady_.omega);
-      x[kZ] = top_drive_.InitialIntegral(u);
+      x[kZ] = top_drive_.InitialIntegral(u, SteadyStringTorque());
     }
     // The torque feedback's filter has settled on the steady string torque: the set-point is not corrected.
-    if (filter_index_ >= 0) x[filter_index_] = top_torque0_ - md_.torsion.damping[0] * steady_.omega;
+    if (filter_index_ >= 0) x[filter_index_] = SteadyStringTorque();
     if (md_.gear.compliant()) {
       x[kMotorSpeed] = steady_.omega;
       x[kTwist] = top_torque0_ / md_.gear.stiffness;
@@ -306,8 +306,10 @@ class Process {
   using Reading = dynamics::PiTopDrive::Reading;
   Reading ReadController(const State& x, double t, Side side) const {
     const double low_passed = filter_index_ >= 0 ? x[filter_index_] : 0.0;
-    return top_drive_.Read(t, side, DriveSpeed(x), low_passed,
-                           [&](double when, double speed) { return TopStringTorque(x, when, side, speed); });
+    return top_drive_.Read(
+        t, side, DriveSpeed(x), low_passed,
+        [&](double when, double speed) { return TopStringTorque(x, when, side, speed); },
+        [&](double when, double speed) { return TopWave(x, when, side, speed); });
   }
   double PiOutput(const State& x, double t, Side side, const Reading& in) const {
     return top_drive_.Output(t, side, in, x[kZ]);
@@ -319,6 +321,14 @@ class Process {
     waves::ChainEnds v = EndSpeeds(0, x);
     v.top = speed;
     return -(chains_[0].TopForce(t, side, v) + md_.torsion.damping[0] * speed);
+  }
+  // What the string takes from the top in steady drilling (the top node's share of the pipe's damping aside).
+  double SteadyStringTorque() const { return top_torque0_ - md_.torsion.damping[0] * steady_.omega; }
+  // What a wave-cancelling top drive reads at time t turning at `speed`: the torque the string and the top node's
+  // damping take from it, and the wave arriving there (the reader refuses Kelvin-Voigt dashpots with the law).
+  dynamics::PiTopDrive::TopWave TopWave(const State& x, double t, Side side, double speed) const {
+    const waves::WaveChain::Wave arriving = chains_[0].TopArrival(t, side);
+    return {TopStringTorque(x, t, side, speed) + md_.torsion.damping[0] * speed, arriving.value, arriving.rate};
   }
   // Torque of the drive (on the top drive's side): the PI's output (clamped to its limit), or the motor's K I when a
   // DC motor sits between them, or n T_e of an induction motor. It turns the top drive, or the motor behind a

@@ -70,6 +70,20 @@ void ReadSoftTorqueSpeedLoop(const JsonReader& r, double pipe_impedance, PiTopDr
 // The torque feedback's high-pass filter time constant, required with a feedback gain.
 double ReadFeedbackTimeConstant(const JsonReader& r) { return r.Number("feedback_time_constant_s", Range::Positive()); }
 
+// A wave-cancelling top's gains (model::WaveCancellation): kp pulls the top onto the speed that absorbs the arriving
+// wave, the slow speed loop's corner k [1/s] makes the integral gain ki = 2 Z k (the injected wave d = setpoint / 2 +
+// k I). Both > 0: kp = 0 would leave a speed error standing, k = 0 the mean speed short of the set-point under load.
+model::PiController ReadWaveCancellationGains(const JsonReader& r, double pipe_impedance) {
+  if (r.Has("ki_Nm_per_rad"))
+    throw InputError(r.PathOf("ki_Nm_per_rad"), "a wave_cancellation top's integral gain is 2 Z k, Z = " +
+                                                    ReadableNumber(pipe_impedance) + " N m s of the top section: "
+                                                    "expected speed_loop_corner_rad_s = k instead");
+  model::PiController pi;
+  pi.kp = r.Number("kp_Nms_per_rad", Range::Positive());
+  pi.ki = 2 * pipe_impedance * r.Number("speed_loop_corner_rad_s", Range::Positive());
+  return pi;
+}
+
 // top/handover: the stiff PI the law takes over from, and when.
 model::Handover ReadHandover(const JsonReader& h) {
   model::Handover handover;
@@ -82,7 +96,7 @@ model::Handover ReadHandover(const JsonReader& h) {
 }  // namespace
 
 bool IsPiTopDriveType(const std::string& type) {
-  return type == "top_drive" || type == "soft_torque" || type == "z_torque";
+  return type == "top_drive" || type == "soft_torque" || type == "z_torque" || type == "wave_cancellation";
 }
 
 PiTopDriveSpec ReadPiTopDrive(const JsonReader& r, const std::string& type, double pipe_impedance) {
@@ -94,7 +108,8 @@ PiTopDriveSpec ReadPiTopDrive(const JsonReader& r, const std::string& type, doub
     drive.speed = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
     return drive;  // the stiff PI itself: a handover is an unknown field here
   }
-  // A PI top drive whose speed command is corrected by the high-passed string torque (model::TorqueFeedback).
+  // A law against stick-slip: the speed command corrected by the high-passed string torque (model::TorqueFeedback),
+  // or the wave cancellation (model::WaveCancellation).
   model::TorqueFeedback& feedback = drive.law.torque_feedback;
   drive.law.torque_limit = r.Number("torque_limit_Nm", Range::NonNegative(), 0.0);
   drive.speed = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
@@ -102,10 +117,13 @@ PiTopDriveSpec ReadPiTopDrive(const JsonReader& r, const std::string& type, doub
     ReadSoftTorqueSpeedLoop(r, pipe_impedance, drive);
     feedback.gain = r.Number("feedback_gain_rad_per_Nms", Range::NonNegative(), 0.0);
     if (feedback.active() || r.Has("feedback_time_constant_s")) feedback.time_constant_s = ReadFeedbackTimeConstant(r);
-  } else {  // Z-Torque: a stiff speed loop made as soft as the pipe, 1 / gain = Z
+  } else if (type == "z_torque") {  // a stiff speed loop made as soft as the pipe, 1 / gain = Z
     drive.pi = ReadPiController(r);
     feedback.gain = 1 / r.Number("impedance_Nms_per_rad", Range::Positive(), pipe_impedance);
     feedback.time_constant_s = ReadFeedbackTimeConstant(r);
+  } else {  // wave_cancellation: the arriving wave absorbed exactly, no filter
+    drive.pi = ReadWaveCancellationGains(r, pipe_impedance);
+    drive.law.wave_cancellation.impedance = pipe_impedance;
   }
   if (r.Has("handover")) drive.law.handover = ReadHandover(r.Object("handover"));
   return drive;
@@ -114,9 +132,11 @@ PiTopDriveSpec ReadPiTopDrive(const JsonReader& r, const std::string& type, doub
 void FinishPiTopDrive(const JsonReader& r, const std::string& type, const model::Gear& gear, double lumped_inertia,
                       PiTopDriveSpec& drive) {
   drive.law.actuator_delay_s = r.Number("actuator_delay_s", Range::Between(0, 10), 0.0);
-  if (drive.law.torque_feedback.active() && gear.compliant())
-    throw InputError(r.PathOf("gear"), "the torque feedback of a " + type + " top reads the string torque at a top "
-                                       "driven directly: expected a rigid gear (no stiffness_Nm_per_rad)");
+  const model::TopDriveLaw& law = drive.law;
+  if ((law.torque_feedback.active() || law.wave_cancellation.active()) && gear.compliant())
+    throw InputError(r.PathOf("gear"), std::string(law.wave_cancellation.active() ? "the wave cancellation" :
+                                       "the torque feedback") + " of a " + type + " top reads the string torque at a "
+                                       "top driven directly: expected a rigid gear (no stiffness_Nm_per_rad)");
   if (drive.tuning_period_s > 0) {
     const double omega = 2 * kPi / drive.tuning_period_s;
     drive.pi.ki = lumped_inertia * omega * omega;
@@ -126,12 +146,19 @@ void FinishPiTopDrive(const JsonReader& r, const std::string& type, const model:
                                            "gain: expected ki_Nm_per_rad > 0 (or tuning_period_s)");
 }
 
+void CheckWaveCancellationString(const JsonReader& top, const model::TopDriveLaw& law, double kelvin_voigt_s) {
+  if (law.wave_cancellation.active() && kelvin_voigt_s > 0)
+    throw InputError(top.PathOf("type"), "wave_cancellation reads the wave arriving at the top alone, which "
+                                         "Kelvin-Voigt dashpots next to it would add to: expected no "
+                                         "string/kelvin_voigt_s (or 0)");
+}
+
 nlohmann::json PiTopDriveLawFields(const std::string& top) {
   return {
-      {top + "/torque_limit_Nm", "top_drive, soft_torque, z_torque: >= 0, 0 = unlimited"},
-      {top + "/actuator_delay_s", "top_drive, soft_torque, z_torque: pure delay [s] in [0, 10] of the drive's torque "
-                                  "behind its controller, default 0; not with a compliant gear or Kelvin-Voigt "
-                                  "damping"},
+      {top + "/torque_limit_Nm", "top_drive, soft_torque, z_torque, wave_cancellation: >= 0, 0 = unlimited"},
+      {top + "/actuator_delay_s", "top_drive, soft_torque, z_torque, wave_cancellation: pure delay [s] in [0, 10] of "
+                                  "the drive's torque behind its controller, default 0; not with a compliant gear or "
+                                  "Kelvin-Voigt damping"},
       {top + "/tuning_period_s", "soft_torque: the stick-slip period P [s] > 0 the speed loop is tuned to instead of "
                                  "kp/ki (SoftSpeed, Kyllingstad & Nessjoen 2009): kp = Z of the top section, "
                                  "ki = J (2 pi / P)^2, J the top's inertia with its rigid gear's motor"},
@@ -143,10 +170,16 @@ nlohmann::json PiTopDriveLawFields(const std::string& top) {
                                           "to the set-point on this scale)"},
       {top + "/impedance_Nms_per_rad", "z_torque: the impedance Z [N·m·s/rad] > 0 the top is matched to, default the "
                                        "top section's G J / c; the PI tracks speed_rad_s - T_hp / Z"},
-      {top + "/handover/time_s", "soft_torque, z_torque: optional block; the law takes over at this time [s] > 0 from "
-                                 "the plain PI of the handover's gains (no torque feedback before it; the integral "
-                                 "torque carries over to the law's ki > 0): a drive switched on while the bit sticks "
-                                 "and slips"},
+      {top + "/speed_loop_corner_rad_s", "wave_cancellation: the slow speed loop's corner k [rad/s] > 0: the top "
+                                         "injects the down-going wave d = speed_rad_s / 2 + k * integral(speed_rad_s "
+                                         "- w_top) (integral gain ki = 2 Z k, Z of the top section) and reflects what "
+                                         "arrives below k (reflection -k / (s + k)): keep k well below the stick-slip "
+                                         "frequency. Behind actuator_delay_s = delta > 0 the law is unstable: it sends "
+                                         "down w(t - delta) - w(t), up to twice the arriving wave w"},
+      {top + "/handover/time_s", "soft_torque, z_torque, wave_cancellation: optional block; the law takes over at "
+                                 "this time [s] > 0 from the plain PI of the handover's gains (no torque feedback "
+                                 "before it; the integral torque carries over to the law's ki > 0): a drive switched "
+                                 "on while the bit sticks and slips"},
       {top + "/handover/kp_Nms_per_rad", "the PI before the handover: proportional gain >= 0"},
       {top + "/handover/ki_Nm_per_rad", "the PI before the handover: integral gain >= 0"},
   };

@@ -29,7 +29,8 @@ nlohmann::json TopComponentFields(const std::string& top);
 
 // A PI top drive whose output is its torque, with its law (top/type top_drive: the stiff PI; soft_torque: the PI
 // tracking the set-point less the high-passed string torque, its gains given or SoftSpeed-tuned; z_torque: the same
-// matched to the pipe's impedance), read alike by every kind that has one.
+// matched to the pipe's impedance; wave_cancellation: the arriving wave absorbed exactly, a wave injected under a slow
+// speed loop, model::WaveCancellation), read alike by every kind that has one.
 struct PiTopDriveSpec {
   double inertia = 0;  // the top drive's own, kg m^2
   model::Schedule speed;
@@ -39,13 +40,17 @@ struct PiTopDriveSpec {
 };
 bool IsPiTopDriveType(const std::string& type);
 // The drive's fields up to its gear, for top/type `type` (IsPiTopDriveType); pipe_impedance is Z = G J / c of the top
-// section, the SoftSpeed kp and Z-Torque's default impedance.
+// section, the SoftSpeed kp, Z-Torque's default impedance and the wave cancellation's.
 PiTopDriveSpec ReadPiTopDrive(const io::JsonReader& top, const std::string& type, double pipe_impedance);
-// After the gear: the actuator delay, the torque feedback refused behind a compliant gear, the SoftSpeed ki from
-// the inertia the top's speed carries (with a rigid gear's motor), the handover's integral gain.
+// After the gear: the actuator delay, the torque feedback and the wave cancellation refused behind a compliant gear,
+// the SoftSpeed ki from the inertia the top's speed carries (with a rigid gear's motor), the handover's integral gain.
 void FinishPiTopDrive(const io::JsonReader& top, const std::string& type, const model::Gear& gear,
                       double lumped_inertia, PiTopDriveSpec& drive);
-// Field documentation of the law's fields (torque limit, delay, tuning, feedback, impedance, handover).
+// A wave-cancelling top reads the wave arriving at it alone: refused, naming top/type, on a string with Kelvin-Voigt
+// dashpots (retardation time kelvin_voigt_s > 0), whose pull on the top would be part of what it must absorb.
+void CheckWaveCancellationString(const io::JsonReader& top, const model::TopDriveLaw& law, double kelvin_voigt_s);
+// Field documentation of the law's fields (torque limit, delay, tuning, feedback, impedance, speed loop corner,
+// handover).
 nlohmann::json PiTopDriveLawFields(const std::string& top);
 
 }  // namespace drillwave::cases
