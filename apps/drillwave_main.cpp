@@ -785,12 +785,12 @@ int CompareControllers(const std::string& file, const std::string& out_dir, cons
       envelope.emplace(drillwave::cases::ParseMapAxis(args.envelope[0], stiff, "envelope"),
                        drillwave::cases::ParseMapAxis(args.envelope[1], stiff, "envelope"));
     }
-    if (!delays.empty())  // every law again at each delay: three runs a delay, estimated on the stiff PI's case
+    if (!delays.empty())  // every law again at each delay: four runs a delay, estimated on the stiff PI's case
       drillwave::cases::CheckPointsWork(drillwave::cases::ParseCase(drillwave::cases::StiffPiCase(doc, spec)),
-                                        3.0 * static_cast<double>(delays.size()), true, "actuator_delays");
+                                        4.0 * static_cast<double>(delays.size()), true, "actuator_delays");
     drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
     std::cout << "drillwave: top-drive laws on '" << doc.value("name", std::string("case")) << "' (stiff PI, "
-              << "SoftSpeed, Z-Torque), each from the same stick-slip" << std::endl;
+              << "SoftSpeed, Z-Torque, wave cancellation), each from the same stick-slip" << std::endl;
     c = drillwave::cases::CompareControllers(doc, spec);
   } catch (const drillwave::InputError& e) {  // the spec's fields are this command's options
     const std::string& field = e.json_path();
@@ -1056,7 +1056,8 @@ int main(int argc, char** argv) {
 
   auto* controllers = app.add_subcommand(
       "compare-controllers", "run a case's string under each top-drive law against stick-slip (the stiff PI as given, "
-                             "SoftSpeed tuned to its stick-slip period, Z-Torque matched to the pipe), each taking "
+                             "SoftSpeed tuned to its stick-slip period, Z-Torque matched to the pipe, the arriving "
+                             "wave cancelled), each taking "
                              "over at the same instant of the stiff PI's stick-slip: controllers.csv, controllers.md "
                              "(verdict, severity, torque fluctuation, time to suppress), controllers.svg; with "
                              "--envelope each law's stick-slip-free region, with --actuator-delays each law under "

