@@ -57,6 +57,34 @@ TEST(DiagnosisLoop, ANoisyTwinKeepsTheBaselineAndItsNoiseIsMeasured) {
   EXPECT_TRUE(loop.baseline_document.contains(nlohmann::json::json_pointer("/sensors/channels/bit_rpm/noise_std")));
 }
 
+// The regime margin: the two-mass string of two-mass-stickslip sticks and slips from rest up to a set-point of about
+// 10.75 rad/s (a sweep from 10 to 11 rad/s: stick fraction 0.148 at 10, 0.079 at 10.7, none at 10.8). Its twin at
+// 10.3 rad/s is 4.4 % below that edge and is flagged; at 8 rad/s it holds over the +-20 % searched.
+TEST(DiagnosisLoop, TheRegimeMarginFindsTheSetPointWhereStickSlipEnds) {
+  for (const double set_point : {10.3, 8.0}) {
+    nlohmann::json doc = TwoMassCase();
+    doc["model"]["top"]["speed_rad_s"]["knots"][1][1] = set_point;
+    const Recording twin = NoisyTwin(doc, 0.5);
+    LoopOptions o = Options();
+    o.max_singles = 0;
+    o.draws = 1;
+    const RegimeMargin m = RunDiagnosisLoop(doc, twin, o).regime_margin;
+    std::printf("[ measured ] set-point %.1f rad/s: %s\n", set_point, RegimeMarginText(m).c_str());
+    ASSERT_TRUE(m.measured);
+    EXPECT_EQ(m.recorded, "stick-slip");
+    EXPECT_EQ(m.model, "stick-slip");
+    EXPECT_TRUE(std::isnan(m.lower_percent));
+    if (set_point > 10) {
+      EXPECT_GT(m.upper_percent, 10.7 / set_point * 100 - 100);
+      EXPECT_LT(m.upper_percent, 10.8 / set_point * 100 - 100 + 0.4);  // the bisection's last step, 0.31 %
+      EXPECT_TRUE(m.near_edge);
+    } else {
+      EXPECT_TRUE(std::isnan(m.upper_percent));
+      EXPECT_FALSE(m.near_edge);
+    }
+  }
+}
+
 // diagnose --predict-until: the fitted model (here the baseline: nothing is kept on a twin) run on past the
 // recording's end is the case's own free run there, without the sensors' noise; a time inside the recording's
 // windows, or absurdly far past them, is refused before any work.
@@ -178,7 +206,7 @@ TEST(DiagnosisLoop, TheBaselineIsJudgedByItsMedianDraw) {
   EXPECT_EQ(loop.baseline_held_out_error, errors[1]);
   EXPECT_EQ(loop.fitted_held_out_error, loop.baseline_held_out_error);
   EXPECT_EQ(DiagnosisLoopToJson(loop).at("held_out").at("error_before_each_draw").size(), 3u);
-  EXPECT_EQ(loop.model_runs, 3);
+  EXPECT_EQ(loop.model_runs, 3 + loop.regime_margin.runs);
 }
 
 // A bouncing bit's weight-on-bit impacts are as short as a glitch; the artefact filter masks them in the model as in

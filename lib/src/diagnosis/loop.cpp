@@ -24,6 +24,7 @@
 #include "drillwave/diagnosis/minimize.hpp"
 #include "drillwave/diagnosis/signals.hpp"
 #include "model_runs.hpp"
+#include "regime_margin.hpp"
 #include "prepared_recording.hpp"
 #include "effect_selection.hpp"
 
@@ -419,6 +420,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   }
   Adopt(fitted, loop.fitted_model, loop.fitted_fit, loop.fitted_held_out, loop.fitted_fit_error,
         loop.fitted_held_out_error);
+  loop.regime_margin = loop_internal::MeasureRegimeMargin(loop.fitted_document, runner, loop.fit_draw, loop.recording_held_out,
+                                           std::max(1, o.threads));
+  loop.model_runs += loop.regime_margin.runs;
+  if (loop.regime_margin.measured) say(RegimeMarginText(loop.regime_margin));
   // The envelopes' correlogram is one feature read at several lags: one entry, where it counts.
   const CorrelogramDifference correlogram = CompareCorrelograms(loop.fitted_held_out, loop.recording_held_out);
   if (correlogram.rms_scales > 3)
@@ -488,6 +493,24 @@ std::vector<ModelProbability> AkaikeWeights(const DiagnosisLoop& loop) {
                    [](const ModelProbability& a, const ModelProbability& b) { return a.weight > b.weight; });
   return models;
 }
+
+namespace {
+nlohmann::json RegimeMarginJson(const RegimeMargin& m) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  if (!m.measured) return {{"measured", false}, {"runs", m.runs}};
+  return {{"measured", true},
+          {"parameter", "/model/top/speed_rad_s (every knot scaled)"},
+          {"recorded_regime", m.recorded},
+          {"model_regime", m.model},
+          {"lower_change_percent", number(m.lower_percent)},
+          {"upper_change_percent", number(m.upper_percent)},
+          {"searched_percent", kRegimeSearchPercent},
+          {"near_edge", m.near_edge},
+          {"near_edge_percent", kNearRegimeEdgePercent},
+          {"runs", m.runs},
+          {"text", RegimeMarginText(m)}};
+}
+}  // namespace
 
 nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
   auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
@@ -572,6 +595,7 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
           {"candidates", candidates},
           {"proposals", proposals},
           {"unexplained", loop.unexplained},
+          {"regime_margin", RegimeMarginJson(loop.regime_margin)},
           {"noise_std", noise},
           {"artefact_samples_masked", masked},
           {"channels_left_whole", loop.channels_left_whole},

@@ -145,6 +145,7 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
   FeatureTable(out, loop.recording_held_out, loop.baseline_held_out, loop.fitted_held_out);
   out << "<h2>Features, fit window</h2>\n";
   FeatureTable(out, loop.recording_fit, loop.baseline_fit, loop.fitted_fit);
+  out << "<h2>Regime</h2>\n<p>" << Html(RegimeMarginText(loop.regime_margin)) << ".</p>\n";
   out << "<h2>Unexplained (held out, more than 3 scales off)</h2>\n<ul>\n";
   for (const std::string& u : loop.unexplained) out << "<li>" << Html(u) << "</li>\n";
   if (loop.unexplained.empty()) out << "<li>none</li>\n";

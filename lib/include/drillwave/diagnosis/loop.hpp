@@ -28,6 +28,7 @@
 //      effects the same way (each effect earns its place). The fitted parameters get uncertainties from the
 //      objective's curvature.
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -118,6 +119,25 @@ struct Candidate {
   std::string failure;  // why it could not be fitted (a run failed, the component is missing), empty otherwise
 };
 
+// How far the model that stands is from the edge of its motion regime over the held-out window (issue 32 item 4): its
+// top set-point (every knot) scaled up and down until the held-out window's regime (stick-slip or smooth, bouncing or
+// on the bottom) changes, one draw (the fits' own) a run. A fitted model within a few percent of the edge may leave
+// the recording's regime as soon as its operating point drifts (the UFRJ rig's first fit: 0.36 % of set-point).
+struct RegimeMargin {
+  bool measured = false;           // false: the case has no top set-point /model/top/speed_rad_s to move
+  std::string recorded, model;     // the held-out window's regimes: the recording's and the model's at its set-point
+  // The set-point changes [%] at which the model's regime first differs, each side within +-kRegimeSearchPercent
+  // (NaN: the same regime up to there), to a resolution of about a percent.
+  double lower_percent = std::numeric_limits<double>::quiet_NaN();
+  double upper_percent = std::numeric_limits<double>::quiet_NaN();
+  bool near_edge = false;  // a change within kNearRegimeEdgePercent changes the regime
+  int runs = 0;
+};
+inline constexpr double kRegimeSearchPercent = 20;
+inline constexpr double kNearRegimeEdgePercent = 5;
+// One sentence: the regimes and where the model's changes ("... near the edge" where it is).
+std::string RegimeMarginText(const RegimeMargin& margin);
+
 struct DiagnosisLoop {
   nlohmann::json baseline_document, fitted_document;
   std::vector<std::pair<std::string, double>> noise;  // recording channel, estimated noise std (its unit)
@@ -152,6 +172,7 @@ struct DiagnosisLoop {
   int kept = -1;  // index into candidates, -1: the baseline stands
   std::vector<std::string> unexplained;  // held-out features still more than 3 scales off after the fit
   Recording baseline_model, fitted_model;  // the median draw's measured channels on the recording's times and names
+  RegimeMargin regime_margin;  // of the fitted model (the baseline's where nothing is kept)
   int model_runs = 0;
 };
 

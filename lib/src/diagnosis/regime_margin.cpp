@@ -1,0 +1,114 @@
+#include "regime_margin.hpp"
+
+#include <array>
+#include <cmath>
+#include <optional>
+
+#include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
+#include "drillwave/core/parallel.hpp"
+
+namespace drillwave::diagnosis::loop_internal {
+namespace {
+
+constexpr double kStuckShare = 0.01;  // a window whose bit is stuck longer than this share of it sticks and slips
+// The coarse steps [%] each side, then this many bisections between the last step in the regime and the first out.
+constexpr std::array<double, 4> kStepsPercent = {2.5, 5, 10, kRegimeSearchPercent};
+constexpr int kBisections = 3;
+
+// The top's set-point (a number or every knot of a schedule) times factor; false where there is none.
+bool ScaleSetPoint(nlohmann::json& doc, double factor) {
+  const nlohmann::json::json_pointer pointer("/model/top/speed_rad_s");
+  if (!doc.contains(pointer)) return false;
+  nlohmann::json& v = doc.at(pointer);
+  if (v.is_number()) {
+    v = v.get<double>() * factor;
+    return true;
+  }
+  if (!v.is_object() || !v.contains("knots")) return false;
+  for (nlohmann::json& knot : v["knots"]) knot[1] = knot[1].get<double>() * factor;
+  return true;
+}
+
+// The held-out regime of doc with its set-point changed by percent; nullopt where the run fails.
+std::optional<std::string> RegimeAt(const nlohmann::json& doc, double percent, const ModelRuns& runner, int draw) {
+  nlohmann::json moved = doc;
+  ScaleSetPoint(moved, 1 + percent / 100);
+  try {
+    const Recording model =
+        runner.Run(Drawn(moved, draw), runner.FullDuration(), ModelRuns::Tolerance::kCase, kJudgingWorkFactor);
+    const bool in_regime = runner.InRegime(model);
+    return RegimeOf(runner.HeldOutFeatures(model), in_regime ? runner.RecordingBounces() : !runner.RecordingBounces());
+  } catch (const InputError&) {  // a set-point the case refuses
+  } catch (const NumericalError&) {
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string RegimeOf(const FeatureSet& held_out, bool bounces) {
+  const double stuck = held_out.Value("stick_fraction");
+  return std::string(bounces ? "bouncing, " : "") + (std::isfinite(stuck) && stuck > kStuckShare ? "stick-slip" : "smooth");
+}
+
+RegimeMargin MeasureRegimeMargin(const nlohmann::json& doc, const ModelRuns& runner, int draw,
+                                 const FeatureSet& recorded_held_out, int threads) {
+  RegimeMargin margin;
+  nlohmann::json probe = doc;
+  if (!ScaleSetPoint(probe, 1)) return margin;
+  margin.recorded = RegimeOf(recorded_held_out, runner.RecordingBounces());
+  // The set-point itself and the coarse steps on both sides, side by side.
+  std::vector<double> percents = {0};
+  for (double step : kStepsPercent) percents.push_back(-step), percents.push_back(step);
+  const std::vector<std::optional<std::string>> regimes = ParallelMap(
+      percents.size(), threads, [&](std::size_t i) { return RegimeAt(doc, percents[i], runner, draw); });
+  margin.runs = static_cast<int>(percents.size());
+  if (!regimes[0]) return margin;  // the model itself fails: nothing to measure from
+  margin.measured = true;
+  margin.model = *regimes[0];
+  // Each side: the first coarse step out of the regime, then bisected towards the last one in it.
+  const std::array<int, 2> sides = {-1, 1};
+  const std::vector<double> edges = ParallelMap(sides.size(), threads, [&](std::size_t s) {
+    double inside = 0, outside = std::nan("");
+    for (std::size_t k = 0; k < kStepsPercent.size(); ++k) {
+      const std::optional<std::string>& r = regimes[1 + 2 * k + s];
+      if (r && *r == margin.model) {
+        inside = sides[s] * kStepsPercent[k];
+      } else {
+        if (r) outside = sides[s] * kStepsPercent[k];
+        break;  // a failed run ends the search on this side
+      }
+    }
+    if (std::isnan(outside)) return outside;
+    for (int b = 0; b < kBisections; ++b) {
+      const double middle = 0.5 * (inside + outside);
+      const std::optional<std::string> r = RegimeAt(doc, middle, runner, draw);
+      (r && *r == margin.model ? inside : outside) = middle;
+    }
+    return outside;
+  });
+  margin.runs += kBisections * (std::isfinite(edges[0]) + std::isfinite(edges[1]));
+  margin.lower_percent = edges[0], margin.upper_percent = edges[1];
+  margin.near_edge = std::abs(margin.lower_percent) <= kNearRegimeEdgePercent ||
+                     std::abs(margin.upper_percent) <= kNearRegimeEdgePercent;
+  return margin;
+}
+
+}  // namespace drillwave::diagnosis::loop_internal
+
+namespace drillwave::diagnosis {
+
+std::string RegimeMarginText(const RegimeMargin& m) {
+  if (!m.measured) return "regime margin not measured (no top set-point, or the model's run failed)";
+  auto side = [](double percent, const char* direction) {
+    return std::isfinite(percent) ? "changes at " + Fixed(percent, 1) + " %"
+                                  : std::string("holds to ") + direction + Fixed(kRegimeSearchPercent, 0) + " %";
+  };
+  return "regime over the held-out window: recorded " + m.recorded + ", model " + m.model +
+         (m.recorded == m.model ? "" : " (not the recording's)") + "; with the top set-point moved, the model's " +
+         side(m.lower_percent, "-") + " below and " + side(m.upper_percent, "+") + " above" +
+         (m.near_edge ? ": near the edge (within " + Fixed(kNearRegimeEdgePercent, 0) + " %)" : std::string());
+}
+
+}  // namespace drillwave::diagnosis

@@ -1,0 +1,24 @@
+#pragma once
+// The margin of a model to the edge of its motion regime over the held-out window (loop.hpp: RegimeMargin), internal
+// to the loop.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "drillwave/diagnosis/features.hpp"
+#include "drillwave/diagnosis/loop.hpp"
+#include "model_runs.hpp"
+
+namespace drillwave::diagnosis::loop_internal {
+
+// A held-out window's regime: "stick-slip" where the bit is stuck for more than 1 % of it, else "smooth", with
+// "bouncing, " before it where the bit leaves the bottom.
+std::string RegimeOf(const FeatureSet& held_out, bool bounces);
+
+// The set-point of doc's top scaled by f in steps out to +-kRegimeSearchPercent, then bisected where the regime
+// changes; each run is draw `draw` over the whole span at the case's tolerance. Not measured where the case's top has
+// no speed set-point.
+RegimeMargin MeasureRegimeMargin(const nlohmann::json& doc, const ModelRuns& runner, int draw,
+                                 const FeatureSet& recorded_held_out, int threads);
+
+}  // namespace drillwave::diagnosis::loop_internal
