@@ -528,5 +528,52 @@ TEST(AxialTorsionalStability, TopDriveLawsModesGrowOrDecayAsSimulated) {
   }
 }
 
+// The chapter's contact laws (rock/contact, bitrock/contact_law.hpp) in the linearization: the slope of F at the
+// steady bit speed (and, with eq. 2.33's cutting torque, the slope and the gain F^2 of the cut) moves the roots.
+// Without the axial coupling, at 60 rpm, the stick-slip mode's root against the bit speed's growth at its frequency
+// after a 1e-6 rad/s set-point blip: tanh_hump falling past its hump (velocity weakening, like baseline-stribeck's
+// friction) undamps it, sqrt_regularized with a wide eps = 2 rad/s and eq. 2.33 damps it. With the coupling, the
+// regenerative mode's root against the bit's axial speed, as in RightmostRootIsTheGrowthRateOfTheSimulatedCoupledModel.
+// Held to 3 % + 3e-3 1/s; the relative errors are printed.
+const nlohmann::json kTanhHump = {{"law", "tanh_hump"}, {"beta", 1}, {"gamma1", 1.66}, {"gamma2", 1}};
+const nlohmann::json kWideSquared = {
+    {"law", "sqrt_regularized"}, {"epsilon_rad_s", 2}, {"cutting_torque", "f_squared"}};
+
+TEST(AxialTorsionalStability, ContactLawsSlopesMoveTheStickSlipModeAsSimulated) {
+  const double w = 2 * kPi;
+  struct Law {
+    const char* what;
+    nlohmann::json contact;
+    double t0, t1, window;  // over a few decay times, in windows of four periods (0) or shorter for a fast decay
+  };
+  for (const Law& law : {Law{"set-valued contact (RGD)", nullptr, 5, 30, 0}, Law{"tanh_hump", kTanhHump, 5, 30, 0},
+                         Law{"sqrt_regularized, eps 2 rad/s, eq. 2.33", kWideSquared, 1, 10, 3}}) {
+    nlohmann::json doc = Baseline();
+    if (!law.contact.is_null()) doc["model"]["rock"]["contact"] = law.contact;
+    const Case c = UncoupledRun(doc, {{"knots", {{0, w}, {0.05, w + 1e-6}, {0.1, w}}}});
+    const auto points = c.model->Linearize();
+    ASSERT_EQ(points.size(), 1u) << law.what;
+    const analysis::Spectrum sp = analysis::ComputeSpectrum(points[0].system);
+    const auto r = std::find_if(sp.roots.begin(), sp.roots.end(),
+                                [](const analysis::CharacteristicRoot& x) { return x.s.imag() > 1 && x.s.imag() < 3; });
+    ASSERT_NE(r, sp.roots.end()) << law.what;
+    const CaseRun run = RunCase(c);
+    const double measured = ModeGrowthRate(run.result, "bit_rpm", r->s.imag(), law.t0, law.t1, law.window);
+    std::printf("[ measured ] %s at 60 rpm, no axial coupling: bit torque slope %.4f N m s/rad, stick-slip root "
+                "%.6f%+.6fi, simulated growth at its frequency over [%.0f, %.0f] s %.6f 1/s (relative error %.1e)\n",
+                law.what, points[0].steady_state.at("bit_torque_slope_Nms_per_rad").get<double>(), r->s.real(),
+                r->s.imag(), law.t0, law.t1, measured, std::abs(measured - r->s.real()) / std::abs(r->s.real()));
+    EXPECT_NEAR(measured, r->s.real(), 0.03 * std::abs(r->s.real()) + 3e-3) << law.what;
+  }
+}
+
+TEST(AxialTorsionalStability, ContactLawsRightmostRootIsTheGrowthRateOfTheSimulatedCoupledModel) {
+  for (const nlohmann::json& contact : {kTanhHump, kWideSquared}) {
+    nlohmann::json doc = Baseline();
+    doc["model"]["rock"]["contact"] = contact;
+    ExpectRightmostRootGrowsAsSimulated(doc, 2 * kPi, 1, 4, true, "60 rpm, contact " + contact.dump());
+  }
+}
+
 }  // namespace
 }  // namespace drillwave::cases

@@ -36,8 +36,8 @@ void RgdLaw::OnBottom(Turn turn, Axial axial, double w, bool cutting, double z, 
   }
   f.weight = f.cut_weight + contact;
   const double friction = FrictionArm(w) * contact, holding = StaticFrictionArm() * contact;
-  f.torque = turn == Turn::kBackward ? -friction : cut_torque + friction;
-  f.static_forward = cut_torque + holding;
+  f.torque = turn == Turn::kBackward ? -friction : contact_law.CutTorque(cut_torque, w) + friction;
+  f.static_forward = contact_law.CutTorqueAtRest(cut_torque) + holding;
   // A bit that starts to turn backward stops cutting, and a held bit's wear flats then take the cutters' share of
   // the weight too: the backward slip threshold is the holding of that contact (with the held contact, net less the
   // cut weight, a bit whose torque lies between the two would slip back only to be held again).

@@ -15,8 +15,9 @@
 // and the depth of cut by
 //   delta d = n (u(t) - u(t - t_n0)) + n V0 delta t_n = n (u - u(t - t_n0)) - (n V0 / Omega0) (phi - phi(t - t_n0)),
 // which the cutting forces W_c = a zeta eps d and T_c = a^2 eps d / 2 feed back into the bit's two equations; the
-// wear-flat contact W_f = a sigma l is constant while the bit advances, its friction torque moves only with a
-// Stribeck slope. The bit angle phi and position u enter only through these differences: they are derivative-only
+// wear-flat contact W_f = a sigma l is constant while the bit advances, its friction torque moves only with the slope
+// of a Stribeck law or of a contact law's F (bitrock/contact_law.hpp; eq. 2.33's cutting torque adds its slope and
+// its gain F^2). The bit angle phi and position u enter only through these differences: they are derivative-only
 // states of the LinearDelaySystem (its characteristic function is divided by s for each), so a shift of the bit's
 // angle or depth, which changes nothing, is no root.
 #include <optional>
@@ -43,7 +44,7 @@ struct AxialTorsionalString {
   WaveChannel torsion, axial;       // torsion's top_inertia: the top drive's own (the gear adds a rigid motor's)
   model::PiController pi;           // the top drive's PI speed controller, in its drive's units (see top_drive)
   double cut_weight_per_depth = 0;  // a zeta eps [N/m]
-  double cut_torque_per_depth = 0;  // a^2 eps / 2 [N m/m]
+  double cut_torque_per_depth = 0;  // a^2 eps / 2 [N m/m] (times F(Omega0)^2 with eq. 2.33)
   int blades = 1;                   // n
   bool axial_coupling = true;       // false: the depth of cut is held (no axial channel, no cut delay)
   // What the PI drives, as a waves::Node top (constants referred as it refers them): kPiSpeedController, its output is
@@ -70,7 +71,7 @@ struct AxialTorsionalString {
 struct SteadyDrilling {
   double speed_rad_s = 0;              // Omega0 of top and bit
   double rop_m_s = 0;                  // V0 > 0
-  double friction_slope_Nms_per_rad = 0;  // d T_f / d w at Omega0 (0 for Coulomb friction)
+  double friction_slope_Nms_per_rad = 0;  // d T_bit / d w at Omega0, the depth of cut held (0 for Coulomb friction)
   double top_torque_Nm = 0;            // what the top drive supplies (sets an induction motor's steady supply)
 };
 

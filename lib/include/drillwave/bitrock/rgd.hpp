@@ -11,6 +11,8 @@
 //   Optional rock strength heterogeneity: eps and sigma l both times 1 + g(U), g a seeded random field of the drilled
 //   depth U (the bit's axial position; StrengthHeterogeneity).
 //   Optional Stribeck friction: mu(w) = mu + (mu_s - mu) exp(-|w| / w_s) while turning; a stuck bit holds with mu_s.
+//   Optional contact law (contact_law.hpp, chapter 2.29-2.30, 2.33): mu F(|w|) in place of mu, a stuck bit holding with
+//   mu F(0+) (nothing for a smooth F); with eq. 2.33 also the cutting torque times F(|w|)^2.
 // Three pieces: RgdLaw (parameters and forces), CutProfile (the bit's stored angle and position and the search for
 // t_n and d) and RgdRegimes (rotation forward / stuck / backward, axial advancing / held / lifting, contact on / off,
 // switched at located events). The string that drives the bit is the caller's.
@@ -18,6 +20,7 @@
 #include <cmath>
 #include <limits>
 
+#include "drillwave/bitrock/contact_law.hpp"
 #include "drillwave/bitrock/heterogeneity.hpp"
 #include "drillwave/bitrock/roughness.hpp"
 #include "drillwave/bitrock/stick_slip.hpp"
@@ -51,18 +54,27 @@ struct RgdLaw {
   // literally, the previous blade's position even if it passed in the air (a bouncing bit then drifts upwards).
   int surface_passes = 4;
   double static_mu = 0, stribeck_speed = 0;  // Stribeck friction (stribeck_speed 0: Coulomb, static_mu = mu)
+  ContactLaw contact_law;  // the chapter's friction function F of the flats (default: RGD's sign); not with Stribeck
   BottomRoughness bottom_roughness;  // of the rock surface the blades left before t = 0 (default: smooth)
   StrengthHeterogeneity strength_heterogeneity;  // of eps and sigma l along the drilled depth (default: homogeneous)
 
   double ContactForce() const { return a * sigma_l; }  // a sigma l, of the homogeneous rock
   // a sigma l (1 + g(z)) of the rock at drilled depth z (ContactForce() exactly when homogeneous).
   double ContactForceAt(double z) const { return ContactForce() * strength_heterogeneity.Multiplier(z); }
-  // Friction coefficient of the wear flats at bit speed w (Stribeck: decays from static_mu to mu).
+  // Friction coefficient of the wear flats at bit speed w (Stribeck: decays from static_mu to mu; a contact law: mu F).
   double MuAt(double w) const {
+    if (contact_law.has_function()) return mu * contact_law.F(w);
     return stribeck_speed > 0 ? mu + (static_mu - mu) * std::exp(-std::abs(w) / stribeck_speed) : mu;
   }
+  // d MuAt / d w at w > 0: the slope a Stribeck law or a contact law's F puts into the linearization.
+  double MuSlope(double w) const {
+    if (contact_law.has_function()) return mu * contact_law.Slope(w);
+    return stribeck_speed > 0 ? -(static_mu - mu) / stribeck_speed * std::exp(-w / stribeck_speed) : 0.0;
+  }
+  // The coefficient a stuck bit holds with.
+  double StaticMu() const { return contact_law.has_function() ? mu * contact_law.AtRest() : static_mu; }
   double FrictionArm(double w) const { return 0.5 * a * gamma * MuAt(w); }  // T_f = arm * W_f while turning
-  double StaticFrictionArm() const { return 0.5 * a * gamma * static_mu; }  // the most a stuck bit holds
+  double StaticFrictionArm() const { return 0.5 * a * gamma * StaticMu(); }  // the most a stuck bit holds
   double CutWeightPerDepth() const { return a * zeta * eps; }               // W_c / d
   double CutTorquePerDepth() const { return 0.5 * a * a * eps; }            // T_c / d
   // Steady drilling under weight on bit W0 at bit speed w: depth of cut per blade, torque on bit.
@@ -74,13 +86,16 @@ struct RgdLaw {
     const double strength = strength_heterogeneity.Multiplier(z);
     return std::max(0.0, (wob - ContactForce() * strength) / (CutWeightPerDepth() * strength));
   }
+  // The cutting torque per depth of cut of a bit turning at w (eq. 2.33 fades it by F(|w|)^2).
+  double CutTorquePerDepthAt(double w) const { return contact_law.CutTorque(CutTorquePerDepth(), w); }
   double SteadyTorque(double wob, double w) const {
-    return CutTorquePerDepth() * SteadyDepth(wob) + FrictionArm(w) * ContactForce();
+    return CutTorquePerDepthAt(w) * SteadyDepth(wob) + FrictionArm(w) * ContactForce();
   }
-  // d T_f / d w at bit speed w > 0 (0 for Coulomb friction): the slope a Stribeck law puts into the linearization.
-  double FrictionSlope(double w) const {
-    if (!(stribeck_speed > 0)) return 0.0;
-    return 0.5 * a * gamma * ContactForce() * -(static_mu - mu) / stribeck_speed * std::exp(-w / stribeck_speed);
+  // d T / d w of steady drilling under wob at bit speed w > 0, the depth of cut held (0 for Coulomb friction and RGD's
+  // cutting torque): the slope the friction law (and eq. 2.33's cutting torque) puts into the linearization.
+  double SteadyTorqueSlope(double wob, double w) const {
+    return 0.5 * a * gamma * MuSlope(w) * ContactForce() +
+           contact_law.CutTorqueSlope(CutTorquePerDepth() * SteadyDepth(wob), w);
   }
   // The rock's answer to a bit on bottom (f.drive_force and f.depth set): turning w (0 when stuck), cutting into new
   // rock or not (turning backwards, or not yet back past the furthest angle reached), the bit at drilled depth z (its

@@ -295,7 +295,7 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   const Steady s = SteadyDrilling(at, omega);
   analysis::AxialTorsionalString string{LinearChannel(md_.torsion, md_.top_inertia, md_.bit_inertia),
                                         LinearChannel(md_.axial, md_.hoist_mass, md_.bit_mass, md_.hoist_damping),
-                                        md_.pi, md_.CutWeightPerDepth(), md_.CutTorquePerDepth(),
+                                        md_.pi, md_.CutWeightPerDepth(), md_.CutTorquePerDepthAt(omega),
                                         md_.blades, md_.axial_coupling};
   DescribeTopDrive(md_, string);
   string.rig = md_.rig;
@@ -304,11 +304,8 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   const double whirl_drag = md_.unbalance ? md_.unbalance->SteadyDragTorque(omega) : 0.0;
   const double top_torque = SteadyTopTorque(md_.torsion, s.tob + whirl_drag, omega);
   if (md_.law.torque_limit > 0 && top_torque >= md_.law.torque_limit) return {};  // the drive cannot hold the speed
-  // Stribeck: d mu / dw = -(mu_s - mu) / w_s e^{-w / w_s} while turning forward.
-  const double mu_slope = md_.stribeck_speed > 0 ? -(md_.static_mu - md_.mu) / md_.stribeck_speed *
-                                                       std::exp(-omega / md_.stribeck_speed)
-                                                 : 0.0;
-  const double friction_slope = 0.5 * md_.a * md_.gamma * mu_slope * md_.ContactForce();
+  // The bit torque's slope at the held depth of cut: a Stribeck law's or a contact law's (with eq. 2.33 the cut's too).
+  const double friction_slope = at.SteadyTorqueSlope(at.weight_on_bit, omega);
   analysis::NetworkLinearization lin;
   try {
     lin = analysis::LinearizeAxialTorsional(string, {omega, s.rop, friction_slope, top_torque});
@@ -342,8 +339,8 @@ class AxialTorsionalKind : public ModelKind {
     return "coupled axial-torsional waves in a pipe with a lumped bit and the Richard-Germay-Detournay bit-rock law "
            "(state-dependent cut delay t_n, set-valued wear-flat contact and friction, lift-off); PI top drive (stiff, "
            "SoftTorque/SoftSpeed, Z-Torque or wave cancellation, with torque limit and actuator delay), hoist under "
-           "constant hook force; "
-           "optional BHA section, Kelvin-Voigt damping, Stribeck bit friction, DC motor, "
+           "constant hook force; optional BHA section, Kelvin-Voigt damping, Stribeck bit friction, the chapter's "
+           "smooth wear-flat friction functions (rock/contact), DC motor, "
            "BHA mass unbalance (Jeffcott rotor at the bit), two-mass hoisting rig, axial coupling off";
   }
   nlohmann::json FieldSchema() const override {

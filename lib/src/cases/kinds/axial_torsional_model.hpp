@@ -26,6 +26,8 @@
 //   off bottom (d <= 0): no contact at all.
 // Optional components, each switched on by its JSON object (absent: the baseline above):
 //   rock/stribeck: mu(w) = mu + (mu_s - mu) exp(-|w| / w_s) while turning; a stuck bit holds with mu_s.
+//   rock/contact: the chapter's friction function F(|w|) in place of sign(w) (eqs. 2.29-2.30), and optionally the
+//        cutting torque times F^2 (eq. 2.33); bitrock/contact_law.hpp.
 //   axial_coupling false: no axial dynamics; the weight on bit is held at W0 and the depth of cut at its steady value.
 //   top/motor: a DC motor between the PI and the top: V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I,
 //        torque K I on the top drive.
@@ -124,7 +126,7 @@ inline Steady SteadyDrilling(const Model& md, double omega) {
   s.wob = md.weight_on_bit;
   s.depth = std::max(0.0, (md.weight_on_bit - md.ContactForce()) / md.CutWeightPerDepth());
   s.rop = s.depth * omega / (2 * kPi);  // d = n V t_n with t_n = 2 pi / (n omega)
-  s.tob = md.CutTorquePerDepth() * s.depth + md.FrictionArm(omega) * md.ContactForce();
+  s.tob = md.SteadyTorque(md.weight_on_bit, omega);
   return s;
 }
 

@@ -65,7 +65,7 @@ Groups NonDimensional(const Model& md, const Steady& s) {
   const bitrock::RgdLaw& l = md.law;
   const double w0 = md.NaturalFrequency();
   return {l.blades * l.CutWeightPerDepth() * md.inertia / (md.mass * md.stiffness),
-          l.blades * l.CutTorquePerDepth() * s.depth / (2 * kPi * md.stiffness),
+          l.blades * l.CutTorquePerDepthAt(s.omega) * s.depth / (2 * kPi * md.stiffness),
           2 * kPi * w0 / (l.blades * s.omega),
           md.damping / (2 * std::sqrt(md.stiffness * md.inertia))};
 }
@@ -236,9 +236,9 @@ class LumpedAxialTorsionalModel : public PreparedModel {
     sys.a0(kAngle, kSpeed) = 1;
     sys.a0(kPosition, kAxialSpeed) = 1;
     sys.a0(kSpeed, kAngle) = -md_.stiffness / md_.inertia;
-    sys.a0(kSpeed, kSpeed) = -(md_.damping + law.FrictionSlope(omega)) / md_.inertia;
+    sys.a0(kSpeed, kSpeed) = -(md_.damping + law.SteadyTorqueSlope(wob, omega)) / md_.inertia;
     const double per_u = law.blades, per_phi = -law.blades * s.rop / omega;  // d(delta d) / du, / dphi
-    for (const auto& [row, k] : {std::pair{int(kSpeed), law.CutTorquePerDepth() / md_.inertia},
+    for (const auto& [row, k] : {std::pair{int(kSpeed), law.CutTorquePerDepthAt(omega) / md_.inertia},
                                  std::pair{int(kAxialSpeed), law.CutWeightPerDepth() / md_.mass}}) {
       sys.a0(row, kPosition) -= k * per_u, cut.retarded(row, kPosition) += k * per_u;
       sys.a0(row, kAngle) -= k * per_phi, cut.retarded(row, kAngle) += k * per_phi;

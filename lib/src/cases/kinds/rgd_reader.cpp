@@ -2,6 +2,10 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <string>
+
+#include "drillwave/core/error.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -12,6 +16,32 @@ constexpr int kDefaultRoughnessModes = 20;
 // A small perturbation of the rock's strength (BASELINE.md: 0.5-1.5 %); 20 % keeps 1 + g well above zero.
 constexpr double kMaxHeterogeneityStd = 0.2;
 constexpr int kDefaultHeterogeneityModes = 64;
+
+// rock/contact: the wear flats' friction function F (bitrock::ContactLaw), adimensional (amplitude 1).
+bitrock::ContactLaw ReadContactLaw(const io::JsonReader& c) {
+  using io::Range;
+  const std::string law = c.String("law", {"set_valued", "sqrt_regularized", "tanh_hump", "tanh_hump_printed"});
+  const bool squared = c.String("cutting_torque", {"rgd", "f_squared"}, "rgd") == "f_squared";
+  if (law == "set_valued") {
+    if (squared)
+      throw InputError(c.PathOf("cutting_torque"), "expected rgd with law set_valued (eq. 2.33's F^2 needs a friction "
+                                                   "function F: sqrt_regularized, tanh_hump or tanh_hump_printed)");
+    c.Finish();
+    return {};
+  }
+  std::optional<bitrock::FrictionLaw> f;
+  if (law == "sqrt_regularized") {
+    const double alpha = c.Number("alpha", Range::NonNegative(), 1.0);
+    f.emplace(bitrock::SqrtRegularized{1.0, alpha, c.Number("epsilon_rad_s", Range::Positive())});
+  } else {
+    const double beta = c.Number("beta", Range::NonNegative(), 1.0), gamma1 = c.Number("gamma1", Range::NonNegative());
+    const bitrock::TanhHump hump{1.0, beta, gamma1, c.Number("gamma2", Range::NonNegative())};
+    if (law == "tanh_hump") f.emplace(hump);
+    else f.emplace(bitrock::TanhHumpPrinted{hump});
+  }
+  c.Finish();
+  return bitrock::ContactLaw(*f, squared ? bitrock::CuttingTorque::kFrictionSquared : bitrock::CuttingTorque::kRgd);
+}
 }  // namespace
 
 void ReadRgdBit(const io::JsonReader& b, bitrock::RgdLaw& law) {
@@ -52,6 +82,12 @@ void ReadRgdRock(const io::JsonReader& k, bitrock::RgdLaw& law) {
     law.stribeck_speed = st.Number("velocity_rad_s", Range::Positive());
     st.Finish();
   }
+  if (k.Has("contact")) {
+    law.contact_law = ReadContactLaw(k.Object("contact"));
+    if (law.contact_law.has_function() && law.stribeck_speed > 0)
+      throw InputError(k.PathOf("contact"), "expected either rock/stribeck or a contact law with a friction function, "
+                                            "not both (F's fall with speed is its own Stribeck effect)");
+  }
   k.Finish();
 }
 
@@ -86,7 +122,21 @@ nlohmann::json RgdFieldSchema() {
                                                 "with seeded Gaussian wavenumbers (std 1 / L) and random phases"},
           {"rock/stribeck/static_mu", ">= mu: optional object (absent: Coulomb); mu(w) = mu + (static_mu - mu) "
                                       "exp(-|w| / velocity_rad_s), a stuck bit holds with static_mu"},
-          {"rock/stribeck/velocity_rad_s", "> 0, Stribeck speed"}};
+          {"rock/stribeck/velocity_rad_s", "> 0, Stribeck speed"},
+          {"rock/contact/law",
+           "set_valued | sqrt_regularized | tanh_hump | tanh_hump_printed: optional object (absent: set_valued, RGD's "
+           "sign); the chapter's adimensional friction function F (eqs. 2.29-2.30) of r = |w|, the bit's angular speed "
+           "in rad/s as a pure number, in T_f = a gamma mu F(|w|) W_f / 2 sign w, W_f staying RGD's axial contact; a "
+           "stuck bit holds with mu F(0+), nothing for a smooth F; not with rock/stribeck"},
+          {"rock/contact/alpha", ">= 0, default 1: sqrt_regularized, F(r) = alpha r / sqrt(r^2 + epsilon^2)"},
+          {"rock/contact/epsilon_rad_s", "> 0: sqrt_regularized's regularization speed, F(epsilon) = alpha / sqrt(2)"},
+          {"rock/contact/beta", ">= 0, default 1: tanh_hump, F(r) = beta (tanh r + gamma1 r / (1 + gamma2 r^2)); "
+                                "tanh_hump_printed, F(r) = beta (tanh r + gamma1 / (1 + gamma2 r^2)), F(0+) = beta "
+                                "gamma1 held at rest"},
+          {"rock/contact/gamma1", ">= 0: the hump's height (s/rad in tanh_hump, a pure number in tanh_hump_printed)"},
+          {"rock/contact/gamma2", ">= 0 [s^2/rad^2]: the hump's decay, its peak near r = 1 / sqrt(gamma2)"},
+          {"rock/contact/cutting_torque", "rgd (default): T_c = a^2 eps d / 2 | f_squared: chapter eq. 2.33 read as "
+                                          "T_c = a^2 eps d F(|w|)^2 / 2 (nothing held at rest for a smooth F)"}};
 }
 
 nlohmann::json LinearizedRock(const bitrock::RgdLaw& law) {
