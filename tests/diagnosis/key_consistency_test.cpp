@@ -77,6 +77,7 @@ DiagnosisLoop CaseAgainst(const nlohmann::json& doc, const Recording& recording)
   const cases::Case c = cases::ParseCase(doc);
   LoopOptions o = DefaultLoopOptions(c, recording, kSidecarWarmupS);
   o.max_singles = 0;  // the case's errors only
+  o.measure_regime_margin = false;
   o.maps = ResolveChannelMaps({}, recording, ProbeChannels(c));
   return RunDiagnosisLoop(doc, recording, o);
 }

@@ -55,6 +55,7 @@ TEST_P(ToleranceIndependence, TheHeldOutErrorDoesNotMoveWithTheTolerance) {
     const cases::Case c = cases::ParseCase(doc);
     LoopOptions o = DefaultLoopOptions(c, recording, kSidecarWarmupS);
     o.max_singles = 0;  // the baseline's errors only
+    o.measure_regime_margin = false;
     o.maps = ResolveChannelMaps({}, recording, ProbeChannels(c));
     const DiagnosisLoop loop = RunDiagnosisLoop(doc, recording, o);
     errors.push_back(loop.baseline_held_out_error);

@@ -420,8 +420,9 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   }
   Adopt(fitted, loop.fitted_model, loop.fitted_fit, loop.fitted_held_out, loop.fitted_fit_error,
         loop.fitted_held_out_error);
-  loop.regime_margin = loop_internal::MeasureRegimeMargin(loop.fitted_document, runner, loop.fit_draw, loop.recording_held_out,
-                                           std::max(1, o.threads));
+  if (o.measure_regime_margin)
+    loop.regime_margin = loop_internal::MeasureRegimeMargin(loop.fitted_document, runner, loop.fit_draw,
+                                                            loop.recording_held_out, o.threads);
   loop.model_runs += loop.regime_margin.runs;
   if (loop.regime_margin.measured) say(RegimeMarginText(loop.regime_margin));
   // The envelopes' correlogram is one feature read at several lags: one entry, where it counts.

@@ -14,7 +14,7 @@ namespace {
 constexpr double kStuckShare = 0.01;  // a window whose bit is stuck longer than this share of it sticks and slips
 // The coarse steps [%] each side, then this many bisections between the last step in the regime and the first out.
 constexpr std::array<double, 4> kStepsPercent = {2.5, 5, 10, kRegimeSearchPercent};
-constexpr int kBisections = 3;
+constexpr int kBisections = 2;
 
 // The top's set-point (a number or every knot of a schedule) times factor; false where there is none.
 bool ScaleSetPoint(nlohmann::json& doc, double factor) {

@@ -55,6 +55,7 @@ struct LoopOptions {
   int max_singles = 4;  // 0: the case's own errors only (no base calibration, screening or fits)
   bool calibrate_base = true;  // the base's uncertain parameters fitted first (effects.hpp: BaseCalibrations)
   bool fit_effects = true;     // false: the (calibrated) base judged, no effect screened or fitted
+  bool measure_regime_margin = true;  // the model that stands run with its set-point moved (RegimeMargin)
   int max_effects = 3;            // forward selection stops at this many effects
   // The fits' runs use at most this tolerance's accuracy (rel and abs; 0: the case's); candidates are judged by runs
   // at the case's own tolerance. The features do not move with the tolerance up to 1e-4; at 1e-3 they did for
