@@ -16,18 +16,21 @@ constexpr double kStuckShare = 0.01;  // a window whose bit is stuck longer than
 constexpr std::array<double, 4> kStepsPercent = {2.5, 5, 10, kRegimeSearchPercent};
 constexpr int kBisections = 2;
 
-// The top's set-point (a number or every knot of a schedule) times factor; false where there is none.
-bool ScaleSetPoint(nlohmann::json& doc, double factor) {
-  const nlohmann::json::json_pointer pointer("/model/top/speed_rad_s");
-  if (!doc.contains(pointer)) return false;
-  nlohmann::json& v = doc.at(pointer);
-  if (v.is_number()) {
-    v = v.get<double>() * factor;
-    return true;
-  }
-  if (!v.is_object() || !v.contains("knots")) return false;
-  for (nlohmann::json& knot : v["knots"]) knot[1] = knot[1].get<double>() * factor;
-  return true;
+const nlohmann::json::json_pointer kSetPoint("/model/top/speed_rad_s");
+
+// Whether the case's top has a set-point this search can move: a number or a schedule of knots.
+bool HasSetPoint(const nlohmann::json& doc) {
+  if (!doc.contains(kSetPoint)) return false;
+  const nlohmann::json& v = doc.at(kSetPoint);
+  return v.is_number() || (v.is_object() && v.contains("knots"));
+}
+
+// The top's set-point (the number, or every knot of the schedule) times factor.
+void ScaleSetPoint(nlohmann::json& doc, double factor) {
+  nlohmann::json& v = doc.at(kSetPoint);
+  if (v.is_number()) v = v.get<double>() * factor;
+  else
+    for (nlohmann::json& knot : v["knots"]) knot[1] = knot[1].get<double>() * factor;
 }
 
 // The held-out regime of doc with its set-point changed by percent; nullopt where the run fails.
@@ -55,8 +58,7 @@ std::string RegimeOf(const FeatureSet& held_out, bool bounces) {
 RegimeMargin MeasureRegimeMargin(const nlohmann::json& doc, const ModelRuns& runner, int draw,
                                  const FeatureSet& recorded_held_out, int threads) {
   RegimeMargin margin;
-  nlohmann::json probe = doc;
-  if (!ScaleSetPoint(probe, 1)) return margin;
+  if (!HasSetPoint(doc)) return margin;
   margin.recorded = RegimeOf(recorded_held_out, runner.RecordingBounces());
   // The set-point itself and the coarse steps on both sides, side by side.
   std::vector<double> percents = {0};
