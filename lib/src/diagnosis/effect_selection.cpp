@@ -57,6 +57,21 @@ std::vector<double> StartOf(const std::vector<const Effect*>& effects) {
   return u;
 }
 
+std::vector<std::pair<double, double>> PairedDraws(const DrawsOf& mine, const DrawsOf& theirs) {
+  auto count = [](const DrawsOf& x) {
+    return std::min({x.errors->size(), x.in_regime->size(), x.seeds->size()});
+  };
+  std::vector<std::pair<double, double>> both_in_regime, shared;
+  for (std::size_t d = 0; d < count(mine); ++d)
+    for (std::size_t e = 0; e < count(theirs); ++e)
+      if ((*mine.seeds)[d] == (*theirs.seeds)[e]) {
+        const std::pair<double, double> pair{(*mine.errors)[d], (*theirs.errors)[e]};
+        shared.push_back(pair);
+        if ((*mine.in_regime)[d] && (*theirs.in_regime)[e]) both_in_regime.push_back(pair);
+      }
+  return both_in_regime.empty() ? shared : both_in_regime;
+}
+
 double ErrorChance(const FeatureSet& held_out) { return std::sqrt(2.0 / std::max(1.0, FeatureCount(held_out))); }
 
 EffectSelection::EffectSelection(const LoopOptions& o, const ModelRuns& runner, const nlohmann::json& base,
@@ -163,6 +178,7 @@ Candidate EffectSelection::Fit(const std::vector<int>& set, std::vector<double> 
     if (screening) {
       one.models.push_back(runner_.Run(Drawn(DocumentAt(set, best.best), loop_.fit_draw), full_duration));
       one.in_regime.push_back(runner_.InRegime(one.models.back()));
+      one.seeds.push_back(loop_.fit_draw);
     }
     const Judged j = runner_.Judge(screening ? std::move(one) : runner_.RunDraws(DocumentAt(set, best.best), threads));
     c.fit_error = j.fit_error;
@@ -170,6 +186,7 @@ Candidate EffectSelection::Fit(const std::vector<int>& set, std::vector<double> 
     c.held_out_draw_errors = j.held_out_draw_errors;
     c.held_out_mean = j.held_out_mean;
     c.draw_in_regime = j.draw_in_regime;
+    c.draw_seeds = j.draw_seeds;
     c.failed_draws = j.failed_draws;
   } catch (const NumericalError& e) {
     c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
@@ -235,14 +252,13 @@ double EffectSelection::DifferenceSpread(const Candidate& c, const Reference& re
   const double noise_variance = 0.5 * std::min({1.0, reference.error, c.held_out_error});
   const double recording =
       DistanceDifferenceStd(*reference.held_out, c.held_out_mean, loop_.recording_held_out, noise_variance);
-  const std::vector<double>& mine = c.held_out_draw_errors;
-  const std::vector<double>& theirs = *reference.draw_errors;
-  const std::size_t paired = std::min(mine.size(), theirs.size());
+  const std::vector<std::pair<double, double>> pairs = PairedDraws(DrawsOfCandidate(c), reference.draws);
+  const std::size_t paired = pairs.size();
   double draws_variance = 0;
   if (paired >= 2) {
     double mean = 0, square = 0;
-    for (std::size_t d = 0; d < paired; ++d) mean += (theirs[d] - mine[d]) / paired;
-    for (std::size_t d = 0; d < paired; ++d) square += (theirs[d] - mine[d] - mean) * (theirs[d] - mine[d] - mean);
+    for (const auto& [mine, theirs] : pairs) mean += (theirs - mine) / paired;
+    for (const auto& [mine, theirs] : pairs) square += (theirs - mine - mean) * (theirs - mine - mean);
     draws_variance = square / (paired - 1) / paired;
   }
   return std::sqrt(recording * recording + draws_variance);
@@ -263,11 +279,9 @@ bool EffectSelection::Qualifies(const Candidate& c, const Reference& reference) 
     return false;
   const double gain = reference.error - c.held_out_error;
   if (gain > loop_.error_chance) return true;
-  const std::vector<double>& mine = c.held_out_draw_errors;
-  const std::vector<double>& theirs = *reference.draw_errors;
-  const std::size_t paired = std::min(mine.size(), theirs.size());
-  bool closer_in_every_draw = paired >= 2;
-  for (std::size_t d = 0; d < paired; ++d) closer_in_every_draw = closer_in_every_draw && mine[d] < theirs[d];
+  const std::vector<std::pair<double, double>> pairs = PairedDraws(DrawsOfCandidate(c), reference.draws);
+  bool closer_in_every_draw = pairs.size() >= 2;
+  for (const auto& [mine, theirs] : pairs) closer_in_every_draw = closer_in_every_draw && mine < theirs;
   return closer_in_every_draw && Resolved(c, reference) && gain > 2 * DifferenceSpread(c, reference);
 }
 
@@ -281,7 +295,8 @@ bool EffectSelection::Resolved(const Candidate& c, const Reference& reference) c
 }
 
 EffectSelection::Reference EffectSelection::BaselineReference() const {
-  return {loop_.baseline_held_out_error, loop_.baseline_aic, &loop_.baseline_held_out_draw_errors,
+  return {loop_.baseline_held_out_error, loop_.baseline_aic,
+          {&loop_.baseline_held_out_draw_errors, &loop_.baseline_draw_in_regime, &loop_.baseline_draw_seeds},
           &loop_.baseline_held_out_mean};
 }
 
@@ -324,7 +339,7 @@ bool EffectSelection::QualifiesAgainstSubsets(int index) const {
         !std::includes(set.begin(), set.end(), other.begin(), other.end()))
       continue;
     if (other_fit.held_out_error < reference.error)
-      reference.error = other_fit.held_out_error, reference.draw_errors = &other_fit.held_out_draw_errors,
+      reference.error = other_fit.held_out_error, reference.draws = DrawsOfCandidate(other_fit),
       reference.held_out = &other_fit.held_out_mean;
     reference.aic = std::min(reference.aic, other_fit.aic);
   }
@@ -518,7 +533,8 @@ int EffectSelection::BestScreenedExtension(const Candidate& lead, const std::vec
                                            const std::function<std::vector<int>(int)>& extended,
                                            const std::function<std::vector<double>(const std::vector<int>&)>& start) {
   const std::vector<int> set = IndicesOf(lead);
-  const auto fit_draw = static_cast<std::size_t>(loop_.fit_draw);
+  const auto fit_draw = static_cast<std::size_t>(
+      std::find(lead.draw_seeds.begin(), lead.draw_seeds.end(), loop_.fit_draw) - lead.draw_seeds.begin());
   if (lead.held_out_draw_errors.size() <= fit_draw) return -1;
   std::vector<int> others;
   for (int i : modelable_)

@@ -25,6 +25,17 @@ std::string EachDraw(const std::vector<double>& errors, const std::vector<char>&
 nlohmann::json Applied(nlohmann::json doc, const std::vector<const Effect*>& effects, const std::vector<double>& u);
 // The effects' first values, in their unit cubes.
 std::vector<double> StartOf(const std::vector<const Effect*>& effects);
+// One judged model's draws: each draw's held-out error, whether it is in the recording's regime, its seed.
+struct DrawsOf {
+  const std::vector<double>* errors;
+  const std::vector<char>* in_regime;
+  const std::vector<int>* seeds;
+};
+// The draws two judged models share, as (mine, theirs) held-out errors: those of one seed (one rock, roughness and
+// noise) that are both in the recording's regime, in the order of `mine`. A draw that left the regime is paired with
+// nothing (its error measures the other attractor, not the model; train rec01: a baseline draw bouncing at 434 against
+// a Stribeck draw at 0.14 made the paired spread 190). Where no seed has both in the regime, every shared seed.
+std::vector<std::pair<double, double>> PairedDraws(const DrawsOf& mine, const DrawsOf& theirs);
 // How much a held-out error moves by chance: for a model within its features' noise the error (the mean of K squared
 // differences in scales) varies by sqrt(2 / K) from one window to the next.
 double ErrorChance(const FeatureSet& held_out);
@@ -54,14 +65,17 @@ class EffectSelection {
   void FitAll(const std::vector<std::vector<int>>& sets, const std::function<std::vector<double>(std::size_t)>& start);
 
   // What a candidate must beat: the baseline or the best smaller set of its effects (its held-out error, its AIC, and
-  // its held-out error in each draw, paired with the candidate's by seed).
+  // its draws, paired with the candidate's by seed: PairedDraws).
   struct Reference {
     double error, aic;
-    const std::vector<double>* draw_errors;
+    DrawsOf draws;
     const FeatureSet* held_out;  // its held-out features' means over its draws (a judged model always has them)
   };
+  static DrawsOf DrawsOfCandidate(const Candidate& c) {
+    return {&c.held_out_draw_errors, &c.draw_in_regime, &c.draw_seeds};
+  }
   static Reference ReferenceOf(const Candidate& c) {
-    return {c.held_out_error, c.aic, &c.held_out_draw_errors, &c.held_out_mean};
+    return {c.held_out_error, c.aic, DrawsOfCandidate(c), &c.held_out_mean};
   }
   int ParameterOnEdge(const Candidate& c) const;
   double DifferenceSpread(const Candidate& c, const Reference& reference) const;

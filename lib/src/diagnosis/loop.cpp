@@ -367,9 +367,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   loop.baseline_held_out_draw_errors = baseline.held_out_draw_errors;
   loop.baseline_held_out_mean = baseline.held_out_mean;
   loop.baseline_draw_in_regime = baseline.draw_in_regime;
-  loop.fit_draw = static_cast<int>(std::find(baseline.draw_in_regime.begin(), baseline.draw_in_regime.end(), 1) -
-                                   baseline.draw_in_regime.begin());
-  if (loop.fit_draw == static_cast<int>(baseline.draw_in_regime.size())) loop.fit_draw = 0;
+  loop.baseline_draw_seeds = baseline.draw_seeds;
+  const auto first_in_regime = static_cast<std::size_t>(
+      std::find(baseline.draw_in_regime.begin(), baseline.draw_in_regime.end(), 1) - baseline.draw_in_regime.begin());
+  loop.fit_draw = first_in_regime < baseline.draw_seeds.size() ? baseline.draw_seeds[first_in_regime] : 0;
   const double k_features = FeatureCount(loop.recording_fit);
   loop.baseline_aic = k_features * std::log(loop.baseline_fit_error);
   const int baseline_in_regime = static_cast<int>(
@@ -590,7 +591,10 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
           {"screening", {{"baseline_held_out_error_one_draw",
                           loop.baseline_held_out_draw_errors.empty()
                               ? nlohmann::json(nullptr)
-                              : number(loop.baseline_held_out_draw_errors.at(static_cast<std::size_t>(loop.fit_draw)))},
+                              : number(loop.baseline_held_out_draw_errors.at(static_cast<std::size_t>(
+                                    std::find(loop.baseline_draw_seeds.begin(), loop.baseline_draw_seeds.end(),
+                                              loop.fit_draw) -
+                                    loop.baseline_draw_seeds.begin())))},
                          {"candidates", screening}}},
           {"fitted_parameters", fitted},
           {"candidates", candidates},

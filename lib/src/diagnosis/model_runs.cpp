@@ -151,6 +151,7 @@ Draws ModelRuns::RunDraws(const nlohmann::json& doc, int threads) const {
     const int first = attempted;
     const int batch = std::min(draws - matched, kMaxDrawFactor * draws - first);
     attempted += batch;
+    int seed = first;
     for (std::optional<Recording>& m :
          ParallelMap(static_cast<std::size_t>(batch), threads, [&](std::size_t d) -> std::optional<Recording> {
            try {
@@ -162,10 +163,12 @@ Draws ModelRuns::RunDraws(const nlohmann::json& doc, int threads) const {
              return std::nullopt;
            }
          })) {
+      const int this_seed = seed++;
       if (!m) {
         ++runs.failed;
         continue;
       }
+      runs.seeds.push_back(this_seed);
       runs.in_regime.push_back(InRegime(*m));
       matched += runs.in_regime.back();
       runs.models.push_back(std::move(*m));
@@ -182,6 +185,11 @@ Judged ModelRuns::Judge(Draws runs) const {
   std::vector<std::size_t> order;
   Judged j;
   j.draw_in_regime = runs.in_regime;
+  j.draw_seeds = runs.seeds;
+  if (j.draw_seeds.size() != models.size()) {  // draws made by hand: numbered in order
+    j.draw_seeds.resize(models.size());
+    for (std::size_t d = 0; d < models.size(); ++d) j.draw_seeds[d] = static_cast<int>(d);
+  }
   j.failed_draws = runs.failed;
   for (std::size_t d = 0; d < models.size(); ++d) {
     fit.push_back(FitFeatures(models[d]));

@@ -45,6 +45,7 @@ nlohmann::json Drawn(nlohmann::json doc, int d);
 struct Draws {
   std::vector<Recording> models;
   std::vector<char> in_regime;
+  std::vector<int> seeds;  // each model's draw (Drawn): two models' draws of one seed share rock, roughness and noise
   int failed = 0;  // draws whose run failed numerically, left out
 };
 
@@ -57,6 +58,7 @@ struct Judged {
   double fit_error = 0, held_out_error = 0;
   std::vector<double> held_out_draw_errors;
   std::vector<char> draw_in_regime;
+  std::vector<int> draw_seeds;
   int failed_draws = 0;
 };
 

@@ -107,6 +107,7 @@ struct Candidate {
   double fit_error = 0, held_out_error = 0;  // medians over the draws judged (LoopOptions::draws)
   std::vector<double> held_out_draw_errors;   // each draw's own held-out error, every draw run
   std::vector<char> draw_in_regime;           // per draw run: in the recording's regime (judged), see DiagnosisLoop
+  std::vector<int> draw_seeds;                // per draw run: its seed (draws of one seed are compared pairwise)
   FeatureSet held_out_mean;  // each held-out feature's mean over the draws judged
   double aic = 0;  // K ln(fit_error) + 2 p over the K features of the fit window
   int evaluations = 0;
@@ -156,7 +157,8 @@ struct DiagnosisLoop {
   double recorded_off_bottom_share = 0;
   bool recording_bounces = false;
   std::vector<char> baseline_draw_in_regime;  // per draw run
-  int fit_draw = 0;  // the draw the fits run: the baseline's first in the recording's regime
+  std::vector<int> baseline_draw_seeds;       // per draw run
+  int fit_draw = 0;  // the draw (seed) the fits run: the baseline's first in the recording's regime
   double baseline_fit_error = 0, baseline_held_out_error = 0, fitted_fit_error = 0, fitted_held_out_error = 0;
   double error_chance = 0;  // how much the held-out error moves by chance for a model that matches (sqrt(2 / K))
   double baseline_aic = 0;
