@@ -1,6 +1,8 @@
 // Sensors turn a simulated channel into a recorded one: each stage against what it must do exactly.
+#include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -120,6 +122,61 @@ TEST(Sensors, NoiseHasItsStandardDeviationAndIsReproducible) {
   EXPECT_NEAR(mean, 0.0, 4 * 0.5 / std::sqrt(n));
 }
 
+// Telemetry coded as the chapter's Fig. 2.4: a 12-bit code over [0, 300] rpm sent at 2 bit/s (mud pulse) carries a
+// sample every 6 s, taken when its frame starts and decoded 6 s later, plus the transport delay; each value is the
+// nearest of 4096 levels (within half a step, 0.0367 rpm, of the sensor's reading), clamped to the range.
+TEST(Sensors, CodedTelemetryHoldsEachQuantizedSampleFromTheEndOfItsFrame) {
+  Signal s;
+  for (int k = 0; k <= 6000; ++k) s.t.push_back(0.01 * k), s.v.push_back(150 + 200 * std::sin(0.05 * k * 0.01));
+  SensorModel m;
+  m.delay_s = 2.2, m.bits = 12, m.code_min = 0, m.code_max = 300, m.bit_rate_bps = 2;
+  EXPECT_DOUBLE_EQ(m.SamplePeriod(), 6.0);
+  const double step = 300.0 / 4095;
+  const std::vector<double> y = Measure(m, s.t, s.v, 1);
+  int checked = 0;
+  for (std::size_t k = 0; k < s.t.size(); ++k) {
+    const double taken = std::max(0.0, 6.0 * std::floor((s.t[k] - 2.2 - 6.0) / 6.0 + 1e-9));
+    const double truth = 150 + 200 * std::sin(0.05 * taken);
+    const double coded = std::clamp(truth, 0.0, 300.0);
+    ASSERT_NEAR(y[k], coded, 0.5 * step + 1e-9) << "at t = " << s.t[k];
+    const double level = y[k] / step;  // on a level of the code
+    ASSERT_NEAR(level, std::round(level), 1e-9) << "at t = " << s.t[k];
+    ++checked;
+  }
+  EXPECT_EQ(checked, 6001);
+  EXPECT_EQ(m.Quantized(-5), 0.0);
+  EXPECT_EQ(m.Quantized(1e6), 300.0);
+}
+
+// The two noises of the chapter: S(t) downhole passes the code (a fine code leaves it whole), N(t) at the receiver is
+// added to the decoded value; each has its standard deviation, and together their variances add.
+TEST(Sensors, DownholeAndReceiverNoisesEachHaveTheirStandardDeviation) {
+  Signal s;
+  for (int k = 0; k <= 200000; ++k) s.t.push_back(0.01 * k), s.v.push_back(100.0);
+  auto spread = [&](const SensorModel& m) {
+    const std::vector<double> y = Measure(m, s.t, s.v, 7);
+    double sum = 0, sum2 = 0;
+    for (double v : y) sum += v - 100, sum2 += (v - 100) * (v - 100);
+    const double n = static_cast<double>(y.size()), mean = sum / n;
+    return std::sqrt(sum2 / n - mean * mean);
+  };
+  SensorModel m;
+  m.bits = 16, m.code_min = 0, m.code_max = 300;  // a step of 0.0046 rpm
+  const double n = static_cast<double>(s.t.size()), tolerance = 4 / std::sqrt(2 * n);  // four standard errors
+  m.downhole_noise_std = 2;
+  EXPECT_NEAR(spread(m), 2 * std::sqrt(1 + std::pow(300.0 / 65535, 2) / 12 / 4), 2 * tolerance);
+  m.downhole_noise_std = 0, m.noise_std = 1.5;
+  EXPECT_NEAR(spread(m), 1.5, 1.5 * tolerance);
+  m.downhole_noise_std = 2;
+  EXPECT_NEAR(spread(m), 2.5, 2.5 * tolerance);
+  // A coarse code hides a small downhole noise: 100 rpm is a level of a 4-bit code over [0, 300] (20-rpm steps), and
+  // S of 0.5 rpm never reaches the half-way marks 10 rpm away.
+  SensorModel coarse;
+  coarse.bits = 4, coarse.code_min = 0, coarse.code_max = 300, coarse.downhole_noise_std = 0.5;
+  const std::vector<double> y = Measure(coarse, s.t, s.v, 7);
+  for (double v : y) ASSERT_EQ(v, 100.0) << "100 rpm is a level of the 4-bit code (5 x 20 rpm)";
+}
+
 nlohmann::json SaldivarWithSensors(const nlohmann::json& sensors) {
   nlohmann::json doc = nlohmann::json::parse(DefaultCaseText());
   doc["simulation"]["duration_s"] = 20;
@@ -169,6 +226,21 @@ TEST(Sensors, AnUnknownChannelIsBadInputNamingIt) {
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/sensors/channels/bit_rpm/window_s"), std::string::npos) << e.what();
+  }
+  // A code's fields: range ordered, a bit rate or a hold (not both), and none of them without bits.
+  const std::vector<std::pair<nlohmann::json, std::string>> refused{
+      {{{"bits", 12}, {"range", {300, 0}}}, "/range"},
+      {{{"bits", 12}, {"range", {0, 300}}, {"bit_rate_bps", 2}, {"hold_s", 1}}, "/hold_s"},
+      {{{"bit_rate_bps", 2}}, "/bit_rate_bps"},
+      {{{"bits", 40}, {"range", {0, 300}}}, "/bits"},
+      {{{"bits", 12}}, "/range"}};
+  for (const auto& [sensor, field] : refused) {
+    try {
+      ParseCase(SaldivarWithSensors({{"channels", {{"bit_rpm", sensor}}}}));
+      ADD_FAILURE() << "expected an InputError for " << sensor.dump();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("/sensors/channels/bit_rpm" + field), std::string::npos) << e.what();
+    }
   }
 }
 

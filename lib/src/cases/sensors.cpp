@@ -64,11 +64,32 @@ SensorSet ReadSensors(const JsonReader& block) {
     m.delay_s = s.Number("delay_s", Range::Between(0, 1e4), 0.0);
     m.hold_s = s.Number("hold_s", Range::Between(0, 1e4), 0.0);
     m.noise_std = s.Number("noise_std", Range::NonNegative(), 0.0);
+    m.bits = s.Integer("bits", 0, 32, 0);
+    m.downhole_noise_std = s.Number("downhole_noise_std", Range::NonNegative(), 0.0);
+    if (m.bits > 0) {
+      const std::vector<double> range = s.NumberArray("range", Range::Any());
+      if (range.size() != 2 || !(range[0] < range[1]))
+        throw InputError(s.PathOf("range"), "expected [lowest, highest] code value with lowest < highest");
+      m.code_min = range[0], m.code_max = range[1];
+      m.bit_rate_bps = s.Number("bit_rate_bps", Range::Positive(), 0.0);
+      if (m.bit_rate_bps > 0 && s.Has("hold_s"))
+        throw InputError(s.PathOf("hold_s"), "with bit_rate_bps the hold is the frame, bits / bit_rate_bps = " +
+                                                 std::to_string(m.bits / m.bit_rate_bps) + " s; give one of them");
+    } else {
+      for (const char* key : {"range", "bit_rate_bps", "downhole_noise_std"})
+        if (s.Has(key)) throw InputError(s.PathOf(key), "needs \"bits\" (1 to 32): the code it belongs to");
+    }
     s.Finish();
     set.sensors.push_back(m);
   }
   block.Finish();
   return set;
+}
+
+double SensorModel::Quantized(double x) const {
+  if (bits <= 0) return x;
+  const double levels = std::ldexp(1.0, bits) - 1, step = (code_max - code_min) / levels;
+  return code_min + step * std::clamp(std::round((x - code_min) / step), 0.0, levels);
 }
 
 std::vector<double> Measure(const SensorModel& sensor, const std::vector<double>& t, const std::vector<double>& values,
@@ -85,19 +106,30 @@ std::vector<double> Measure(const SensorModel& sensor, const std::vector<double>
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::vector<double> measured(t.size());
+  // The value a sample carries: read at the sensor, its downhole noise, its code. The downhole noise is drawn only
+  // where there is one, so that a sensor without it keeps the noise stream it always had.
+  auto sent_value = [&](double at) {
+    const double downhole = sensor.downhole_noise_std > 0 ? sensor.downhole_noise_std * noise(rng) : 0.0;
+    return sensor.Quantized(reading(at) + downhole);
+  };
+  const double period = sensor.SamplePeriod();
+  // A coded sample is decoded when its frame has arrived: one frame after it was taken, besides the delay.
+  const double latency = sensor.delay_s + (sensor.bits > 0 && sensor.bit_rate_bps > 0 ? period : 0.0);
   long held = -1;  // index of the telemetry sample last received
   double held_value = 0;
   for (std::size_t k = 0; k < t.size(); ++k) {
-    const double sent = t[k] - sensor.delay_s;  // when what arrives now left the sensor
-    if (sensor.hold_s > 0) {
-      const long j = std::max(0L, static_cast<long>(std::floor((sent - t.front()) / sensor.hold_s + 1e-9)));
+    const double sent = t[k] - latency;  // when what arrives now left the sensor
+    if (period > 0) {
+      const long j = std::max(0L, static_cast<long>(std::floor((sent - t.front()) / period + 1e-9)));
       while (held < j) {  // draw noise for every sample, received or skipped, so the noise does not depend on the output grid
         ++held;
-        held_value = reading(t.front() + held * sensor.hold_s) + sensor.noise_std * noise(rng);
+        const double value = sent_value(t.front() + held * period);
+        held_value = value + sensor.noise_std * noise(rng);
       }
       measured[k] = held_value;
     } else {
-      measured[k] = reading(sent) + (sensor.noise_std > 0 ? sensor.noise_std * noise(rng) : 0.0);
+      const double value = sent_value(sent);
+      measured[k] = value + (sensor.noise_std > 0 ? sensor.noise_std * noise(rng) : 0.0);
     }
   }
   return measured;
