@@ -11,6 +11,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <new>
 #include <optional>
 #include <string>
@@ -830,6 +831,383 @@ int CompareControllers(const std::string& file, const std::string& out_dir, cons
   return 0;
 }
 
+// The arguments several commands share: a case, its --set overrides, a recording with its channel map, sidecar and
+// window, and how many things run at once.
+struct CommonArguments {
+  std::string case_file, recording_file, sidecar_file, window;
+  std::vector<std::string> overrides, maps;
+  int jobs = drillwave::DefaultThreadCount();  // the CPUs this process may run on (taskset, cpusets)
+};
+
+// A command's own arguments and its output folder, shared between its options and its action.
+template <class Arguments>
+struct ArgumentsAndOutput {
+  Arguments args;
+  std::string out;
+};
+template <class Arguments>
+std::shared_ptr<ArgumentsAndOutput<Arguments>> WithOutput(const std::string& default_out) {
+  return std::make_shared<ArgumentsAndOutput<Arguments>>(ArgumentsAndOutput<Arguments>{Arguments{}, default_out});
+}
+
+// A subcommand and what it does once its arguments are parsed.
+struct Command {
+  CLI::App* app;
+  std::function<int()> run;
+};
+
+Command AddRun(CLI::App& app, CommonArguments& common) {
+  struct Arguments {
+    std::string out = "drillwave-out";
+    bool check = false;
+  };
+  auto a = std::make_shared<Arguments>();
+  auto* run = app.add_subcommand("run", "run a case and write trajectory.csv, summary.json, plot.svg, report.md");
+  run->add_option("case", common.case_file, "case JSON file (default: the embedded default case)");
+  run->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  run->add_option("--set", common.overrides,
+                  "override a parameter by JSON pointer, e.g. --set /model/bit/inertia_kgm2=120");
+  run->add_flag("--check", a->check, "exit with 1 if an expectation of the case fails");
+  return {run, [a, &common] { return RunAndWrite(common.case_file, a->out, common.overrides, a->check); }};
+}
+
+Command AddValidate(CLI::App& app, CommonArguments& common) {
+  auto* validate = app.add_subcommand("validate", "check a case file without running it");
+  validate->add_option("case", common.case_file, "case JSON file")->required();
+  validate->add_option("--set", common.overrides, "override a parameter by JSON pointer");
+  return {validate, [&common] {
+            const Case c = drillwave::cases::ParseCase(LoadCaseDocument(common.case_file, common.overrides));
+            std::cout << "case '" << c.name << "' is valid (kind " << c.kind << ")\n";
+            return 0;
+          }};
+}
+
+Command AddSweep(CLI::App& app, CommonArguments& common) {
+  struct Arguments {
+    std::string pointer, values, out = "drillwave-sweep";
+  };
+  auto a = std::make_shared<Arguments>();
+  auto* sweep = app.add_subcommand(
+      "sweep",
+      "run a case once for each value of one parameter (independent runs in parallel): sweep.csv with every "
+      "summary statistic per value, bifurcation.svg, report.md");
+  sweep->add_option("case", common.case_file, "case JSON file (default: the embedded default case)");
+  sweep->add_option("--param,-p", a->pointer, "the parameter's JSON pointer, e.g. /model/upper_disc/input_voltage_V")
+      ->required();
+  sweep->add_option("--values,-v", a->values, "first:last:count (evenly spaced) or v1,v2,...")->required();
+  sweep->add_option("--jobs,-j", common.jobs, "runs at once (default: the CPUs this process may run on)");
+  sweep->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  sweep->add_option("--set", common.overrides, "override another parameter by JSON pointer");
+  return {sweep, [a, &common] {
+            return Sweep(common.case_file, a->out, common.overrides, a->pointer, a->values, common.jobs);
+          }};
+}
+
+Command AddOrbits(CLI::App& app, CommonArguments& common) {
+  struct Arguments {
+    std::string out = "drillwave-orbits", range, edge, channel = "bit_rpm";
+    double after = 0, tolerance = 1e-12;
+  };
+  auto a = std::make_shared<Arguments>();
+  auto* orbits = app.add_subcommand(
+      "orbits",
+      "steady states and periodic orbits over one parameter: Hopf points, branches of periodic orbits by "
+      "pseudo-arclength continuation with Floquet multipliers (saltation matrices at stick/slip), folds");
+  orbits->add_option("case", common.case_file, "case JSON file (default: the embedded default case)");
+  auto* continue_option =
+      orbits->add_option("--continue", a->range, "/json/pointer=first:last[:count], the parameter and its range");
+  orbits
+      ->add_option("--edge", a->edge,
+                   "instead of --continue, for any kind: POINTER=decays:sticks, a perturbation's parameter with a "
+                   "value whose run decays to the steady state and one whose run sticks; bisection finds the "
+                   "boundary between the attractors and the saddle cycle the run at it shadows")
+      ->excludes(continue_option);
+  orbits->add_option("--channel", a->channel, "with --edge: the channel whose cycle is measured (default bit_rpm)");
+  orbits->add_option("--after", a->after, "with --edge: look for the cycle after this time [s] (the perturbation's)");
+  orbits->add_option("--tolerance", a->tolerance,
+                     "with --edge: relative width of the final bracket (default 1e-12: the closer, the longer the run "
+                     "shadows the cycle)");
+  orbits->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  orbits->add_option("--set", common.overrides, "override another parameter by JSON pointer");
+  return {orbits, [a, &common] {
+            if (!a->edge.empty())
+              return EdgeOrbit(common.case_file, a->out, common.overrides, a->edge, a->channel, a->after, a->tolerance);
+            if (a->range.empty())
+              throw drillwave::InputError("--continue", "required: /json/pointer=first:last[:count] (or --edge)");
+            return Orbits(common.case_file, a->out, common.overrides, a->range);
+          }};
+}
+
+Command AddStability(CLI::App& app, CommonArguments& common) {
+  struct Arguments {
+    std::string out = "drillwave-stability", pointer, values, draws;
+    std::vector<std::string> map_axes;
+    bool simulate = false, full_spectrum = false, no_run = false;
+    int draw_count = 50;
+  };
+  auto a = std::make_shared<Arguments>();
+  auto* stability =
+      app.add_subcommand("stability",
+                         "steady states at the inputs' final values and the characteristic roots of the linearization "
+                         "about each; with --param, a stability map over that parameter");
+  stability->add_option("case", common.case_file, "case JSON file (default: the embedded default case)");
+  stability->add_option("--param,-p", a->pointer, "map over this parameter (JSON pointer)");
+  stability->add_option("--values,-v", a->values, "first:last:count or v1,v2,... (with --param)");
+  stability
+      ->add_option("--map", a->map_axes,
+                   "two-parameter map: POINTER1=first:last:n POINTER2=first:last:n (stability_map.csv/.svg)")
+      ->expected(2);
+  stability->add_flag("--simulate", a->simulate,
+                      "with --map: also run the case at every grid point and mark "
+                      "the regime it reaches (stick-slip, smooth, bit bouncing)");
+  stability->add_option("--draws", a->draws,
+                        "with --map: a CSV of parameter draws (columns named by JSON pointers, e.g. calibrate's "
+                        "posterior_samples.csv): the map for each, and per point the probability of stick-slip "
+                        "(p_linearly_unstable, p_stick_slip with --simulate; p_stick_slip.svg)");
+  stability->add_option("--draw-count", a->draw_count,
+                        "with --draws: this many rows spread evenly over the file (default 50, 0: every row)");
+  stability->add_flag("--full-spectrum", a->full_spectrum,
+                      "with --map: every point's full spectrum (the reference) instead of roots continued from the "
+                      "neighbouring point and certified by the argument principle");
+  stability->add_flag("--no-run", a->no_run,
+                      "one case: do not run it from its start (by default it runs, to tell whether a stable steady "
+                      "state coexists with a stick-slip cycle)");
+  stability->add_option("--jobs,-j", common.jobs, "analyses at once (default: the CPUs this process may run on)");
+  stability->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  stability->add_option("--set", common.overrides, "override a parameter by JSON pointer");
+  return {stability, [a, &common] {
+            if (!a->map_axes.empty()) {
+              if (!a->pointer.empty()) throw drillwave::InputError("--map", "give either --map or --param, not both");
+              return StabilityMap2D(common.case_file, a->out, common.overrides, a->map_axes, a->simulate,
+                                    a->full_spectrum, common.jobs, a->draws, a->draw_count);
+            }
+            if (a->simulate) throw drillwave::InputError("--simulate", "only with --map");
+            if (!a->draws.empty()) throw drillwave::InputError("--draws", "only with --map");
+            if (a->pointer.empty() != a->values.empty())
+              throw drillwave::InputError("--param/--values", "a stability map needs both --param and --values");
+            return Stability(common.case_file, a->out, common.overrides, a->pointer, a->values, common.jobs,
+                             !a->no_run);
+          }};
+}
+
+Command AddInspect(CLI::App& app, CommonArguments& common) {
+  struct Arguments {
+    std::string out = "drillwave-inspect", bit = "bit_rpm", top = "top_rpm";
+  };
+  auto a = std::make_shared<Arguments>();
+  auto* inspect = app.add_subcommand(
+      "inspect",
+      "first look at a recording (CSV with time_s): artefacts flagged and masked, stuck episodes of the "
+      "bit, stretches without sticking, stick-slip period, top-speed steadiness, correlated channels");
+  inspect->add_option("recording", common.recording_file, "recording CSV file")->required();
+  inspect->add_option("--bit", a->bit, "the bit speed channel (default bit_rpm)");
+  inspect->add_option("--top", a->top, "the top speed channel (default top_rpm)");
+  inspect->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  return {inspect, [a, &common] { return Inspect(common.recording_file, a->out, a->bit, a->top); }};
+}
+
+Command AddCompare(CLI::App& app, CommonArguments& common) {
+  struct Arguments {
+    std::string out = "drillwave-compare";
+  };
+  auto a = std::make_shared<Arguments>();
+  auto* compare =
+      app.add_subcommand("compare",
+                         "run a case and compare it with a recording: features side by side (periods, stick fraction, "
+                         "speed levels, top-drive stiffness) and point-by-point residuals");
+  compare->add_option("case", common.case_file, "case JSON file")->required();
+  compare->add_option("recording", common.recording_file, "recording CSV file (time_s and channels)")->required();
+  compare->add_option("--map", common.maps,
+                      "recording_channel=model_channel[*scale], e.g. tob_Nm=bit_torque_Nm; channels "
+                      "not mapped are compared with the model channel of the same name");
+  compare->add_option("--window", common.window, "begin,end [s] of the comparison (default: all both cover)");
+  compare->add_option("--sidecar", common.sidecar_file,
+                      "a synthetic recording's operator sidecar (as for diagnose): the model "
+                      "runs its 30 s warm-up first and is compared in recording time");
+  compare->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  compare->add_option("--set", common.overrides, "override a parameter of the case by JSON pointer");
+  return {compare, [a, &common] {
+            return Compare(common.case_file, common.recording_file, common.sidecar_file, common.overrides, common.maps,
+                           common.window, a->out);
+          }};
+}
+
+Command AddFit(CLI::App& app, CommonArguments& common) {
+  struct Arguments {
+    std::vector<std::string> params, features;
+    int max_evaluations = 200;
+    std::string out = "drillwave-fit";
+  };
+  auto a = std::make_shared<Arguments>();
+  auto* fit = app.add_subcommand(
+      "fit",
+      "fit parameters of a case (by JSON pointer, with bounds) so that its features match a recording's "
+      "(bounded derivative-free search, NLopt Subplex; writes the fitted case)");
+  fit->add_option("case", common.case_file, "case JSON file")->required();
+  fit->add_option("recording", common.recording_file, "recording CSV file")->required();
+  fit->add_option("--param,-p", a->params, "/json/pointer:lower:upper (repeat for several)")->required();
+  fit->add_option("--feature", a->features,
+                  "a feature to match (repeat; default: bit_oscillation_period_s, "
+                  "stick_fraction, bit_speed_mean, bit_speed_max)");
+  fit->add_option("--map", common.maps, "recording_channel=model_channel[*scale]");
+  fit->add_option("--sidecar", common.sidecar_file, "a synthetic recording's operator sidecar (as for diagnose)");
+  fit->add_option("--window", common.window, "begin,end [s]");
+  fit->add_option("--max-evaluations", a->max_evaluations, "model runs at most (default 200)");
+  fit->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  fit->add_option("--set", common.overrides, "override a parameter of the case by JSON pointer");
+  return {fit, [a, &common] {
+            return Fit(common.case_file, common.recording_file, common.sidecar_file, common.overrides, common.maps,
+                       common.window, a->params, a->features, a->max_evaluations, a->out);
+          }};
+}
+
+Command AddDiagnose(CLI::App& app, CommonArguments& common) {
+  const auto a = WithOutput<DiagnoseArguments>("drillwave-diagnose");
+  auto* diagnose =
+      app.add_subcommand("diagnose",
+                         "name what a case leaves out of a recording, model it, refit and check on a held-out window: "
+                         "evidence proposes effects, each is fitted (NLopt) and kept only if the held-out error falls");
+  diagnose
+      ->add_option("case", common.case_file,
+                   "case JSON file (for the synthetic recordings: json-cases/baseline-60rpm.json)")
+      ->required();
+  diagnose->add_option("recording", common.recording_file, "recording CSV file")->required();
+  diagnose->add_option("--sidecar", common.sidecar_file,
+                       "the synthetic recording's operator sidecar (recNN.json): sets "
+                       "depth, WOB and the rpm schedule, with a 30 s warm-up");
+  diagnose->add_option("--map", common.maps, "recording_channel=model_channel[*scale]");
+  diagnose->add_option("--fit-window", a->args.fit_window,
+                       "begin,end [s] in recording time (default: the first half of the usable recording)");
+  diagnose->add_option("--held-out", a->args.held_out, "begin,end [s] (default: the second half)");
+  diagnose->add_option("--margin", a->args.margin,
+                       "an effect is kept when the held-out error falls by at least this fraction (default 0.2)");
+  diagnose->add_option("--evaluations", a->args.evaluations_per_parameter,
+                       "model runs per fitted parameter and candidate (default 10)");
+  diagnose->add_option("--fit-tolerance", a->args.fit_tolerance,
+                       "the fits' runs use at most this tolerance's accuracy; candidates are judged at the case's "
+                       "(default 1e-4; 0: the case's)");
+  diagnose->add_option("--sample-window", a->args.sample_window_s,
+                       "each recorded sample is the mean over this window [s] ending at it; the model's measured "
+                       "channels are read the same way (default: the recording's sample interval; 0: point samples)");
+  diagnose->add_option("--draws", a->args.draws,
+                       "the baseline and each fitted candidate are judged over this many draws of the model's random "
+                       "inputs (its seeds and the sensor noise's; default 5)");
+  diagnose->add_option("-j,--jobs", a->args.threads, "candidates fitted in parallel (default 1)");
+  diagnose->add_option("--predict-until", a->args.predict_until_s,
+                       "run the fitted model on to this recording time [s], past the recording's end, and write its "
+                       "channels to prediction.csv (from the fit window's start, without sensor noise)");
+  diagnose->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  diagnose->add_option("--set", common.overrides, "override a parameter of the case by JSON pointer");
+  return {diagnose, [a, &common] {
+            return Diagnose(common.case_file, common.recording_file, common.sidecar_file, common.overrides, common.maps,
+                            a->args, a->out);
+          }};
+}
+
+Command AddCalibrate(CLI::App& app, CommonArguments& common) {
+  const auto a = WithOutput<CalibrateArguments>("drillwave-calibrate");
+  auto* calibrate = app.add_subcommand(
+      "calibrate",
+      "the posterior of a case's parameters given a recording (the diagnosis loop's feature likelihood, "
+      "an affine-invariant ensemble sampler): posterior_samples.csv, the held-out window's posterior "
+      "predictive band and its coverage");
+  calibrate->add_option("case", common.case_file, "case JSON file (e.g. diagnose's fitted-case.json)")->required();
+  calibrate->add_option("recording", common.recording_file, "recording CSV file")->required();
+  calibrate->add_option("--sidecar", common.sidecar_file, "a synthetic recording's operator sidecar (as for diagnose)");
+  calibrate->add_option("--params", a->args.params, "/json/pointer:lower:upper (uniform prior), one or more")
+      ->required();
+  calibrate->add_option("--map", common.maps, "recording_channel=model_channel[*scale]");
+  calibrate->add_option("--fit-window", a->args.fit_window, "begin,end [s] (default: as diagnose)");
+  calibrate->add_option("--held-out", a->args.held_out, "begin,end [s] (default: as diagnose)");
+  calibrate->add_option("--sample-window", a->args.sample_window_s,
+                        "each recorded sample is the mean over this window [s] (default: the sample interval)");
+  calibrate->add_option("--walkers", a->args.posterior.walkers, "ensemble walkers, even, >= 2 p + 2 (default 16)");
+  calibrate->add_option("--steps", a->args.posterior.steps, "ensemble steps (default 60)");
+  calibrate->add_option("--burn-in", a->args.posterior.burn_in, "first steps left out (default 20)");
+  calibrate->add_option("--predictive-draws", a->args.posterior.predictive_draws,
+                        "posterior samples run over the whole span for the predictive band (default 40, 0: none)");
+  calibrate->add_option("--seed", a->args.posterior.seed, "random seed (default 1)");
+  calibrate->add_option("-j,--jobs", a->args.posterior.threads, "walkers run at once (default 1)");
+  calibrate->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  calibrate->add_option("--set", common.overrides, "override a parameter of the case by JSON pointer");
+  return {calibrate, [a, &common] {
+            return Calibrate(common.case_file, common.recording_file, common.sidecar_file, common.overrides,
+                             common.maps, a->args, a->out);
+          }};
+}
+
+Command AddEstimate(CLI::App& app, CommonArguments& common) {
+  auto a = std::make_shared<EstimateArguments>();
+  auto* estimate = app.add_subcommand(
+      "estimate",
+      "a virtual downhole sensor: the bit's speed, torque, weight on bit and stuck flag estimated from "
+      "surface channels only, scored against the recording's downhole channels where it has them");
+  estimate
+      ->add_option("case", common.case_file,
+                   "case JSON file (two_mass or axial_torsional; e.g. diagnose's fitted-case.json)")
+      ->required();
+  estimate->add_option("recording", common.recording_file, "recording CSV file")->required();
+  estimate->add_option("--sidecar", common.sidecar_file, "a synthetic recording's operator sidecar (as for diagnose)");
+  estimate->add_option("--from", a->from, "surface channels, e.g. top_rpm,top_torque_kNm,hookload_kN")->required();
+  estimate->add_option("--window", a->window, "begin,end [s] of the error figures (default: all)");
+  estimate->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  estimate->add_flag("--follow", a->follow,
+                     "read the recording while it is written (a growing file, or - for standard input) and print "
+                     "each estimate row to standard output as soon as the latency allows; the folder at the end");
+  estimate
+      ->add_option("--follow-idle", a->follow_idle_s,
+                   "with --follow on a file: end after this many seconds without a new line (default 10)")
+      ->check(CLI::PositiveNumber);
+  estimate->add_option("--set", common.overrides, "override a parameter of the case by JSON pointer");
+  return {estimate, [a, &common] {
+            return Estimate(common.case_file, common.recording_file, common.sidecar_file, common.overrides, *a);
+          }};
+}
+
+Command AddCompareControllers(CLI::App& app, CommonArguments& common) {
+  const auto a = WithOutput<ControllersArguments>("drillwave-controllers");
+  auto* controllers =
+      app.add_subcommand("compare-controllers",
+                         "run a case's string under each top-drive law against stick-slip (the stiff PI as given, "
+                         "SoftSpeed tuned to its stick-slip period, Z-Torque matched to the pipe, the arriving "
+                         "wave cancelled), each taking "
+                         "over at the same instant of the stiff PI's stick-slip: controllers.csv, controllers.md "
+                         "(verdict, severity, torque fluctuation, time to suppress), controllers.svg; with "
+                         "--envelope each law's stick-slip-free region, with --actuator-delays each law under "
+                         "delay");
+  controllers->add_option("case", common.case_file, "case JSON file with a PI top drive (or give --stiff-pi)")
+      ->required();
+  controllers->add_option("--handover", a->args.handover_s,
+                          "when the laws take over [s] (default: the start of the case's statistics window)");
+  controllers->add_option("--after", a->args.after_s, "the runs end this long after it [s] (default 60, >= 20)");
+  controllers->add_option("--tuning-period", a->args.tuning_period_s,
+                          "SoftSpeed's stick-slip period [s] (default: the stiff PI's after the handover)");
+  controllers->add_option("--stiff-pi", a->args.stiff_pi,
+                          "J,kp,ki: the stiff PI top drive (inertia, gains) replacing the case's top (needed for a "
+                          "top that is not a PI top drive, e.g. dissipative)");
+  controllers
+      ->add_option("--envelope", a->args.envelope,
+                   "POINTER1=first:last:n POINTER2=first:last:n: each law, tuned at the case's point, mapped "
+                   "over the grid (linear verdict and a run per point): envelopes.csv, envelopes.svg")
+      ->expected(2);
+  controllers->add_option("--actuator-delays", a->args.actuator_delays,
+                          "d1,d2,... [s]: every law again with each actuator delay of the drive (delays.csv)");
+  controllers->add_option("--torque-limit", a->args.torque_limit_Nm,
+                          "the drive's torque limit [N m] > 0 for every law and run");
+  controllers->add_option("--jobs,-j", common.jobs,
+                          "envelope points at once (default: the CPUs this process may run on)");
+  controllers->add_option("--out,-o", a->out, "output folder (written all or nothing)");
+  controllers->add_option("--set", common.overrides, "override a parameter of the case by JSON pointer");
+  return {controllers, [a, &common] {
+            return CompareControllers(common.case_file, a->out, common.overrides, a->args, common.jobs);
+          }};
+}
+
+Command AddKinds(CLI::App& app) {
+  return {app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges"),
+          [] { return ListKinds(); }};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -851,242 +1229,13 @@ int main(int argc, char** argv) {
   app.add_option("--max-samples", max_samples,
                  "refuse cases asking for more output samples (duration / output_interval_s) or integration steps "
                  "(duration / max_step_s) than this (default 1e7)");
-  std::string case_file, out_dir = "drillwave-out";
-  std::vector<std::string> overrides;
-  bool check = false;
-
-  auto* run = app.add_subcommand("run", "run a case and write trajectory.csv, summary.json, plot.svg, report.md");
-  run->add_option("case", case_file, "case JSON file (default: the embedded default case)");
-  run->add_option("--out,-o", out_dir, "output folder (written all or nothing)");
-  run->add_option("--set", overrides, "override a parameter by JSON pointer, e.g. --set /model/bit/inertia_kgm2=120");
-  run->add_flag("--check", check, "exit with 1 if an expectation of the case fails");
-
-  auto* validate = app.add_subcommand("validate", "check a case file without running it");
-  validate->add_option("case", case_file, "case JSON file")->required();
-  validate->add_option("--set", overrides, "override a parameter by JSON pointer");
-
-  auto* sweep = app.add_subcommand(
-      "sweep", "run a case once for each value of one parameter (independent runs in parallel): sweep.csv with every "
-               "summary statistic per value, bifurcation.svg, report.md");
-  std::string sweep_pointer, sweep_values, sweep_out = "drillwave-sweep";
-  int jobs = drillwave::DefaultThreadCount();  // the CPUs this process may run on (taskset, cpusets)
-  sweep->add_option("case", case_file, "case JSON file (default: the embedded default case)");
-  sweep->add_option("--param,-p", sweep_pointer, "the parameter's JSON pointer, e.g. /model/upper_disc/input_voltage_V")
-      ->required();
-  sweep->add_option("--values,-v", sweep_values, "first:last:count (evenly spaced) or v1,v2,...")->required();
-  sweep->add_option("--jobs,-j", jobs, "runs at once (default: the CPUs this process may run on)");
-  sweep->add_option("--out,-o", sweep_out, "output folder (written all or nothing)");
-  sweep->add_option("--set", overrides, "override another parameter by JSON pointer");
-
-  auto* orbits = app.add_subcommand(
-      "orbits", "steady states and periodic orbits over one parameter: Hopf points, branches of periodic orbits by "
-                "pseudo-arclength continuation with Floquet multipliers (saltation matrices at stick/slip), folds");
-  std::string orbits_out = "drillwave-orbits", orbits_continue;
-  orbits->add_option("case", case_file, "case JSON file (default: the embedded default case)");
-  auto* continue_option =
-      orbits->add_option("--continue", orbits_continue, "/json/pointer=first:last[:count], the parameter and its range");
-  std::string orbits_edge, orbits_channel = "bit_rpm";
-  double orbits_after = 0, orbits_tolerance = 1e-12;
-  orbits->add_option("--edge", orbits_edge,
-                     "instead of --continue, for any kind: POINTER=decays:sticks, a perturbation's parameter with a "
-                     "value whose run decays to the steady state and one whose run sticks; bisection finds the "
-                     "boundary between the attractors and the saddle cycle the run at it shadows")
-      ->excludes(continue_option);
-  orbits->add_option("--channel", orbits_channel, "with --edge: the channel whose cycle is measured (default bit_rpm)");
-  orbits->add_option("--after", orbits_after, "with --edge: look for the cycle after this time [s] (the perturbation's)");
-  orbits->add_option("--tolerance", orbits_tolerance, "with --edge: relative width of the final bracket (default 1e-12: the closer, the longer the run shadows the cycle)");
-  orbits->add_option("--out,-o", orbits_out, "output folder (written all or nothing)");
-  orbits->add_option("--set", overrides, "override another parameter by JSON pointer");
-
-  auto* stability = app.add_subcommand(
-      "stability", "steady states at the inputs' final values and the characteristic roots of the linearization "
-                   "about each; with --param, a stability map over that parameter");
-  std::string stability_out = "drillwave-stability";
-  stability->add_option("case", case_file, "case JSON file (default: the embedded default case)");
-  stability->add_option("--param,-p", sweep_pointer, "map over this parameter (JSON pointer)");
-  stability->add_option("--values,-v", sweep_values, "first:last:count or v1,v2,... (with --param)");
-  std::vector<std::string> stability_map_axes;
-  bool stability_simulate = false;
-  stability->add_option("--map", stability_map_axes,
-                        "two-parameter map: POINTER1=first:last:n POINTER2=first:last:n (stability_map.csv/.svg)")
-      ->expected(2);
-  stability->add_flag("--simulate", stability_simulate, "with --map: also run the case at every grid point and mark "
-                                                         "the regime it reaches (stick-slip, smooth, bit bouncing)");
-  std::string stability_draws;
-  int stability_draw_count = 50;
-  stability->add_option("--draws", stability_draws,
-                        "with --map: a CSV of parameter draws (columns named by JSON pointers, e.g. calibrate's "
-                        "posterior_samples.csv): the map for each, and per point the probability of stick-slip "
-                        "(p_linearly_unstable, p_stick_slip with --simulate; p_stick_slip.svg)");
-  stability->add_option("--draw-count", stability_draw_count,
-                        "with --draws: this many rows spread evenly over the file (default 50, 0: every row)");
-  bool stability_full_spectrum = false;
-  stability->add_flag("--full-spectrum", stability_full_spectrum,
-                      "with --map: every point's full spectrum (the reference) instead of roots continued from the "
-                      "neighbouring point and certified by the argument principle");
-  bool stability_no_run = false;
-  stability->add_flag("--no-run", stability_no_run,
-                      "one case: do not run it from its start (by default it runs, to tell whether a stable steady "
-                      "state coexists with a stick-slip cycle)");
-  stability->add_option("--jobs,-j", jobs, "analyses at once (default: the CPUs this process may run on)");
-  stability->add_option("--out,-o", stability_out, "output folder (written all or nothing)");
-  stability->add_option("--set", overrides, "override a parameter by JSON pointer");
-
-  auto* inspect = app.add_subcommand(
-      "inspect", "first look at a recording (CSV with time_s): artefacts flagged and masked, stuck episodes of the "
-                 "bit, stretches without sticking, stick-slip period, top-speed steadiness, correlated channels");
-  std::string recording_file, inspect_out = "drillwave-inspect", bit_channel = "bit_rpm", top_channel = "top_rpm";
-  inspect->add_option("recording", recording_file, "recording CSV file")->required();
-  inspect->add_option("--bit", bit_channel, "the bit speed channel (default bit_rpm)");
-  inspect->add_option("--top", top_channel, "the top speed channel (default top_rpm)");
-  inspect->add_option("--out,-o", inspect_out, "output folder (written all or nothing)");
-
-  auto* compare = app.add_subcommand(
-      "compare", "run a case and compare it with a recording: features side by side (periods, stick fraction, "
-                 "speed levels, top-drive stiffness) and point-by-point residuals");
-  std::vector<std::string> maps;
-  std::string window, compare_out = "drillwave-compare", sidecar_file;
-  compare->add_option("case", case_file, "case JSON file")->required();
-  compare->add_option("recording", recording_file, "recording CSV file (time_s and channels)")->required();
-  compare->add_option("--map", maps, "recording_channel=model_channel[*scale], e.g. tob_Nm=bit_torque_Nm; channels "
-                                     "not mapped are compared with the model channel of the same name");
-  compare->add_option("--window", window, "begin,end [s] of the comparison (default: all both cover)");
-  compare->add_option("--sidecar", sidecar_file, "a synthetic recording's operator sidecar (as for diagnose): the model "
-                                                 "runs its 30 s warm-up first and is compared in recording time");
-  compare->add_option("--out,-o", compare_out, "output folder (written all or nothing)");
-  compare->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
-
-  auto* fit = app.add_subcommand(
-      "fit", "fit parameters of a case (by JSON pointer, with bounds) so that its features match a recording's "
-             "(bounded derivative-free search, NLopt Subplex; writes the fitted case)");
-  std::vector<std::string> fit_params, fit_features;
-  int max_evaluations = 200;
-  std::string fit_out = "drillwave-fit";
-  fit->add_option("case", case_file, "case JSON file")->required();
-  fit->add_option("recording", recording_file, "recording CSV file")->required();
-  fit->add_option("--param,-p", fit_params, "/json/pointer:lower:upper (repeat for several)")->required();
-  fit->add_option("--feature", fit_features, "a feature to match (repeat; default: bit_oscillation_period_s, "
-                                             "stick_fraction, bit_speed_mean, bit_speed_max)");
-  fit->add_option("--map", maps, "recording_channel=model_channel[*scale]");
-  fit->add_option("--sidecar", sidecar_file, "a synthetic recording's operator sidecar (as for diagnose)");
-  fit->add_option("--window", window, "begin,end [s]");
-  fit->add_option("--max-evaluations", max_evaluations, "model runs at most (default 200)");
-  fit->add_option("--out,-o", fit_out, "output folder (written all or nothing)");
-  fit->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
-
-  auto* diagnose = app.add_subcommand(
-      "diagnose", "name what a case leaves out of a recording, model it, refit and check on a held-out window: "
-                  "evidence proposes effects, each is fitted (NLopt) and kept only if the held-out error falls");
-  DiagnoseArguments diagnose_args;
-  std::string diagnose_out = "drillwave-diagnose";
-  diagnose->add_option("case", case_file, "case JSON file (for the synthetic recordings: json-cases/baseline-60rpm.json)")
-      ->required();
-  diagnose->add_option("recording", recording_file, "recording CSV file")->required();
-  diagnose->add_option("--sidecar", sidecar_file, "the synthetic recording's operator sidecar (recNN.json): sets "
-                                                  "depth, WOB and the rpm schedule, with a 30 s warm-up");
-  diagnose->add_option("--map", maps, "recording_channel=model_channel[*scale]");
-  diagnose->add_option("--fit-window", diagnose_args.fit_window,
-                       "begin,end [s] in recording time (default: the first half of the usable recording)");
-  diagnose->add_option("--held-out", diagnose_args.held_out, "begin,end [s] (default: the second half)");
-  diagnose->add_option("--margin", diagnose_args.margin,
-                       "an effect is kept when the held-out error falls by at least this fraction (default 0.2)");
-  diagnose->add_option("--evaluations", diagnose_args.evaluations_per_parameter,
-                       "model runs per fitted parameter and candidate (default 10)");
-  diagnose->add_option("--fit-tolerance", diagnose_args.fit_tolerance,
-                       "the fits' runs use at most this tolerance's accuracy; candidates are judged at the case's "
-                       "(default 1e-4; 0: the case's)");
-  diagnose->add_option("--sample-window", diagnose_args.sample_window_s,
-                       "each recorded sample is the mean over this window [s] ending at it; the model's measured "
-                       "channels are read the same way (default: the recording's sample interval; 0: point samples)");
-  diagnose->add_option("--draws", diagnose_args.draws,
-                       "the baseline and each fitted candidate are judged over this many draws of the model's random "
-                       "inputs (its seeds and the sensor noise's; default 5)");
-  diagnose->add_option("-j,--jobs", diagnose_args.threads, "candidates fitted in parallel (default 1)");
-  diagnose->add_option("--predict-until", diagnose_args.predict_until_s,
-                       "run the fitted model on to this recording time [s], past the recording's end, and write its "
-                       "channels to prediction.csv (from the fit window's start, without sensor noise)");
-  diagnose->add_option("--out,-o", diagnose_out, "output folder (written all or nothing)");
-  diagnose->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
-
-  auto* calibrate = app.add_subcommand(
-      "calibrate", "the posterior of a case's parameters given a recording (the diagnosis loop's feature likelihood, "
-                   "an affine-invariant ensemble sampler): posterior_samples.csv, the held-out window's posterior "
-                   "predictive band and its coverage");
-  CalibrateArguments calibrate_args;
-  std::string calibrate_out = "drillwave-calibrate";
-  calibrate->add_option("case", case_file, "case JSON file (e.g. diagnose's fitted-case.json)")->required();
-  calibrate->add_option("recording", recording_file, "recording CSV file")->required();
-  calibrate->add_option("--sidecar", sidecar_file, "a synthetic recording's operator sidecar (as for diagnose)");
-  calibrate->add_option("--params", calibrate_args.params, "/json/pointer:lower:upper (uniform prior), one or more")
-      ->required();
-  calibrate->add_option("--map", maps, "recording_channel=model_channel[*scale]");
-  calibrate->add_option("--fit-window", calibrate_args.fit_window, "begin,end [s] (default: as diagnose)");
-  calibrate->add_option("--held-out", calibrate_args.held_out, "begin,end [s] (default: as diagnose)");
-  calibrate->add_option("--sample-window", calibrate_args.sample_window_s,
-                        "each recorded sample is the mean over this window [s] (default: the sample interval)");
-  calibrate->add_option("--walkers", calibrate_args.posterior.walkers, "ensemble walkers, even, >= 2 p + 2 (default 16)");
-  calibrate->add_option("--steps", calibrate_args.posterior.steps, "ensemble steps (default 60)");
-  calibrate->add_option("--burn-in", calibrate_args.posterior.burn_in, "first steps left out (default 20)");
-  calibrate->add_option("--predictive-draws", calibrate_args.posterior.predictive_draws,
-                        "posterior samples run over the whole span for the predictive band (default 40, 0: none)");
-  calibrate->add_option("--seed", calibrate_args.posterior.seed, "random seed (default 1)");
-  calibrate->add_option("-j,--jobs", calibrate_args.posterior.threads, "walkers run at once (default 1)");
-  calibrate->add_option("--out,-o", calibrate_out, "output folder (written all or nothing)");
-  calibrate->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
-
-  auto* estimate = app.add_subcommand(
-      "estimate", "a virtual downhole sensor: the bit's speed, torque, weight on bit and stuck flag estimated from "
-                  "surface channels only, scored against the recording's downhole channels where it has them");
-  EstimateArguments estimate_args;
-  estimate->add_option("case", case_file, "case JSON file (two_mass or axial_torsional; e.g. diagnose's fitted-case.json)")
-      ->required();
-  estimate->add_option("recording", recording_file, "recording CSV file")->required();
-  estimate->add_option("--sidecar", sidecar_file, "a synthetic recording's operator sidecar (as for diagnose)");
-  estimate->add_option("--from", estimate_args.from, "surface channels, e.g. top_rpm,top_torque_kNm,hookload_kN")
-      ->required();
-  estimate->add_option("--window", estimate_args.window, "begin,end [s] of the error figures (default: all)");
-  estimate->add_option("--out,-o", estimate_args.out, "output folder (written all or nothing)");
-  estimate->add_flag("--follow", estimate_args.follow,
-                     "read the recording while it is written (a growing file, or - for standard input) and print "
-                     "each estimate row to standard output as soon as the latency allows; the folder at the end");
-  estimate->add_option("--follow-idle", estimate_args.follow_idle_s,
-                       "with --follow on a file: end after this many seconds without a new line (default 10)")
-      ->check(CLI::PositiveNumber);
-  estimate->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
-
-  auto* controllers = app.add_subcommand(
-      "compare-controllers", "run a case's string under each top-drive law against stick-slip (the stiff PI as given, "
-                             "SoftSpeed tuned to its stick-slip period, Z-Torque matched to the pipe, the arriving "
-                             "wave cancelled), each taking "
-                             "over at the same instant of the stiff PI's stick-slip: controllers.csv, controllers.md "
-                             "(verdict, severity, torque fluctuation, time to suppress), controllers.svg; with "
-                             "--envelope each law's stick-slip-free region, with --actuator-delays each law under "
-                             "delay");
-  ControllersArguments controllers_args;
-  std::string controllers_out = "drillwave-controllers";
-  controllers->add_option("case", case_file, "case JSON file with a PI top drive (or give --stiff-pi)")->required();
-  controllers->add_option("--handover", controllers_args.handover_s,
-                          "when the laws take over [s] (default: the start of the case's statistics window)");
-  controllers->add_option("--after", controllers_args.after_s,
-                          "the runs end this long after it [s] (default 60, >= 20)");
-  controllers->add_option("--tuning-period", controllers_args.tuning_period_s,
-                          "SoftSpeed's stick-slip period [s] (default: the stiff PI's after the handover)");
-  controllers->add_option("--stiff-pi", controllers_args.stiff_pi,
-                          "J,kp,ki: the stiff PI top drive (inertia, gains) replacing the case's top (needed for a "
-                          "top that is not a PI top drive, e.g. dissipative)");
-  controllers->add_option("--envelope", controllers_args.envelope,
-                          "POINTER1=first:last:n POINTER2=first:last:n: each law, tuned at the case's point, mapped "
-                          "over the grid (linear verdict and a run per point): envelopes.csv, envelopes.svg")
-      ->expected(2);
-  controllers->add_option("--actuator-delays", controllers_args.actuator_delays,
-                          "d1,d2,... [s]: every law again with each actuator delay of the drive (delays.csv)");
-  controllers->add_option("--torque-limit", controllers_args.torque_limit_Nm,
-                          "the drive's torque limit [N m] > 0 for every law and run");
-  controllers->add_option("--jobs,-j", jobs, "envelope points at once (default: the CPUs this process may run on)");
-  controllers->add_option("--out,-o", controllers_out, "output folder (written all or nothing)");
-  controllers->add_option("--set", overrides, "override a parameter of the case by JSON pointer");
-
-  auto* kinds = app.add_subcommand("kinds", "list the model kinds with their fields, units and ranges");
+  CommonArguments common;
+  const Command run = AddRun(app, common);
+  const std::vector<Command> commands{
+      AddValidate(app, common), AddSweep(app, common),    AddOrbits(app, common),
+      AddStability(app, common), AddInspect(app, common),  AddCompare(app, common),
+      AddFit(app, common),       AddDiagnose(app, common), AddCalibrate(app, common),
+      AddEstimate(app, common),  AddCompareControllers(app, common), AddKinds(app)};
 
   try {
     app.parse(argc, argv);
@@ -1109,45 +1258,9 @@ int main(int argc, char** argv) {
                                                                   std::string(option->get_description().empty()
                                                                                   ? "a value"
                                                                                   : option->get_description()));
-    if (kinds->parsed()) return ListKinds();
-    if (validate->parsed()) {
-      const Case c = drillwave::cases::ParseCase(LoadCaseDocument(case_file, overrides));
-      std::cout << "case '" << c.name << "' is valid (kind " << c.kind << ")\n";
-      return 0;
-    }
-    if (estimate->parsed())
-      return Estimate(case_file, recording_file, sidecar_file, overrides, estimate_args);
-    if (calibrate->parsed())
-      return Calibrate(case_file, recording_file, sidecar_file, overrides, maps, calibrate_args, calibrate_out);
-    if (diagnose->parsed())
-      return Diagnose(case_file, recording_file, sidecar_file, overrides, maps, diagnose_args, diagnose_out);
-    if (fit->parsed())
-      return Fit(case_file, recording_file, sidecar_file, overrides, maps, window, fit_params, fit_features,
-                 max_evaluations, fit_out);
-    if (controllers->parsed()) return CompareControllers(case_file, controllers_out, overrides, controllers_args, jobs);
-    if (compare->parsed()) return Compare(case_file, recording_file, sidecar_file, overrides, maps, window, compare_out);
-    if (inspect->parsed()) return Inspect(recording_file, inspect_out, bit_channel, top_channel);
-    if (stability->parsed()) {
-      if (!stability_map_axes.empty()) {
-        if (!sweep_pointer.empty()) throw drillwave::InputError("--map", "give either --map or --param, not both");
-        return StabilityMap2D(case_file, stability_out, overrides, stability_map_axes, stability_simulate,
-                              stability_full_spectrum, jobs, stability_draws, stability_draw_count);
-      }
-      if (stability_simulate) throw drillwave::InputError("--simulate", "only with --map");
-      if (!stability_draws.empty()) throw drillwave::InputError("--draws", "only with --map");
-      if (sweep_pointer.empty() != sweep_values.empty())
-        throw drillwave::InputError("--param/--values", "a stability map needs both --param and --values");
-      return Stability(case_file, stability_out, overrides, sweep_pointer, sweep_values, jobs, !stability_no_run);
-    }
-    if (orbits->parsed()) {
-      if (!orbits_edge.empty())
-        return EdgeOrbit(case_file, orbits_out, overrides, orbits_edge, orbits_channel, orbits_after, orbits_tolerance);
-      if (orbits_continue.empty())
-        throw drillwave::InputError("--continue", "required: /json/pointer=first:last[:count] (or --edge)");
-      return Orbits(case_file, orbits_out, overrides, orbits_continue);
-    }
-    if (sweep->parsed()) return Sweep(case_file, sweep_out, overrides, sweep_pointer, sweep_values, jobs);
-    return RunAndWrite(case_file, out_dir, overrides, check);
+    for (const Command& command : commands)
+      if (command.app->parsed()) return command.run();
+    return run.run();  // `run`, or no command: the embedded default case
   } catch (const drillwave::InputError& e) {
     std::cerr << "drillwave: bad input: " << InTermsOfFlags(e) << std::endl;
     return 2;
