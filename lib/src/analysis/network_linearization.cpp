@@ -173,6 +173,385 @@ InductionJacobian LinearizeInductionMotor(const model::InductionMotor& m, double
   return jac;
 }
 
+// The linearization of one network about an operating point (LinearizeNetwork), assembled node by node into a neutral
+// delay system: the states named in the simulation's order, every node's speed perturbation as a linear form, the
+// outgoing waves, then each inertial node's torque balance with its drive's and controller's states.
+class NetworkLinearizer {
+ public:
+  NetworkLinearizer(const Network& net, const NetworkOperatingPoint& point)
+      : net_(net), w0_(point.speed_rad_s), point_(point), sections_(static_cast<int>(net.sections.size())),
+        nodes_(sections_ + 1) {}
+
+  NetworkLinearization Build() {
+    NameStates();
+    sys_.a0 = Eigen::MatrixXd::Zero(n_, n_);
+    sys_.derivative_only_states = 2 * sections_;
+    for (int k = 0; k < sections_; ++k)
+      sys_.delays.push_back({net_.sections[k].travel_time_s, {}, Eigen::MatrixXd::Zero(n_, n_)});
+    FormSpeeds();
+    for (int i = 0; i < nodes_; ++i) {
+      AddOutgoingWaves(i);
+      if (speed_[i] < 0) continue;
+      if (net_.nodes[i].law.wave_cancellation.active()) AddWaveCancellingTop(i);
+      else AddDrivenNode(i);
+    }
+    const Node& bit = net_.bit();
+    if (bit.lateral)
+      AddBhaWhirl(out_, speed_[nodes_ - 1], bit.LumpedInertia(), bit.LumpedInertia() - bit.lateral->AddedInertia(),
+                  *bit.lateral, w0_);
+    return std::move(out_);
+  }
+
+ private:
+  // A wave arriving at a node: from the section above (p_{i-1}) or below (q_i), one travel time late.
+  struct Arrival {
+    int section, column;
+    double impedance;
+  };
+  // A node's speed perturbation as a linear form: coefficients of the states (into A_0) and of the arriving waves'
+  // derivatives (into the neutral term of the wave's section, one travel time late).
+  struct SpeedForm {
+    Eigen::RowVectorXd state, wave;  // wave: by the arriving wave's column
+    // What it holds `late` ago (a wave-cancelling top's speed follows what its law read an actuator delay ago):
+    // retarded coefficients of the states and neutral ones of the arriving waves, that much later still.
+    double late = 0;
+    Eigen::RowVectorXd late_state, late_wave;
+  };
+
+  std::string NodeLabel(int i) const {
+    return i == 0 ? std::string("top") : i == nodes_ - 1 ? std::string("bit") : "node" + std::to_string(i);
+  }
+
+  // Node states in the simulation's order: speeds of inertial nodes, integrals of speed controllers with an integral
+  // gain, torque-feedback filters (the low-passed string torque), DC currents, induction fluxes, then behind a
+  // compliant gear the motor's speed (referred to the node) and the gear's twist; then the sections' wave integrals.
+  void NameStates() {
+    auto& names = out_.state_names;
+    speed_.assign(nodes_, -1), integral_.assign(nodes_, -1), filter_.assign(nodes_, -1);
+    current_.assign(nodes_, -1), flux_.assign(nodes_, -1), motor_.assign(nodes_, -1);
+    auto add = [&](std::vector<int>& index, int i, std::initializer_list<std::string> suffixes) {
+      index[i] = static_cast<int>(names.size());
+      for (const std::string& suffix : suffixes) names.push_back(NodeLabel(i) + suffix);
+    };
+    // A wave-cancelling top's state is its speed's error to the law's speed (AddWaveCancellingTop).
+    for (int i = 0; i < nodes_; ++i)
+      if (!net_.nodes[i].massless())
+        add(speed_, i,
+            {net_.nodes[i].law.wave_cancellation.active() ? "_speed_off_wave_law_rad_s" : "_speed_rad_s"});
+    for (int i = 0; i < nodes_; ++i)
+      if (net_.nodes[i].has_speed_integral() && net_.nodes[i].pi.ki > 0) add(integral_, i, {"_speed_error_integral_rad"});
+    for (int i = 0; i < nodes_; ++i)
+      if (net_.nodes[i].has_torque_feedback()) add(filter_, i, {"_low_passed_string_torque_Nm"});
+    for (int i = 0; i < nodes_; ++i)
+      if (net_.nodes[i].has_dc_motor()) add(current_, i, {"_current_A"});
+    for (int i = 0; i < nodes_; ++i)
+      if (net_.nodes[i].has_induction_motor())
+        add(flux_, i, {"_stator_flux_d_Wb", "_stator_flux_q_Wb", "_rotor_flux_d_Wb", "_rotor_flux_q_Wb"});
+    for (int i = 0; i < nodes_; ++i)
+      if (net_.nodes[i].has_compliant_gear()) add(motor_, i, {"_motor_speed_referred_rad_s", "_gear_twist_rad"});
+    first_wave_ = static_cast<int>(names.size());
+    for (int k = 0; k < sections_; ++k) {
+      names.push_back("section" + std::to_string(k) + "_down_wave_integral_rad");
+      names.push_back("section" + std::to_string(k) + "_up_wave_integral_rad");
+    }
+    n_ = static_cast<int>(names.size());
+  }
+
+  int Down(int k) const { return first_wave_ + 2 * k; }     // p_k: leaves node k into section k
+  int Up(int k) const { return first_wave_ + 2 * k + 1; }   // q_k: leaves node k + 1 into section k
+  int SectionOf(int column) const { return (column - first_wave_) / 2; }
+
+  std::vector<Arrival> Arrivals(int i) const {
+    std::vector<Arrival> a;
+    if (i > 0) a.push_back({i - 1, Down(i - 1), net_.sections[i - 1].impedance});
+    if (i < sections_) a.push_back({i, Up(i), net_.sections[i].impedance});
+    return a;
+  }
+  double ImpedanceSum(int i) const {
+    double z = 0;
+    for (const Arrival& a : Arrivals(i)) z += a.impedance;
+    return z;
+  }
+
+  // An inertial node's speed is its state, an imposed one's nothing; the massless nodes balance the arrivals against
+  // their damping (the ground's, the friction slope and a dissipative top's beta) and, with Kelvin-Voigt dashpots kv
+  // across the sections, against their neighbours' speeds, as the simulation's node system:
+  //   (sum Z + damping + kv_above + kv_below) v_i - kv_above v_{i-1} - kv_below v_{i+1} = sum 2 Z w_in,
+  // with the known speeds of inertial neighbours moved to the right. One linear system over the massless nodes
+  // (diagonal without dashpots).
+  void FormSpeeds() {
+    const Eigen::RowVectorXd none = Eigen::RowVectorXd::Zero(n_);
+    speed_form_.assign(nodes_, {none, none, 0.0, none, none});
+    std::vector<int> unknown(nodes_, -1);  // massless nodes of free speed, numbered
+    int unknowns = 0;
+    for (int i = 0; i < nodes_; ++i) {
+      if (speed_[i] >= 0) speed_form_[i].state(speed_[i]) = 1;
+      else if (net_.nodes[i].drive != Drive::kPrescribedSpeed) unknown[i] = unknowns++;
+    }
+    if (unknowns > 0) {
+      Eigen::MatrixXd balance = Eigen::MatrixXd::Zero(unknowns, unknowns), rhs = Eigen::MatrixXd::Zero(unknowns, 2 * n_);
+      for (int i = 0; i < nodes_; ++i) {
+        const int u = unknown[i];
+        if (u < 0) continue;
+        const Node& node = net_.nodes[i];
+        balance(u, u) = ImpedanceSum(i) + NodeTorqueSlope(node, w0_) +
+                        (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0.0);
+        for (const Arrival& a : Arrivals(i)) {
+          rhs(u, n_ + a.column) += 2 * a.impedance;
+          const double kv = net_.sections[a.section].dashpot;
+          if (kv == 0) continue;
+          const int neighbour = a.section == i ? i + 1 : i - 1;
+          balance(u, u) += kv;
+          if (unknown[neighbour] >= 0) balance(u, unknown[neighbour]) -= kv;
+          else rhs.block(u, 0, 1, n_) += kv * speed_form_[neighbour].state;  // imposed: no perturbation
+        }
+        if (!(std::abs(balance(u, u)) > 1e-12 * ImpedanceSum(i)))
+          throw std::invalid_argument("node '" + node.name + "' is massless and its torque slope cancels the string's "
+                                      "impedance: the linearization is singular");
+      }
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(balance);
+      if (!(lu.rcond() > 1e-12))
+        throw std::invalid_argument("the massless nodes' balance with the Kelvin-Voigt dashpots is singular");
+      const Eigen::MatrixXd solved = lu.solve(rhs);
+      for (int i = 0; i < nodes_; ++i)
+        if (unknown[i] >= 0) {
+          speed_form_[i].state = solved.block(unknown[i], 0, 1, n_);
+          speed_form_[i].wave = solved.block(unknown[i], n_, 1, n_);
+        }
+    }
+    // A wave-cancelling top turns at v = e + w(t - late) + k I(t - late): the speed its law asked for an actuator
+    // delay ago (model::WaveCancellation: the arriving wave w plus d, whose perturbation is k I) and the error e, its
+    // state.
+    if (net_.top().law.wave_cancellation.active()) {
+      const Node& top = net_.top();
+      SpeedForm& form = speed_form_[0];
+      form.late = top.law.actuator_delay_s;
+      (form.late > 0 ? form.late_state : form.state)(integral_[0]) += top.law.wave_cancellation.Corner(top.pi.ki);
+      (form.late > 0 ? form.late_wave : form.wave)(Up(0)) += 1;
+    }
+  }
+
+  // The delay term at tau, added (with zero matrices) if there is none yet: an actuator delay's.
+  DelayTerm& DelayAt(double tau) {
+    auto it = std::find_if(sys_.delays.begin(), sys_.delays.end(), [&](const DelayTerm& d) { return d.tau == tau; });
+    if (it == sys_.delays.end()) it = sys_.delays.insert(sys_.delays.end(), {tau, {}, Eigen::MatrixXd::Zero(n_, n_)});
+    if (it->retarded.size() == 0) it->retarded = Eigen::MatrixXd::Zero(n_, n_);
+    if (it->neutral.size() == 0) it->neutral = Eigen::MatrixXd::Zero(n_, n_);
+    return *it;
+  }
+  // value * (state `column`, `lag` ago) and value * (the wave of `column` arriving `lag` ago) into row `row`.
+  void AddState(int row, int column, double value, double lag) {
+    if (lag == 0) sys_.a0(row, column) += value;
+    else DelayAt(lag).retarded(row, column) += value;
+  }
+  void AddWave(int row, int column, double value, double lag) {
+    const int k = SectionOf(column);
+    if (lag == 0) sys_.delays[k].neutral(row, column) += value;
+    else DelayAt(net_.sections[k].travel_time_s + lag).neutral(row, column) += value;
+  }
+  // factor * (speed of node i, `lag` ago) into row `row`.
+  void AddSpeed(int row, int i, double factor, double lag = 0) {
+    const SpeedForm& form = speed_form_[i];
+    if (lag == 0) sys_.a0.row(row) += factor * form.state;
+    else DelayAt(lag).retarded.row(row) += factor * form.state;
+    for (int c = first_wave_; c < n_; ++c)
+      if (form.wave(c) != 0) AddWave(row, c, factor * form.wave(c), lag);
+    if (form.late == 0) return;
+    for (int c = 0; c < n_; ++c) {
+      if (form.late_state(c) != 0) AddState(row, c, factor * form.late_state(c), lag + form.late);
+      if (form.late_wave(c) != 0) AddWave(row, c, factor * form.late_wave(c), lag + form.late);
+    }
+  }
+
+  // Outgoing waves: speed minus the arriving wave of the same section.
+  void AddOutgoingWaves(int i) {
+    for (const Arrival& a : Arrivals(i)) {
+      const int row = a.column == Down(a.section) ? Up(a.section) : Down(a.section);
+      AddSpeed(row, i, 1.0);
+      sys_.delays[a.section].neutral(row, a.column) -= 1.0;
+    }
+  }
+
+  // Its torque cancels g, the torque of the string and its dampers, as read: J e' = g(t) - g(t - late) -
+  // kp (v - w - d)(t - late), g = sum 2 Z w_in - (sum Z + c) v (without a delay e' = -kp e / J); I' = -v, as read.
+  void AddWaveCancellingTop(int i) {
+    const Node& node = net_.nodes[i];
+    const int v = speed_[i];
+    const double late = node.law.actuator_delay_s, inertia = node.LumpedInertia(), kp = node.pi.kp;
+    auto add_string_and_dampers = [&](double factor, double lag) {
+      for (const Arrival& a : Arrivals(i)) AddWave(v, a.column, factor * 2 * a.impedance, lag);
+      AddSpeed(v, i, -factor * (ImpedanceSum(i) + NodeTorqueSlope(node, w0_)), lag);
+    };
+    if (late > 0) add_string_and_dampers(1 / inertia, 0), add_string_and_dampers(-1 / inertia, late);
+    AddSpeed(v, i, -kp / inertia, late);
+    AddWave(v, Up(0), kp / inertia, late);
+    AddState(v, integral_[i], kp / inertia * node.law.wave_cancellation.Corner(node.pi.ki), late);
+    AddSpeed(integral_[i], i, -1, late);
+  }
+
+  // An inertial node under its drive: the string's waves, its dashpots and damping, a compliant gear's motor, and
+  // the rows of its controller's integral, torque filter, DC current and induction fluxes.
+  void AddDrivenNode(int i) {
+    const DrivenNode d(*this, i);
+    d.AddInertialRows();
+    d.AddControllerRows();
+  }
+
+  // One driven node's rows (AddDrivenNode), with what its drive reads: its speed or its motor's behind a compliant
+  // gear, an actuator delay late under a PI.
+  class DrivenNode {
+   public:
+    DrivenNode(NetworkLinearizer& l, int i)
+        : l_(l), i_(i), node_(l.net_.nodes[i]), v_(l.speed_[i]), vd_(l.motor_[i] >= 0 ? l.motor_[i] : v_),
+          n_gear_(node_.gear.ratio),
+          late_(node_.drive == Drive::kPiSpeedController ? node_.law.actuator_delay_s : 0.0) {
+      if (l.flux_[i] >= 0) {
+        if (i != 0)  // its steady supply comes from the top's set-point and torque
+          throw std::invalid_argument("node '" + node_.name + "': an induction motor is linearized at the top only");
+        const double f0 = SteadySupplyHz(node_, l.point_.top_setpoint, l.w0_, l.point_.top_torque_Nm);
+        induction_ = LinearizeInductionMotor(node_.induction, f0, n_gear_ * l.w0_);
+      }
+    }
+
+    void AddInertialRows() const {
+      LinearDelaySystem& sys = l_.sys_;
+      const int v = v_;
+      const double inertia = node_.LumpedInertia();
+      for (const Arrival& a : l_.Arrivals(i_)) {
+        sys.delays[a.section].neutral(v, a.column) += 2 * a.impedance / inertia;
+        const double kv = l_.net_.sections[a.section].dashpot;  // Kelvin-Voigt: kv (v_neighbour - v)
+        if (kv == 0) continue;
+        l_.AddSpeed(v, a.section == i_ ? i_ + 1 : i_ - 1, kv / inertia);
+        sys.a0(v, v) -= kv / inertia;
+      }
+      sys.a0(v, v) -= (l_.ImpedanceSum(i_) + NodeTorqueSlope(node_, l_.w0_)) / inertia;
+      if (l_.motor_[i_] >= 0) {  // the gear passes k twist + c (w_m - w) to the node
+        const model::Gear& g = node_.gear;
+        const int vm = l_.motor_[i_], twist = l_.motor_[i_] + 1;
+        const double jm = g.ReferredMotorInertia();
+        sys.a0(v, twist) += g.stiffness / inertia;
+        sys.a0(v, vm) += g.damping / inertia;
+        sys.a0(v, v) -= g.damping / inertia;
+        AddDriveTorque(vm, 1 / jm);
+        sys.a0(vm, twist) -= g.stiffness / jm;
+        sys.a0(vm, vm) -= g.damping / jm;
+        sys.a0(vm, v) += g.damping / jm;
+        sys.a0(twist, vm) = 1;
+        sys.a0(twist, v) = -1;
+      } else {
+        AddDriveTorque(v, 1 / inertia);
+      }
+    }
+
+    void AddControllerRows() const {
+      LinearDelaySystem& sys = l_.sys_;
+      const int integral = l_.integral_[i_], filter = l_.filter_[i_], current = l_.current_[i_], flux = l_.flux_[i_];
+      if (integral >= 0) {  // d/dt integral of (command - drive speed)
+        if (node_.drive == Drive::kPiSpeedController) AddReadSpeed(integral, -1);
+        else sys.a0(integral, vd_) = -1;
+        AddCommand(integral, 1.0);
+      }
+      if (filter >= 0) {  // T_lp' = (T - T_lp) / time constant
+        const double rate = 1 / node_.law.torque_feedback.time_constant_s;
+        AddStringTorque(filter, rate);
+        sys.a0(filter, filter) -= rate;
+      }
+      if (current >= 0) {  // L I' = V - R I - n k w_d, V = the set-point or kp (set - w_d) + ki integral
+        const waves::DcMotor& m = node_.motor;
+        sys.a0(current, current) = -m.armature_resistance / m.armature_inductance;
+        sys.a0(current, vd_) -= ReferredMotorConstant(node_) / m.armature_inductance;
+        if (node_.drive == Drive::kDcMotorSpeed) {
+          sys.a0(current, vd_) -= node_.pi.kp / m.armature_inductance;
+          if (integral >= 0) sys.a0(current, integral) += node_.pi.ki / m.armature_inductance;
+        }
+      }
+      if (flux >= 0) {
+        // psi' = F(psi, f, n w_d). Open loop f is the set-point; slip-frequency control sets
+        // f = (p n w_d + u / (n G)) / 2 pi for the PI's demand u = kp (set - w_d) + ki integral.
+        sys.a0.block(flux, flux, 4, 4) += induction_.flux;
+        sys.a0.block(flux, vd_, 4, 1) += n_gear_ * induction_.shaft_speed;
+        if (node_.drive == Drive::kInductionMotorSpeed) {
+          const double two_pi = 6.283185307179586, gain = n_gear_ * node_.induction.SlipTorqueGain();
+          const double supply_per_speed = (node_.induction.pole_pairs * n_gear_ - node_.pi.kp / gain) / two_pi;
+          sys.a0.block(flux, vd_, 4, 1) += supply_per_speed * induction_.supply_hz;
+          if (integral >= 0)
+            sys.a0.block(flux, integral, 4, 1) += node_.pi.ki / gain / two_pi * induction_.supply_hz;
+        }
+      }
+    }
+
+   private:
+    // What a PI top's controller reads (its speed and the string torque) it reads an actuator delay late: those terms
+    // are retarded by the delay, and the arriving waves in the string torque neutral at travel time + delay.
+    void AddReadSpeed(int row, double value) const {
+      if (late_ == 0) l_.sys_.a0(row, vd_) += value;
+      else l_.DelayAt(late_).retarded(row, vd_) += value;
+    }
+    // factor * (the torque the node feeds into the string, as the controller reads it) into row `row`: minus the
+    // string's force on it, sum Z (v - 2 w_in) and the dashpots' kv (v - v_neighbour) (no delay with dashpots).
+    void AddStringTorque(int row, double factor) const {
+      for (const Arrival& a : l_.Arrivals(i_)) {
+        const double wave = -factor * 2 * a.impedance;
+        if (late_ == 0) {
+          l_.sys_.a0(row, v_) += factor * a.impedance;
+          l_.sys_.delays[a.section].neutral(row, a.column) += wave;
+        } else {
+          l_.DelayAt(late_).retarded(row, v_) += factor * a.impedance;
+          l_.DelayAt(l_.net_.sections[a.section].travel_time_s + late_).neutral(row, a.column) += wave;
+        }
+        const double kv = l_.net_.sections[a.section].dashpot;
+        if (kv == 0) continue;
+        l_.sys_.a0(row, v_) += factor * kv;
+        l_.AddSpeed(row, a.section == i_ ? i_ + 1 : i_ - 1, -factor * kv);
+      }
+    }
+    // factor * (the PI's speed command less the set-point) into row `row`: -gain (T - T_lp) with torque feedback.
+    void AddCommand(int row, double factor) const {
+      const int filter = l_.filter_[i_];
+      if (filter < 0) return;
+      const double gain = node_.law.torque_feedback.gain;
+      AddStringTorque(row, -factor * gain);
+      l_.sys_.a0(row, filter) += factor * gain;
+    }
+    // factor * (the drive's torque on the node's side) into row `row`.
+    void AddDriveTorque(int row, double factor) const {
+      LinearDelaySystem& sys = l_.sys_;
+      switch (node_.drive) {
+        case Drive::kSpeedDashpot: sys.a0(row, vd_) -= factor * node_.drive_damping; break;
+        case Drive::kPiSpeedController:
+          AddReadSpeed(row, -factor * node_.pi.kp);
+          AddCommand(row, factor * node_.pi.kp);
+          if (l_.integral_[i_] >= 0) sys.a0(row, l_.integral_[i_]) += factor * node_.pi.ki;
+          break;
+        case Drive::kDcMotorVoltage:
+        case Drive::kDcMotorSpeed: sys.a0(row, l_.current_[i_]) += factor * ReferredMotorConstant(node_); break;
+        case Drive::kInductionMotor:
+        case Drive::kInductionMotorSpeed:
+          for (int j = 0; j < 4; ++j) sys.a0(row, l_.flux_[i_] + j) += factor * n_gear_ * induction_.torque(j);
+          break;
+        default: break;
+      }
+    }
+
+    NetworkLinearizer& l_;
+    const int i_;
+    const Node& node_;
+    const int v_, vd_;
+    const double n_gear_, late_;
+    InductionJacobian induction_;
+  };
+
+  const Network& net_;
+  const double w0_;
+  const NetworkOperatingPoint& point_;
+  const int sections_, nodes_;
+  int first_wave_ = 0, n_ = 0;
+  std::vector<int> speed_, integral_, filter_, current_, flux_, motor_;
+  std::vector<SpeedForm> speed_form_;
+  NetworkLinearization out_;
+  LinearDelaySystem& sys_ = out_.system;
+};
+
 }  // namespace
 
 std::vector<NetworkOperatingPoint> NetworkSteadyStates(const Network& net) {
@@ -219,320 +598,7 @@ std::vector<NetworkOperatingPoint> NetworkSteadyStates(const Network& net) {
 
 NetworkLinearization LinearizeNetwork(const Network& net, const NetworkOperatingPoint& point) {
   net.Validate();
-  const int sections = static_cast<int>(net.sections.size()), nodes = sections + 1;
-  const double w0 = point.speed_rad_s;
-  NetworkLinearization out;
-  auto& names = out.state_names;
-  auto node_label = [&](int i) {
-    return i == 0 ? std::string("top") : i == nodes - 1 ? std::string("bit") : "node" + std::to_string(i);
-  };
-  // Node states in the simulation's order: speeds of inertial nodes, integrals of speed controllers with an integral
-  // gain, torque-feedback filters (the low-passed string torque), DC currents, induction fluxes, then behind a
-  // compliant gear the motor's speed (referred to the node) and the gear's twist.
-  std::vector<int> speed(nodes, -1), integral(nodes, -1), filter(nodes, -1), current(nodes, -1), flux(nodes, -1),
-      motor(nodes, -1);
-  // A wave-cancelling top's state is its speed's error to the law's speed (see its rows below).
-  auto speed_name = [&](int i) {
-    return node_label(i) + (net.nodes[i].law.wave_cancellation.active() ? "_speed_off_wave_law_rad_s" : "_speed_rad_s");
-  };
-  for (int i = 0; i < nodes; ++i)
-    if (!net.nodes[i].massless()) speed[i] = static_cast<int>(names.size()), names.push_back(speed_name(i));
-  for (int i = 0; i < nodes; ++i)
-    if (net.nodes[i].has_speed_integral() && net.nodes[i].pi.ki > 0)
-      integral[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_speed_error_integral_rad");
-  for (int i = 0; i < nodes; ++i)
-    if (net.nodes[i].has_torque_feedback())
-      filter[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_low_passed_string_torque_Nm");
-  for (int i = 0; i < nodes; ++i)
-    if (net.nodes[i].has_dc_motor()) current[i] = static_cast<int>(names.size()), names.push_back(node_label(i) + "_current_A");
-  for (int i = 0; i < nodes; ++i)
-    if (net.nodes[i].has_induction_motor()) {
-      flux[i] = static_cast<int>(names.size());
-      for (const char* axis : {"_stator_flux_d_Wb", "_stator_flux_q_Wb", "_rotor_flux_d_Wb", "_rotor_flux_q_Wb"})
-        names.push_back(node_label(i) + axis);
-    }
-  for (int i = 0; i < nodes; ++i)
-    if (net.nodes[i].has_compliant_gear()) {
-      motor[i] = static_cast<int>(names.size());
-      names.push_back(node_label(i) + "_motor_speed_referred_rad_s");
-      names.push_back(node_label(i) + "_gear_twist_rad");
-    }
-  const int first_wave = static_cast<int>(names.size());
-  for (int k = 0; k < sections; ++k) {
-    names.push_back("section" + std::to_string(k) + "_down_wave_integral_rad");
-    names.push_back("section" + std::to_string(k) + "_up_wave_integral_rad");
-  }
-  auto down = [&](int k) { return first_wave + 2 * k; };  // p_k: leaves node k into section k
-  auto up = [&](int k) { return first_wave + 2 * k + 1; };  // q_k: leaves node k + 1 into section k
-  const int n = static_cast<int>(names.size());
-
-  LinearDelaySystem& sys = out.system;
-  sys.a0 = Eigen::MatrixXd::Zero(n, n);
-  sys.derivative_only_states = 2 * sections;
-  for (int k = 0; k < sections; ++k) sys.delays.push_back({net.sections[k].travel_time_s, {}, Eigen::MatrixXd::Zero(n, n)});
-
-  // The waves arriving at node i: from the section above (p_{i-1}) and below (q_i), one travel time late.
-  struct Arrival {
-    int section, column;
-    double impedance;
-  };
-  auto arrivals = [&](int i) {
-    std::vector<Arrival> a;
-    if (i > 0) a.push_back({i - 1, down(i - 1), net.sections[i - 1].impedance});
-    if (i < sections) a.push_back({i, up(i), net.sections[i].impedance});
-    return a;
-  };
-  auto impedance_sum = [&](int i) {
-    double z = 0;
-    for (const Arrival& a : arrivals(i)) z += a.impedance;
-    return z;
-  };
-  // Every node's speed perturbation as a linear form: coefficients of the states (into A_0) and of the arriving waves'
-  // derivatives (into the neutral term of the wave's section, one travel time late). An inertial node's speed is its
-  // state, an imposed one's nothing; the massless nodes balance the arrivals against their damping (the ground's, the
-  // friction slope and a dissipative top's beta) and, with Kelvin-Voigt dashpots kv across the sections, against their
-  // neighbours' speeds, as the simulation's node system:
-  //   (sum Z + damping + kv_above + kv_below) v_i - kv_above v_{i-1} - kv_below v_{i+1} = sum 2 Z w_in,
-  // with the known speeds of inertial neighbours moved to the right. One linear system over the massless nodes
-  // (diagonal without dashpots).
-  struct SpeedForm {
-    Eigen::RowVectorXd state, wave;  // wave: by the arriving wave's column
-    // What it holds `late` ago (a wave-cancelling top's speed follows what its law read an actuator delay ago):
-    // retarded coefficients of the states and neutral ones of the arriving waves, that much later still.
-    double late = 0;
-    Eigen::RowVectorXd late_state, late_wave;
-  };
-  const Eigen::RowVectorXd none = Eigen::RowVectorXd::Zero(n);
-  std::vector<SpeedForm> speed_form(nodes, {none, none, 0.0, none, none});
-  std::vector<int> unknown(nodes, -1);  // massless nodes of free speed, numbered
-  int unknowns = 0;
-  for (int i = 0; i < nodes; ++i) {
-    if (speed[i] >= 0) speed_form[i].state(speed[i]) = 1;
-    else if (net.nodes[i].drive != Drive::kPrescribedSpeed) unknown[i] = unknowns++;
-  }
-  auto section_of = [&](int column) { return (column - first_wave) / 2; };
-  if (unknowns > 0) {
-    Eigen::MatrixXd balance = Eigen::MatrixXd::Zero(unknowns, unknowns), rhs = Eigen::MatrixXd::Zero(unknowns, 2 * n);
-    for (int i = 0; i < nodes; ++i) {
-      const int u = unknown[i];
-      if (u < 0) continue;
-      const Node& node = net.nodes[i];
-      balance(u, u) = impedance_sum(i) + NodeTorqueSlope(node, w0) +
-                      (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0.0);
-      for (const Arrival& a : arrivals(i)) {
-        rhs(u, n + a.column) += 2 * a.impedance;
-        const double kv = net.sections[a.section].dashpot;
-        if (kv == 0) continue;
-        const int neighbour = a.section == i ? i + 1 : i - 1;
-        balance(u, u) += kv;
-        if (unknown[neighbour] >= 0) balance(u, unknown[neighbour]) -= kv;
-        else rhs.block(u, 0, 1, n) += kv * speed_form[neighbour].state;  // imposed: no perturbation
-      }
-      if (!(std::abs(balance(u, u)) > 1e-12 * impedance_sum(i)))
-        throw std::invalid_argument("node '" + node.name + "' is massless and its torque slope cancels the string's "
-                                    "impedance: the linearization is singular");
-    }
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(balance);
-    if (!(lu.rcond() > 1e-12))
-      throw std::invalid_argument("the massless nodes' balance with the Kelvin-Voigt dashpots is singular");
-    const Eigen::MatrixXd solved = lu.solve(rhs);
-    for (int i = 0; i < nodes; ++i)
-      if (unknown[i] >= 0) {
-        speed_form[i].state = solved.block(unknown[i], 0, 1, n);
-        speed_form[i].wave = solved.block(unknown[i], n, 1, n);
-      }
-  }
-  // The delay term at tau, added (with zero matrices) if there is none yet: an actuator delay's.
-  auto delay_term = [&](double tau) -> DelayTerm& {
-    auto it = std::find_if(sys.delays.begin(), sys.delays.end(), [&](const DelayTerm& d) { return d.tau == tau; });
-    if (it == sys.delays.end()) it = sys.delays.insert(sys.delays.end(), {tau, {}, Eigen::MatrixXd::Zero(n, n)});
-    if (it->retarded.size() == 0) it->retarded = Eigen::MatrixXd::Zero(n, n);
-    if (it->neutral.size() == 0) it->neutral = Eigen::MatrixXd::Zero(n, n);
-    return *it;
-  };
-  // value * (state `column`, `lag` ago) and value * (the wave of `column` arriving `lag` ago) into row `row`.
-  auto add_state = [&](int row, int column, double value, double lag) {
-    if (lag == 0) sys.a0(row, column) += value;
-    else delay_term(lag).retarded(row, column) += value;
-  };
-  auto add_wave = [&](int row, int column, double value, double lag) {
-    const int k = section_of(column);
-    if (lag == 0) sys.delays[k].neutral(row, column) += value;
-    else delay_term(net.sections[k].travel_time_s + lag).neutral(row, column) += value;
-  };
-  // factor * (speed of node i, `lag` ago) into row `row`.
-  auto add_speed = [&](int row, int i, double factor, double lag = 0) {
-    const SpeedForm& form = speed_form[i];
-    if (lag == 0) sys.a0.row(row) += factor * form.state;
-    else delay_term(lag).retarded.row(row) += factor * form.state;
-    for (int c = first_wave; c < n; ++c)
-      if (form.wave(c) != 0) add_wave(row, c, factor * form.wave(c), lag);
-    if (form.late == 0) return;
-    for (int c = 0; c < n; ++c) {
-      if (form.late_state(c) != 0) add_state(row, c, factor * form.late_state(c), lag + form.late);
-      if (form.late_wave(c) != 0) add_wave(row, c, factor * form.late_wave(c), lag + form.late);
-    }
-  };
-  // A wave-cancelling top turns at v = e + w(t - late) + k I(t - late): the speed its law asked for an actuator delay
-  // ago (model::WaveCancellation: the arriving wave w plus d, whose perturbation is k I) and the error e, its state.
-  if (net.top().law.wave_cancellation.active()) {
-    const Node& top = net.top();
-    SpeedForm& form = speed_form[0];
-    form.late = top.law.actuator_delay_s;
-    (form.late > 0 ? form.late_state : form.state)(integral[0]) += top.law.wave_cancellation.Corner(top.pi.ki);
-    (form.late > 0 ? form.late_wave : form.wave)(up(0)) += 1;
-  }
-
-  for (int i = 0; i < nodes; ++i) {
-    const Node& node = net.nodes[i];
-    // Outgoing waves: speed minus the arriving wave of the same section.
-    for (const Arrival& a : arrivals(i)) {
-      const int row = a.column == down(a.section) ? up(a.section) : down(a.section);
-      add_speed(row, i, 1.0);
-      sys.delays[a.section].neutral(row, a.column) -= 1.0;
-    }
-    if (speed[i] < 0) continue;
-    const int v = speed[i];
-    if (node.law.wave_cancellation.active()) {
-      // Its torque cancels g, the torque of the string and its dampers, as read: J e' = g(t) - g(t - late) -
-      // kp (v - w - d)(t - late), g = sum 2 Z w_in - (sum Z + c) v (without a delay e' = -kp e / J); I' = -v, as read.
-      const double late = node.law.actuator_delay_s, inertia = node.LumpedInertia(), kp = node.pi.kp;
-      auto add_string_and_dampers = [&](double factor, double lag) {
-        for (const Arrival& a : arrivals(i)) add_wave(v, a.column, factor * 2 * a.impedance, lag);
-        add_speed(v, i, -factor * (impedance_sum(i) + NodeTorqueSlope(node, w0)), lag);
-      };
-      if (late > 0) add_string_and_dampers(1 / inertia, 0), add_string_and_dampers(-1 / inertia, late);
-      add_speed(v, i, -kp / inertia, late);
-      add_wave(v, up(0), kp / inertia, late);
-      add_state(v, integral[i], kp / inertia * node.law.wave_cancellation.Corner(node.pi.ki), late);
-      add_speed(integral[i], i, -1, late);
-      continue;
-    }
-    // The speed the drive sees (referred to the node's side): the node's, or its motor's behind a compliant gear.
-    const int vd = motor[i] >= 0 ? motor[i] : v;
-    const double n_gear = node.gear.ratio;
-    InductionJacobian induction;
-    if (flux[i] >= 0) {
-      if (i != 0)  // its steady supply comes from the top's set-point and torque
-        throw std::invalid_argument("node '" + node.name + "': an induction motor is linearized at the top only");
-      const double f0 = SteadySupplyHz(node, point.top_setpoint, w0, point.top_torque_Nm);
-      induction = LinearizeInductionMotor(node.induction, f0, n_gear * w0);
-    }
-    // What a PI top's controller reads (its speed and the string torque) it reads an actuator delay late: those terms
-    // are retarded by the delay, and the arriving waves in the string torque neutral at travel time + delay.
-    const double late = node.drive == Drive::kPiSpeedController ? node.law.actuator_delay_s : 0.0;
-    auto add_read_speed = [&](int row, double value) {
-      if (late == 0) sys.a0(row, vd) += value;
-      else delay_term(late).retarded(row, vd) += value;
-    };
-    // factor * (the torque the node feeds into the string, as the controller reads it) into row `row`: minus the
-    // string's force on it, sum Z (v - 2 w_in) and the dashpots' kv (v - v_neighbour) (no delay with dashpots).
-    auto add_string_torque = [&](int row, double factor) {
-      for (const Arrival& a : arrivals(i)) {
-        const double wave = -factor * 2 * a.impedance;
-        if (late == 0) {
-          sys.a0(row, v) += factor * a.impedance;
-          sys.delays[a.section].neutral(row, a.column) += wave;
-        } else {
-          delay_term(late).retarded(row, v) += factor * a.impedance;
-          delay_term(net.sections[a.section].travel_time_s + late).neutral(row, a.column) += wave;
-        }
-        const double kv = net.sections[a.section].dashpot;
-        if (kv == 0) continue;
-        sys.a0(row, v) += factor * kv;
-        add_speed(row, a.section == i ? i + 1 : i - 1, -factor * kv);
-      }
-    };
-    // factor * (the PI's speed command less the set-point) into row `row`: -gain (T - T_lp) with torque feedback.
-    auto add_command = [&](int row, double factor) {
-      if (filter[i] < 0) return;
-      const double gain = node.law.torque_feedback.gain;
-      add_string_torque(row, -factor * gain);
-      sys.a0(row, filter[i]) += factor * gain;
-    };
-    // factor * (the drive's torque on the node's side) into row `row`.
-    auto add_drive_torque = [&](int row, double factor) {
-      switch (node.drive) {
-        case Drive::kSpeedDashpot: sys.a0(row, vd) -= factor * node.drive_damping; break;
-        case Drive::kPiSpeedController:
-          add_read_speed(row, -factor * node.pi.kp);
-          add_command(row, factor * node.pi.kp);
-          if (integral[i] >= 0) sys.a0(row, integral[i]) += factor * node.pi.ki;
-          break;
-        case Drive::kDcMotorVoltage:
-        case Drive::kDcMotorSpeed: sys.a0(row, current[i]) += factor * ReferredMotorConstant(node); break;
-        case Drive::kInductionMotor:
-        case Drive::kInductionMotorSpeed:
-          for (int j = 0; j < 4; ++j) sys.a0(row, flux[i] + j) += factor * n_gear * induction.torque(j);
-          break;
-        default: break;
-      }
-    };
-
-    const double inertia = node.LumpedInertia();
-    for (const Arrival& a : arrivals(i)) {
-      sys.delays[a.section].neutral(v, a.column) += 2 * a.impedance / inertia;
-      const double kv = net.sections[a.section].dashpot;  // Kelvin-Voigt: kv (v_neighbour - v)
-      if (kv == 0) continue;
-      add_speed(v, a.section == i ? i + 1 : i - 1, kv / inertia);
-      sys.a0(v, v) -= kv / inertia;
-    }
-    sys.a0(v, v) -= (impedance_sum(i) + NodeTorqueSlope(node, w0)) / inertia;
-    if (motor[i] >= 0) {  // the gear passes k twist + c (w_m - w) to the node
-      const model::Gear& g = node.gear;
-      const int vm = motor[i], twist = motor[i] + 1;
-      const double jm = g.ReferredMotorInertia();
-      sys.a0(v, twist) += g.stiffness / inertia;
-      sys.a0(v, vm) += g.damping / inertia;
-      sys.a0(v, v) -= g.damping / inertia;
-      add_drive_torque(vm, 1 / jm);
-      sys.a0(vm, twist) -= g.stiffness / jm;
-      sys.a0(vm, vm) -= g.damping / jm;
-      sys.a0(vm, v) += g.damping / jm;
-      sys.a0(twist, vm) = 1;
-      sys.a0(twist, v) = -1;
-    } else {
-      add_drive_torque(v, 1 / inertia);
-    }
-    if (integral[i] >= 0) {  // d/dt integral of (command - drive speed)
-      if (node.drive == Drive::kPiSpeedController) add_read_speed(integral[i], -1);
-      else sys.a0(integral[i], vd) = -1;
-      add_command(integral[i], 1.0);
-    }
-    if (filter[i] >= 0) {  // T_lp' = (T - T_lp) / time constant
-      const double rate = 1 / node.law.torque_feedback.time_constant_s;
-      add_string_torque(filter[i], rate);
-      sys.a0(filter[i], filter[i]) -= rate;
-    }
-    if (current[i] >= 0) {  // L I' = V - R I - n k w_d, V = the set-point or kp (set - w_d) + ki integral
-      const waves::DcMotor& m = node.motor;
-      const int c = current[i];
-      sys.a0(c, c) = -m.armature_resistance / m.armature_inductance;
-      sys.a0(c, vd) -= ReferredMotorConstant(node) / m.armature_inductance;
-      if (node.drive == Drive::kDcMotorSpeed) {
-        sys.a0(c, vd) -= node.pi.kp / m.armature_inductance;
-        if (integral[i] >= 0) sys.a0(c, integral[i]) += node.pi.ki / m.armature_inductance;
-      }
-    }
-    if (flux[i] >= 0) {
-      // psi' = F(psi, f, n w_d). Open loop f is the set-point; slip-frequency control sets
-      // f = (p n w_d + u / (n G)) / 2 pi for the PI's demand u = kp (set - w_d) + ki integral.
-      const int f = flux[i];
-      sys.a0.block(f, f, 4, 4) += induction.flux;
-      sys.a0.block(f, vd, 4, 1) += n_gear * induction.shaft_speed;
-      if (node.drive == Drive::kInductionMotorSpeed) {
-        const double two_pi = 6.283185307179586, gain = n_gear * node.induction.SlipTorqueGain();
-        const double supply_per_speed = (node.induction.pole_pairs * n_gear - node.pi.kp / gain) / two_pi;
-        sys.a0.block(f, vd, 4, 1) += supply_per_speed * induction.supply_hz;
-        if (integral[i] >= 0) sys.a0.block(f, integral[i], 4, 1) += node.pi.ki / gain / two_pi * induction.supply_hz;
-      }
-    }
-  }
-  const Node& bit = net.bit();
-  if (bit.lateral)
-    AddBhaWhirl(out, speed[nodes - 1], bit.LumpedInertia(), bit.LumpedInertia() - bit.lateral->AddedInertia(),
-                *bit.lateral, w0);
-  return out;
+  return NetworkLinearizer(net, point).Build();
 }
 
 }  // namespace drillwave::analysis
