@@ -315,15 +315,22 @@ TEST(DiagnosisLoop, AGainWithinChanceIsNotKeptAndALargerOneIs) {
                 "chance %.4f; kept %d\n", 100 * heavier, loop.baseline_held_out_error, fitted.parameters[0].value,
                 fitted.held_out_error, loop.error_chance, loop.kept);
     EXPECT_NEAR(loop.error_chance, std::sqrt(2.0 / 11), 1e-12);  // 11: the drive 5, the bit 4, period, stick
+    std::printf("[ measured ] verdict: %s\n", fitted.verdict.c_str());
     if (heavier < 0.1) {
       EXPECT_LT(fitted.held_out_error, 0.5 * loop.baseline_held_out_error);  // the relative margin alone would keep it
       EXPECT_EQ(loop.kept, -1);
+      // The verdict says which test refused it: within chance, and no feature a scale from the baseline's.
+      EXPECT_NE(fitted.verdict.find("within chance"), std::string::npos) << fitted.verdict;
+      EXPECT_NE(fitted.verdict.find("no held-out feature a scale from the reference's"), std::string::npos)
+          << fitted.verdict;
       continue;
     }
     EXPECT_LT(fitted.held_out_error, 0.8 * loop.baseline_held_out_error);
     EXPECT_NEAR(fitted.parameters[0].value, j_bit * (1 + heavier), 0.12 * j_bit * (1 + heavier));
     EXPECT_EQ(loop.kept, 0);
     EXPECT_GT(gain, loop.error_chance);
+    EXPECT_EQ(fitted.verdict.rfind("kept: ", 0), 0u) << fitted.verdict;
+    EXPECT_NE(fitted.verdict.find("a gain beyond chance"), std::string::npos) << fitted.verdict;
   }
 }
 

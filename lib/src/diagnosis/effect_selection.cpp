@@ -273,16 +273,39 @@ double EffectSelection::DifferenceSpread(const Candidate& c, const Reference& re
 // least a scale in some feature (Resolved). Without it an effect could not be named where the base already sits
 // within chance of the recording, however clearly its fit and held-out windows agree (train rec05: a DC motor, AIC 17
 // lower, held out 0.335 -> 0.094 with every draw closer; chance 0.258).
-bool EffectSelection::Qualifies(const Candidate& c, const Reference& reference) const {
-  if (!c.failure.empty() || ParameterOnEdge(c) >= 0 || c.held_out_error >= (1 - o_.margin) * reference.error ||
-      c.aic >= reference.aic)
-    return false;
+bool EffectSelection::Qualifies(const Candidate& c, const Reference& reference, std::string* why) const {
+  auto verdict = [&](bool qualifies, const std::string& text) {
+    if (why) *why = text;
+    return qualifies;
+  };
+  const std::string against = " against " + reference.name + "'s ";
+  if (!c.failure.empty()) return verdict(false, "not judged: " + c.failure);
+  if (const int edge = ParameterOnEdge(c); edge >= 0)
+    return verdict(false, c.parameters[static_cast<std::size_t>(edge)].name + " on the edge of its range");
+  if (c.held_out_error >= (1 - o_.margin) * reference.error)
+    return verdict(false, "held out " + Significant(c.held_out_error, 3) + against + Significant(reference.error, 3) +
+                              ": not below (1 - margin) of it");
+  if (c.aic >= reference.aic)
+    return verdict(false, "AIC " + Significant(c.aic, 3) + " not below " + Significant(reference.aic, 3) +
+                              " (" + reference.name + "'s or a smaller set's)");
   const double gain = reference.error - c.held_out_error;
-  if (gain > loop_.error_chance) return true;
+  const std::string gained = "held out " + Significant(c.held_out_error, 3) + against + Significant(reference.error, 3);
+  if (gain > loop_.error_chance)
+    return verdict(true, gained + ": a gain beyond chance (" + Significant(loop_.error_chance, 3) + ")");
   const std::vector<std::pair<double, double>> pairs = PairedDraws(DrawsOfCandidate(c), reference.draws);
-  bool closer_in_every_draw = pairs.size() >= 2;
-  for (const auto& [mine, theirs] : pairs) closer_in_every_draw = closer_in_every_draw && mine < theirs;
-  return closer_in_every_draw && Resolved(c, reference) && gain > 2 * DifferenceSpread(c, reference);
+  const auto closer = std::count_if(pairs.begin(), pairs.end(), [](const auto& p) { return p.first < p.second; });
+  const std::string within = gained + ", within chance (" + Significant(loop_.error_chance, 3) + ")";
+  if (pairs.size() < 2 || closer < static_cast<long>(pairs.size()))
+    return verdict(false, within + ", closer in " + std::to_string(closer) + " of " + std::to_string(pairs.size()) +
+                              " shared draws in the recording's regime");
+  const double largest = LargestDifferenceInScales(*reference.held_out, c.held_out_mean, loop_.recording_held_out);
+  if (!(largest >= 1.0))
+    return verdict(false, within + ", no held-out feature a scale from the reference's (largest " +
+                              Significant(largest, 2) + ")");
+  const double spread = DifferenceSpread(c, reference);
+  return verdict(gain > 2 * spread, within + ", closer in every shared draw, the gain " +
+                                        std::string(gain > 2 * spread ? "beyond" : "within") +
+                                        " twice the difference's spread (" + Significant(spread, 3) + ")");
 }
 
 // A scale is the size of a difference within a feature's own variability: two models that differ by less than one in
@@ -297,7 +320,7 @@ bool EffectSelection::Resolved(const Candidate& c, const Reference& reference) c
 EffectSelection::Reference EffectSelection::BaselineReference() const {
   return {loop_.baseline_held_out_error, loop_.baseline_aic,
           {&loop_.baseline_held_out_draw_errors, &loop_.baseline_draw_in_regime, &loop_.baseline_draw_seeds},
-          &loop_.baseline_held_out_mean};
+          &loop_.baseline_held_out_mean, "the baseline"};
 }
 
 std::vector<int> EffectSelection::IndicesOf(const Candidate& c) const {
@@ -327,9 +350,12 @@ int EffectSelection::Representative(const std::vector<int>& set) const {
 // fit, not only the one standing for its set: two fits of one set within chance of each other on the fit window may
 // predict the held-out window quite differently, and an extra effect is not evidenced by beating the worse of them
 // (dev rec02: an unbalance refitted 1.12 held out, its first fit 1.84; with side friction 1.14).
-bool EffectSelection::QualifiesAgainstSubsets(int index) const {
+bool EffectSelection::QualifiesAgainstSubsets(int index, std::string* why) const {
   const Candidate& c = loop_.candidates[index];
-  if (Representative(IndicesOf(c)) != index) return false;
+  if (Representative(IndicesOf(c)) != index) {
+    if (why) *why = "another fit of these effects stands for them (its fit-window error is lower)";
+    return false;
+  }
   Reference reference = BaselineReference();
   const std::vector<int> set = IndicesOf(c);
   for (std::size_t i = 0; i < loop_.candidates.size(); ++i) {
@@ -340,10 +366,10 @@ bool EffectSelection::QualifiesAgainstSubsets(int index) const {
       continue;
     if (other_fit.held_out_error < reference.error)
       reference.error = other_fit.held_out_error, reference.draws = DrawsOfCandidate(other_fit),
-      reference.held_out = &other_fit.held_out_mean;
+      reference.held_out = &other_fit.held_out_mean, reference.name = Joined(other_fit.effects);
     reference.aic = std::min(reference.aic, other_fit.aic);
   }
-  return Qualifies(c, reference);
+  return Qualifies(c, reference, why);
 }
 
 int EffectSelection::BestQualifying() const {
@@ -463,6 +489,11 @@ void EffectSelection::Select() {
   ContestWithTheBase();
   ContestRivals();
   if (loop_.kept >= 0) loop_.candidates[loop_.kept].kept = true;
+  for (std::size_t i = 0; i < loop_.candidates.size(); ++i) {
+    Candidate& c = loop_.candidates[i];
+    QualifiesAgainstSubsets(static_cast<int>(i), &c.verdict);
+    c.verdict = (c.kept ? "kept: " : "") + c.verdict;
+  }
   for (const Candidate& c : loop_.candidates)
     loop_.model_runs += c.evaluations + c.redrawn_runs + static_cast<int>(c.held_out_draw_errors.size());
 }

@@ -70,21 +70,23 @@ class EffectSelection {
     double error, aic;
     DrawsOf draws;
     const FeatureSet* held_out;  // its held-out features' means over its draws (a judged model always has them)
+    std::string name;            // "the baseline", or its effects
   };
   static DrawsOf DrawsOfCandidate(const Candidate& c) {
     return {&c.held_out_draw_errors, &c.draw_in_regime, &c.draw_seeds};
   }
   static Reference ReferenceOf(const Candidate& c) {
-    return {c.held_out_error, c.aic, DrawsOfCandidate(c), &c.held_out_mean};
+    return {c.held_out_error, c.aic, DrawsOfCandidate(c), &c.held_out_mean, Joined(c.effects)};
   }
   int ParameterOnEdge(const Candidate& c) const;
   double DifferenceSpread(const Candidate& c, const Reference& reference) const;
   bool Resolved(const Candidate& c, const Reference& reference) const;
-  bool Qualifies(const Candidate& c, const Reference& reference) const;
+  // Whether c qualifies against the reference; `why` (if given) says which test decided, with its numbers.
+  bool Qualifies(const Candidate& c, const Reference& reference, std::string* why = nullptr) const;
   Reference BaselineReference() const;
   std::vector<int> IndicesOf(const Candidate& c) const;
   int Representative(const std::vector<int>& set) const;
-  bool QualifiesAgainstSubsets(int index) const;
+  bool QualifiesAgainstSubsets(int index, std::string* why = nullptr) const;
   int BestQualifying() const;
   std::vector<double> OwnFit(int effect) const;
   std::vector<double> ScreenedOrStart(int effect) const;

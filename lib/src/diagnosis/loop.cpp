@@ -532,7 +532,8 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
                           {"draw_in_regime", InRegimeJson(c.draw_in_regime)}, {"aic", number(c.aic)},
                           {"evaluations", c.evaluations}, {"redrawn_runs", c.redrawn_runs},
                           {"failed_runs", c.failed_runs}, {"failed_draws", c.failed_draws},
-                          {"first_failed_run", c.first_failure}, {"kept", c.kept}, {"failure", c.failure}});
+                          {"first_failed_run", c.first_failure}, {"kept", c.kept}, {"failure", c.failure},
+                          {"verdict", c.verdict}});
   }
   if (loop.kept >= 0) {
     const Candidate& c = loop.candidates[loop.kept];

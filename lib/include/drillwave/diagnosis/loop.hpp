@@ -116,6 +116,9 @@ struct Candidate {
   int failed_draws = 0;       // judging draws whose run failed numerically (left out of the median)
   std::string first_failure;  // the first of their messages
   bool kept = false;
+  // Its decision against the baseline and its smaller sets' fits, with the numbers (a qualifying set may still be left
+  // unnamed by rivals within chance: DiagnosisLoop::ambiguous).
+  std::string verdict;
   std::vector<double> unit_values;   // the fitted parameters in the fit's unit cube
   std::vector<double> start_values;  // where the fit started, in the same cube
   std::string failure;  // why it could not be fitted (a run failed, the component is missing), empty otherwise
