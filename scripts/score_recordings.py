@@ -70,6 +70,8 @@ def main():
                 return job, None, seconds, p.stderr[-2000:]
             with open(out + ".seconds", "w") as f:
                 f.write(f"{seconds:.1f}\n")
+            with open(out + ".log", "w") as f:  # the loop's progress: each fit and decision
+                f.write(p.stderr)
         elif os.path.exists(out + ".seconds"):
             seconds = float(open(out + ".seconds").read())
         return job, json.load(open(path)), seconds, ""
