@@ -491,8 +491,8 @@ void EffectSelection::Select() {
   if (loop_.kept >= 0) loop_.candidates[loop_.kept].kept = true;
   for (std::size_t i = 0; i < loop_.candidates.size(); ++i) {
     Candidate& c = loop_.candidates[i];
-    QualifiesAgainstSubsets(static_cast<int>(i), &c.verdict);
-    c.verdict = (c.kept ? "kept: " : "") + c.verdict;
+    const bool qualifies = QualifiesAgainstSubsets(static_cast<int>(i), &c.verdict);
+    c.verdict = (c.kept ? "kept: " : qualifies ? "qualifies, but another set stands: " : "") + c.verdict;
   }
   for (const Candidate& c : loop_.candidates)
     loop_.model_runs += c.evaluations + c.redrawn_runs + static_cast<int>(c.held_out_draw_errors.size());

@@ -1,5 +1,5 @@
 #pragma once
-// What effects.cpp and rig_effects.cpp share: reading a case document and a feature difference in scales.
+// What string_effects.cpp and rig_effects.cpp share: reading a case document and a feature difference in scales.
 #include <algorithm>
 #include <cmath>
 #include <string>

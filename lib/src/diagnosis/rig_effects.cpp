@@ -239,8 +239,6 @@ Effect NormalLoad(const nlohmann::json& doc, double weight, double static_level,
   return e;
 }
 
-}  // namespace
-
 // The effects of a laboratory rig modelled as a two-inertia pendulum (kind two_mass).
 std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, const FeatureSet& r) {
   std::vector<Effect> effects;
@@ -273,5 +271,9 @@ std::vector<Effect> RigEffects(const nlohmann::json& doc, const FeatureSet& m, c
   }
   return effects;
 }
+
+}  // namespace
+
+DiagnosableKind RigDiagnosis() { return {"two_mass", RigEffects, nullptr}; }
 
 }  // namespace drillwave::diagnosis

@@ -64,12 +64,22 @@ struct Calibration {
 // axial_torsional: first the wear-flat contact stress sigma*l within +-20 % of the case's (the mean torque reads it),
 // then the rock's intrinsic specific energy eps within +-20 % (no level reads it: it sets the regenerative coupling's
 // gain and so how unstable steady drilling is). Formations vary by that much between wells. Empty for other kinds
-// (the rig's disc inertia is among its effects).
+// (the rig's disc inertia is among its effects; DiagnosableKind below).
 std::vector<Calibration> BaseCalibrations(const nlohmann::json& document);
 
-// The effects of a laboratory rig modelled as a two-inertia pendulum (kind two_mass; rig_effects.cpp), to which
-// ProposeEffects hands a two_mass document. Its disc's inertia is one of them ("bit_inertia"), fitted with the others.
-std::vector<Effect> RigEffects(const nlohmann::json& document, const FeatureSet& model, const FeatureSet& recording);
+// What diagnosis offers for one model kind: its effects with their evidence, and its base's calibrations (none: an
+// empty function). A field string (axial_torsional: string_effects.cpp) and a laboratory rig modelled as a
+// two-inertia pendulum (two_mass: rig_effects.cpp, whose disc inertia and shaft period are among its effects, fitted
+// with the others). ProposeEffects and BaseCalibrations hand a document to its kind's; other kinds have none.
+struct DiagnosableKind {
+  std::string kind;
+  std::function<std::vector<Effect>(const nlohmann::json&, const FeatureSet& model, const FeatureSet& recording)>
+      propose;
+  std::function<std::vector<Calibration>(const nlohmann::json&)> calibrations;
+};
+const std::vector<DiagnosableKind>& DiagnosableKinds();
+DiagnosableKind StringDiagnosis();
+DiagnosableKind RigDiagnosis();
 
 // The vocabulary, for listing and checking names.
 const std::vector<std::string>& EffectVocabulary();
