@@ -41,6 +41,24 @@ Recording Oscillation(double seconds, double period, double lag, double noise, u
   return r;
 }
 
+// A period is read to 5 % of itself and to no better than five samples: a clean 0.378-s oscillation (the UFRJ rig's)
+// logged at 1 kHz has the 5 % scale (0.0189 s); logged at 100 Hz, as the synthetic recordings are, the five samples'
+// 0.05 s.
+TEST(Features, APeriodsScaleIsFivePercentOrFiveSamples) {
+  for (const double dt : {0.001, 0.01}) {
+    Recording r = Empty({"bit_rpm"});
+    r.sample_interval_s = dt;
+    for (int i = 0; i * dt < 30; ++i) {
+      r.time_s.push_back(i * dt);
+      r.channels[0].push_back(60 + 50 * std::sin(2 * kPi * i * dt / 0.378));
+    }
+    const Feature* period = MeasureFeatures(r, 2, 28).Find("period_s");
+    ASSERT_NE(period, nullptr);
+    EXPECT_NEAR(period->value, 0.378, 0.005) << dt;
+    EXPECT_DOUBLE_EQ(period->scale, dt < 0.005 ? 0.05 * period->value : 0.05) << dt;
+  }
+}
+
 TEST(Features, PeriodLagAndLevelsOfAKnownOscillation) {
   const Recording r = Oscillation(120, 3.2, 0.7, 0.5, 1);
   const FeatureSet f = MeasureFeatures(r, 10, 110);
