@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "effect_selection.hpp"
+#include "regime_margin.hpp"
 
 namespace drillwave::diagnosis::loop_internal {
 namespace {
@@ -48,6 +49,21 @@ TEST(PairedDraws, FallBackToEverySharedSeedWhereNoneIsInRegimeForBoth) {
   const std::vector<int> their_seeds{0, 1, 2};
   EXPECT_EQ(PairedDraws({&mine_errors, &mine_regime, &mine_seeds}, {&their_errors, &their_regime, &their_seeds}),
             (Pairs{{1.0, 5.0}, {2.0, 6.0}}));
+}
+
+// The held-out regime of a stick-slip window (the bit stuck more than 1 % of it) or a smooth one, and a fit rejected
+// only where it leaves the recording's regime that the baseline has.
+TEST(RegimeOf, StickSlipIsABitStuckMoreThanOnePercentOfTheWindow) {
+  FeatureSet sticks, smooth;
+  sticks.features = {{"stick_fraction", 0.2, 0.03}};
+  smooth.features = {{"stick_fraction", 0.005, 0.03}};
+  EXPECT_EQ(RegimeOf(sticks, false), "stick-slip");
+  EXPECT_EQ(RegimeOf(smooth, false), "smooth");
+  EXPECT_EQ(RegimeOf(smooth, true), "bouncing, smooth");
+  EXPECT_TRUE(RejectedForRegime("stick-slip", "smooth", "stick-slip"));
+  EXPECT_FALSE(RejectedForRegime("stick-slip", "stick-slip", "smooth"));   // the fit found the regime: judged on
+  EXPECT_FALSE(RejectedForRegime("stick-slip", "smooth", "smooth"));       // neither has it: features decide
+  EXPECT_TRUE(RejectedForRegime("smooth", "bouncing, smooth", "smooth"));
 }
 
 }  // namespace

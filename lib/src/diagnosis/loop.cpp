@@ -44,6 +44,7 @@ using loop_internal::EachDraw;
 using loop_internal::EffectSelection;
 using loop_internal::ErrorChance;
 using loop_internal::Joined;
+using loop_internal::RegimeOf;
 using loop_internal::StartOf;
 using loop_internal::kMaxDrawFactor;
 // A calibration of the motion: the mean error over this many draws, on a grid of this many points over the prior range.
@@ -418,6 +419,25 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     Draws models = runner.RunDraws(loop.fitted_document, o.threads);
     loop.model_runs += static_cast<int>(models.models.size());
     fitted = runner.Judge(std::move(models));
+    // A fit whose motion over the held-out window is not the recording's (stick-slip against smooth, bouncing against
+    // on the bottom: its judged draw) where the baseline's is, is rejected, however its features compare: it explains
+    // the recording with another motion (issue 32 item 4).
+    const bool bounces = runner.RecordingBounces();
+    const std::string recorded = RegimeOf(loop.recording_held_out, bounces);
+    const std::string model = RegimeOf(fitted.held_out, runner.InRegime(fitted.model) ? bounces : !bounces);
+    const std::string before = RegimeOf(baseline.held_out, runner.InRegime(baseline.model) ? bounces : !bounces);
+    if (loop_internal::RejectedForRegime(recorded, model, before)) {
+      Candidate& rejected = loop.candidates[loop.kept];
+      rejected.kept = false;
+      rejected.verdict = "rejected: held out " + model + " where the recording is " + recorded +
+                         " (and the baseline); it qualified: " + rejected.verdict;
+      say("rejected " + Joined(rejected.effects) + ": its held-out window is " + model + ", the recording's " +
+          recorded + " (the baseline's too)");
+      loop.regime_rejected = rejected.effects;
+      loop.kept = -1;
+      loop.fitted_document = base;
+      fitted = baseline;
+    }
   }
   Adopt(fitted, loop.fitted_model, loop.fitted_fit, loop.fitted_held_out, loop.fitted_fit_error,
         loop.fitted_held_out_error);
@@ -602,6 +622,7 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
           {"proposals", proposals},
           {"unexplained", loop.unexplained},
           {"regime_margin", RegimeMarginJson(loop.regime_margin)},
+          {"regime_rejected", loop.regime_rejected},
           {"noise_std", noise},
           {"artefact_samples_masked", masked},
           {"channels_left_whole", loop.channels_left_whole},

@@ -55,6 +55,10 @@ std::string RegimeOf(const FeatureSet& held_out, bool bounces) {
   return std::string(bounces ? "bouncing, " : "") + (std::isfinite(stuck) && stuck > kStuckShare ? "stick-slip" : "smooth");
 }
 
+bool RejectedForRegime(const std::string& recorded, const std::string& fitted, const std::string& baseline) {
+  return fitted != recorded && baseline == recorded;
+}
+
 RegimeMargin MeasureRegimeMargin(const nlohmann::json& doc, const ModelRuns& runner, int draw,
                                  const FeatureSet& recorded_held_out, int threads) {
   RegimeMargin margin;

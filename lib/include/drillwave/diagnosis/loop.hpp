@@ -144,6 +144,9 @@ inline constexpr double kNearRegimeEdgePercent = 5;
 std::string RegimeMarginText(const RegimeMargin& margin);
 
 struct DiagnosisLoop {
+  // The effects of a set that qualified and was rejected because its held-out motion regime is not the recording's
+  // while the baseline's is (empty: none); nothing is then named.
+  std::vector<std::string> regime_rejected;
   nlohmann::json baseline_document, fitted_document;
   std::vector<std::pair<std::string, double>> noise;  // recording channel, estimated noise std (its unit)
   std::vector<std::pair<std::string, int>> masked_samples;  // recording channel, artefact samples masked
