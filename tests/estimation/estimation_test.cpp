@@ -174,6 +174,27 @@ TEST(WaveStringEstimate, FollowsTheBitBehindASoftDriveTheCaseDoesNotKnow) {
   EXPECT_GT(stuck.f1, 0.85);
 }
 
+// The same soft drive, now known to the case (as a diagnosis fits it: kp 376 N m s/rad on the 2500 kg m^2 top). Its
+// J / kp, 6.6 s, is no short lag against the string's 0.75-s travel time, so the motor torque advanced by it is not the
+// string's: the top inertia's torque is read from the speed's slope, as for a drive the case does not know. (Read as a
+// stiff drive's lag, dev rec05's diagnosed case, kp 95, gave 102 rpm RMS and stuck F1 0.06 against 5.3 and 0.894.)
+TEST(WaveStringEstimate, ADriveWhoseLagIsLongerThanTheTravelTimeIsReadAsSoft) {
+  nlohmann::json soft = drillwave::testing::LoadCase("baseline-60rpm");
+  soft["simulation"]["duration_s"] = 60;
+  soft["statistics"]["window_s"] = {0, 60};
+  soft["model"]["top"]["kp_Nms_per_rad"] = 376.0;
+  soft["model"]["top"]["ki_Nm_per_rad"] = 8309.0;
+  const auto run = drillwave::cases::RunCase(drillwave::cases::ParseCase(soft));
+  const es::BitEstimate e = es::EstimateBit(es::EstimatorModelFromCase(soft), SurfaceOf(run.result), {});
+  ASSERT_FALSE(e.notes.empty());
+  EXPECT_NE(e.notes.front().find("not short against the string's travel time"), std::string::npos) << e.notes.front();
+  const std::vector<double> bit = Rad(run.result.channel("bit_rpm").values);
+  const es::SeriesError speed = es::CompareSeries(e.time_s, e.bit_speed_rad_s, bit, 15, 60);
+  const es::StuckScore stuck = es::ScoreStuck(e.time_s, e.bit_speed_rad_s, e.stuck, bit, e.stuck_threshold_rad_s, 15, 60);
+  EXPECT_LT(speed.rms, 0.1 * speed.measured_mean) << "RMS " << speed.rms / kRadPerSecondPerRpm << " rpm";
+  EXPECT_GT(stuck.f1, 0.85);
+}
+
 // A two-mass pendulum as the rig's diagnosis fits it (droop drive, Stribeck friction), in stick-slip.
 nlohmann::json RigLikeCase() {
   return nlohmann::json::parse(R"({

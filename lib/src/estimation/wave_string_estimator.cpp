@@ -80,7 +80,12 @@ BitEstimate EstimateWaveString(const WaveStringModel& model, const SurfaceSignal
     const double swing = SwingStd(top.value, dt), torque_swing = SwingStd(s.top_torque_Nm, dt);
     const double allowed = model.top_kp > 0 ? torque_swing / model.top_kp : INFINITY;
     const double noise = NoiseStd(s.top_speed_rad_s) * top.noise_gain;
-    if (model.top_kp > 0 && swing <= 10 * std::max(allowed, noise)) {
+    // The advance is a first-order lag's: it holds while J / kp is short against the string's travel time (a fitted
+    // soft drive's kp of 95 N m s/rad on a 2500 kg m^2 top makes it 26 s, and the stiff reading fails: dev rec05's
+    // diagnosed case gave 102 rpm RMS, stuck F1 0.06).
+    const double travel_time = TravelTime(TorsionalPieces(model));
+    if (model.top_kp > 0 && model.top_inertia_kgm2 / model.top_kp < travel_time &&
+        swing <= 10 * std::max(allowed, noise)) {
       advance = model.top_inertia_kgm2 / model.top_kp;
       top_string_torque = Shifted(s.top_torque_Nm, dt, advance);
       e.notes.push_back("stiff drive (top speed swing " + ReadableNumber(swing) + " rad/s within 10 times what kp allows, " +
@@ -92,15 +97,20 @@ BitEstimate EstimateWaveString(const WaveStringModel& model, const SurfaceSignal
       // quarter wave of period 4 tau, which a quartic over half that period follows where a quadratic's straight-line
       // slope flattens its turns (the soft-drive recordings of ../shared: bit-speed RMS 19.3 -> 9.0 rpm, stuck F1
       // 0.25 -> 0.88 on train rec18 against a quadratic over +-4 J_b / Z, docs/results.md).
-      const int slope_half = std::max(2, static_cast<int>(std::lround(TravelTime(TorsionalPieces(model)) / dt)));
+      const int slope_half = std::max(2, static_cast<int>(std::lround(travel_time / dt)));
       const Smoothed top_slope = SmoothPolynomial(s.top_speed_rad_s, dt, slope_half, 4);
       for (std::size_t i = 0; i < n; ++i)
         top_string_torque[i] = s.top_torque_Nm[i] - model.top_inertia_kgm2 * top_slope.derivative[i];
       advance = slope_half * dt;
-      e.notes.push_back("soft drive (top speed swing " + ReadableNumber(swing) + " rad/s, more than 10 times the " +
-                        ReadableNumber(std::max(allowed, noise)) + " the case's kp allows): the top inertia's torque "
-                        "from the measured speed's slope, a quartic's over +-" + ReadableNumber(advance) +
-                        " s (the string's travel time)");
+      const bool slow = model.top_kp > 0 && model.top_inertia_kgm2 / model.top_kp >= travel_time;
+      e.notes.push_back(
+          "soft drive (" +
+          (slow ? "top inertia / kp " + ReadableNumber(model.top_inertia_kgm2 / model.top_kp) +
+                      " s, not short against the string's travel time " + ReadableNumber(travel_time) + " s"
+                : "top speed swing " + ReadableNumber(swing) + " rad/s, more than 10 times the " +
+                      ReadableNumber(std::max(allowed, noise)) + " the case's kp allows") +
+          "): the top inertia's torque from the measured speed's slope, a quartic's over +-" + ReadableNumber(advance) +
+          " s (the string's travel time)");
     }
   }
   const std::vector<WavePiece> torsion = TorsionalPieces(model);
