@@ -5,7 +5,7 @@ Runs the estimator on each recording from its surface channels only and collects
 holds (the tool reads the downhole channels only to score). Prints a Markdown table and the medians.
 
   python3 scripts/score_estimates.py [--binary build/bin/drillwave] [--shared ../shared] [--jobs 2]
-      [--rig-case CASE] [--sets synthetic,synthetic-train]
+      [--rig-case CASE] [--sets synthetic,synthetic-train] [--fitted DIAGNOSE_OUTPUTS[,...]]
 
 The rig is estimated with --rig-case (default json-cases/ufrj-rig.json; diagnose's fitted-case.json is the one to
 use) from top_rpm only and scored on 2-20 s (where its settings were chosen) and on 20-30 s (the issue's target).
@@ -61,6 +61,10 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--rig-case", default=os.path.join(ROOT, "json-cases", "ufrj-rig.json"))
     ap.add_argument("--sets", default="synthetic,synthetic-train")
+    ap.add_argument("--fitted", default="",
+                    help="folders of diagnose outputs (comma-separated, as score_recordings.py writes them: "
+                         "<set>-<rec>/fitted-case.json): each recording found there is estimated with its diagnosed case "
+                         "(the others with the base case), and only those are listed")
     a = ap.parse_args()
     jobs = []
     tmp = tempfile.mkdtemp(prefix="score-estimates-")
@@ -72,11 +76,18 @@ def main():
         for f in sorted(os.listdir(folder)):
             if f.startswith("rec") and f.endswith(".csv"):
                 stem = f[:-4]
-                jobs.append((f"{s}/{stem}", [os.path.join(ROOT, "json-cases", "baseline-60rpm.json"),
+                case = os.path.join(ROOT, "json-cases", "baseline-60rpm.json")
+                if a.fitted:
+                    found = [os.path.join(d, f"{s}-{stem}", "fitted-case.json") for d in a.fitted.split(",")]
+                    found = [c for c in found if os.path.exists(c)]
+                    if not found:
+                        continue
+                    case = found[0]
+                jobs.append((f"{s}/{stem}", [case,
                                              os.path.join(folder, f), "--sidecar", os.path.join(folder, stem + ".json"),
                                              "--from", "top_rpm,top_torque_kNm,hookload_kN"]))
     rig = os.path.join(a.shared, "recordings", "ufrj-rig", "rig-0-30s.csv")
-    if os.path.exists(rig):
+    if os.path.exists(rig) and not a.fitted:
         for window in ("2,20", "20,30"):
             jobs.append((f"ufrj-rig {window.replace(',', '-')} s", [a.rig_case, rig, "--from", "top_rpm", "--window", window]))
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
