@@ -20,7 +20,9 @@
 // a change of u_F moves the rig and the string for a while, not the steady state.
 #include <array>
 #include <cmath>
+#include <optional>
 
+#include "drillwave/model/drawworks.hpp"
 #include "drillwave/model/schedule.hpp"
 
 namespace drillwave::model {
@@ -33,6 +35,9 @@ struct HoistRig {
   double ground_stiffness = 0;  // k_rg01 [N/m]
   double cable_stiffness = 0;   // k_rg12 [N/m]
   Schedule tension_change;      // u_F(t) - u_F0 [N], up on the derrick
+  // The drawworks paying out the line at its own speed (absent: a constant pay-out at the steady rate of penetration);
+  // Rates then takes its pay-out for steady_rop.
+  std::optional<Drawworks> drawworks;
 
   // State: y1 [m], y1' [m/s], delta [m].
   using State = std::array<double, 3>;
@@ -51,11 +56,12 @@ struct HoistRig {
   double CablePull(const State& s, double v, double steady_rop, double steady_hook_force) const {
     return steady_hook_force + block_damping * (v - steady_rop) + cable_stiffness * s[2];
   }
-  // (y1', y1'', delta') at top drive speed v.
-  State Rates(const State& s, double v, double steady_rop, double t, bool left) const {
+  // (y1', y1'', delta') at top drive speed v with the line paid out at `pay_out` (the steady rate of penetration, or
+  // the drawworks').
+  State Rates(const State& s, double v, double pay_out, double t, bool left) const {
     const double du = tension_change.Evaluate(t, left).first;
     return {s[1], (-derrick_damping * s[1] - ground_stiffness * s[0] + cable_stiffness * s[2] - du) / derrick_mass,
-            v - steady_rop - s[1]};
+            v - pay_out - s[1]};
   }
   // The top drive's acceleration under the string's pull S (down) and the cable.
   double TopAcceleration(const State& s, double string_pull, double v, double steady_rop, double steady_hook_force,

@@ -37,6 +37,20 @@ model::HoistRig ReadHoistRig(const JsonReader& r) {
   rig.cable_stiffness = r.Number("cable_stiffness_N_per_m", Range::Positive());
   if (r.Has("cable_tension_change_N"))
     rig.tension_change = model::Schedule::FromJson(r.Raw("cable_tension_change_N"), r.PathOf("cable_tension_change_N"));
+  if (r.Has("drawworks")) {  // the drawworks' induction motor paying out the line (chapter eq. 2.37)
+    const JsonReader d = r.Object("drawworks");
+    model::Drawworks w;
+    w.line_radius = d.Number("line_radius_m", Range::Positive());
+    w.inertia = d.Number("inertia_kgm2", Range::Positive());
+    w.gear_ratio = d.Number("gear_ratio", Range::Positive(), 1.0);
+    w.motor = ReadInductionMotor(d.Object("induction_motor"));
+    if (const std::string problem = w.motor.Problem(); !problem.empty())
+      throw InputError(d.PathOf("induction_motor"), problem);
+    if (d.Has("supply_change_Hz"))
+      w.supply_change_hz = model::Schedule::FromJson(d.Raw("supply_change_Hz"), d.PathOf("supply_change_Hz"));
+    d.Finish();
+    rig.drawworks = w;
+  }
   r.Finish();
   return rig;
 }
@@ -283,6 +297,9 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
     balance.drag_per_speed += md_.hoist_damping;
   }
   Model at = md_;
+  if (md_.rig && md_.rig->drawworks)
+    throw InputError("/model/hoist/rig/drawworks", "the drawworks' motor is not linearized: leave it out for the "
+                                                   "linear verdict (it pays out at nearly constant speed, as without it)");
   if (md_.rig) {
     // The drawworks pays out at the rate of penetration of the start: steady drilling at omega keeps that rate, and
     // the weight on bit cuts its depth per revolution.
@@ -408,8 +425,21 @@ class AxialTorsionalKind : public ModelKind {
             {"hoist/rig/cable_stiffness_N_per_m", "k_rg12 > 0: derrick to travelling block"},
             {"hoist/rig/cable_tension_change_N", "u_F(t) - u_F0 [N], up on the derrick: a number or {\"knots\": "
                                                  "[[t, v], ...]}, default 0 (u_F0: the tension of steady drilling)"},
+            {"hoist/rig/drawworks/line_radius_m", "r > 0: optional drawworks (chapter eq. 2.37), an induction motor "
+                                                  "through a gear on the drum paying out the line at r times the "
+                                                  "drum's speed (the drum's radius over the reeving's lines); absent: "
+                                                  "a constant pay-out at the steady rate of penetration"},
+            {"hoist/rig/drawworks/inertia_kgm2", "J > 0: drum and motor referred to the drum"},
+            {"hoist/rig/drawworks/gear_ratio", "n > 0, default 1: motor turns per drum turn"},
+            {"hoist/rig/drawworks/supply_change_Hz", "f(t) - f0 [Hz], default 0: a number or {\"knots\": [[t, v], "
+                                                     "...]}; f0 the supply that pays out at the steady rate of "
+                                                     "penetration under the steady hook force (summary "
+                                                     "drawworks_steady_supply_frequency_Hz)"},
             {"gravity_m_s2", "> 0, default 9.81"}};
     fields.update(TopComponentFields("top"));
+    const nlohmann::json drawworks_fields = TopComponentFields("hoist/rig/drawworks");  // its machine, as the top's
+    for (const auto& [path, text] : drawworks_fields.items())
+      if (path.find("/induction_motor/") != std::string::npos) fields[path] = text;
     fields.update(PiTopDriveLawFields("top"));
     fields.update(StringComponentFields("string", "bit"));
     fields["string/kelvin_voigt_s"] = fields["string/kelvin_voigt_s"].get<std::string>() +
@@ -510,6 +540,14 @@ class AxialTorsionalKind : public ModelKind {
         CheckSteadyStart(md);
       } catch (const std::domain_error& e) {
         throw InputError(td.PathOf("induction_motor"), std::string("no steady drilling at the set-point: ") + e.what());
+      }
+    }
+    if (md.rig && md.rig->drawworks) {
+      try {
+        md.rig->drawworks->SteadySupply(SteadyDrilling(md, md.top_speed.Value(0.0)).rop, md.hook_force.Value(0.0));
+      } catch (const std::domain_error& e) {
+        throw InputError(h.PathOf("rig") + "/drawworks/induction_motor",
+                         std::string("cannot hold the steady hook force while paying out: ") + e.what());
       }
     }
     return std::make_unique<AxialTorsionalModel>(std::move(md));

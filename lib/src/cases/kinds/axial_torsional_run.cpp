@@ -28,11 +28,13 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // State: 0 bit angle, 1 bit position, 2 top speed, 3 bit speed, 4 hoist speed, 5 bit axial speed, 6 PI integral;
 // with a motor 7 its current; with an unbalance 8-11 the BHA's lateral x, y, x', y' (and 7 unused, held at 0); with
 // an induction motor or a compliant gear 12-15 the motor's fluxes and 16-17 the motor's speed (referred to the top
-// drive) and the gear's twist; with a hoisting rig 18-20 its derrick displacement and speed and the cable's stretch
-// (the unused ones held at 0). With torque feedback the top drive's low-passed string torque follows them all.
+// drive) and the gear's twist; with a hoisting rig 18-20 its derrick displacement and speed and the cable's stretch,
+// and with its drawworks 21 the drum's speed and 22-25 its motor's fluxes (the unused ones held at 0). With torque
+// feedback the top drive's low-passed string torque follows them all.
 enum Index {
   kPhi = 0, kU, kWtop, kWbit, kVtop, kVbit, kZ, kDim, kCurrent = kDim, kX, kY, kXd, kYd, kFullDim,
-  kFlux = kFullDim, kMotorSpeed = kFlux + 4, kTwist, kTopDim, kRig = kTopDim, kRigDim = kRig + 3
+  kFlux = kFullDim, kMotorSpeed = kFlux + 4, kTwist, kTopDim, kRig = kTopDim, kRigDim = kRig + 3,
+  kDrum = kRigDim, kDrumFlux, kDrawworksDim = kDrumFlux + 4
 };
 
 class Process {
@@ -48,7 +50,11 @@ class Process {
     if (md.induction_on)
       steady_supply_hz_ =
           md.induction.SteadySupplyFrequency(top_torque0_ / md.gear.ratio, md.gear.ratio * steady_.omega);
+    // The drawworks' supply that pays out at the steady rate of penetration under the steady hook force.
+    if (Drawworks()) drawworks_supply_hz_ = Drawworks()->SteadySupply(steady_.rop, md.hook_force.Value(0.0));
   }
+  const model::Drawworks* Drawworks() const { return md_.rig && md_.rig->drawworks ? &*md_.rig->drawworks : nullptr; }
+  double DrawworksSupplyHz() const { return drawworks_supply_hz_; }
 
   // --- Simulator interface --------------------------------------------------------------------------------
   int Dimension() const { return filter_index_ >= 0 ? filter_index_ + 1 : LayoutDimension(); }
@@ -77,6 +83,11 @@ class Process {
     if (md_.gear.compliant()) {
       x[kMotorSpeed] = steady_.omega;
       x[kTwist] = top_torque0_ / md_.gear.stiffness;
+    }
+    if (const model::Drawworks* d = Drawworks()) {
+      x[kDrum] = steady_.rop / d->line_radius;
+      const auto psi = d->motor.SteadyFluxes(drawworks_supply_hz_, d->gear_ratio * x[kDrum]);
+      std::copy(psi.begin(), psi.end(), x.begin() + kDrumFlux);
     }
     return x;
   }
@@ -110,8 +121,16 @@ class Process {
       const model::HoistRig::State rig = RigState(x);
       dx[kVtop] = md_.rig->TopAcceleration(rig, ends.top[1], x[kVtop], steady_.rop, md_.hook_force.Value(0.0),
                                            md_.hoist_mass);
-      const auto rates = md_.rig->Rates(rig, x[kVtop], steady_.rop, t, t > step_start_);
+      const model::Drawworks* d = Drawworks();
+      const auto rates = md_.rig->Rates(rig, x[kVtop], d ? d->PayOut(x[kDrum]) : steady_.rop, t, t > step_start_);
       std::copy(rates.begin(), rates.end(), dx.begin() + kRig);
+      if (d) {
+        const auto psi = DrumFluxes(x);
+        dx[kDrum] = d->DrumAcceleration(md_.rig->CablePull(rig, x[kVtop], steady_.rop, md_.hook_force.Value(0.0)), psi);
+        const double supply = drawworks_supply_hz_ + d->supply_change_hz.Evaluate(t, t > step_start_).first;
+        const auto flux_rates = d->motor.FluxRates(psi, supply, d->gear_ratio * x[kDrum]);
+        std::copy(flux_rates.begin(), flux_rates.end(), dx.begin() + kDrumFlux);
+      }
     } else {
       dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first - HoistDashpot(x)) / md_.hoist_mass;
     }
@@ -185,7 +204,9 @@ class Process {
   }
 
   double NextBreakpoint() const {
-    const double rig = md_.rig ? md_.rig->tension_change.NextKnotAfter(passed_) : kInf;
+    const double rig = md_.rig ? std::min(md_.rig->tension_change.NextKnotAfter(passed_),
+                                          Drawworks() ? Drawworks()->supply_change_hz.NextKnotAfter(passed_) : kInf)
+                               : kInf;
     const double input = std::min({md_.top_speed.NextKnotAfter(passed_), md_.hook_force.NextKnotAfter(passed_), rig,
                                    top_drive_.NextBreakpoint(passed_)});
     return end_kinks_.empty() ? input : std::min(input, end_kinks_.top());
@@ -298,7 +319,7 @@ class Process {
   // --- Top drive and BHA components ---------------------------------------------------------------------------
   // The layout's dimension without the torque feedback's filter.
   int LayoutDimension() const {
-    if (md_.rig) return kRigDim;
+    if (md_.rig) return Drawworks() ? kDrawworksDim : kRigDim;
     if (md_.induction_on || md_.gear.compliant()) return kTopDim;
     return md_.unbalance.has_value() ? kFullDim : md_.motor.on ? kDim + 1 : kDim;
   }
@@ -349,6 +370,9 @@ class Process {
   // The hoist's dashpot force (up) against the block paying out at the steady rate of penetration.
   double HoistDashpot(const State& x) const { return md_.hoist_damping * (x[kVtop] - steady_.rop); }
   static model::HoistRig::State RigState(const State& x) { return {x[kRig], x[kRig + 1], x[kRig + 2]}; }
+  static model::InductionMotor::Fluxes DrumFluxes(const State& x) {
+    return {x[kDrumFlux], x[kDrumFlux + 1], x[kDrumFlux + 2], x[kDrumFlux + 3]};
+  }
 
   // The Jeffcott rotor's torque on the bit at zero angular acceleration (the rest is in EffectiveBitInertia), and
   // its rates given the bit's angular acceleration phi_dd (model::JeffcottBha).
@@ -376,6 +400,7 @@ class Process {
   int filter_index_ = -1;  // the torque feedback's low-passed string torque
   double top_torque0_ = 0;
   double steady_supply_hz_ = 0;  // induction motor: the supply frequency of steady drilling
+  double drawworks_supply_hz_ = 0;  // the drawworks motor's steady supply
   bitrock::RgdRegimes rg_;
   double step_start_ = 0, passed_ = 0;
   double held_phi_ = 0, held_u_ = 0;  // bit angle and position at the end of the last committed piece
@@ -438,7 +463,7 @@ RunResult Simulate(const Model& md_, const RunSettings& settings) {
   Process process(md_);
   std::vector<double> x = process.InitialState();
   DrillingSamples d;
-  std::vector<double> hook, current, lateral, motor_rpm, gear_torque;
+  std::vector<double> hook, current, lateral, motor_rpm, gear_torque, pay_out;
   std::vector<double> dx(x.size()), exact(x.size());
   auto sample = [&](double t, const std::vector<double>& interpolated) {
     exact = interpolated;
@@ -454,6 +479,7 @@ RunResult Simulate(const Model& md_, const RunSettings& settings) {
     if (md_.motor.on || md_.induction_on) current.push_back(v.top_current);
     if (md_.gear.compliant()) motor_rpm.push_back(v.motor_speed * 30 / kPi), gear_torque.push_back(v.gear_torque);
     if (md_.unbalance.has_value()) lateral.push_back(v.lateral_displacement);
+    if (const model::Drawworks* w = process.Drawworks()) pay_out.push_back(3600 * w->PayOut(s[kDrum]));
   };
   sample(0.0, x);
   const auto observer = integration::SampleEvery(settings.output_interval_s, sample);
@@ -489,6 +515,11 @@ RunResult Simulate(const Model& md_, const RunSettings& settings) {
     result.plot_panels.push_back({"top_current_A"});
   }
   if (md_.induction_on) result.summary["steady_supply_frequency_Hz"] = process.steady_supply_hz();
+  if (process.Drawworks()) {  // the line paid out, and the drawworks motor's supply of steady drilling
+    result.channels.push_back({"pay_out_m_h", std::move(pay_out)});
+    result.plot_panels.push_back({"pay_out_m_h"});
+    result.summary["drawworks_steady_supply_frequency_Hz"] = process.DrawworksSupplyHz();
+  }
   if (md_.gear.compliant()) {
     result.channels.push_back({"motor_rpm", std::move(motor_rpm)});
     result.channels.push_back({"gear_torque_Nm", std::move(gear_torque)});
