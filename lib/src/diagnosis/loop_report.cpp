@@ -127,7 +127,9 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
         << Cell(c.held_out_error) << "</td><td>" << Cell(c.aic) << "</td><td>";
     for (const FittedParameter& p : c.parameters)
       out << Html(p.name) << " = " << Cell(p.value) << " &plusmn; " << Cell(p.sigma, 2) << " " << Html(p.unit) << "<br>";
-    out << "</td><td>" << Html(c.failure.empty() ? (c.kept ? "kept" : "") : c.failure) << "</td></tr>\n";
+    // The decision with its numbers (Candidate::verdict), or why it could not be judged.
+    out << "</td><td>" << Html(c.failure.empty() ? (c.verdict.empty() && c.kept ? "kept" : c.verdict) : c.failure)
+        << "</td></tr>\n";
   }
   out << "</table>\n<p>Relative probability of each model (Akaike weights of the fit window's AIC: the models' "
          "evidence as far as the fit window tells; the loop decides on the held-out window): ";
