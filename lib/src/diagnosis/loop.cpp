@@ -532,6 +532,15 @@ nlohmann::json RegimeMarginJson(const RegimeMargin& m) {
           {"runs", m.runs},
           {"text", RegimeMarginText(m)}};
 }
+// The baseline's held-out error on the fits' draw (the screening's reference), null where that draw failed.
+nlohmann::json FitDrawError(const DiagnosisLoop& loop) {
+  const auto& seeds = loop.baseline_draw_seeds;
+  const auto at = static_cast<std::size_t>(std::find(seeds.begin(), seeds.end(), loop.fit_draw) - seeds.begin());
+  if (at >= loop.baseline_held_out_draw_errors.size() || !std::isfinite(loop.baseline_held_out_draw_errors[at]))
+    return nullptr;
+  return loop.baseline_held_out_draw_errors[at];
+}
+
 }  // namespace
 
 nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
@@ -609,14 +618,7 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
           {"base_calibration", {{"parameters", calibration}, {"kept", loop.calibration_kept}}},
           {"plain_case", {{"fit_error_one_draw", number(loop.plain_fit_error)},
                           {"held_out_error_one_draw", number(loop.plain_held_out_error)}}},
-          {"screening", {{"baseline_held_out_error_one_draw",
-                          loop.baseline_held_out_draw_errors.empty()
-                              ? nlohmann::json(nullptr)
-                              : number(loop.baseline_held_out_draw_errors.at(static_cast<std::size_t>(
-                                    std::find(loop.baseline_draw_seeds.begin(), loop.baseline_draw_seeds.end(),
-                                              loop.fit_draw) -
-                                    loop.baseline_draw_seeds.begin())))},
-                         {"candidates", screening}}},
+          {"screening", {{"baseline_held_out_error_one_draw", FitDrawError(loop)}, {"candidates", screening}}},
           {"fitted_parameters", fitted},
           {"candidates", candidates},
           {"proposals", proposals},
