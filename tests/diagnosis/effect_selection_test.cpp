@@ -52,7 +52,8 @@ TEST(PairedDraws, FallBackToEverySharedSeedWhereNoneIsInRegimeForBoth) {
 }
 
 // The held-out regime of a stick-slip window (the bit stuck more than 1 % of it) or a smooth one, and a fit rejected
-// only where it leaves the recording's regime that the baseline has.
+// only where it leaves the recording's regime clearly (stuck more than 2 % against less than 0.5 %, or bouncing
+// against not) while the baseline does not.
 TEST(RegimeOf, StickSlipIsABitStuckMoreThanOnePercentOfTheWindow) {
   FeatureSet sticks, smooth;
   sticks.features = {{"stick_fraction", 0.2, 0.03}};
@@ -60,10 +61,20 @@ TEST(RegimeOf, StickSlipIsABitStuckMoreThanOnePercentOfTheWindow) {
   EXPECT_EQ(RegimeOf(sticks, false), "stick-slip");
   EXPECT_EQ(RegimeOf(smooth, false), "smooth");
   EXPECT_EQ(RegimeOf(smooth, true), "bouncing, smooth");
-  EXPECT_TRUE(RejectedForRegime("stick-slip", "smooth", "stick-slip"));
-  EXPECT_FALSE(RejectedForRegime("stick-slip", "stick-slip", "smooth"));   // the fit found the regime: judged on
-  EXPECT_FALSE(RejectedForRegime("stick-slip", "smooth", "smooth"));       // neither has it: features decide
-  EXPECT_TRUE(RejectedForRegime("smooth", "bouncing, smooth", "smooth"));
+}
+
+TEST(RegimeRejection, OnlyAFitClearlyOutOfTheRecordingsRegimeWhereTheBaselineIsInItIsRejected) {
+  const HeldOutMotion sticks{0.2, false}, smooth{0.0, false}, bouncing{0.0, true}, edge{0.012, false};
+  EXPECT_TRUE(RejectedForRegime(sticks, smooth, sticks));
+  EXPECT_FALSE(RejectedForRegime(sticks, sticks, smooth));   // the fit found the regime: judged on its features
+  EXPECT_FALSE(RejectedForRegime(sticks, smooth, smooth));   // neither has it: features decide
+  EXPECT_TRUE(RejectedForRegime(smooth, bouncing, smooth));
+  // A stick or two either side of the 1 % threshold is no other regime: a recording stuck 1.2 % of the time is
+  // neither clearly sticking nor clearly smooth, and a fit stuck 0.3 % is not rejected for it.
+  EXPECT_FALSE(RejectedForRegime(edge, smooth, edge));
+  EXPECT_FALSE(ClearlyDifferentRegimes(edge, sticks));
+  EXPECT_TRUE(ClearlyDifferentRegimes({0.021, false}, {0.004, false}));
+  EXPECT_FALSE(ClearlyDifferentRegimes({0.019, false}, {0.004, false}));
 }
 
 }  // namespace

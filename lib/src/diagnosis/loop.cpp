@@ -423,10 +423,12 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     // on the bottom: its judged draw) where the baseline's is, is rejected, however its features compare: it explains
     // the recording with another motion (issue 32 item 4).
     const bool bounces = runner.RecordingBounces();
+    const bool fitted_bounces = runner.InRegime(fitted.model) ? bounces : !bounces;
     const std::string recorded = RegimeOf(loop.recording_held_out, bounces);
-    const std::string model = RegimeOf(fitted.held_out, runner.InRegime(fitted.model) ? bounces : !bounces);
-    const std::string before = RegimeOf(baseline.held_out, runner.InRegime(baseline.model) ? bounces : !bounces);
-    if (loop_internal::RejectedForRegime(recorded, model, before)) {
+    const std::string model = RegimeOf(fitted.held_out, fitted_bounces);
+    if (loop_internal::RejectedForRegime(
+            loop_internal::MotionOf(loop.recording_held_out, bounces), loop_internal::MotionOf(fitted.held_out, fitted_bounces),
+            loop_internal::MotionOf(baseline.held_out, runner.InRegime(baseline.model) ? bounces : !bounces))) {
       Candidate& rejected = loop.candidates[loop.kept];
       rejected.kept = false;
       rejected.verdict = "rejected: held out " + model + " where the recording is " + recorded +

@@ -55,8 +55,19 @@ std::string RegimeOf(const FeatureSet& held_out, bool bounces) {
   return std::string(bounces ? "bouncing, " : "") + (std::isfinite(stuck) && stuck > kStuckShare ? "stick-slip" : "smooth");
 }
 
-bool RejectedForRegime(const std::string& recorded, const std::string& fitted, const std::string& baseline) {
-  return fitted != recorded && baseline == recorded;
+HeldOutMotion MotionOf(const FeatureSet& held_out, bool bounces) {
+  const double stuck = held_out.Value("stick_fraction");
+  return {std::isfinite(stuck) ? stuck : 0.0, bounces};
+}
+
+bool ClearlyDifferentRegimes(const HeldOutMotion& a, const HeldOutMotion& b) {
+  constexpr double kSticks = 2 * kStuckShare, kSmooth = 0.5 * kStuckShare;
+  return a.bounces != b.bounces || (a.stuck_share > kSticks && b.stuck_share < kSmooth) ||
+         (b.stuck_share > kSticks && a.stuck_share < kSmooth);
+}
+
+bool RejectedForRegime(const HeldOutMotion& recorded, const HeldOutMotion& fitted, const HeldOutMotion& baseline) {
+  return ClearlyDifferentRegimes(fitted, recorded) && !ClearlyDifferentRegimes(baseline, recorded);
 }
 
 RegimeMargin MeasureRegimeMargin(const nlohmann::json& doc, const ModelRuns& runner, int draw,

@@ -14,10 +14,20 @@ namespace drillwave::diagnosis::loop_internal {
 // A held-out window's regime: "stick-slip" where the bit is stuck for more than 1 % of it, else "smooth", with
 // "bouncing, " before it where the bit leaves the bottom.
 std::string RegimeOf(const FeatureSet& held_out, bool bounces);
-// A fit whose held-out regime is not the recording's is rejected where the baseline's is (issue 32 item 4): it would
-// explain the recording with another motion. Where the baseline misses the regime too, the fit is judged by its
-// features like any other.
-bool RejectedForRegime(const std::string& recorded, const std::string& fitted, const std::string& baseline);
+// A held-out window's motion as the regime rejection reads it: the bit's stuck share and whether it bounces.
+struct HeldOutMotion {
+  double stuck_share = 0;
+  bool bounces = false;
+};
+HeldOutMotion MotionOf(const FeatureSet& held_out, bool bounces);
+// Two motions are clearly in different regimes where one bounces and the other not, or one sticks more than 2 % of the
+// window and the other less than 0.5 %: between the two the stick-slip threshold of RegimeOf (1 %) is a matter of a
+// stick or two, which the draws move.
+bool ClearlyDifferentRegimes(const HeldOutMotion& a, const HeldOutMotion& b);
+// A fit whose held-out regime is clearly not the recording's is rejected where the baseline's is not clearly different
+// (issue 32 item 4): it would explain the recording with another motion. Where the baseline misses the regime too, the
+// fit is judged by its features like any other.
+bool RejectedForRegime(const HeldOutMotion& recorded, const HeldOutMotion& fitted, const HeldOutMotion& baseline);
 
 // The set-point of doc's top scaled by f in steps out to +-kRegimeSearchPercent, then bisected where the regime
 // changes; each run is draw `draw` over the whole span at the case's tolerance. Not measured where the case's top has
