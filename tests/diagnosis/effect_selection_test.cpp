@@ -63,18 +63,20 @@ TEST(RegimeOf, StickSlipIsABitStuckMoreThanOnePercentOfTheWindow) {
   EXPECT_EQ(RegimeOf(smooth, true), "bouncing, smooth");
 }
 
+// Against a stick-fraction scale of 0.03 (its floor): three scales are 0.09.
 TEST(RegimeRejection, OnlyAFitClearlyOutOfTheRecordingsRegimeWhereTheBaselineIsInItIsRejected) {
-  const HeldOutMotion sticks{0.2, false}, smooth{0.0, false}, bouncing{0.0, true}, edge{0.012, false};
-  EXPECT_TRUE(RejectedForRegime(sticks, smooth, sticks));
-  EXPECT_FALSE(RejectedForRegime(sticks, sticks, smooth));   // the fit found the regime: judged on its features
-  EXPECT_FALSE(RejectedForRegime(sticks, smooth, smooth));   // neither has it: features decide
-  EXPECT_TRUE(RejectedForRegime(smooth, bouncing, smooth));
-  // A stick or two either side of the 1 % threshold is no other regime: a recording stuck 1.2 % of the time is
-  // neither clearly sticking nor clearly smooth, and a fit stuck 0.3 % is not rejected for it.
-  EXPECT_FALSE(RejectedForRegime(edge, smooth, edge));
-  EXPECT_FALSE(ClearlyDifferentRegimes(edge, sticks));
-  EXPECT_TRUE(ClearlyDifferentRegimes({0.021, false}, {0.004, false}));
-  EXPECT_FALSE(ClearlyDifferentRegimes({0.019, false}, {0.004, false}));
+  const double scale = 0.03;
+  const HeldOutMotion sticks{0.2, false}, smooth{0.0, false}, bouncing{0.0, true}, rec07{0.052, false};
+  EXPECT_TRUE(RejectedForRegime(sticks, smooth, sticks, scale));
+  EXPECT_FALSE(RejectedForRegime(sticks, sticks, smooth, scale));   // the fit found the regime: judged on its features
+  EXPECT_FALSE(RejectedForRegime(sticks, smooth, smooth, scale));   // neither has it: features decide
+  EXPECT_TRUE(RejectedForRegime(smooth, bouncing, smooth, scale));
+  // Dev rec07: stuck 5.2 % recorded, its side-friction fit 0 %: 1.2 of its scales (0.044), whatever the baseline does,
+  // no other regime.
+  EXPECT_FALSE(RejectedForRegime(rec07, smooth, sticks, 0.044));
+  EXPECT_TRUE(ClearlyDifferentRegimes({0.1, false}, {0.005, false}, scale));
+  EXPECT_FALSE(ClearlyDifferentRegimes({0.08, false}, {0.0, false}, scale));
+  EXPECT_FALSE(ClearlyDifferentRegimes({0.5, false}, {0.2, false}, scale));  // both stick: one regime
 }
 
 }  // namespace

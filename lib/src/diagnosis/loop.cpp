@@ -426,9 +426,12 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
     const bool fitted_bounces = runner.InRegime(fitted.model) ? bounces : !bounces;
     const std::string recorded = RegimeOf(loop.recording_held_out, bounces);
     const std::string model = RegimeOf(fitted.held_out, fitted_bounces);
-    if (loop_internal::RejectedForRegime(
-            loop_internal::MotionOf(loop.recording_held_out, bounces), loop_internal::MotionOf(fitted.held_out, fitted_bounces),
-            loop_internal::MotionOf(baseline.held_out, runner.InRegime(baseline.model) ? bounces : !bounces))) {
+    const Feature* stuck = loop.recording_held_out.Find("stick_fraction");
+    if (stuck && loop_internal::RejectedForRegime(
+                     loop_internal::MotionOf(loop.recording_held_out, bounces),
+                     loop_internal::MotionOf(fitted.held_out, fitted_bounces),
+                     loop_internal::MotionOf(baseline.held_out, runner.InRegime(baseline.model) ? bounces : !bounces),
+                     stuck->scale)) {
       Candidate& rejected = loop.candidates[loop.kept];
       rejected.kept = false;
       rejected.verdict = "rejected: held out " + model + " where the recording is " + recorded +

@@ -60,14 +60,14 @@ HeldOutMotion MotionOf(const FeatureSet& held_out, bool bounces) {
   return {std::isfinite(stuck) ? stuck : 0.0, bounces};
 }
 
-bool ClearlyDifferentRegimes(const HeldOutMotion& a, const HeldOutMotion& b) {
-  constexpr double kSticks = 2 * kStuckShare, kSmooth = 0.5 * kStuckShare;
-  return a.bounces != b.bounces || (a.stuck_share > kSticks && b.stuck_share < kSmooth) ||
-         (b.stuck_share > kSticks && a.stuck_share < kSmooth);
+bool ClearlyDifferentRegimes(const HeldOutMotion& a, const HeldOutMotion& b, double scale) {
+  const bool a_sticks = a.stuck_share > kStuckShare, b_sticks = b.stuck_share > kStuckShare;
+  return a.bounces != b.bounces || (a_sticks != b_sticks && std::abs(a.stuck_share - b.stuck_share) > 3 * scale);
 }
 
-bool RejectedForRegime(const HeldOutMotion& recorded, const HeldOutMotion& fitted, const HeldOutMotion& baseline) {
-  return ClearlyDifferentRegimes(fitted, recorded) && !ClearlyDifferentRegimes(baseline, recorded);
+bool RejectedForRegime(const HeldOutMotion& recorded, const HeldOutMotion& fitted, const HeldOutMotion& baseline,
+                       double scale) {
+  return ClearlyDifferentRegimes(fitted, recorded, scale) && !ClearlyDifferentRegimes(baseline, recorded, scale);
 }
 
 RegimeMargin MeasureRegimeMargin(const nlohmann::json& doc, const ModelRuns& runner, int draw,
