@@ -52,7 +52,8 @@ TEST(Features, APeriodsScaleIsFivePercentOrFiveSamples) {
       r.time_s.push_back(i * dt);
       r.channels[0].push_back(60 + 50 * std::sin(2 * kPi * i * dt / 0.378));
     }
-    const Feature* period = MeasureFeatures(r, 2, 28).Find("period_s");
+    const FeatureSet features = MeasureFeatures(r, 2, 28);
+    const Feature* period = features.Find("period_s");
     ASSERT_NE(period, nullptr);
     EXPECT_NEAR(period->value, 0.378, 0.005) << dt;
     EXPECT_DOUBLE_EQ(period->scale, dt < 0.005 ? 0.05 * period->value : 0.05) << dt;
