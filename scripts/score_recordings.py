@@ -101,6 +101,11 @@ def main():
             print(f"{tag}/{name}: {mark:5s} concealed {concealed} named {named}"
                   f"{' ambiguous ' + str(ambiguous) if ambiguous else ''} held-out {before:.3g} -> {after:.3g}"
                   f" ({seconds:.0f} s)", flush=True)
+            # Why a concealed effect was not named: its own fit's verdict (diagnosis.json, candidates).
+            for effect in sorted(set(concealed) - set(named)):
+                alone = [c for c in d["candidates"] if c["effects"] == [effect] and c.get("verdict")]
+                if alone:
+                    print(f"    {effect}: {alone[-1]['verdict']}", flush=True)
     precision = tp / (tp + fp) if tp + fp else float("nan")
     recall = tp / (tp + fn) if tp + fn else float("nan")
     print(f"precision {precision:.3f} ({tp} of {tp + fp} named are true), recall {recall:.3f} ({tp} of {tp + fn}"
