@@ -114,7 +114,7 @@ std::vector<double> Measure(const SensorModel& sensor, const std::vector<double>
   };
   const double period = sensor.SamplePeriod();
   // A coded sample is decoded when its frame has arrived: one frame after it was taken, besides the delay.
-  const double latency = sensor.delay_s + (sensor.bits > 0 && sensor.bit_rate_bps > 0 ? period : 0.0);
+  const double latency = sensor.delay_s + (sensor.SentInFrames() ? period : 0.0);
   long held = -1;  // index of the telemetry sample last received
   double held_value = 0;
   for (std::size_t k = 0; k < t.size(); ++k) {

@@ -298,10 +298,9 @@ bool EffectSelection::Qualifies(const Candidate& c, const Reference& reference, 
   if (pairs.size() < 2 || closer < static_cast<long>(pairs.size()))
     return verdict(false, within + ", closer in " + std::to_string(closer) + " of " + std::to_string(pairs.size()) +
                               " shared draws in the recording's regime");
-  const double largest = LargestDifferenceInScales(*reference.held_out, c.held_out_mean, loop_.recording_held_out);
-  if (!(largest >= 1.0))
+  if (!Resolved(c, reference))
     return verdict(false, within + ", no held-out feature a scale from the reference's (largest " +
-                              Significant(largest, 2) + ")");
+                              Significant(LargestDifference(c, reference), 2) + ")");
   const double spread = DifferenceSpread(c, reference);
   return verdict(gain > 2 * spread, within + ", closer in every shared draw, the gain " +
                                         std::string(gain > 2 * spread ? "beyond" : "within") +
@@ -314,7 +313,11 @@ bool EffectSelection::Qualifies(const Candidate& c, const Reference& reference, 
 // tests/diagnosis/loop_test.cpp with a bit 5 % heavier: the fitted inertia within 1.2 % of it, the period half a
 // scale away).
 bool EffectSelection::Resolved(const Candidate& c, const Reference& reference) const {
-  return LargestDifferenceInScales(*reference.held_out, c.held_out_mean, loop_.recording_held_out) >= 1.0;
+  return LargestDifference(c, reference) >= 1.0;
+}
+
+double EffectSelection::LargestDifference(const Candidate& c, const Reference& reference) const {
+  return LargestDifferenceInScales(*reference.held_out, c.held_out_mean, loop_.recording_held_out);
 }
 
 EffectSelection::Reference EffectSelection::BaselineReference() const {

@@ -43,7 +43,8 @@ struct SensorModel {
   double downhole_noise_std = 0;
 
   // The hold between samples: bits / bit_rate_bps when coded at a bit rate, else hold_s.
-  double SamplePeriod() const { return bits > 0 && bit_rate_bps > 0 ? bits / bit_rate_bps : hold_s; }
+  bool SentInFrames() const { return bits > 0 && bit_rate_bps > 0; }
+  double SamplePeriod() const { return SentInFrames() ? bits / bit_rate_bps : hold_s; }
   // The coded value of x: the nearest of the 2^bits levels from code_min to code_max (x itself without coding).
   double Quantized(double x) const;
 };
