@@ -135,6 +135,14 @@ nlohmann::json ProbabilitiesJson(const std::vector<ModelProbability>& models) {
   return out;
 }
 
+// The drive's law read off the recording's fit window (drive_law.hpp), null where it could not be read at all.
+nlohmann::json DriveLawJson(const DriveLaw& law) {
+  if (law.segments == 0) return nullptr;
+  return {{"frequency_Hz", law.frequency_hz}, {"kp_Nms_per_rad", law.proportional},
+          {"ki_Nm_per_rad", law.integral}, {"coherence", law.coherence}, {"segments", law.segments},
+          {"identified", law.Identified()}};
+}
+
 nlohmann::json InRegimeJson(const std::vector<char>& in_regime) {
   nlohmann::json out = nlohmann::json::array();
   for (char c : in_regime) out.push_back(c != 0);
@@ -631,6 +639,7 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
           {"regime_margin", RegimeMarginJson(loop.regime_margin)},
           {"regime_rejected", loop.regime_rejected},
           {"noise_std", noise},
+          {"recorded_drive_law", DriveLawJson(loop.recording_fit.drive)},
           {"artefact_samples_masked", masked},
           {"channels_left_whole", loop.channels_left_whole},
           {"model_runs", loop.model_runs},

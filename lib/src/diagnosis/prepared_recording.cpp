@@ -2,15 +2,43 @@
 
 #include <cmath>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/model/schedule.hpp"
 
 namespace drillwave::diagnosis::loop_internal {
 namespace {
 // Model outputs per sample window, for the measured window means: a bouncing bit's twin of 10-ms means from 0.5-ms
 // outputs reads 0.046 held out at 5 (0.007 at 10, chance 0.535; loop_test.cpp), for about a sixth less CPU than 10.
 constexpr double kOutputsPerWindow = 5;
+
+// The drive's law on the fit window (drive_law.hpp), where the case gives the top speed's set-point and the maps give
+// the recording's top speed and drive torque; a law with no segments where any is missing.
+DriveLaw RecordedDriveLaw(const nlohmann::json& document, const Recording& rec, const LoopOptions& o) {
+  const ChannelMap *speed = nullptr, *torque = nullptr;
+  for (const ChannelMap& map : o.maps) {
+    if (map.model == "top_rpm") speed = &map;
+    if (map.model == "top_torque_Nm") torque = &map;
+  }
+  const nlohmann::json::json_pointer set_point("/model/top/speed_rad_s");
+  if (!speed || !torque || speed->scale == 0 || torque->scale == 0 || !document.contains(set_point)) return {};
+  model::Schedule schedule;
+  try {
+    schedule = model::Schedule::FromJson(document.at(set_point), set_point.to_string());
+  } catch (const InputError&) {
+    return {};  // the case's own checks report it
+  }
+  const std::vector<double>& rpm = rec.Channel(speed->recording);
+  const std::vector<double>& recorded_torque = rec.Channel(torque->recording);
+  std::vector<double> error(rec.time_s.size()), torque_Nm(rec.time_s.size());
+  for (std::size_t i = 0; i < rec.time_s.size(); ++i) {
+    error[i] = schedule.Value(rec.time_s[i] + o.model_time_offset_s) - rpm[i] / speed->scale * kRadPerSecondPerRpm;
+    torque_Nm[i] = recorded_torque[i] / torque->scale;
+  }
+  return IdentifyDriveLaw(rec.time_s, error, torque_Nm, o.fit_begin_s, o.fit_end_s);
+}
 }  // namespace
 
 PreparedRecording PrepareRecording(const nlohmann::json& document, const Recording& raw, const LoopOptions& o) {
@@ -36,6 +64,7 @@ PreparedRecording PrepareRecording(const nlohmann::json& document, const Recordi
     if (p.features.bit_torque.empty() && map.model == "bit_torque_Nm") p.features.bit_torque = map.recording;
   p.fit = MeasureFeatures(rec, o.fit_begin_s, o.fit_end_s, p.features);
   p.held_out = MeasureFeatures(rec, o.held_out_begin_s, o.held_out_end_s, p.features);
+  p.fit.drive = RecordedDriveLaw(document, rec, o);
 
   // The recording's noise, carried into the model's measured channels.
   p.base = document;

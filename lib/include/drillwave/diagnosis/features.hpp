@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "drillwave/diagnosis/drive_law.hpp"
 #include "drillwave/diagnosis/recording.hpp"
 
 namespace drillwave::diagnosis {
@@ -32,6 +33,9 @@ struct Feature {
 struct FeatureSet {
   double begin_s = 0, end_s = 0;
   std::vector<Feature> features;
+  // The top drive's law read off a recording's window where its speed set-point is known (the diagnosis loop's
+  // PrepareRecording): evidence for the proposals, not a feature (no distance counts it, no model run measures it).
+  DriveLaw drive;
   const Feature* Find(const std::string& name) const;  // nullptr if absent
   double Value(const std::string& name) const;         // NaN if absent
 };

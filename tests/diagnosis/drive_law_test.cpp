@@ -1,0 +1,166 @@
+// The top drive's law read off recorded signals (drive_law.hpp): a PI law's gains from noisy speed error and torque,
+// none where the speed error is noise, and the law of drillwave's own soft-drive run from its channels.
+#include "drillwave/diagnosis/drive_law.hpp"
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
+#include "drillwave/diagnosis/effects.hpp"
+#include "prepared_recording.hpp"
+#include "json_case.hpp"
+
+namespace drillwave::diagnosis {
+namespace {
+
+// A stick-slip-like speed error: a 0.3-Hz oscillation with its harmonics (a cycle of sticking and slipping is far from
+// a sine), sampled at 100 Hz for 60 s.
+struct Signals {
+  std::vector<double> time_s, error, torque;
+};
+Signals PiLawSignals(double kp, double ki, double error_noise, double torque_noise, unsigned seed) {
+  Signals s;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  const double dt = 0.01, w = 2 * kPi * 0.3;
+  double integral = 0;
+  for (int i = 0; i <= 6000; ++i) {
+    const double t = i * dt;
+    const double e = std::sin(w * t) + 0.4 * std::sin(2 * w * t + 0.5) + 0.2 * std::sin(3 * w * t + 1.0);
+    integral += e * dt;
+    s.time_s.push_back(t);
+    s.error.push_back(e + error_noise * normal(rng));
+    s.torque.push_back(5000 + kp * e + ki * integral + torque_noise * normal(rng));
+  }
+  return s;
+}
+
+TEST(DriveLaw, ReadsAPiLawsGainsAtTheTorquesOscillation) {
+  const double kp = 400, ki = 5000;
+  const Signals s = PiLawSignals(kp, ki, 0.1, 200, 3);
+  const DriveLaw law = IdentifyDriveLaw(s.time_s, s.error, s.torque, 0, 60);
+  std::printf("[ measured ] %.3g Hz, kp %.4g, ki %.4g, coherence %.4f over %d segments\n", law.frequency_hz,
+              law.proportional, law.integral, law.coherence, law.segments);
+  EXPECT_NEAR(law.frequency_hz, 0.3, 0.026);
+  ASSERT_TRUE(law.Identified());
+  EXPECT_NEAR(law.proportional, kp, 0.05 * std::hypot(kp, ki / (2 * kPi * 0.3)));
+  EXPECT_NEAR(law.integral, ki, 0.05 * ki);
+  EXPECT_NEAR(law.Stiffness(), std::hypot(kp, ki / (2 * kPi * 0.3)), 0.05 * law.Stiffness());
+  EXPECT_LT(law.LogStiffnessStd(), 0.1);
+}
+
+// A stiff drive holds the top's speed within the speed channel's noise: the torque oscillates, the speed error is
+// noise, and no law is claimed.
+TEST(DriveLaw, ASpeedErrorOfNoiseGivesNoLaw) {
+  Signals s = PiLawSignals(1e5, 2e5, 0, 200, 5);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  for (double& e : s.error) e = 0.16 * normal(rng);
+  const DriveLaw law = IdentifyDriveLaw(s.time_s, s.error, s.torque, 0, 60);
+  EXPECT_LT(law.coherence, 0.5);
+  EXPECT_FALSE(law.Identified());
+}
+
+TEST(DriveLaw, AWindowShorterThanTwoSegmentsOrUnevenSeriesGiveNone) {
+  const Signals s = PiLawSignals(400, 5000, 0.1, 200, 3);
+  EXPECT_EQ(IdentifyDriveLaw(s.time_s, s.error, s.torque, 0, 25).segments, 0);
+  std::vector<double> shorter = s.torque;
+  shorter.pop_back();
+  EXPECT_EQ(IdentifyDriveLaw(s.time_s, s.error, shorter, 0, 60).segments, 0);
+  EXPECT_FALSE(DriveLaw{}.Identified());
+}
+
+// drillwave's coupled string behind a soft PI (BASELINE.md's string at 60 rpm, kp 400 N m s/rad, ki 5000 N m/rad).
+nlohmann::json SoftDriveString() {
+  nlohmann::json doc = testing::LoadCase("baseline-60rpm");
+  doc["model"]["top"]["kp_Nms_per_rad"] = 400;
+  doc["model"]["top"]["ki_Nm_per_rad"] = 5000;
+  doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, 2 * kPi}, {90, 2 * kPi}}}};
+  doc["simulation"]["duration_s"] = 90;
+  return doc;
+}
+
+// Its top speed (with 1 % noise) and drive torque as a recording would have them: 100 Hz from 30 s of the run on,
+// the torque in kN m, the recording's clock starting at the run's 30 s.
+Recording RecordedAsTheSynthetics(const cases::RunResult& run) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  Recording r;
+  r.names = {"top_rpm", "top_torque_kNm"};
+  r.channels.resize(2);
+  for (std::size_t i = 0; i < run.time_s.size(); ++i) {
+    if (run.time_s[i] < 30 || std::abs(std::remainder(run.time_s[i], 0.01)) > 1e-9) continue;
+    r.time_s.push_back(run.time_s[i] - 30);
+    r.channels[0].push_back(run.channel("top_rpm").values[i] + 0.6 * normal(rng));
+    r.channels[1].push_back(1e-3 * run.channel("top_torque_Nm").values[i]);
+  }
+  r.sample_interval_s = 0.01;
+  return r;
+}
+
+// The drive's gains come back from its channels; the law is the drive torque's, not the string's (which adds the
+// top's inertia, J_td w' = 2500 w' N m, and would read ki about 2500 w^2 lower).
+TEST(DriveLaw, ReadsTheSoftDriveOfAStringRunFromItsChannels) {
+  const nlohmann::json doc = SoftDriveString();
+  const Recording r = RecordedAsTheSynthetics(cases::RunCase(cases::ParseCase(doc)).result);
+  ASSERT_GT(r.time_s.size(), 5000u);
+  std::vector<double> error;
+  for (double rpm : r.channels[0]) error.push_back(2 * kPi - rpm * kRadPerSecondPerRpm);
+  std::vector<double> torque_Nm;
+  for (double kNm : r.channels[1]) torque_Nm.push_back(1e3 * kNm);
+  const DriveLaw law = IdentifyDriveLaw(r.time_s, error, torque_Nm, 0, 60);
+  std::printf("[ measured ] string run: %.3g Hz, kp %.4g, ki %.4g, coherence %.4f\n", law.frequency_hz,
+              law.proportional, law.integral, law.coherence);
+  ASSERT_TRUE(law.Identified());
+  const double w = 2 * kPi * law.frequency_hz, stiffness = std::hypot(400.0, 5000 / w);
+  EXPECT_NEAR(law.Stiffness(), stiffness, 0.1 * stiffness);
+  EXPECT_NEAR(law.integral, 5000, 500);
+
+  // The diagnosis loop reads the same law on its fit window, through its channel maps and the model's time offset.
+  LoopOptions o;
+  o.maps = {ParseChannelMap("top_rpm=top_rpm"), ParseChannelMap("top_torque_kNm=top_torque_Nm*0.001")};
+  o.model_time_offset_s = 30;
+  o.fit_begin_s = 0, o.fit_end_s = 30, o.held_out_begin_s = 30, o.held_out_end_s = 60;
+  const DriveLaw read = loop_internal::PrepareRecording(doc, r, o).fit.drive;
+  ASSERT_TRUE(read.Identified()) << read.coherence;
+  EXPECT_NEAR(read.Stiffness(), stiffness, 0.1 * stiffness);
+}
+
+// The soft drive's proposal reads the recorded law: where it is identified and softer than the case's PI, its gains are
+// the fit's first values and its distance in standard deviations the evidence; a law like the case's, or one not
+// identified, leaves the SoftSpeed tuning (kp = Z, ki = J_td w1^2) and no evidence from the law.
+Effect SoftDriveProposal(const DriveLaw& law) {
+  const nlohmann::json doc = testing::LoadCase("baseline-60rpm");
+  FeatureSet recording;
+  recording.drive = law;
+  for (const Effect& e : ProposeEffects(doc, FeatureSet{}, recording))
+    if (e.name == "soft_topdrive") return e;
+  ADD_FAILURE() << "no soft_topdrive proposed";
+  return {};
+}
+
+TEST(SoftDriveProposal, StartsFromTheRecordedLawWhereItIsSofterThanTheCases) {
+  DriveLaw soft{0.3, 400, 5000, 0.98, 4};
+  const Effect e = SoftDriveProposal(soft);
+  ASSERT_EQ(e.parameters.size(), 2u);
+  EXPECT_DOUBLE_EQ(e.parameters[0].start, 400);
+  EXPECT_DOUBLE_EQ(e.parameters[1].start, 5000);
+  EXPECT_TRUE(e.Proposed()) << e.strength;
+  EXPECT_NE(e.evidence.find("read off the recording"), std::string::npos) << e.evidence;
+
+  // BASELINE.md's pipe and top: Z = 299 N m s/rad, w1 = pi c / 2 L at 2000 m, J_td = 2500 kg m^2.
+  const double c = std::sqrt(80769e6 / 7850), w1 = kPi * c / (2 * 2000);
+  for (const DriveLaw& other : {DriveLaw{0.3, 1e5, 2e5, 0.98, 4}, DriveLaw{0.3, 400, 5000, 0.5, 4}}) {
+    const Effect plain = SoftDriveProposal(other);
+    EXPECT_NEAR(plain.parameters[0].start, 299.1, 0.5);
+    EXPECT_NEAR(plain.parameters[1].start, 2500 * w1 * w1, 1e-6 * 2500 * w1 * w1);
+    EXPECT_EQ(plain.strength, 0);
+  }
+}
+
+}  // namespace
+}  // namespace drillwave::diagnosis
