@@ -307,6 +307,17 @@ bool EffectSelection::Qualifies(const Candidate& c, const Reference& reference, 
                                         " twice the difference's spread (" + Significant(spread, 3) + ")");
 }
 
+// Whether c's held-out error is within chance of the lead's: above it by no more than one standard deviation of the two
+// errors' difference (DifferenceSpread: the same recording, the same draws) and no more than the error's own chance
+// (ErrorChance). A model worse by more than that is beaten whatever its draws' spread, as a gain beyond chance is
+// evidence whatever else holds (Qualifies): train rec04's soft drive alone, 103 held out against a BHA's 6.55, was a
+// rival because two of its draws bounced far off (6586 and 2156) and made the spread 1300, while the BHA was closer
+// in every draw.
+bool EffectSelection::PredictsAsWell(const Candidate& c, const Reference& lead) const {
+  const double worse = c.held_out_error - lead.error;
+  return worse <= loop_.error_chance && worse <= DifferenceSpread(c, lead);
+}
+
 // A scale is the size of a difference within a feature's own variability: two models that differ by less than one in
 // every feature (their means over the draws) are one model at the resolution the features claim, however
 // consistently one is closer to a recording whose noise is far below the scales' floors (the two-mass twin of
@@ -646,7 +657,7 @@ void EffectSelection::ContestWithTheBase() {
       return std::find(rock.begin(), rock.end(), m) != rock.end();
     });
     if (!from_the_base || !QualifiesAgainstSubsets(static_cast<int>(i))) continue;
-    const bool as_well = c.held_out_error - lead.error <= DifferenceSpread(c, lead) || !Resolved(c, lead);
+    const bool as_well = PredictsAsWell(c, lead) || !Resolved(c, lead);
     if (as_well && (best < 0 || c.held_out_error < loop_.candidates[best].held_out_error)) best = static_cast<int>(i);
   }
   if (best < 0) return;
@@ -657,8 +668,8 @@ void EffectSelection::ContestWithTheBase() {
 }
 
 // Rival explanations contest the best set: each other set that qualifies as the best did (against the baseline and
-// its own smaller sets), neither containing nor contained in it, whose held-out error is within chance of the best's:
-// one standard deviation of the two errors' difference (DifferenceSpread: the same recording, the same draws). Only
+// its own smaller sets), neither containing nor contained in it, whose held-out error is within chance of the best's
+// (PredictsAsWell). Only
 // what every rival shares with the best is named (an honest "cannot tell" for the rest), and only if that set
 // qualifies on its own.
 void EffectSelection::ContestRivals() {
@@ -674,7 +685,7 @@ void EffectSelection::ContestRivals() {
         !QualifiesAgainstSubsets(static_cast<int>(i)))
       continue;
     const Candidate& lead = loop_.candidates[best];
-    if (c.held_out_error - lead.held_out_error > DifferenceSpread(c, ReferenceOf(lead))) continue;
+    if (!PredictsAsWell(c, ReferenceOf(lead))) continue;
     loop_.rivals.push_back(c);
     std::vector<int> common;
     std::set_intersection(shared.begin(), shared.end(), set.begin(), set.end(), std::back_inserter(common));

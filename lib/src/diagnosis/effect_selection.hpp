@@ -81,6 +81,7 @@ class EffectSelection {
   int ParameterOnEdge(const Candidate& c) const;
   double DifferenceSpread(const Candidate& c, const Reference& reference) const;
   bool Resolved(const Candidate& c, const Reference& reference) const;
+  bool PredictsAsWell(const Candidate& c, const Reference& lead) const;
   // The largest difference of the two models' held-out feature means, in the recording's scales.
   double LargestDifference(const Candidate& c, const Reference& reference) const;
   // Whether c qualifies against the reference; `why` (if given) says which test decided, with its numbers.
