@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/core/constants.hpp"
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/diagnosis/recording.hpp"
 
 namespace drillwave::diagnosis {
 namespace {

@@ -11,7 +11,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/validity.hpp"
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/diagnosis/recording.hpp"
 
 namespace drillwave::diagnosis {
 namespace {

@@ -22,7 +22,7 @@
 #include "drillwave/core/sampled.hpp"
 #include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/minimize.hpp"
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/diagnosis/recording.hpp"
 #include "model_runs.hpp"
 #include "regime_margin.hpp"
 #include "prepared_recording.hpp"

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "drillwave/core/format.hpp"
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/axis_label.hpp"

@@ -9,7 +9,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/core/sampled.hpp"
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/io/json_reader.hpp"
 
 namespace drillwave::diagnosis::loop_internal {

@@ -5,7 +5,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/model/schedule.hpp"
 
 namespace drillwave::diagnosis::loop_internal {

@@ -7,7 +7,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/validity.hpp"
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/recordings/signals.hpp"
 #include "drillwave/estimation/smoothing.hpp"
 #include "drillwave/estimation/hybrid_observer.hpp"
 #include "drillwave/estimation/lumped_observer.hpp"

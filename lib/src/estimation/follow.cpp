@@ -15,7 +15,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/validity.hpp"
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/recordings/signals.hpp"
 #include "drillwave/estimation/smoothing.hpp"
 
 namespace drillwave::estimation {
@@ -184,8 +184,8 @@ std::vector<EstimateRow> LiveEstimator::Estimate(bool final_stretch) {
   return out;
 }
 
-diagnosis::Recording LiveEstimator::Recording() const {
-  diagnosis::Recording r;
+recordings::Recording LiveEstimator::Recording() const {
+  recordings::Recording r;
   r.source = "live";
   r.time_s = columns_[0];
   r.names.assign(names_.begin() + 1, names_.end());

@@ -9,7 +9,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/validity.hpp"
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/recordings/signals.hpp"
 #include "drillwave/estimation/smoothing.hpp"
 
 namespace drillwave::estimation {
@@ -180,8 +180,8 @@ TopSpeedCleaning CleanTopSpeed(const std::vector<double>& raw, double dt, const 
   if (despike) {
     std::vector<double> magnitude;
     for (double v : raw) magnitude.push_back(std::abs(v));
-    const diagnosis::HampelResult h =
-        diagnosis::HampelFilter(raw, HampelHalfWidth(dt), 5, 0.05 * diagnosis::Median(magnitude), 2);
+    const recordings::HampelResult h =
+        recordings::HampelFilter(raw, HampelHalfWidth(dt), 5, 0.05 * recordings::Median(magnitude), 2);
     x = h.cleaned;
     c.burst_samples_kept = KeepBursts(raw, h.flagged, dt, x);
     c.glitches_masked = static_cast<int>(std::count(h.flagged.begin(), h.flagged.end(), 1)) - c.burst_samples_kept;
@@ -241,7 +241,7 @@ BitEstimate EstimateHybrid(const LumpedModel& m, const SurfaceSignals& s, double
   }
   // Band: what separates the output from the regime copy while slipping (two independent readings of the bit),
   // as a robust standard deviation.
-  const double sigma = slip_disagreement.empty() ? 0.0 : 1.4826 * diagnosis::Median(slip_disagreement);
+  const double sigma = slip_disagreement.empty() ? 0.0 : 1.4826 * recordings::Median(slip_disagreement);
   const double shaft_sigma = std::max(m.kp, m.shaft_damping_Nms_per_rad) * sigma;
   // Torque on bit from the bit's balance J_b w_b' = T_shaft - T_bit, the derivative over a tenth of the bit's period.
   const int half = std::max(1, static_cast<int>(std::lround(0.1 * 2 * kPi / NaturalFrequency(m) / dt)));

@@ -10,7 +10,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/validity.hpp"
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/recordings/signals.hpp"
 #include "drillwave/estimation/smoothing.hpp"
 
 namespace drillwave::estimation {
@@ -113,10 +113,10 @@ class Pendulum {
 std::vector<double> Despiked(const std::vector<double>& x, double dt) {
   std::vector<double> magnitude;
   for (double v : x) magnitude.push_back(std::abs(v));
-  const double floor = 0.05 * diagnosis::Median(magnitude);
+  const double floor = 0.05 * recordings::Median(magnitude);
   // The inspection's setting (signals.hpp, MaskArtefacts): a window of +-0.1 s, 5 robust deviations, grown at 2.
   const int half = std::max(2, static_cast<int>(std::lround(0.1 / dt)));
-  return diagnosis::HampelFilter(x, half, 5, floor, 2).cleaned;
+  return recordings::HampelFilter(x, half, 5, floor, 2).cleaned;
 }
 
 }  // namespace

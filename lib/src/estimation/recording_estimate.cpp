@@ -41,7 +41,7 @@ std::vector<double> Scaled(const std::vector<double>& x, double factor) {
 }
 
 // The first of `names` the recording holds, in SI units (empty if none).
-std::pair<std::string, std::vector<double>> Downhole(const diagnosis::Recording& r,
+std::pair<std::string, std::vector<double>> Downhole(const recordings::Recording& r,
                                                      const std::vector<std::string>& names) {
   for (const std::string& name : names)
     if (r.Has(name)) return {name, Scaled(r.Channel(name), RoleOf(name).second)};
@@ -58,7 +58,7 @@ nlohmann::json ErrorJson(const SeriesError& e, double unit) {
 
 double SiFactor(const std::string& channel) { return RoleOf(channel).second; }
 
-SurfaceChannels ParseSurfaceChannels(const std::string& from, const diagnosis::Recording& recording) {
+SurfaceChannels ParseSurfaceChannels(const std::string& from, const recordings::Recording& recording) {
   SurfaceChannels c;
   std::stringstream in(from);
   std::string name;
@@ -83,7 +83,7 @@ SurfaceChannels ParseSurfaceChannels(const std::string& from, const diagnosis::R
   return c;
 }
 
-SurfaceSignals SignalsFromRecording(const diagnosis::Recording& r, const SurfaceChannels& c) {
+SurfaceSignals SignalsFromRecording(const recordings::Recording& r, const SurfaceChannels& c) {
   const double dt = r.sample_interval_s;
   for (std::size_t i = 1; i < r.time_s.size(); ++i)
     if (std::abs(r.time_s[i] - r.time_s[i - 1] - dt) > 1e-3 * dt)
@@ -99,7 +99,7 @@ SurfaceSignals SignalsFromRecording(const diagnosis::Recording& r, const Surface
   return s;
 }
 
-nlohmann::json EstimateSummary(const diagnosis::Recording& r, const BitEstimate& e, const ScoreWindow& w) {
+nlohmann::json EstimateSummary(const recordings::Recording& r, const BitEstimate& e, const ScoreWindow& w) {
   nlohmann::json j;
   j["method"] = e.method;
   j["latency_s"] = e.latency_s;
@@ -158,7 +158,7 @@ nlohmann::json EstimateSummary(const diagnosis::Recording& r, const BitEstimate&
   return j;
 }
 
-void WriteEstimate(const diagnosis::Recording& r, const BitEstimate& e, const nlohmann::json& summary,
+void WriteEstimate(const recordings::Recording& r, const BitEstimate& e, const nlohmann::json& summary,
                    const std::string& dir) {
   io::OutputDirectory out(dir);
   std::vector<double> stuck(e.stuck.begin(), e.stuck.end());

@@ -6,7 +6,7 @@
 
 #include <Eigen/Dense>
 
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/recordings/signals.hpp"
 
 namespace drillwave::estimation {
 
@@ -84,7 +84,7 @@ double MedianAbs(const std::vector<double>& x) {
   std::vector<double> a;
   for (double v : x)
     if (std::isfinite(v)) a.push_back(std::abs(v));
-  return a.empty() ? 0.0 : diagnosis::Median(a);
+  return a.empty() ? 0.0 : recordings::Median(a);
 }
 
 }  // namespace drillwave::estimation

@@ -9,7 +9,6 @@
 #include <nlohmann/json.hpp>
 
 #include "drillwave/diagnosis/recording.hpp"
-#include "drillwave/diagnosis/signals.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::diagnosis {

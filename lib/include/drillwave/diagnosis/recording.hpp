@@ -1,25 +1,24 @@
 #pragma once
-// Recordings to diagnose (DESIGN.md §5): a CSV of a time column and named channels, read as it is. Channel names
-// carry their units (top_rpm, tob_Nm, wob_kN, ...), as drillwave's own trajectories do.
-#include <string>
-#include <vector>
+// Diagnosis reads recordings (recordings/recording.hpp) with the signal tools of recordings/signals.hpp: their names, in
+// diagnosis's namespace.
+#include "drillwave/recordings/recording.hpp"
+#include "drillwave/recordings/signals.hpp"
 
 namespace drillwave::diagnosis {
 
-struct Recording {
-  std::string source;  // the file it came from
-  std::vector<double> time_s;
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> channels;  // channels[j] belongs to names[j]
-  double sample_interval_s = 0;               // median spacing of time_s
-
-  bool Has(const std::string& name) const;
-  // The channel named `name`; throws InputError naming it and listing the channels there are.
-  const std::vector<double>& Channel(const std::string& name) const;
-};
-
-// Reads a CSV with a "time_s" column (strictly increasing) and at least one other column. Throws InputError for a
-// missing file, a missing or non-increasing time column, or non-numeric fields (ReadCsv's messages).
-Recording LoadRecording(const std::string& csv_file);
+using recordings::Correlation;
+using recordings::HampelFilter;
+using recordings::HampelResult;
+using recordings::Interval;
+using recordings::kMaxArtefactShare;
+using recordings::LoadRecording;
+using recordings::MaskArtefacts;
+using recordings::MaskedRecording;
+using recordings::Mean;
+using recordings::Median;
+using recordings::Recording;
+using recordings::Runs;
+using recordings::Std;
+using recordings::TooManyForArtefacts;
 
 }  // namespace drillwave::diagnosis

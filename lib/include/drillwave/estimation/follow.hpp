@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "drillwave/diagnosis/recording.hpp"
+#include "drillwave/recordings/recording.hpp"
 #include "drillwave/estimation/estimate.hpp"
 #include "drillwave/estimation/recording_estimate.hpp"
 
@@ -62,7 +62,7 @@ class LiveEstimator {
   std::vector<EstimateRow> Finish();
 
   // Everything read so far as a recording (to score the estimate against its downhole channels at the end).
-  diagnosis::Recording Recording() const;
+  recordings::Recording Recording() const;
   double latency_s() const { return latency_s_; }
   double stuck_threshold_rad_s() const { return options_.stuck_threshold_rad_s; }
   const std::string& method() const { return method_; }

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "drillwave/diagnosis/recording.hpp"
+#include "drillwave/recordings/recording.hpp"
 #include "drillwave/estimation/estimate.hpp"
 
 namespace drillwave::estimation {
@@ -20,13 +20,13 @@ struct SurfaceChannels {
 // Parses "top_rpm,top_torque_kNm,hookload_kN". Throws ParameterError("from", ...) naming the value for an unknown
 // channel, a unit it cannot read, two channels of one role, a missing speed, or a downhole channel (a name starting
 // with bit_, tob or wob: the estimate never reads them).
-SurfaceChannels ParseSurfaceChannels(const std::string& from, const diagnosis::Recording& recording);
+SurfaceChannels ParseSurfaceChannels(const std::string& from, const recordings::Recording& recording);
 
 // The factor to SI units of a channel by its name's suffix (_rpm, _rad_s, _kNm, _Nm, _kN, _N); 0 if unknown.
 double SiFactor(const std::string& channel);
 
 // The named channels in SI units on the recording's grid (InputError naming time_s if it is not uniform).
-SurfaceSignals SignalsFromRecording(const diagnosis::Recording& recording, const SurfaceChannels& channels);
+SurfaceSignals SignalsFromRecording(const recordings::Recording& recording, const SurfaceChannels& channels);
 
 struct ScoreWindow {
   double begin_s = -1e300, end_s = 1e300;
@@ -36,13 +36,13 @@ struct ScoreWindow {
 // each downhole channel the recording holds (bit_rpm or bit_rad_s; tob_Nm, bit_torque_Nm or tob_kNm; wob_N or
 // wob_kN), the error over `window` (RMS, bias, measured mean; for the bit speed in rpm and stuck precision, recall
 // and F1 with the same threshold on the measurement).
-nlohmann::json EstimateSummary(const diagnosis::Recording& recording, const BitEstimate& estimate,
+nlohmann::json EstimateSummary(const recordings::Recording& recording, const BitEstimate& estimate,
                                const ScoreWindow& window);
 
 // estimate.csv (time_s, bit_rpm, bit_rpm_band, bit_torque_Nm, bit_torque_Nm_band, wob_N, wob_N_band, bit_stuck),
 // estimate.json, plot.svg (estimate against the measured downhole channels where present) and report.html (the
 // figure with estimate.json's errors, events and severity: estimate_report.hpp) into `dir`, all or nothing.
-void WriteEstimate(const diagnosis::Recording& recording, const BitEstimate& estimate, const nlohmann::json& summary,
+void WriteEstimate(const recordings::Recording& recording, const BitEstimate& estimate, const nlohmann::json& summary,
                    const std::string& dir);
 
 }  // namespace drillwave::estimation

@@ -1,4 +1,4 @@
-#include "drillwave/diagnosis/recording.hpp"
+#include "drillwave/recordings/recording.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/csv.hpp"
 
-namespace drillwave::diagnosis {
+namespace drillwave::recordings {
 
 bool Recording::Has(const std::string& name) const {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -55,4 +55,4 @@ Recording LoadRecording(const std::string& csv_file) {
   return r;
 }
 
-}  // namespace drillwave::diagnosis
+}  // namespace drillwave::recordings

@@ -1,4 +1,4 @@
-#include "drillwave/diagnosis/signals.hpp"
+#include "drillwave/recordings/signals.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "drillwave/core/sorted_window.hpp"
 
-namespace drillwave::diagnosis {
+namespace drillwave::recordings {
 
 double Mean(const std::vector<double>& v) {
   double s = 0;
@@ -102,4 +102,4 @@ double Correlation(const std::vector<double>& a, const std::vector<double>& b) {
   return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : std::nan("");
 }
 
-}  // namespace drillwave::diagnosis
+}  // namespace drillwave::recordings

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "drillwave/core/median.hpp"
-#include "drillwave/diagnosis/recording.hpp"
+#include "drillwave/recordings/recording.hpp"
 
-namespace drillwave::diagnosis {
+namespace drillwave::recordings {
 
 struct HampelResult {
   std::vector<double> cleaned;  // flagged samples replaced by their window median
@@ -66,4 +66,4 @@ using drillwave::Median;  // core/median.hpp
 double Mean(const std::vector<double>& v);
 double Std(const std::vector<double>& v);
 
-}  // namespace drillwave::diagnosis
+}  // namespace drillwave::recordings
