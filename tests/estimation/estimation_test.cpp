@@ -90,6 +90,34 @@ TEST(Metrics, StuckScoresCountSamples) {
   EXPECT_EQ(events[0].end_s, 4);
 }
 
+// A telemetry delay is the lag at which the measured channel correlates best with the estimate, where it explains most
+// of their mismatch: an irregular motion delayed by 2.5 s (with 10 % noise and a gain error the correlation ignores)
+// reads 2.5 s; the same motion undelayed, and a periodic motion a period on, read no delay.
+TEST(Metrics, ATelemetryLagIsTheBestCorrelationsWhereItExplainsTheMismatch) {
+  std::vector<double> t, estimate, measured, periodic, periodic_measured;
+  const double dt = 0.01;
+  for (int i = 0; i <= 6000; ++i) t.push_back(i * dt);
+  auto motion = [](double x) { return std::sin(1.3 * x) + 0.7 * std::sin(2.9 * x + 1) + 0.5 * std::sin(0.41 * x); };
+  for (double x : t) {
+    estimate.push_back(motion(x));
+    measured.push_back(1.2 * motion(x - 2.5) + 0.1 * std::sin(97 * x));
+    periodic.push_back(std::sin(2 * kPi * x / 1.5));
+    periodic_measured.push_back(periodic.back() + 0.05 * std::sin(97 * x));
+  }
+  const es::TelemetryLag late = es::ReadTelemetryLag(t, estimate, measured, 5, 50, 8);
+  EXPECT_TRUE(late.found);
+  EXPECT_NEAR(late.lag_s, 2.5, 0.011);
+  EXPECT_GT(late.correlation, 0.95);
+  EXPECT_FALSE(es::ReadTelemetryLag(t, estimate, estimate, 5, 50, 8).found);
+  const es::TelemetryLag period = es::ReadTelemetryLag(t, periodic, periodic_measured, 5, 50, 8);
+  EXPECT_FALSE(period.found) << period.lag_s;
+  // A lag past the window's end is not read, and a peak on the search's edge is no delay.
+  const es::TelemetryLag past_the_end = es::ReadTelemetryLag(t, estimate, measured, 57, 60, 8);
+  EXPECT_FALSE(past_the_end.found) << past_the_end.lag_s << " " << past_the_end.correlation;
+  const es::TelemetryLag edge = es::ReadTelemetryLag(t, estimate, measured, 5, 50, 2);
+  EXPECT_FALSE(edge.found) << edge.lag_s << " " << edge.correlation;
+}
+
 // A coupled run's surface channels as the estimator reads them.
 es::SurfaceSignals SurfaceOf(const drillwave::cases::RunResult& run) {
   es::SurfaceSignals s;

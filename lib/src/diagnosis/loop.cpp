@@ -143,6 +143,13 @@ nlohmann::json DriveLawJson(const DriveLaw& law) {
           {"identified", law.Identified()}};
 }
 
+// The recorded bit speed's lag behind the virtual sensor's estimate (estimation/metrics.hpp), on the fit window.
+nlohmann::json TelemetryLagJson(const estimation::TelemetryLag& lag) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return {{"lag_s", lag.lag_s}, {"correlation", number(lag.correlation)},
+          {"correlation_at_zero", number(lag.correlation_at_zero)}, {"found", lag.found}};
+}
+
 nlohmann::json InRegimeJson(const std::vector<char>& in_regime) {
   nlohmann::json out = nlohmann::json::array();
   for (char c : in_regime) out.push_back(c != 0);
@@ -640,6 +647,7 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
           {"regime_rejected", loop.regime_rejected},
           {"noise_std", noise},
           {"recorded_drive_law", DriveLawJson(loop.recording_fit.drive)},
+          {"recorded_telemetry_lag", TelemetryLagJson(loop.recording_fit.telemetry)},
           {"artefact_samples_masked", masked},
           {"channels_left_whole", loop.channels_left_whole},
           {"model_runs", loop.model_runs},

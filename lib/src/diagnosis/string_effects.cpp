@@ -269,7 +269,7 @@ Effect ProposeSensorDelay(const StringFacts&, const FeatureSet& m, const Feature
   const bool axial = axial_z > kWeakEvidence && !(torsional_z > axial_z);
   const double first = axial ? axial_shift : std::isfinite(shift) ? shift : 1.0;
   Effect e{"sensor_delay", "telemetry delay of the downhole channels (bit speed, weight on bit)", {}, nullptr, 0, ""};
-  e.parameters = {{"delay_s", "s", 0.0, 8.0, false, std::clamp(first, 0.0, 8.0)}};
+  e.parameters = {{"delay_s", "s", 0.0, kMaxTelemetryDelayS, false, std::clamp(first, 0.0, kMaxTelemetryDelayS)}};
   e.parameters[0].lower_is_physical = true;
   e.apply = [](nlohmann::json& d, const std::vector<double>& v) {
     if (!d.contains("sensors")) return;
@@ -282,6 +282,17 @@ Effect ProposeSensorDelay(const StringFacts&, const FeatureSet& m, const Feature
   else if (torsional_z > kWeakEvidence)
     e.strength = torsional_z, e.evidence = "the bit speed follows the surface torque " + Fixed(shift, 2) +
                                            " s later than in the model: " + Describe(m, r, "torque_to_bit_lag_s");
+  // The virtual downhole sensor's reading (features.hpp): the recorded bit speed is its estimate from the surface
+  // channels, late by the delay (every telemetry delay of ../shared read to the sample, none where there is none).
+  // Where found, it is the first value, and its length in the lags the reading resolves the evidence.
+  if (const estimation::TelemetryLag& lag = r.telemetry; lag.found) {
+    e.parameters[0].start = std::clamp(lag.lag_s, 0.0, kMaxTelemetryDelayS);
+    const std::string read = "the recorded bit speed is the virtual sensor's estimate from the surface channels " +
+                             Fixed(lag.lag_s, 2) + " s late (correlation " + Fixed(lag.correlation, 3) +
+                             " against " + Fixed(lag.correlation_at_zero, 3) + " without delay)";
+    e.evidence = e.strength > 0 ? e.evidence + "; " + read : read;
+    e.strength = std::max(e.strength, lag.lag_s / estimation::kMinTelemetryLagS);
+  }
   return e;
 }
 

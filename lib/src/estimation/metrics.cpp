@@ -31,27 +31,39 @@ std::vector<double> Advanced(const std::vector<double>& measured, std::size_t sh
   return y;
 }
 
-double DownholeDelay(const std::vector<double>& t, const std::vector<double>& estimate,
-                     const std::vector<double>& measured, double max_lag_s) {
-  if (t.size() < 2) return 0;
+TelemetryLag ReadTelemetryLag(const std::vector<double>& t, const std::vector<double>& estimate,
+                              const std::vector<double>& measured, double begin_s, double end_s, double max_lag_s) {
+  TelemetryLag lag;
+  if (t.size() < 2 || estimate.size() != t.size() || measured.size() != t.size()) return lag;
   const double dt = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
-  const std::size_t max_shift = static_cast<std::size_t>(max_lag_s / dt);
-  auto rms = [&](std::size_t shift) {
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i + shift < t.size(); ++i)
-      if (std::isfinite(estimate[i]) && std::isfinite(measured[i + shift]))
-        sum += std::pow(estimate[i] - measured[i + shift], 2), ++count;
-    return count > t.size() / 4 ? std::sqrt(sum / static_cast<double>(count)) : INFINITY;
+  const auto max_shift = static_cast<std::size_t>(std::max(0.0, max_lag_s) / dt);
+  double in_window = 0;
+  for (double ti : t) in_window += ti >= begin_s && ti <= end_s;
+  // A lag is read on at least half the window's samples (a lag past the recording's end leaves a few).
+  const double enough = std::max(8.0, 0.5 * in_window);
+  auto correlation = [&](std::size_t shift) {
+    double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    for (std::size_t i = 0; i + shift < t.size(); ++i) {
+      if (t[i] < begin_s || t[i] > end_s) continue;
+      const double a = estimate[i], b = measured[i + shift];
+      if (!std::isfinite(a) || !std::isfinite(b)) continue;
+      n += 1, sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b;
+    }
+    const double va = saa - sa * sa / n, vb = sbb - sb * sb / n;
+    return n >= enough && va > 0 && vb > 0 ? (sab - sa * sb / n) / std::sqrt(va * vb) : NAN;
   };
-  const double at_zero = rms(0);
-  double best = at_zero;
-  std::size_t best_shift = 0;
+  lag.correlation_at_zero = correlation(0);
+  lag.correlation = lag.correlation_at_zero;
+  std::size_t best = 0;
   for (std::size_t shift = 1; shift <= max_shift; ++shift) {
-    const double r = rms(shift);
-    if (r < best) best = r, best_shift = shift;
+    const double r = correlation(shift);
+    if (r > lag.correlation) lag.correlation = r, best = shift;
   }
-  return best < 0.9 * at_zero ? static_cast<double>(best_shift) * dt : 0.0;
+  lag.lag_s = static_cast<double>(best) * dt;
+  lag.found = std::isfinite(lag.correlation) && lag.correlation >= kMinTelemetryCorrelation &&
+              lag.lag_s >= kMinTelemetryLagS && best < max_shift &&
+              1 - lag.correlation <= 0.25 * (1 - lag.correlation_at_zero);
+  return lag;
 }
 
 StuckScore ScoreStuck(const std::vector<double>& t, const std::vector<double>& speed, const std::vector<char>& stuck,

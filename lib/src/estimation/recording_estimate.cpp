@@ -128,8 +128,9 @@ nlohmann::json EstimateSummary(const recordings::Recording& r, const BitEstimate
                    s.samples ? static_cast<double>(s.measured_stuck) / static_cast<double>(s.samples) : 0.0},
                   {"samples", s.samples}};
     // A delayed downhole channel (telemetry) scores the estimate late: the error at the delay it shows, besides.
-    const double delay = DownholeDelay(e.time_s, e.bit_speed_rad_s, speed, 10.0);
-    if (delay > 0) {
+    const TelemetryLag lag = ReadTelemetryLag(e.time_s, e.bit_speed_rad_s, speed, w.begin_s, w.end_s, 10.0);
+    if (lag.found) {
+      const double delay = lag.lag_s;
       const std::size_t shift = static_cast<std::size_t>(std::lround(delay / r.sample_interval_s));
       const std::vector<double> aligned = Advanced(speed, shift);
       nlohmann::json a = ErrorJson(CompareSeries(e.time_s, e.bit_speed_rad_s, aligned, w.begin_s, w.end_s), kRadPerSecondPerRpm);
@@ -137,6 +138,8 @@ nlohmann::json EstimateSummary(const recordings::Recording& r, const BitEstimate
                                        w.begin_s, w.end_s);
       a["stuck_f1"] = sa.f1;
       a["delay_s"] = delay;
+      a["correlation"] = lag.correlation;
+      a["correlation_at_zero"] = lag.correlation_at_zero;
       m["bit_rpm_at_downhole_delay"] = a;
     }
   }

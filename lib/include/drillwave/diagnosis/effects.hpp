@@ -21,6 +21,10 @@ namespace drillwave::diagnosis {
 constexpr double kStrongEvidence = 3;
 constexpr double kWeakEvidence = 1;
 
+// The longest telemetry delay a sensor_delay effect is fitted to: mud-pulse telemetry's ~6.6 s (chapter sect. 2.7)
+// with a margin.
+constexpr double kMaxTelemetryDelayS = 8.0;
+
 struct EffectParameter {
   std::string name;   // e.g. "kp_Nms_per_rad"
   std::string unit;

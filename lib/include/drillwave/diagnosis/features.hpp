@@ -14,6 +14,7 @@
 
 #include "drillwave/diagnosis/drive_law.hpp"
 #include "drillwave/diagnosis/recording.hpp"
+#include "drillwave/estimation/metrics.hpp"
 
 namespace drillwave::diagnosis {
 
@@ -36,6 +37,9 @@ struct FeatureSet {
   // The top drive's law read off a recording's window where its speed set-point is known (the diagnosis loop's
   // PrepareRecording): evidence for the proposals, not a feature (no distance counts it, no model run measures it).
   DriveLaw drive;
+  // How late the recorded bit speed arrives behind the virtual downhole sensor's estimate of it from the surface
+  // channels (a telemetry delay), read on the fit window likewise.
+  estimation::TelemetryLag telemetry;
   const Feature* Find(const std::string& name) const;  // nullptr if absent
   double Value(const std::string& name) const;         // NaN if absent
 };

@@ -1,5 +1,7 @@
-// The top drive's law read off recorded signals (drive_law.hpp): a PI law's gains from noisy speed error and torque,
-// none where the speed error is noise, and the law of drillwave's own soft-drive run from its channels.
+// What the diagnosis loop reads off a recording before any fit: the top drive's law (drive_law.hpp) — a PI law's gains
+// from noisy speed error and torque, none where the speed error is noise, the law of drillwave's own soft-drive run from
+// its channels — and the telemetry delay of its bit speed behind the virtual sensor's estimate; and the proposals that
+// start from them.
 #include "drillwave/diagnosis/drive_law.hpp"
 
 #include <cmath>
@@ -160,6 +162,52 @@ TEST(SoftDriveProposal, StartsFromTheRecordedLawWhereItIsSofterThanTheCases) {
     EXPECT_NEAR(plain.parameters[1].start, 2500 * w1 * w1, 1e-6 * 2500 * w1 * w1);
     EXPECT_EQ(plain.strength, 0);
   }
+}
+
+// BASELINE.md's string sticking and slipping at 60 rpm, recorded from its 30 s on at 100 Hz with its bit speed late by
+// `delay_s` (telemetry), prepared as the loop prepares a recording.
+loop_internal::PreparedRecording PreparedWithDelayedBit(double delay_s, nlohmann::json* case_document) {
+  nlohmann::json doc = testing::LoadCase("baseline-60rpm");
+  doc["model"]["top"]["speed_rad_s"] = {{"knots", {{0, 2 * kPi}, {100, 2 * kPi}}}};
+  doc["simulation"]["duration_s"] = 100;
+  const cases::RunResult run = cases::RunCase(cases::ParseCase(doc)).result;
+  Recording r;
+  r.names = {"top_rpm", "top_torque_kNm", "bit_rpm"};
+  r.channels.resize(3);
+  const auto late = static_cast<std::size_t>(std::lround(delay_s / run.time_s[1]));
+  for (std::size_t i = late; i < run.time_s.size(); ++i) {
+    if (run.time_s[i] < 30 || std::abs(std::remainder(run.time_s[i], 0.01)) > 1e-9) continue;
+    r.time_s.push_back(run.time_s[i] - 30);
+    r.channels[0].push_back(run.channel("top_rpm").values[i]);
+    r.channels[1].push_back(1e-3 * run.channel("top_torque_Nm").values[i]);
+    r.channels[2].push_back(run.channel("bit_rpm").values[i - late]);
+  }
+  r.sample_interval_s = 0.01;
+  LoopOptions o;
+  o.maps = {ParseChannelMap("top_rpm=top_rpm"), ParseChannelMap("top_torque_kNm=top_torque_Nm*0.001"),
+            ParseChannelMap("bit_rpm=bit_rpm")};
+  o.model_time_offset_s = 30;
+  o.fit_begin_s = 5, o.fit_end_s = 37.5, o.held_out_begin_s = 37.5, o.held_out_end_s = 70;
+  *case_document = doc;
+  return loop_internal::PrepareRecording(doc, r, o);
+}
+
+// The bit speed 3 s late reads 3 s late, and the telemetry delay's fit starts there; on time it reads no delay.
+TEST(TelemetryLag, TheLoopReadsTheBitSpeedsDelayBehindTheVirtualSensor) {
+  nlohmann::json doc;
+  const loop_internal::PreparedRecording late = PreparedWithDelayedBit(3.0, &doc);
+  const estimation::TelemetryLag& lag = late.fit.telemetry;
+  std::printf("[ measured ] lag %.3f s, correlation %.4f (%.4f without delay)\n", lag.lag_s, lag.correlation,
+              lag.correlation_at_zero);
+  ASSERT_TRUE(lag.found);
+  EXPECT_NEAR(lag.lag_s, 3.0, 0.015);
+  for (const Effect& e : ProposeEffects(doc, FeatureSet{}, late.fit))
+    if (e.name == "sensor_delay") {
+      EXPECT_NEAR(e.parameters[0].start, lag.lag_s, 1e-12);
+      EXPECT_TRUE(e.Proposed());
+    }
+  const loop_internal::PreparedRecording on_time = PreparedWithDelayedBit(0.0, &doc);
+  EXPECT_FALSE(on_time.fit.telemetry.found) << on_time.fit.telemetry.lag_s;
 }
 
 }  // namespace
