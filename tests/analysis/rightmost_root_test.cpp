@@ -10,6 +10,7 @@
 
 #include "drillwave/analysis/axial_torsional_linearization.hpp"
 #include "drillwave/analysis/rightmost_root.hpp"
+#include "drillwave/core/constants.hpp"
 
 namespace drillwave::analysis {
 namespace {
@@ -37,7 +38,7 @@ LinearDelaySystem CoupledString(double speed_rad_s, double weight_on_bit_N) {
                               5,
                               true};
   const double depth_per_revolution = (weight_on_bit_N - contact) / string.cut_weight_per_depth;
-  const double rop = depth_per_revolution * speed_rad_s / (2 * 3.14159265358979323846);
+  const double rop = depth_per_revolution * speed_rad_s / (2 * kPi);
   return LinearizeAxialTorsional(string, {speed_rad_s, rop, 0.0}).system;
 }
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/bitrock/rgd.hpp"
+#include "drillwave/core/constants.hpp"
 
 namespace drillwave::bitrock {
 namespace {
@@ -173,7 +174,7 @@ TEST(ContactLaw, RgdForcesTakeTheFrictionFunction) {
 // Steady drilling's torque with F, and its slope at the held depth of cut (what the linearization adds to the bit's
 // damping) against finite differences, for each law, with RGD's and eq. 2.33's cutting torque.
 TEST(ContactLaw, SteadyTorqueSlopeIsItsDerivative) {
-  const double wob = 90e3, w0 = 2 * 3.14159265358979;
+  const double wob = 90e3, w0 = 2 * kPi;
   for (const ContactLaw& contact :
        {Regularized(1.0, 2.0), Hump(1.0, 1.0, 1.0), PrintedHump(1.0, 1.5, 0.5),
         Regularized(1.0, 2.0, CuttingTorque::kFrictionSquared), Hump(1.0, 1.0, 1.0, CuttingTorque::kFrictionSquared)}) {

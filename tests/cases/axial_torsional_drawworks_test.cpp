@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/model/drawworks.hpp"
 #include "json_case.hpp"
 #include "refused_path.hpp"
@@ -103,7 +104,7 @@ TEST(AxialTorsionalDrawworks, AFasterSupplyLoadsTheBitUntilItDrillsAsFastAsTheLi
   // The pay-out where the motor holds the pull of weight W: the shaft speed between synchronous and pull-out.
   auto pay_out = [&](double wob) {
     const double pull = buoyant - wob - damping * rop(wob);
-    const double synchronous = 2 * 3.141592653589793 * f / motor.pole_pairs;
+    const double synchronous = 2 * kPi * f / motor.pole_pairs;
     const double shaft = Bisect(synchronous, synchronous + motor.PullOutSlipFrequency() / motor.pole_pairs,
                                 [&](double s) { return n * motor.Torque(motor.SteadyFluxes(f, s)) + r * pull; });
     return r * shaft / n;

@@ -1,6 +1,7 @@
 #include "drillwave/analysis/axial_torsional_linearization.hpp"
 
 #include "drillwave/analysis/bha_whirl_linearization.hpp"
+#include "drillwave/core/constants.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -159,8 +160,7 @@ NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string,
   }
 
   // The cut: delta d = n (u - u(t - t_n0)) - (n V0 / Omega0) (phi - phi(t - t_n0)), t_n0 = 2 pi / (n Omega0).
-  const double pi = 3.14159265358979323846;
-  const double tn0 = 2 * pi / (string.blades * w0);
+  const double tn0 = 2 * kPi / (string.blades * w0);
   const int wb = map_t(tb), vb = map_a(IndexOf(axial.state_names, "bit_speed_rad_s"));
   const double mass = string.axial.bit_inertia;
   DelayTerm cut{tn0, Eigen::MatrixXd::Zero(n, n), {}};

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "drillwave/analysis/bha_whirl_linearization.hpp"
+#include "drillwave/core/constants.hpp"
 
 namespace drillwave::analysis {
 namespace {
@@ -88,14 +89,13 @@ double Supply(const Node& top, double set, double w, bool& saturated) {
 double LargestSpeed(const Network& net, double set) {
   const Node& top = net.top();
   const waves::DcMotor& m = top.motor;
-  const double pi = 3.14159265358979323846;
   switch (top.drive) {
     case Drive::kSpeedDashpot:
     case Drive::kPiSpeedController:
     case Drive::kInductionMotorSpeed: return set;  // no demand, no slip: no torque
     case Drive::kDcMotorVoltage: return Clamp(set, m.voltage_limit) / ReferredMotorConstant(top);
     case Drive::kDcMotorSpeed: return top.pi.kp * set / (top.pi.kp + ReferredMotorConstant(top));
-    case Drive::kInductionMotor: return 2 * pi * set / (top.induction.pole_pairs * top.gear.ratio);  // synchronous
+    case Drive::kInductionMotor: return 2 * kPi * set / (top.induction.pole_pairs * top.gear.ratio);  // synchronous
     case Drive::kTorque: {
       double damping = 0;
       for (const Node& n : net.nodes) damping += n.ground_damping;
@@ -161,8 +161,7 @@ InductionJacobian LinearizeInductionMotor(const model::InductionMotor& m, double
     jac.flux.col(j) = column(m.FluxRates(plus, f0, wm0), m.FluxRates(minus, f0, wm0), h);
     jac.torque(j) = (m.Torque(plus) - m.Torque(minus)) / (2 * h);
   }
-  const double pi = 3.14159265358979323846;
-  const double hw = 1e-4 * std::max(std::abs(wm0), 2 * pi * std::abs(f0) / m.pole_pairs + 1.0);
+  const double hw = 1e-4 * std::max(std::abs(wm0), 2 * kPi * std::abs(f0) / m.pole_pairs + 1.0);
   jac.shaft_speed = column(m.FluxRates(psi0, f0, wm0 + hw), m.FluxRates(psi0, f0, wm0 - hw), hw);
   double hf = 1e-4 * std::max(std::abs(f0), 1.0);
   if (m.voltage_limit > 0) {

@@ -8,6 +8,7 @@
 
 #include <unsupported/Eigen/FFT>
 
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/validity.hpp"
@@ -115,7 +116,7 @@ double Period(const std::vector<double>& x, double dt, double max_period_s) {
 
 // The amplitude of the sinusoid of frequency hz in x (one DFT bin, mean removed).
 double Amplitude(const std::vector<double>& x, double dt, double hz) {
-  const double mean = Mean(x), w = 2 * 3.14159265358979323846 * hz * dt;
+  const double mean = Mean(x), w = 2 * kPi * hz * dt;
   double re = 0, im = 0;
   for (std::size_t i = 0; i < x.size(); ++i) re += (x[i] - mean) * std::cos(w * i), im -= (x[i] - mean) * std::sin(w * i);
   return 2 * std::hypot(re, im) / x.size();
@@ -137,7 +138,7 @@ std::vector<double> BandRms(const std::vector<double>& x, double dt, const std::
   std::vector<double> windowed(padded, 0.0);
   double window_power = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double w = 0.5 - 0.5 * std::cos(2 * 3.14159265358979323846 * (i + 0.5) / n);
+    const double w = 0.5 - 0.5 * std::cos(2 * kPi * (i + 0.5) / n);
     windowed[i] = w * (x[i] - mean);
     window_power += w * w;
   }
