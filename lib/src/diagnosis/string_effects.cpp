@@ -40,7 +40,7 @@ struct StringFacts {
 
 // A recorded drive law this many times less stiff than the case's is another drive: the cross-spectral estimate is
 // biased low by at most 1 - coherence (10 %) where it is identified, and the stiff drives of ../shared read within
-// 10 % of their case's law (kp 1e5, ki 2e5: |H| 0.9-1.1 times) on every sticking recording.
+// 0.84-1.21 times their case's |H| (kp 1e5, ki 2e5) on every sticking recording.
 constexpr double kSofterDrive = 2;
 // Evidence is capped here: a difference of that many standard deviations is certain, and the cap keeps the
 // proposals' order finite where the coherence is 1 to rounding.
@@ -83,8 +83,8 @@ Effect ProposeSoftTopdrive(const StringFacts& s, const FeatureSet& m, const Feat
     e.evidence = "the top speed moves more than the model's drive lets it: " + Describe(m, r, "top_rpm std") +
                  (smoother > 0 ? "; and the bit runs smoother: " + Describe(m, r, "bit_rpm std") : "");
   // Where the recording's own drive law reads softer than the case's, the fit starts from it (train rec04, rec18:
-  // kp 442 and 391 N m s/rad read, 590 and 376 simulated; a start at the pipe's impedance left rec28's screening fit
-  // at an error of 168).
+  // kp 460 and 392 N m s/rad read, 590 and 376 simulated; train rec30 and rec32, where a DC motor adds its K^2/R,
+  // named Kelvin-Voigt damping before and their soft drive from it).
   const DriveLaw& law = r.drive;
   if (const double z_law = SofterDriveEvidence(s, law); z_law > 0) {
     for (int k : {0, 1})
@@ -283,7 +283,8 @@ Effect ProposeSensorDelay(const StringFacts&, const FeatureSet& m, const Feature
     e.strength = torsional_z, e.evidence = "the bit speed follows the surface torque " + Fixed(shift, 2) +
                                            " s later than in the model: " + Describe(m, r, "torque_to_bit_lag_s");
   // The virtual downhole sensor's reading (features.hpp): the recorded bit speed is its estimate from the surface
-  // channels, late by the delay (every telemetry delay of ../shared read to the sample, none where there is none).
+  // channels, late by the delay (on the fit window six of the seven telemetry delays of ../shared read to the sample,
+  // none where there is none).
   // Where found, it is the first value, and its length in the lags the reading resolves the evidence.
   if (const estimation::TelemetryLag& lag = r.telemetry; lag.found) {
     e.parameters[0].start = std::clamp(lag.lag_s, 0.0, kMaxTelemetryDelayS);
