@@ -134,7 +134,8 @@ TEST(DriveLaw, ReadsTheSoftDriveOfAStringRunFromItsChannels) {
 
 // The soft drive's proposal reads the recorded law: where it is identified and softer than the case's PI, its gains are
 // the fit's first values and its distance in standard deviations the evidence; a law like the case's, or one not
-// identified, leaves the SoftSpeed tuning (kp = Z, ki = J_td w1^2) and no evidence from the law.
+// identified, leaves the SoftSpeed tuning (kp = Z, ki = J_td w1^2) and no evidence from the law; the case's own law
+// read off the recording refutes a soft drive.
 Effect SoftDriveProposal(const DriveLaw& law) {
   const nlohmann::json doc = testing::LoadCase("baseline-60rpm");
   FeatureSet recording;
@@ -153,6 +154,7 @@ TEST(SoftDriveProposal, StartsFromTheRecordedLawWhereItIsSofterThanTheCases) {
   EXPECT_DOUBLE_EQ(e.parameters[1].start, 5000);
   EXPECT_TRUE(e.Proposed()) << e.strength;
   EXPECT_NE(e.evidence.find("read off the recording"), std::string::npos) << e.evidence;
+  EXPECT_TRUE(e.refuted.empty());
 
   // BASELINE.md's pipe and top: Z = 299 N m s/rad, w1 = pi c / 2 L at 2000 m, J_td = 2500 kg m^2.
   const double c = std::sqrt(80769e6 / 7850), w1 = kPi * c / (2 * 2000);
@@ -162,6 +164,10 @@ TEST(SoftDriveProposal, StartsFromTheRecordedLawWhereItIsSofterThanTheCases) {
     EXPECT_NEAR(plain.parameters[1].start, 2500 * w1 * w1, 1e-6 * 2500 * w1 * w1);
     EXPECT_EQ(plain.strength, 0);
   }
+  // The case's own law read off the recording measures the drive: a soft one is refuted, not fitted; a law not read
+  // (coherence 0.5) refutes nothing.
+  EXPECT_FALSE(SoftDriveProposal(DriveLaw{0.3, 1e5, 2e5, 0.98, 4}).refuted.empty());
+  EXPECT_TRUE(SoftDriveProposal(DriveLaw{0.3, 400, 5000, 0.5, 4}).refuted.empty());
 }
 
 // BASELINE.md's string sticking and slipping at 60 rpm, recorded from its 30 s on at 100 Hz with its bit speed late by

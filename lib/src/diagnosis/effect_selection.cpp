@@ -94,6 +94,14 @@ std::vector<double> EffectSelection::StartOfSet(const std::vector<int>& set) con
 void EffectSelection::FindModelable() {
   // Every effect is a candidate: the rules' evidence orders the work (the proposals are sorted by it), never gates it.
   for (std::size_t i = 0; i < loop_.proposals.size(); ++i) {
+    if (!loop_.proposals[i].refuted.empty()) {  // measured otherwise: not a candidate
+      Candidate c;
+      c.effects = {loop_.proposals[i].name};
+      c.failure = "refuted by the recording: " + loop_.proposals[i].refuted;
+      say_(loop_.proposals[i].name + ": " + c.failure);
+      loop_.candidates.push_back(c);
+      continue;
+    }
     try {
       cases::ParseCase(DocumentAt({static_cast<int>(i)}, StartOfSet({static_cast<int>(i)})));
       modelable_.push_back(static_cast<int>(i));

@@ -48,6 +48,9 @@ struct Effect {
   std::string evidence;   // the measured numbers behind it
   // A base parameter (BaseCalibrations) re-estimated beside effects as a rival explanation: fitted, never named.
   bool calibration = false;
+  // What the recording measures directly that contradicts the effect (a stiff drive's law read off it, against a soft
+  // drive): such an effect is not fitted. Empty: nothing refutes it.
+  std::string refuted = {};
   bool Proposed() const { return strength > kStrongEvidence; }
 };
 
