@@ -135,6 +135,9 @@ nlohmann::json ProbabilitiesJson(const std::vector<ModelProbability>& models) {
   return out;
 }
 
+// A finite number, or null (JSON has no NaN or infinity).
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
 // The drive's law read off the recording's fit window (drive_law.hpp), null where it could not be read at all.
 nlohmann::json DriveLawJson(const DriveLaw& law) {
   if (law.segments == 0) return nullptr;
@@ -145,7 +148,6 @@ nlohmann::json DriveLawJson(const DriveLaw& law) {
 
 // The recorded bit speed's lag behind the virtual sensor's estimate (estimation/metrics.hpp), on the fit window.
 nlohmann::json TelemetryLagJson(const estimation::TelemetryLag& lag) {
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   return {{"lag_s", lag.lag_s}, {"correlation", number(lag.correlation)},
           {"correlation_at_zero", number(lag.correlation_at_zero)}, {"found", lag.found}};
 }
@@ -538,7 +540,6 @@ std::vector<ModelProbability> AkaikeWeights(const DiagnosisLoop& loop) {
 
 namespace {
 nlohmann::json RegimeMarginJson(const RegimeMargin& m) {
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   if (!m.measured) return {{"measured", false}, {"runs", m.runs}};
   return {{"measured", true},
           {"parameter", "/model/top/speed_rad_s (every knot scaled)"},
@@ -564,7 +565,6 @@ nlohmann::json FitDrawError(const DiagnosisLoop& loop) {
 }  // namespace
 
 nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json hypotheses = nlohmann::json::array(), candidates = nlohmann::json::array(),
                  fitted = nlohmann::json::array(), proposals = nlohmann::json::array(), noise = nlohmann::json::object();
   for (const Effect& e : loop.proposals)

@@ -18,9 +18,10 @@ SeriesError CompareSeries(const std::vector<double>& time_s, const std::vector<d
 
 // The delay of a downhole channel behind the bit (telemetry, chapter sect. 2.7): the lag in [0, max_lag_s] at which
 // measured(t + lag) correlates best with the estimate, over the samples with time in [begin_s, end_s] where both are
-// finite (at least half the window's: a lag that runs past the recording's end is not read). It is taken for a delay (found) where it explains most of their mismatch: 1 - r at the lag at most a quarter
-// of 1 - r at zero (the standardized mismatch's rms halves), r at least kMinTelemetryCorrelation, the lag at least
-// kMinTelemetryLagS and short of max_lag_s (a peak on the search's edge may lie past it). Correlation, not the rms of
+// finite (at least half the window's: a lag that runs past the recording's end is not read). It is taken for a delay
+// (found) where it explains most of their mismatch: 1 - r at the lag at most a quarter of 1 - r at zero (the
+// standardized mismatch's rms halves), r at least kMinTelemetryCorrelation, the lag at least kMinTelemetryLagS and
+// short of max_lag_s (a peak on the search's edge may lie past it). Correlation, not the rms of
 // the difference, so that a gain or bias of the estimate does not move it; a periodic motion correlates with itself a
 // period later, and the quarter rule keeps that from reading as a delay (train rec30: 0.983 at 5.7 s against 0.967 at
 // zero, no delay).
