@@ -12,10 +12,11 @@
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/core/validity.hpp"
+#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/csv.hpp"
+#include "drillwave/io/json_number.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
-#include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::cases {
@@ -28,7 +29,6 @@ double SteadySpeed(const nlohmann::json& steady) {
 }
 
 // JSON has no infinities: -inf (no essential spectrum, no roots) is written as null.
-nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 nlohmann::json RootsToJson(const analysis::Spectrum& sp, int max_roots) {
   nlohmann::json roots = nlohmann::json::array();
@@ -38,12 +38,13 @@ nlohmann::json RootsToJson(const analysis::Spectrum& sp, int max_roots) {
 }
 
 nlohmann::json ContinuumToJson(const analysis::ContinuumSpectrum& c, int max_roots) {
-  return {{"note", "the string as the continuum its pieces discretize (exact Kelvin-Voigt sections); the verdict "
-                   "above is the discretized model's, which the simulation integrates"},
+  return {{"note",
+           "the string as the continuum its pieces discretize (exact Kelvin-Voigt sections); the verdict "
+           "above is the discretized model's, which the simulation integrates"},
           {"stable", c.spectrum.stable},
           {"verdict", analysis::VerdictName(c.spectrum.verdict)},
-          {"spectral_abscissa", Number(c.spectrum.spectral_abscissa)},
-          {"essential_abscissa", Number(c.spectrum.essential_abscissa)},
+          {"spectral_abscissa", io::FiniteOrNull(c.spectrum.spectral_abscissa)},
+          {"essential_abscissa", io::FiniteOrNull(c.spectrum.essential_abscissa)},
           {"certified", c.certified},
           {"box_re_left_re_right_im_max", {c.re_left, c.re_right, c.im_max}},
           {"roots_re_im_residual", RootsToJson(c.spectrum, max_roots)}};
@@ -120,8 +121,8 @@ nlohmann::json StabilityToJson(const std::vector<OperatingPointStability>& resul
                       {"state", r.point.state_names},
                       {"stable", r.spectrum.stable},
                       {"verdict", analysis::VerdictName(r.spectrum.verdict)},
-                      {"spectral_abscissa", Number(r.spectrum.spectral_abscissa)},
-                      {"essential_abscissa", Number(r.spectrum.essential_abscissa)},
+                      {"spectral_abscissa", io::FiniteOrNull(r.spectrum.spectral_abscissa)},
+                      {"essential_abscissa", io::FiniteOrNull(r.spectrum.essential_abscissa)},
                       {"roots_re_im_residual", RootsToJson(r.spectrum, max_roots)}});
     if (r.continuum) points.back()["continuum_kelvin_voigt"] = ContinuumToJson(*r.continuum, max_roots);
   }

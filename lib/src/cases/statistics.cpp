@@ -6,6 +6,7 @@
 
 #include "drillwave/core/median.hpp"
 #include "drillwave/core/sampled.hpp"
+#include "drillwave/io/json_number.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -45,19 +46,17 @@ double WindowSeverity(const std::vector<double>& t, const std::vector<double>& v
   return mean > 0 ? (max - min) / (2 * mean) : std::numeric_limits<double>::quiet_NaN();
 }
 
-nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 }  // namespace
 
 nlohmann::json StickSlipStatistics::ToJson() const {
-  return {{"stick_slip_period_s", NumberOrNull(stick_slip_period_s)},
-          {"oscillation_period_s", NumberOrNull(oscillation_period_s)},
+  return {{"stick_slip_period_s", io::FiniteOrNull(stick_slip_period_s)},
+          {"oscillation_period_s", io::FiniteOrNull(oscillation_period_s)},
           {"stick_onsets", stick_onsets},
           {"stick_fraction", stick_fraction},
           {"bit_speed_max_rad_s", speed_max},
           {"bit_speed_min_rad_s", speed_min},
           {"bit_speed_mean_rad_s", speed_mean},
-          {"stick_slip_severity", NumberOrNull(severity)},
+          {"stick_slip_severity", io::FiniteOrNull(severity)},
           {"stick_slip_severity_windows", severity_windows}};
 }
 

@@ -7,8 +7,9 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/validity.hpp"
-#include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/axis_label.hpp"
+#include "drillwave/io/json_number.hpp"
+#include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/svg_plot.hpp"
 
 namespace drillwave::diagnosis {
@@ -221,13 +222,14 @@ Comparison Compare(const Recording& rec, const cases::RunResult& model, const st
 }
 
 nlohmann::json ComparisonToJson(const Comparison& c) {
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json residuals = nlohmann::json::array(), features = nlohmann::json::array();
   for (const auto& r : c.residuals)
     residuals.push_back({{"channel", r.channel}, {"rms", r.rms}, {"bias", r.bias}, {"recording_std", r.recording_std}});
   for (const auto& d : c.features)
-    features.push_back({{"feature", d.feature}, {"recording", number(d.recording)}, {"model", number(d.model)},
-                        {"relative_difference", number(d.relative)}});
+    features.push_back({{"feature", d.feature},
+                        {"recording", io::FiniteOrNull(d.recording)},
+                        {"model", io::FiniteOrNull(d.model)},
+                        {"relative_difference", io::FiniteOrNull(d.relative)}});
   return {{"window_s", {c.window_begin_s, c.window_end_s}},
           {"residuals", residuals},
           {"features", features},

@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <complex>
+#include <cstdio>
 #include <map>
-
 #include <unsupported/Eigen/FFT>
 
 #include "drillwave/core/constants.hpp"
@@ -13,6 +12,7 @@
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/recording.hpp"
+#include "drillwave/io/json_number.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -504,15 +504,14 @@ double NoiseStd(const std::vector<double>& x) {
 }
 
 nlohmann::json FeatureSetToJson(const FeatureSet& model, const FeatureSet& recording) {
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json list = nlohmann::json::array();
   for (const Feature& r : recording.features) {
     const double m = model.Value(r.name);
     list.push_back({{"feature", r.name},
-                    {"recording", number(r.value)},
-                    {"model", number(m)},
+                    {"recording", io::FiniteOrNull(r.value)},
+                    {"model", io::FiniteOrNull(m)},
                     {"scale", r.scale},
-                    {"difference_in_scales", number((m - r.value) / r.scale)}});
+                    {"difference_in_scales", io::FiniteOrNull((m - r.value) / r.scale)}});
   }
   return {{"window_s", {recording.begin_s, recording.end_s}}, {"features", list}};
 }

@@ -5,14 +5,15 @@
 #include <limits>
 #include <sstream>
 
+#include "channel_figure.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/progress.hpp"
 #include "drillwave/core/validity.hpp"
-#include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/axis_label.hpp"
+#include "drillwave/io/json_number.hpp"
+#include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/svg_plot.hpp"
-#include "channel_figure.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -283,23 +284,27 @@ nlohmann::json InspectionToJson(const Inspection& ins) {
                          {"cleaned_range", {a.clean_min, a.clean_max}}});
   nlohmann::json correlations = nlohmann::json::array();
   for (const ChannelPair& p : ins.correlations) correlations.push_back({p.a, p.b, p.correlation});
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   return {{"source", ins.source},
-          {"duration_s", number(ins.duration_s)},
+          {"duration_s", io::FiniteOrNull(ins.duration_s)},
           {"sample_interval_s", ins.sample_interval_s},
           {"artefacts", artefacts},
           {"stuck_threshold", ins.stuck_threshold},
           {"stuck_episodes_s", IntervalsToJson(ins.stuck)},
           {"slip_without_stick_s", IntervalsToJson(ins.slip_without_stick)},
           {"stick_fraction", ins.stick_fraction},
-          {"stick_slip_period_s", number(ins.stick_slip_period_s)},
-          {"bit_speed_mean", number(ins.bit_speed_mean)},
-          {"bit_speed_max", number(ins.bit_speed_max)},
-          {"top_speed", {{"mean", ins.top_speed_mean}, {"std", ins.top_speed_std}, {"min", ins.top_speed_min},
-                         {"max", ins.top_speed_max}, {"fluctuation", ins.top_speed_fluctuation},
-                         {"noise", ins.top_speed_noise}, {"fluctuation_ratio", number(ins.top_speed_fluctuation_ratio)},
-                         {"drive_soft", ins.top_drive_soft}}},
-          {"bit_oscillation_period_s", number(ins.bit_oscillation_period_s)},
+          {"stick_slip_period_s", io::FiniteOrNull(ins.stick_slip_period_s)},
+          {"bit_speed_mean", io::FiniteOrNull(ins.bit_speed_mean)},
+          {"bit_speed_max", io::FiniteOrNull(ins.bit_speed_max)},
+          {"top_speed",
+           {{"mean", ins.top_speed_mean},
+            {"std", ins.top_speed_std},
+            {"min", ins.top_speed_min},
+            {"max", ins.top_speed_max},
+            {"fluctuation", ins.top_speed_fluctuation},
+            {"noise", ins.top_speed_noise},
+            {"fluctuation_ratio", io::FiniteOrNull(ins.top_speed_fluctuation_ratio)},
+            {"drive_soft", ins.top_drive_soft}}},
+          {"bit_oscillation_period_s", io::FiniteOrNull(ins.bit_oscillation_period_s)},
           {"correlations", correlations},
           {"findings", ins.findings}};
 }

@@ -14,7 +14,6 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/sensors.hpp"
 #include "drillwave/cases/sweep.hpp"
-#include "drillwave/io/json_reader.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
@@ -23,10 +22,12 @@
 #include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/minimize.hpp"
 #include "drillwave/diagnosis/recording.hpp"
-#include "model_runs.hpp"
-#include "regime_margin.hpp"
-#include "prepared_recording.hpp"
+#include "drillwave/io/json_number.hpp"
+#include "drillwave/io/json_reader.hpp"
 #include "effect_selection.hpp"
+#include "model_runs.hpp"
+#include "prepared_recording.hpp"
+#include "regime_margin.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -136,7 +137,6 @@ nlohmann::json ProbabilitiesJson(const std::vector<ModelProbability>& models) {
 }
 
 // A finite number, or null (JSON has no NaN or infinity).
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 // The drive's law read off the recording's fit window (drive_law.hpp), null where it could not be read at all.
 nlohmann::json DriveLawJson(const DriveLaw& law) {
@@ -148,8 +148,10 @@ nlohmann::json DriveLawJson(const DriveLaw& law) {
 
 // The recorded bit speed's lag behind the virtual sensor's estimate (estimation/metrics.hpp), on the fit window.
 nlohmann::json TelemetryLagJson(const estimation::TelemetryLag& lag) {
-  return {{"lag_s", lag.lag_s}, {"correlation", number(lag.correlation)},
-          {"correlation_at_zero", number(lag.correlation_at_zero)}, {"found", lag.found}};
+  return {{"lag_s", lag.lag_s},
+          {"correlation", io::FiniteOrNull(lag.correlation)},
+          {"correlation_at_zero", io::FiniteOrNull(lag.correlation_at_zero)},
+          {"found", lag.found}};
 }
 
 nlohmann::json InRegimeJson(const std::vector<char>& in_regime) {
@@ -545,8 +547,8 @@ nlohmann::json RegimeMarginJson(const RegimeMargin& m) {
           {"parameter", "/model/top/speed_rad_s (every knot scaled)"},
           {"recorded_regime", m.recorded},
           {"model_regime", m.model},
-          {"lower_change_percent", number(m.lower_percent)},
-          {"upper_change_percent", number(m.upper_percent)},
+          {"lower_change_percent", io::FiniteOrNull(m.lower_percent)},
+          {"upper_change_percent", io::FiniteOrNull(m.upper_percent)},
           {"searched_percent", kRegimeSearchPercent},
           {"near_edge", m.near_edge},
           {"near_edge_percent", kNearRegimeEdgePercent},
@@ -573,15 +575,26 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
   for (const Candidate& c : loop.candidates) {
     nlohmann::json parameters = nlohmann::json::array();
     for (const FittedParameter& p : c.parameters)
-      parameters.push_back({{"effect", p.effect}, {"name", p.name}, {"unit", p.unit}, {"value", number(p.value)},
-                            {"sigma", number(p.sigma)}, {"bounds", {p.lower, p.upper}}});
-    candidates.push_back({{"effects", c.effects}, {"parameters", parameters}, {"fit_error", number(c.fit_error)},
-                          {"held_out_error", number(c.held_out_error)},
+      parameters.push_back({{"effect", p.effect},
+                            {"name", p.name},
+                            {"unit", p.unit},
+                            {"value", io::FiniteOrNull(p.value)},
+                            {"sigma", io::FiniteOrNull(p.sigma)},
+                            {"bounds", {p.lower, p.upper}}});
+    candidates.push_back({{"effects", c.effects},
+                          {"parameters", parameters},
+                          {"fit_error", io::FiniteOrNull(c.fit_error)},
+                          {"held_out_error", io::FiniteOrNull(c.held_out_error)},
                           {"held_out_error_each_draw", c.held_out_draw_errors},
-                          {"draw_in_regime", InRegimeJson(c.draw_in_regime)}, {"aic", number(c.aic)},
-                          {"evaluations", c.evaluations}, {"redrawn_runs", c.redrawn_runs},
-                          {"failed_runs", c.failed_runs}, {"failed_draws", c.failed_draws},
-                          {"first_failed_run", c.first_failure}, {"kept", c.kept}, {"failure", c.failure},
+                          {"draw_in_regime", InRegimeJson(c.draw_in_regime)},
+                          {"aic", io::FiniteOrNull(c.aic)},
+                          {"evaluations", c.evaluations},
+                          {"redrawn_runs", c.redrawn_runs},
+                          {"failed_runs", c.failed_runs},
+                          {"failed_draws", c.failed_draws},
+                          {"first_failed_run", c.first_failure},
+                          {"kept", c.kept},
+                          {"failure", c.failure},
                           {"verdict", c.verdict}});
   }
   if (loop.kept >= 0) {
@@ -598,17 +611,21 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
       std::string evidence;
       for (const Effect& e : loop.proposals)
         if (e.name == name) evidence = e.evidence;
-      hypotheses.push_back({{"effect", name}, {"estimate", number(estimate)}, {"unit", unit}, {"evidence", evidence}});
+      hypotheses.push_back(
+          {{"effect", name}, {"estimate", io::FiniteOrNull(estimate)}, {"unit", unit}, {"evidence", evidence}});
     }
   }
   nlohmann::json screening = nlohmann::json::array(), ambiguous = nlohmann::json::array();
   for (const Candidate& c : loop.screening)
-    screening.push_back({{"effects", c.effects}, {"fit_error", number(c.fit_error)},
-                         {"held_out_error_one_draw", number(c.held_out_error)}, {"evaluations", c.evaluations},
+    screening.push_back({{"effects", c.effects},
+                         {"fit_error", io::FiniteOrNull(c.fit_error)},
+                         {"held_out_error_one_draw", io::FiniteOrNull(c.held_out_error)},
+                         {"evaluations", c.evaluations},
                          {"failure", c.failure}});
   for (const Candidate& c : loop.rivals)
-    ambiguous.push_back({{"effects", c.effects}, {"held_out_error", number(c.held_out_error)},
-                         {"fit_error", number(c.fit_error)}});
+    ambiguous.push_back({{"effects", c.effects},
+                         {"held_out_error", io::FiniteOrNull(c.held_out_error)},
+                         {"fit_error", io::FiniteOrNull(c.fit_error)}});
   nlohmann::json calibration = nlohmann::json::array();
   for (const CalibratedParameter& p : loop.calibration)
     calibration.push_back({{"calibration", p.calibration}, {"name", p.name}, {"unit", p.unit},
@@ -619,25 +636,28 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
   nlohmann::json masked = nlohmann::json::object();
   for (const auto& [channel, count] : loop.masked_samples) masked[channel] = count;
   return {{"hypotheses", hypotheses},
-          {"held_out", {{"window_s", {loop.recording_held_out.begin_s, loop.recording_held_out.end_s}},
-                        {"error_before", loop.baseline_held_out_error},
-                        {"error_before_each_draw", loop.baseline_held_out_draw_errors},
-                        {"draw_in_regime", InRegimeJson(loop.baseline_draw_in_regime)},
-                        {"draws", loop.baseline_held_out_draw_errors.size()},
-                        {"recorded_off_bottom_share", number(loop.recorded_off_bottom_share)},
-                        {"recording_bounces", loop.recording_bounces},
-                        {"fit_draw", loop.fit_draw},
-                        {"error_after", loop.fitted_held_out_error},
-                        {"error_chance", loop.error_chance}}},
-          {"fit", {{"window_s", {loop.recording_fit.begin_s, loop.recording_fit.end_s}},
-                   {"error_before", loop.baseline_fit_error},
-                   {"error_after", loop.fitted_fit_error},
-                   {"baseline_aic", loop.baseline_aic}}},
+          {"held_out",
+           {{"window_s", {loop.recording_held_out.begin_s, loop.recording_held_out.end_s}},
+            {"error_before", loop.baseline_held_out_error},
+            {"error_before_each_draw", loop.baseline_held_out_draw_errors},
+            {"draw_in_regime", InRegimeJson(loop.baseline_draw_in_regime)},
+            {"draws", loop.baseline_held_out_draw_errors.size()},
+            {"recorded_off_bottom_share", io::FiniteOrNull(loop.recorded_off_bottom_share)},
+            {"recording_bounces", loop.recording_bounces},
+            {"fit_draw", loop.fit_draw},
+            {"error_after", loop.fitted_held_out_error},
+            {"error_chance", loop.error_chance}}},
+          {"fit",
+           {{"window_s", {loop.recording_fit.begin_s, loop.recording_fit.end_s}},
+            {"error_before", loop.baseline_fit_error},
+            {"error_after", loop.fitted_fit_error},
+            {"baseline_aic", loop.baseline_aic}}},
           {"ambiguous", ambiguous},
           {"model_probabilities", ProbabilitiesJson(AkaikeWeights(loop))},
           {"base_calibration", {{"parameters", calibration}, {"kept", loop.calibration_kept}}},
-          {"plain_case", {{"fit_error_one_draw", number(loop.plain_fit_error)},
-                          {"held_out_error_one_draw", number(loop.plain_held_out_error)}}},
+          {"plain_case",
+           {{"fit_error_one_draw", io::FiniteOrNull(loop.plain_fit_error)},
+            {"held_out_error_one_draw", io::FiniteOrNull(loop.plain_held_out_error)}}},
           {"screening", {{"baseline_held_out_error_one_draw", FitDrawError(loop)}, {"candidates", screening}}},
           {"fitted_parameters", fitted},
           {"candidates", candidates},

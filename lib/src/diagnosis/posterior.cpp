@@ -12,6 +12,7 @@
 #include "drillwave/core/validity.hpp"
 #include "drillwave/io/axis_label.hpp"
 #include "drillwave/io/csv.hpp"
+#include "drillwave/io/json_number.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/svg_plot.hpp"
@@ -339,7 +340,6 @@ Posterior SamplePosterior(const nlohmann::json& document, const Recording& raw, 
 }
 
 nlohmann::json PosteriorToJson(const Posterior& post, const Recording& recording) {
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json parameters = nlohmann::json::array();
   for (const ParameterSummary& s : post.summaries)
     parameters.push_back({{"pointer", s.pointer}, {"case_value", s.case_value}, {"bounds", {s.lower, s.upper}},
@@ -347,12 +347,18 @@ nlohmann::json PosteriorToJson(const Posterior& post, const Recording& recording
                           {"drift_sd", s.drift_sd}});
   nlohmann::json predictive = nlohmann::json::array();
   for (const PredictiveFeature& f : post.predictive)
-    predictive.push_back({{"feature", f.name}, {"recorded", f.recorded}, {"scale", f.scale}, {"q05", number(f.q05)},
-                          {"median", number(f.q50)}, {"q95", number(f.q95)}, {"undefined_share", f.undefined_share},
+    predictive.push_back({{"feature", f.name},
+                          {"recorded", f.recorded},
+                          {"scale", f.scale},
+                          {"q05", io::FiniteOrNull(f.q05)},
+                          {"median", io::FiniteOrNull(f.q50)},
+                          {"q95", io::FiniteOrNull(f.q95)},
+                          {"undefined_share", f.undefined_share},
                           {"inside", f.inside}});
   return {{"recording", recording.source},
-          {"likelihood", "log L = -1/2 sum over the fit window's features of ((model - recorded) / scale)^2; uniform "
-                         "prior in the bounds"},
+          {"likelihood",
+           "log L = -1/2 sum over the fit window's features of ((model - recorded) / scale)^2; uniform "
+           "prior in the bounds"},
           {"fit_window_features", post.recording_features},
           {"walkers", post.walkers},
           {"steps", post.steps},
@@ -361,11 +367,11 @@ nlohmann::json PosteriorToJson(const Posterior& post, const Recording& recording
           {"runs", post.runs},
           {"failed_runs", post.failed_runs},
           {"parameters", parameters},
-          {"map_log_likelihood", number(post.map_log_likelihood)},
+          {"map_log_likelihood", io::FiniteOrNull(post.map_log_likelihood)},
           {"predictive_runs", post.predictive_runs},
           {"failed_predictive_runs", post.failed_predictive_runs},
           {"predictive", predictive},
-          {"coverage_90", number(post.coverage)}};
+          {"coverage_90", io::FiniteOrNull(post.coverage)}};
 }
 
 void WritePosterior(const Posterior& post, const Recording& recording, const std::string& out_dir) {
