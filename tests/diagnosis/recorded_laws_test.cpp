@@ -2,19 +2,20 @@
 // from noisy speed error and torque, none where the speed error is noise, the law of drillwave's own soft-drive run from
 // its channels — and the telemetry delay of its bit speed behind the virtual sensor's estimate; and the proposals that
 // start from them.
-#include "drillwave/diagnosis/drive_law.hpp"
+#include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <random>
+#include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/constants.hpp"
+#include "drillwave/diagnosis/drive_law.hpp"
 #include "drillwave/diagnosis/effects.hpp"
-#include "prepared_recording.hpp"
 #include "json_case.hpp"
+#include "prepared_recording.hpp"
 
 namespace drillwave::diagnosis {
 namespace {
@@ -53,6 +54,28 @@ TEST(DriveLaw, ReadsAPiLawsGainsAtTheTorquesOscillation) {
   EXPECT_NEAR(law.integral, ki, 0.05 * ki);
   EXPECT_NEAR(law.Stiffness(), std::hypot(kp, ki / (2 * kPi * 0.3)), 0.05 * law.Stiffness());
   EXPECT_LT(law.LogStiffnessStd(), 0.1);
+}
+
+// A motor's armature behind the PI, T' = (PI(e) - T) / tau: the law's phase reads the PI's less atan(w tau).
+TEST(DriveLaw, ReadsAnArmaturesLagBehindThePiInThePhase) {
+  const double kp = 400, ki = 5000, tau = 0.1;
+  const Signals pi = PiLawSignals(kp, ki, 0.05, 0, 3);
+  std::vector<double> lagged(pi.torque.size());
+  lagged[0] = pi.torque[0];
+  const double dt = pi.time_s[1] - pi.time_s[0];
+  for (std::size_t i = 1; i < lagged.size(); ++i)  // exact for a torque linear over the step's end
+    lagged[i] = lagged[i - 1] + (1 - std::exp(-dt / tau)) * (pi.torque[i] - lagged[i - 1]);
+  const DriveLaw plain = IdentifyDriveLaw(pi.time_s, pi.error, pi.torque, 0, 60);
+  const DriveLaw law = IdentifyDriveLaw(pi.time_s, pi.error, lagged, 0, 60);
+  ASSERT_TRUE(law.Identified());
+  const double w = 2 * kPi * law.frequency_hz;
+  std::printf("[ measured ] phase %.2f deg without the armature, %.2f with it (PI %.2f, lag atan(w tau) %.2f)\n",
+              plain.Phase() * 180 / kPi, law.Phase() * 180 / kPi, std::atan2(-ki / w, kp) * 180 / kPi,
+              std::atan(w * tau) * 180 / kPi);
+  EXPECT_NEAR(plain.Phase(), std::atan2(-ki / w, kp), 0.02);
+  // The discrete lag is half a sample later than the continuous one: w dt / 2 = 0.5 degrees at 0.3 Hz.
+  EXPECT_NEAR(plain.Phase() - law.Phase(), std::atan(w * tau), 0.02);
+  EXPECT_LT(law.PhaseStd(), 0.05);
 }
 
 // A stiff drive holds the top's speed within the speed channel's noise: the torque oscillates, the speed error is
@@ -136,15 +159,17 @@ TEST(DriveLaw, ReadsTheSoftDriveOfAStringRunFromItsChannels) {
 // the fit's first values and its distance in standard deviations the evidence; a law like the case's, or one not
 // identified, leaves the SoftSpeed tuning (kp = Z, ki = J_td w1^2) and no evidence from the law; the case's own law
 // read off the recording refutes a soft drive.
-Effect SoftDriveProposal(const DriveLaw& law) {
+// The proposal `name` of baseline-60rpm for a recording whose drive law reads `law`.
+Effect ProposalFor(const DriveLaw& law, const std::string& name) {
   const nlohmann::json doc = testing::LoadCase("baseline-60rpm");
   FeatureSet recording;
   recording.drive = law;
   for (const Effect& e : ProposeEffects(doc, FeatureSet{}, recording))
-    if (e.name == "soft_topdrive") return e;
-  ADD_FAILURE() << "no soft_topdrive proposed";
+    if (e.name == name) return e;
+  ADD_FAILURE() << "no " << name << " proposed";
   return {};
 }
+Effect SoftDriveProposal(const DriveLaw& law) { return ProposalFor(law, "soft_topdrive"); }
 
 TEST(SoftDriveProposal, StartsFromTheRecordedLawWhereItIsSofterThanTheCases) {
   DriveLaw soft{0.3, 400, 5000, 0.98, 4};
@@ -168,6 +193,29 @@ TEST(SoftDriveProposal, StartsFromTheRecordedLawWhereItIsSofterThanTheCases) {
   // (coherence 0.5) refutes nothing.
   EXPECT_FALSE(SoftDriveProposal(DriveLaw{0.3, 1e5, 2e5, 0.98, 4}).refuted.empty());
   EXPECT_TRUE(SoftDriveProposal(DriveLaw{0.3, 400, 5000, 0.5, 4}).refuted.empty());
+}
+
+// The DC motor's proposal reads the lag of the recorded law behind the case's PI: where the law is the case's drive
+// but later by a lag, the lag in standard deviations is the evidence and tan(lag) / w the first armature time constant;
+// the case's own law, a soft drive's law or one not identified give no evidence from the law.
+Effect DcMotorProposal(const DriveLaw& law) { return ProposalFor(law, "dc_motor"); }
+
+TEST(DcMotorProposal, StartsFromTheLagOfTheRecordedLawBehindTheCasesPi) {
+  const nlohmann::json doc = testing::LoadCase("baseline-60rpm");
+  const double kp = doc["model"]["top"]["kp_Nms_per_rad"], ki = doc["model"]["top"]["ki_Nm_per_rad"];
+  const double f = 0.3, w = 2 * kPi * f, tau = 0.08;
+  const std::complex<double> h = std::complex<double>(kp, -ki / w) / std::complex<double>(1, w * tau);
+  const Effect lagged = DcMotorProposal(DriveLaw{f, h.real(), -w * h.imag(), 0.99, 4});  // 4.2 std
+  ASSERT_EQ(lagged.parameters.size(), 2u);
+  EXPECT_NEAR(lagged.parameters[0].start, tau, 1e-9);
+  EXPECT_TRUE(lagged.Proposed()) << lagged.strength;
+  EXPECT_NE(lagged.evidence.find("lags the case's PI"), std::string::npos) << lagged.evidence;
+  for (const DriveLaw& other :
+       {DriveLaw{f, kp, ki, 0.98, 4}, DriveLaw{f, 400, 5000, 0.98, 4}, DriveLaw{f, h.real(), -w * h.imag(), 0.5, 4}}) {
+    const Effect plain = DcMotorProposal(other);
+    EXPECT_DOUBLE_EQ(plain.parameters[0].start, 0.1);
+    EXPECT_EQ(plain.strength, 0);
+  }
 }
 
 // BASELINE.md's string sticking and slipping at 60 rpm, recorded from its 30 s on at 100 Hz with its bit speed late by

@@ -19,6 +19,11 @@ double DriveLaw::LogStiffnessStd() const {
   return std::sqrt(std::max(0.0, 1 - coherence)) / (std::sqrt(coherence) * std::sqrt(2.0 * segments));
 }
 
+double DriveLaw::Phase() const {
+  const double w = 2 * kPi * frequency_hz;
+  return w > 0 ? std::atan2(-integral / w, proportional) : std::nan("");
+}
+
 DriveLaw IdentifyDriveLaw(const std::vector<double>& time_s, const std::vector<double>& speed_error_rad_s,
                           const std::vector<double>& torque_Nm, double begin_s, double end_s, double segment_s) {
   DriveLaw law;

@@ -214,11 +214,21 @@ Effect ProposeKelvinVoigt(const StringFacts&, const FeatureSet& m, const Feature
   return e;
 }
 
+// How far the recorded drive law's phase lags the case's PI at the law's frequency (rad), where the law is identified
+// and reads as the case's drive (within kSofterDrive of its stiffness: another drive's phase says nothing of a motor
+// behind this one); NaN otherwise.
+double LagBehindCasePi(const StringFacts& s, const DriveLaw& law) {
+  const double ratio = CaseOverRecordedStiffness(s, law);
+  if (!(ratio < kSofterDrive && ratio > 1 / kSofterDrive)) return std::nan("");
+  const double w = 2 * kPi * law.frequency_hz;
+  return std::atan2(-s.drive_ki / w, s.drive_kp) - law.Phase();
+}
+
 // dc_motor: the drive's torque follows its speed error with a lag (armature inductance) and an extra damping
 // K^2/R: above the lag's corner the top is held by its inertia alone, so the surface torque's fast content moves
 // between the halves of the fast band (train rec05, with the KEY's motor: 2-4.5 Hz 0.21 kN m against 0.11 without,
 // 4.5-10 Hz 0.04 against 0.09), and its spread differs.
-Effect ProposeDcMotor(const StringFacts&, const FeatureSet& m, const FeatureSet& r) {
+Effect ProposeDcMotor(const StringFacts& s, const FeatureSet& m, const FeatureSet& r) {
   Effect e{"dc_motor", "a DC motor behind the speed controller (armature lag, back-EMF damping)", {}, nullptr, 0, ""};
   e.parameters = {{"electrical_time_constant_s", "s", 0.005, 1.0, true, 0.1},
                   {"back_emf_damping_Nms_per_rad", "N m s/rad", 100, 1e6, true, 1e4}};
@@ -236,6 +246,23 @@ Effect ProposeDcMotor(const StringFacts&, const FeatureSet& m, const FeatureSet&
     e.strength = z,
     e.evidence = "the surface torque's dynamics differ: " + Describe(m, r, "top_torque_kNm fast_low_std") + "; " +
                  Describe(m, r, "top_torque_kNm fast_high_std") + "; " + Describe(m, r, "top_torque_kNm std");
+  // The recorded law read behind the case's PI: an armature of time constant tau lags the controller's output by
+  // atan(w tau) (the back-EMF term K^2 / R is small beside the PI's gains and adds no phase). The lag in standard
+  // deviations of the estimate's phase is the evidence, and tan(lag) / w the fit's first tau.
+  const DriveLaw& law = r.drive;
+  if (const double lag = LagBehindCasePi(s, law); lag > 0 && lag < kPi / 2) {
+    const double z_lag = std::min(kMostEvidence, lag / law.PhaseStd());
+    if (z_lag > kWeakEvidence) {
+      const double tau = std::tan(lag) / (2 * kPi * law.frequency_hz);
+      e.parameters[0].start = std::clamp(tau, e.parameters[0].lower, e.parameters[0].upper);
+      const std::string read = "the drive's torque read off the recording at " + Fixed(law.frequency_hz, 2) +
+                               " Hz (coherence " + Fixed(law.coherence, 3) + ") lags the case's PI by " +
+                               Fixed(lag * 180 / kPi, 1) + " degrees, " + Significant(z_lag, 3) +
+                               " standard deviations (an armature time constant of " + Significant(tau, 3) + " s)";
+      e.evidence = e.strength > 0 ? e.evidence + "; " + read : read;
+      e.strength = std::max(e.strength, z_lag);
+    }
+  }
   return e;
 }
 

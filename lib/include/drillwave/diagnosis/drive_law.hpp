@@ -26,6 +26,10 @@ struct DriveLaw {
   double Stiffness() const;
   // The standard deviation of ln |H| from the averaging: sqrt(1 - gamma^2) / (gamma sqrt(2 segments)).
   double LogStiffnessStd() const;
+  // arg H (rad): a PI's lies in (-pi/2, 0]; a lag behind the controller (a motor's armature) takes it lower.
+  double Phase() const;
+  // The standard deviation of arg H: for the H1 estimate the same as ln |H|'s (Bendat & Piersol, eq. 9.52 and 9.53).
+  double PhaseStd() const { return LogStiffnessStd(); }
 };
 
 // The band looked in (Hz): torsional stick-slip and the drive's modes of kilometre strings, above a trend.
