@@ -185,6 +185,9 @@ TEST(WaveCancellation, BadInputNamesTheFieldInTheTorsionalWaveKind) {
   EXPECT_EQ(RefusedPath(WithTop(doc, {{"torque_limit_Nm", -1}})), "/model/top/torque_limit_Nm");
   EXPECT_EQ(RefusedPath(WithTop(doc, {{"actuator_delay_s", 11}})), "/model/top/actuator_delay_s");
   EXPECT_EQ(RefusedPath(WithTop(doc, {{"torque_limit_Nm", 5e4}, {"actuator_delay_s", 0.02}}), true), "");
+  EXPECT_EQ(RefusedPath(WithTop(doc, {{"wave_filter_time_constant_s", -0.1}})),
+            "/model/top/wave_filter_time_constant_s");
+  EXPECT_EQ(RefusedPath(WithTop(doc, {{"wave_filter_time_constant_s", 0.3}, {"actuator_delay_s", 0.1}}), true), "");
   EXPECT_EQ(RefusedPath(WithTop(doc, {{"handover", {{"time_s", 0}, {"kp_Nms_per_rad", 1}, {"ki_Nm_per_rad", 1}}}})),
             "/model/top/handover/time_s");
   // It reads the string torque and the arriving wave at a top driven directly, next to no Kelvin-Voigt dashpot.
@@ -219,12 +222,36 @@ TEST(WaveCancellation, EndsTheCoupledBaselinesStickSlip) {
   EXPECT_NEAR(summary["bit_speed_mean_rad_s"].get<double>(), 2 * kPi, 0.01 * 2 * kPi);
 }
 
+// The same law behind a 100 ms actuator delay, its pull onto the law's speed softened to kp = 5000 N m s/rad: exact, it
+// sends down up to twice the wave that arrives (|e^{-i w delta} - 1| <= 2) and the string's fast waves grow without
+// bound; low-passed at tf = 0.2 s (its corner 5 rad/s, above the stick-slip mode's 2 rad/s: period 2.8-3.5 s) the top
+// reflects them as a stiff top does and the bit turns without sticking. (tf 0.05 and 0.1 s: the fast waves still grow
+// into a violent bit speed, -353 to 413 and -5.6 to 21.7 rad/s; tf 0.4 s, a corner of 2.5 rad/s at the stick-slip
+// mode: sticking again, fraction 0.14.)
+TEST(WaveCancellation, FilteredItEndsTheCoupledBaselinesStickSlipBehindADelay) {
+  const nlohmann::json exact = WithTop(CoupledBaseline(), {{"actuator_delay_s", 0.1}, {"kp_Nms_per_rad", 5000}});
+  const nlohmann::json e = RunCase(ParseCase(exact)).summary;
+  const nlohmann::json f = RunCase(ParseCase(WithTop(exact, {{"wave_filter_time_constant_s", 0.2}}))).summary;
+  std::printf(
+      "[ measured ] baseline-60rpm under the wave cancellation behind 100 ms (kp 5000): exact, bit speed up to "
+      "%.3g rad/s; filtered (tf 0.2 s) %.2f to %.2f rad/s, stick fraction %.3f, severity %.3f\n",
+      e["bit_speed_max_rad_s"].get<double>(), f["bit_speed_min_rad_s"].get<double>(),
+      f["bit_speed_max_rad_s"].get<double>(), f["stick_fraction"].get<double>(),
+      f["stick_slip_severity"].get<double>());
+  EXPECT_GT(e["bit_speed_max_rad_s"].get<double>(), 1e3);
+  EXPECT_EQ(f["stick_fraction"].get<double>(), 0.0);
+  EXPECT_GT(f["bit_speed_min_rad_s"].get<double>(), 0.5 * kPi);
+  EXPECT_LT(f["bit_speed_max_rad_s"].get<double>(), 3 * kPi);
+}
+
 TEST(WaveCancellation, BadInputNamesTheFieldInTheAxialTorsionalKind) {
   const nlohmann::json doc = CoupledBaseline();
   EXPECT_EQ(RefusedPath(doc, true), "");
   EXPECT_EQ(RefusedPath(WithTop(doc, {{"speed_loop_corner_rad_s", -1}})), "/model/top/speed_loop_corner_rad_s");
   EXPECT_EQ(RefusedPath(WithTop(doc, {{"ki_Nm_per_rad", 2e5}})), "/model/top/ki_Nm_per_rad");
   EXPECT_EQ(RefusedPath(WithTop(doc, {{"actuator_delay_s", 0.02}}), true), "");
+  EXPECT_EQ(RefusedPath(WithTop(doc, {{"wave_filter_time_constant_s", "0.1"}})),
+            "/model/top/wave_filter_time_constant_s");
   const nlohmann::json motor = {{"motor_constant_Nm_per_A", 10}, {"resistance_ohm", 0.01}, {"inductance_H", 1e-3}};
   EXPECT_EQ(RefusedPath(WithTop(doc, {{"motor", motor}})), "/model/top/type");  // behind a motor: no law
   nlohmann::json kelvin_voigt = doc;

@@ -240,7 +240,9 @@ class NetworkLinearizer {
     for (int i = 0; i < nodes_; ++i)
       if (net_.nodes[i].has_speed_integral() && net_.nodes[i].pi.ki > 0) add(integral_, i, {"_speed_error_integral_rad"});
     for (int i = 0; i < nodes_; ++i)
-      if (net_.nodes[i].has_torque_feedback()) add(filter_, i, {"_low_passed_string_torque_Nm"});
+      if (net_.nodes[i].has_drive_filter())
+        add(filter_, i,
+            {net_.nodes[i].has_torque_feedback() ? "_low_passed_string_torque_Nm" : "_low_passed_arriving_wave_rad_s"});
     for (int i = 0; i < nodes_; ++i)
       if (net_.nodes[i].has_dc_motor()) add(current_, i, {"_current_A"});
     for (int i = 0; i < nodes_; ++i)
@@ -320,13 +322,16 @@ class NetworkLinearizer {
     }
     // A wave-cancelling top turns at v = e + w(t - late) + k I(t - late): the speed its law asked for an actuator
     // delay ago (model::WaveCancellation: the arriving wave w plus d, whose perturbation is k I) and the error e, its
-    // state.
+    // state. Filtered, the low-passed wave a(t) stands for w(t - late): the filter reads the wave late and is a state.
     if (net_.top().law.wave_cancellation.active()) {
       const Node& top = net_.top();
       SpeedForm& form = speed_form_[0];
       form.late = top.law.actuator_delay_s;
       (form.late > 0 ? form.late_state : form.state)(integral_[0]) += top.law.wave_cancellation.Corner(top.pi.ki);
-      (form.late > 0 ? form.late_wave : form.wave)(Up(0)) += 1;
+      if (top.law.wave_cancellation.filtered())
+        form.state(filter_[0]) += 1;
+      else
+        (form.late > 0 ? form.late_wave : form.wave)(Up(0)) += 1;
     }
   }
 
@@ -373,6 +378,7 @@ class NetworkLinearizer {
 
   // Its torque cancels g, the torque of the string and its dampers, as read: J e' = g(t) - g(t - late) -
   // kp (v - w - d)(t - late), g = sum 2 Z w_in - (sum Z + c) v (without a delay e' = -kp e / J); I' = -v, as read.
+  // Filtered, a(t) stands for w(t - late) there.
   void AddWaveCancellingTop(int i) {
     const Node& node = net_.nodes[i];
     const int v = speed_[i];
@@ -383,9 +389,18 @@ class NetworkLinearizer {
     };
     if (late > 0) add_string_and_dampers(1 / inertia, 0), add_string_and_dampers(-1 / inertia, late);
     AddSpeed(v, i, -kp / inertia, late);
-    AddWave(v, Up(0), kp / inertia, late);
     AddState(v, integral_[i], kp / inertia * node.law.wave_cancellation.Corner(node.pi.ki), late);
     AddSpeed(integral_[i], i, -1, late);
+    const model::WaveCancellation& law = node.law.wave_cancellation;
+    if (!law.filtered()) {
+      AddWave(v, Up(0), kp / inertia, late);
+      return;
+    }
+    // kp a(t) instead of kp w(t - late); tf a' = w(t - late) - a.
+    const int a = filter_[i];
+    AddState(v, a, kp / inertia, 0);
+    AddWave(a, Up(0), 1 / law.filter_time_constant_s, late);
+    sys_.a0(a, a) -= 1 / law.filter_time_constant_s;
   }
 
   // An inertial node under its drive: the string's waves, its dashpots and damping, a compliant gear's motor, and

@@ -43,7 +43,7 @@ StiffTop StiffTopOf(const nlohmann::json& top, const std::optional<StiffPi>& giv
     stiff.drive = top;
     for (const char* law_field : {"type", "kp_Nms_per_rad", "ki_Nm_per_rad", "tuning_period_s",
                                   "feedback_gain_rad_per_Nms", "feedback_time_constant_s", "impedance_Nms_per_rad",
-                                  "speed_loop_corner_rad_s", "handover"})
+                                  "speed_loop_corner_rad_s", "wave_filter_time_constant_s", "handover"})
       stiff.drive.erase(law_field);
   } else {  // a top of another kind: only its set-point carries over
     stiff.drive = {{"speed_rad_s", top["speed_rad_s"]}};

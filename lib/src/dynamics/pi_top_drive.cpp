@@ -25,13 +25,15 @@ double PiTopDrive::InitialIntegral(double held, double string_torque) const {
 }
 
 // u = T_load + J (w' + d') + kp (w + d - v) (model::WaveCancellation), everything as read; d' from the set-point's
-// slope and the integral's rate, through the same linear DownWave.
+// slope and the integral's rate, through the same linear DownWave. Filtered, the low-passed wave a and its rate
+// (w - a) / tf stand for w and w'.
 double PiTopDrive::WaveCancellingTorque(const Reading& in, double integral) const {
   const model::WaveCancellation& law = law_.wave_cancellation;
   const double down = law.DownWave(in.command, pi_.ki * integral);
   const double down_rate = law.DownWave(in.command_rate, pi_.ki * IntegralRate(in));
-  const double absorbing_speed = in.wave.arriving + down;
-  return in.wave.load + inertia_ * (in.wave.arriving_rate + down_rate) + pi_.kp * (absorbing_speed - in.speed);
+  const double wave = law.filtered() ? in.low_passed : in.wave.arriving;
+  const double wave_rate = law.filtered() ? law.FilterRate(in.wave.arriving, in.low_passed) : in.wave.arriving_rate;
+  return in.wave.load + inertia_ * (wave_rate + down_rate) + pi_.kp * (wave + down - in.speed);
 }
 
 double PiTopDrive::MaxStep(double process_max_step) const {

@@ -57,10 +57,13 @@ void Network::Validate() const {
     const double z_law = law.wave_cancellation.impedance;
     if (z_law != 0 && (!pi_top || n.gear.compliant() || HasKelvinVoigt() || n.friction ||
                        law.torque_feedback.active() || !(z_law > 0) || !std::isfinite(z_law) || !(n.pi.kp > 0) ||
-                       !(n.pi.ki > 0)))
-      throw std::invalid_argument("node '" + n.name + "': wave cancellation belongs to a PI top drive without a "
-                                  "compliant gear, friction or torque feedback, with kp and ki > 0 and a finite "
-                                  "impedance > 0, on a string without Kelvin-Voigt dashpots");
+                       !(n.pi.ki > 0) || !(law.wave_cancellation.filter_time_constant_s >= 0) ||
+                       !std::isfinite(law.wave_cancellation.filter_time_constant_s)))
+      throw std::invalid_argument("node '" + n.name +
+                                  "': wave cancellation belongs to a PI top drive without a "
+                                  "compliant gear, friction or torque feedback, with kp and ki > 0, a finite "
+                                  "impedance > 0 and a finite filter time constant >= 0, on a string without "
+                                  "Kelvin-Voigt dashpots");
     if (n.has_dc_motor() && (n.massless() || !(n.motor.motor_constant > 0) || !(n.motor.armature_resistance > 0) ||
                              !(n.motor.armature_inductance > 0) || !(n.motor.voltage_limit >= 0)))
       throw std::invalid_argument("node '" + n.name + "': a DC motor needs an inertia, a motor constant, armature "

@@ -78,7 +78,7 @@ class NetworkProcess {
     for (int i : ends)
       if (net.nodes[i].has_speed_integral()) integral_index_[i] = next++;
     for (int i : ends)
-      if (net.nodes[i].has_torque_feedback()) filter_index_[i] = next++;
+      if (net.nodes[i].has_drive_filter()) filter_index_[i] = next++;
     for (int i : ends)
       if (net.nodes[i].has_dc_motor()) current_index_[i] = next++;
     for (int i : ends)
@@ -143,8 +143,8 @@ class NetworkProcess {
       }
       const double string_torque = steady_torque_ - node.SteadyLoad(v0);
       if (integral_index_[i] != kNone) x[integral_index_[i]] = controllers_[i]->InitialIntegral(held, string_torque);
-      // The filter has settled on the steady string torque: no correction of the set-point at the start.
-      if (filter_index_[i] != kNone) x[filter_index_[i]] = string_torque;
+      // The filter has settled (on the steady string torque: no correction of the set-point at the start).
+      if (filter_index_[i] != kNone) x[filter_index_[i]] = controllers_[i]->InitialLowPassed(v0, string_torque);
       if (motor_speed_index_[i] != kNone) {
         x[motor_speed_index_[i]] = v0;
         x[motor_speed_index_[i] + 1] = steady_torque_ / node.gear.stiffness;

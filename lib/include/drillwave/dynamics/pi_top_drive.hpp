@@ -31,6 +31,7 @@ class PiTopDrive {
     double command, speed, torque;
     double command_rate = 0;
     TopWave wave{};
+    double low_passed = 0;  // the filter's state: the low-passed string torque or arriving wave
   };
 
   // The controller of a drive turning steadily at initial_speed before the start (what a delayed controller reads
@@ -38,7 +39,8 @@ class PiTopDrive {
   PiTopDrive(const model::PiController& pi, const model::TopDriveLaw& law, const model::Schedule& setpoint,
              double initial_speed, double inertia);
 
-  bool has_filter() const { return law_.torque_feedback.active(); }
+  // A filter state: the torque feedback's low-passed string torque or the filtered wave cancellation's wave.
+  bool has_filter() const { return law_.torque_feedback.active() || law_.wave_cancellation.filtered(); }
   double delay() const { return law_.actuator_delay_s; }
 
   // The reading at time t for a drive now turning at drive_speed, the filter's state low_passed (ignored without
@@ -48,14 +50,17 @@ class PiTopDrive {
   Reading Read(double t, Side side, double drive_speed, double low_passed, const StringTorque& string_torque,
                const ReadTopWave& top_wave) const {
     Reading in{0.0, drive_speed, 0.0};
+    in.low_passed = low_passed;
     double when = t;
     if (speed_history_) when = t - delay(), in.speed = speed_history_->Value(when, 0, side);
     in.command = Setpoint(when, side);
-    if (has_filter()) {
+    if (law_.torque_feedback.active()) {
       in.torque = string_torque(when, in.speed);
       if (Engaged(t, side)) in.command = law_.Command(in.command, in.torque, low_passed);
     }
-    if (CancelsWaves(t, side)) in.command_rate = SetpointRate(when, side), in.wave = top_wave(when, in.speed);
+    // A filtered wave is followed before a handover too, so that the law takes over with it settled.
+    if (CancelsWaves(t, side) || law_.wave_cancellation.filtered())
+      in.command_rate = SetpointRate(when, side), in.wave = top_wave(when, in.speed);
     return in;
   }
   // The PI's output for the reading (a torque, or a motor's voltage or torque demand), with the gains in force at t;
@@ -69,7 +74,15 @@ class PiTopDrive {
     return law_.Clamp(Output(t, side, in, integral));
   }
   static double IntegralRate(const Reading& in) { return in.command - in.speed; }
-  double FilterRate(const Reading& in, double low_passed) const { return law_.FilterRate(in.torque, low_passed); }
+  double FilterRate(const Reading& in, double low_passed) const {
+    return law_.torque_feedback.active() ? law_.FilterRate(in.torque, low_passed)
+                                         : law_.wave_cancellation.FilterRate(in.wave.arriving, low_passed);
+  }
+  // The filter's steady state for a drive turning at `speed` with the string taking `string_torque` from it.
+  double InitialLowPassed(double speed, double string_torque) const {
+    return law_.torque_feedback.active() ? string_torque
+                                         : law_.wave_cancellation.SteadyArrivingWave(speed, string_torque);
+  }
   // Steady start: the integral that holds `held`, the drive's output, with no speed error (the gains in force at 0);
   // under wave cancellation the one whose torque ki I is string_torque, what the string takes from the top (the law's
   // torque carries the top's dampers itself).

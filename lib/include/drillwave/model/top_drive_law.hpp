@@ -36,10 +36,24 @@ struct TorqueFeedback {
 // keeps v = w + d exactly, kp pulls the top back onto it after a jump, the clamp or an actuator delay. The wave and
 // its rate are read from the wave arriving at the top (a drive estimates w = (v - T / Z) / 2 from its torque sub).
 // Only on a top without a compliant gear, friction or Kelvin-Voigt dashpots next to it.
+// Filtered (filter_time_constant_s = tf > 0): the law reads a low-passed wave a, tf a' = w - a, instead of w and its
+// rate, and u = T_load + J (a' + d') + kp (a + d - v). Late by an actuator delay, the exact law feeds the top the rate
+// of a wave one delay old, and its high-frequency content, which a real sub's noise and the string's fast echoes
+// carry, comes back as a reflection; the filter gives up absorbing above 1 / tf to keep the loop's gain there small.
 struct WaveCancellation {
   double impedance = 0;  // Z of the top section [N·m·s/rad], which turns the integral torque into a wave; 0: off
+  double filter_time_constant_s = 0;  // tf of the arriving wave's low-pass [s]; 0: the wave read as it arrives
 
   bool active() const { return impedance > 0; }
+  bool filtered() const { return active() && filter_time_constant_s > 0; }
+  // The low-passed wave's rate.
+  double FilterRate(double arriving, double low_passed) const {
+    return (arriving - low_passed) / filter_time_constant_s;
+  }
+  // The wave a steady top turning at `speed` reads when the string takes `string_torque` from it: w = (v - T / Z) / 2.
+  double SteadyArrivingWave(double speed, double string_torque) const {
+    return 0.5 * (speed - string_torque / impedance);
+  }
   // The down-going wave for the set-point and the integral torque ki I; linear, so also its rate for their rates.
   double DownWave(double setpoint, double integral_torque) const {
     return 0.5 * (setpoint + integral_torque / impedance);

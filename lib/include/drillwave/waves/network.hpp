@@ -87,6 +87,10 @@ struct Node {
     return drive == Drive::kPiSpeedController || drive == Drive::kDcMotorSpeed || drive == Drive::kInductionMotorSpeed;
   }
   bool has_torque_feedback() const { return drive == Drive::kPiSpeedController && law.torque_feedback.active(); }
+  // A PI drive's filter state: the torque feedback's low-passed string torque or the filtered wave cancellation's wave.
+  bool has_drive_filter() const {
+    return drive == Drive::kPiSpeedController && (law.torque_feedback.active() || law.wave_cancellation.filtered());
+  }
   bool has_set_valued_friction() const { return friction && friction->IsSetValued(); }
   bool has_compliant_gear() const { return gear.compliant(); }
   // The inertia the node's own speed carries: with a rigid gear the motor's too, with a lateral BHA the unbalance's

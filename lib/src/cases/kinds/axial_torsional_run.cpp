@@ -78,8 +78,9 @@ class Process {
       const double n = md_.gear.ratio, u = n * md_.induction.TorqueDemandFor(steady_supply_hz_, n * steady_.omega);
       x[kZ] = top_drive_.InitialIntegral(u, SteadyStringTorque());
     }
-    // The torque feedback's filter has settled on the steady string torque: the set-point is not corrected.
-    if (filter_index_ >= 0) x[filter_index_] = SteadyStringTorque();
+    // The drive's filter has settled (the torque feedback's on the steady string torque: no correction of the
+    // set-point).
+    if (filter_index_ >= 0) x[filter_index_] = top_drive_.InitialLowPassed(steady_.omega, SteadyStringTorque());
     if (md_.gear.compliant()) {
       x[kMotorSpeed] = steady_.omega;
       x[kTwist] = top_torque0_ / md_.gear.stiffness;
@@ -397,7 +398,7 @@ class Process {
   std::vector<waves::WaveChain> chains_;  // torsion, axial
   bitrock::CutProfile cut_;
   dynamics::PiTopDrive top_drive_;
-  int filter_index_ = -1;  // the torque feedback's low-passed string torque
+  int filter_index_ = -1;  // the drive's filter (PiTopDrive::has_filter)
   double top_torque0_ = 0;
   double steady_supply_hz_ = 0;  // induction motor: the supply frequency of steady drilling
   double drawworks_supply_hz_ = 0;  // the drawworks motor's steady supply

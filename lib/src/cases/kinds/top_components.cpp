@@ -121,9 +121,11 @@ PiTopDriveSpec ReadPiTopDrive(const JsonReader& r, const std::string& type, doub
     drive.pi = ReadPiController(r);
     feedback.gain = 1 / r.Number("impedance_Nms_per_rad", Range::Positive(), pipe_impedance);
     feedback.time_constant_s = ReadFeedbackTimeConstant(r);
-  } else {  // wave_cancellation: the arriving wave absorbed exactly, no filter
+  } else {  // wave_cancellation: the arriving wave absorbed, exactly or below a low-pass's corner
     drive.pi = ReadWaveCancellationGains(r, pipe_impedance);
     drive.law.wave_cancellation.impedance = pipe_impedance;
+    drive.law.wave_cancellation.filter_time_constant_s =
+        r.Number("wave_filter_time_constant_s", Range::NonNegative(), 0.0);
   }
   if (r.Has("handover")) drive.law.handover = ReadHandover(r.Object("handover"));
   return drive;
@@ -156,30 +158,43 @@ void CheckWaveCancellationString(const JsonReader& top, const model::TopDriveLaw
 nlohmann::json PiTopDriveLawFields(const std::string& top) {
   return {
       {top + "/torque_limit_Nm", "top_drive, soft_torque, z_torque, wave_cancellation: >= 0, 0 = unlimited"},
-      {top + "/actuator_delay_s", "top_drive, soft_torque, z_torque, wave_cancellation: pure delay [s] in [0, 10] of "
-                                  "the drive's torque behind its controller, default 0; not with a compliant gear or "
-                                  "Kelvin-Voigt damping"},
-      {top + "/tuning_period_s", "soft_torque: the stick-slip period P [s] > 0 the speed loop is tuned to instead of "
-                                 "kp/ki (SoftSpeed, Kyllingstad & Nessjoen 2009): kp = Z of the top section, "
-                                 "ki = J (2 pi / P)^2, J the top's inertia with its rigid gear's motor"},
-      {top + "/feedback_gain_rad_per_Nms", "soft_torque: torque feedback g [rad/s per N·m] >= 0, default 0: the PI "
-                                           "tracks speed_rad_s - g T_hp, T_hp the string torque at the top high-passed "
-                                           "by feedback_time_constant_s"},
-      {top + "/feedback_time_constant_s", "soft_torque with a feedback gain, z_torque: time constant [s] > 0 of the "
-                                          "first-order high-pass filter on the string torque (the mean speed returns "
-                                          "to the set-point on this scale)"},
-      {top + "/impedance_Nms_per_rad", "z_torque: the impedance Z [N·m·s/rad] > 0 the top is matched to, default the "
-                                       "top section's G J / c; the PI tracks speed_rad_s - T_hp / Z"},
-      {top + "/speed_loop_corner_rad_s", "wave_cancellation: the slow speed loop's corner k [rad/s] > 0: the top "
-                                         "injects the down-going wave d = speed_rad_s / 2 + k * integral(speed_rad_s "
-                                         "- w_top) (integral gain ki = 2 Z k, Z of the top section) and reflects what "
-                                         "arrives below k (reflection -k / (s + k)): keep k well below the stick-slip "
-                                         "frequency. Behind actuator_delay_s = delta > 0 the law is unstable: it sends "
-                                         "down w(t - delta) - w(t), up to twice the arriving wave w"},
-      {top + "/handover/time_s", "soft_torque, z_torque, wave_cancellation: optional block; the law takes over at "
-                                 "this time [s] > 0 from the plain PI of the handover's gains (no torque feedback "
-                                 "before it; the integral torque carries over to the law's ki > 0): a drive switched "
-                                 "on while the bit sticks and slips"},
+      {top + "/actuator_delay_s",
+       "top_drive, soft_torque, z_torque, wave_cancellation: pure delay [s] in [0, 10] of "
+       "the drive's torque behind its controller, default 0; not with a compliant gear or "
+       "Kelvin-Voigt damping"},
+      {top + "/tuning_period_s",
+       "soft_torque: the stick-slip period P [s] > 0 the speed loop is tuned to instead of "
+       "kp/ki (SoftSpeed, Kyllingstad & Nessjoen 2009): kp = Z of the top section, "
+       "ki = J (2 pi / P)^2, J the top's inertia with its rigid gear's motor"},
+      {top + "/feedback_gain_rad_per_Nms",
+       "soft_torque: torque feedback g [rad/s per N·m] >= 0, default 0: the PI "
+       "tracks speed_rad_s - g T_hp, T_hp the string torque at the top high-passed "
+       "by feedback_time_constant_s"},
+      {top + "/feedback_time_constant_s",
+       "soft_torque with a feedback gain, z_torque: time constant [s] > 0 of the "
+       "first-order high-pass filter on the string torque (the mean speed returns "
+       "to the set-point on this scale)"},
+      {top + "/impedance_Nms_per_rad",
+       "z_torque: the impedance Z [N·m·s/rad] > 0 the top is matched to, default the "
+       "top section's G J / c; the PI tracks speed_rad_s - T_hp / Z"},
+      {top + "/speed_loop_corner_rad_s",
+       "wave_cancellation: the slow speed loop's corner k [rad/s] > 0: the top "
+       "injects the down-going wave d = speed_rad_s / 2 + k * integral(speed_rad_s "
+       "- w_top) (integral gain ki = 2 Z k, Z of the top section) and reflects what "
+       "arrives below k (reflection -k / (s + k)): keep k well below the stick-slip "
+       "frequency. Behind actuator_delay_s = delta > 0 the exact law is unstable: "
+       "it sends down w(t - delta) - w(t), up to twice the arriving wave w (see "
+       "wave_filter_time_constant_s)"},
+      {top + "/wave_filter_time_constant_s",
+       "wave_cancellation: time constant tf [s] >= 0 of a first-order low-pass "
+       "on the arriving wave the law reads, default 0 (none): the top absorbs "
+       "below 1 / tf and reflects as a stiff top above it, which keeps the "
+       "delayed law's reflection at high frequencies at -1 instead of up to 2"},
+      {top + "/handover/time_s",
+       "soft_torque, z_torque, wave_cancellation: optional block; the law takes over at "
+       "this time [s] > 0 from the plain PI of the handover's gains (no torque feedback "
+       "before it; the integral torque carries over to the law's ki > 0): a drive switched "
+       "on while the bit sticks and slips"},
       {top + "/handover/kp_Nms_per_rad", "the PI before the handover: proportional gain >= 0"},
       {top + "/handover/ki_Nm_per_rad", "the PI before the handover: integral gain >= 0"},
   };
