@@ -14,6 +14,7 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/cases/sensors.hpp"
 #include "drillwave/cases/sweep.hpp"
+#include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
@@ -142,7 +143,8 @@ nlohmann::json ProbabilitiesJson(const std::vector<ModelProbability>& models) {
 nlohmann::json DriveLawJson(const DriveLaw& law) {
   if (law.segments == 0) return nullptr;
   return {{"frequency_Hz", law.frequency_hz}, {"kp_Nms_per_rad", law.proportional},
-          {"ki_Nm_per_rad", law.integral}, {"coherence", law.coherence}, {"segments", law.segments},
+          {"ki_Nm_per_rad", law.integral},    {"phase_deg", io::FiniteOrNull(law.Phase() * 180 / kPi)},
+          {"coherence", law.coherence},       {"segments", law.segments},
           {"identified", law.Identified()}};
 }
 
