@@ -1,8 +1,9 @@
 #pragma once
 // A PI speed controller with its law against stick-slip (model::TopDriveLaw) as a component of a process: what the
 // controller reads (an actuator delay late), the speed it tracks, its torque and the rates of its two states (the
-// integral of the speed error and, with torque feedback, the low-passed string torque); under wave cancellation the
-// torque that absorbs the arriving wave instead of the PI's output. The first component of the
+// integral of the speed error and a filter: with torque feedback the low-passed string torque, under a filtered wave
+// cancellation the low-passed arriving wave); under wave cancellation the torque that absorbs the arriving wave
+// instead of the PI's output. The first component of the
 // dynamics layer issue 36 asks for: the wave network's process (torsional_wave, every PI speed loop of its ends) and
 // the coupled kind's (axial_torsional) both run their top's controller through it, so a law written here works in
 // both. It depends on model and integration only; the process keeps the state slots and tells it the string torque.
