@@ -786,12 +786,12 @@ int CompareControllers(const std::string& file, const std::string& out_dir, cons
       envelope.emplace(drillwave::cases::ParseMapAxis(args.envelope[0], stiff, "envelope"),
                        drillwave::cases::ParseMapAxis(args.envelope[1], stiff, "envelope"));
     }
-    if (!delays.empty())  // every law again at each delay: four runs a delay, estimated on the stiff PI's case
+    if (!delays.empty())  // every law again at each delay: five runs a delay, estimated on the stiff PI's case
       drillwave::cases::CheckPointsWork(drillwave::cases::ParseCase(drillwave::cases::StiffPiCase(doc, spec)),
-                                        4.0 * static_cast<double>(delays.size()), true, "actuator_delays");
+                                        5.0 * static_cast<double>(delays.size()), true, "actuator_delays");
     drillwave::io::OutputDirectory::CheckReplaceable(out_dir);
     std::cout << "drillwave: top-drive laws on '" << doc.value("name", std::string("case")) << "' (stiff PI, "
-              << "SoftSpeed, Z-Torque, wave cancellation), each from the same stick-slip" << std::endl;
+              << "SoftSpeed, Z-Torque, wave cancellation, filtered), each from the same stick-slip" << std::endl;
     c = drillwave::cases::CompareControllers(doc, spec);
   } catch (const drillwave::InputError& e) {  // the spec's fields are this command's options
     const std::string& field = e.json_path();

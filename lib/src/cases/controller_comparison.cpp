@@ -224,6 +224,15 @@ ControllerComparison CompareControllers(const nlohmann::json& document, const Co
                          {"speed_loop_corner_rad_s", out.wave_corner_rad_s}, {"handover", handover}};
   out.laws.push_back(Evaluate("wave cancellation", WithTop(p.base, stiff.drive, wave), out.handover_s, out.end_s,
                               spec.max_steps));
+  // The same law reading the arriving wave through a low-pass (model::WaveCancellation::filter_time_constant_s):
+  // behind an actuator delay the exact law sends down up to twice the wave at every frequency, the filtered one only
+  // below its corner. The corner sits at 2.5 times the stick-slip frequency, t_f = P / (5 pi): it absorbs the
+  // stick-slip mode (22 degrees of lag there) and reflects the faster waves a delay would amplify.
+  out.wave_filter_time_constant_s = out.tuning_period_s / (5 * kPi);
+  nlohmann::json filtered = wave;
+  filtered["wave_filter_time_constant_s"] = out.wave_filter_time_constant_s;
+  out.laws.push_back(Evaluate("filtered wave cancellation", WithTop(p.base, stiff.drive, filtered), out.handover_s,
+                              out.end_s, spec.max_steps));
   const double reference = out.laws.front().torque_std_Nm;
   for (ControllerResult& r : out.laws) r.torque_reduction_pct = 100 * (1 - r.torque_std_Nm / reference);
   return out;

@@ -91,7 +91,11 @@ void WriteMarkdown(const std::string& name, const ControllerComparison& c, std::
       << "Z-Torque: the stiff PI tracking the set-point less the string torque over Z, high-passed with tau_f = "
       << Number(c.feedback_time_constant_s) << " s; wave cancellation: the top absorbing the arriving torsional wave "
       << "exactly and injecting a down-going one, with the stiff PI's kp and a slow speed loop of corner k = "
-      << Number(c.wave_corner_rad_s) << " rad/s (2 pi / 10 P). Severity (max - min) / (2 mean) of the bit speed and "
+      << Number(c.wave_corner_rad_s) << " rad/s (2 pi / 10 P); filtered wave cancellation: the same law reading the "
+      << "arriving wave through a low-pass of time constant t_f = " << Number(c.wave_filter_time_constant_s)
+      << " s (P / 5 pi: its corner at 2.5 times the stick-slip frequency), so that behind a delay it absorbs the "
+      << "stick-slip mode and reflects faster waves as a stiff top does. Severity (max - min) / (2 mean) of the bit "
+         "speed and "
       << "the top torque's standard deviation are medians over the " << Number(kSeverityWindowS) << "-s windows after "
       << "the handover (top torque: the kind's top_torque_Nm, the torque the top feeds into the string in "
       << "torsional_wave, the drive's torque, which also turns the top drive's inertia, in axial_torsional); the time "
@@ -116,7 +120,7 @@ bool Benefits(const ControllerComparison& c, const ControllerResult& r) {
 void WriteDelayMarkdown(const std::vector<ControllerComparison>& delays, std::ostream& out) {
   out << "\n## Actuator delay\n\n"
       << "Every law with the drive's torque acting the delay after its controller computes it (the stiff PI too, "
-      << "before and after the handover), SoftSpeed, Z-Torque and the wave cancellation tuned as above (at the "
+      << "before and after the handover), SoftSpeed, Z-Torque and both wave cancellations tuned as above (at the "
       << "nominal delay) and held; the "
       << "reduction is against the stiff PI at the same delay; benefit: a median severity below the stiff PI's at the "
       << "same delay (nan, the bit turned backwards, the run blew up or took more than " << kDelayedWorkFactor

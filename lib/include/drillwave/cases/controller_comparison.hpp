@@ -3,7 +3,8 @@
 // The laws: the stiff PI as the case gives it; SoftSpeed, a soft_torque top whose PI is tuned to the stick-slip
 // period the stiff PI shows (kp = Z, ki = J (2 pi / P)^2); Z-Torque, the stiff PI tracking the set-point less the
 // high-passed string torque over the top section's impedance Z; wave cancellation, the top absorbing the arriving
-// wave exactly (model::WaveCancellation) with the stiff PI's kp and its slow speed loop's corner at 2 pi / (10 P).
+// wave exactly (model::WaveCancellation) with the stiff PI's kp and its slow speed loop's corner at 2 pi / (10 P);
+// the same law reading the wave through a low-pass of corner 2.5 times the stick-slip frequency (t_f = P / (5 pi)).
 // Each law takes over from the stiff PI at the same instant of its stick-slip (model::Handover), so every law starts
 // from the same stick-slip state; the stiff PI runs on unchanged. Per law: the linear verdict and rightmost root at
 // the operating point, and over the 20-s windows after the handover the median stick-slip severity and the median
@@ -37,7 +38,7 @@ struct ControllerComparisonSpec {
 };
 
 struct ControllerResult {
-  std::string law;               // "stiff PI", "SoftSpeed", "Z-Torque", "wave cancellation"
+  std::string law;  // "stiff PI", "SoftSpeed", "Z-Torque", "wave cancellation", "filtered wave cancellation"
   nlohmann::json document;       // the case it ran: the law's /model/top, the comparison's duration and window
   std::string verdict;           // stable | marginal | unstable | no steady state
   double rightmost_re = 0, rightmost_im = 0;  // the rightmost characteristic root [1/s, rad/s] (NaN: none)
@@ -60,6 +61,7 @@ struct ControllerComparison {
   double tuning_period_s = 0;          // SoftSpeed's P
   double feedback_time_constant_s = 0; // Z-Torque's high-pass filter
   double wave_corner_rad_s = 0;        // the wave cancellation's speed loop corner k
+  double wave_filter_time_constant_s = 0;  // the filtered wave cancellation's low-pass t_f = P / (5 pi)
   double actuator_delay_s = 0;         // of the drive every law runs on
   std::vector<ControllerResult> laws;  // the stiff PI first
 };
