@@ -3,16 +3,17 @@
 // reflection against the closed form and the stiff PI's, its fields in both kinds with a top, and the Saldivar string's
 // stick-slip under it against the stiff PI's. Its linearization: tests/analysis/network_stability_test.cpp and
 // axial_torsional_stability_test.cpp.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/constants.hpp"
+#include "drillwave/core/error.hpp"
 #include "drillwave/waves/network_simulation.hpp"
 #include "json_case.hpp"
 #include "refused_path.hpp"
@@ -237,15 +238,22 @@ TEST(WaveCancellation, EndsTheCoupledBaselinesStickSlip) {
 // mode: sticking again, fraction 0.14.)
 TEST(WaveCancellation, FilteredItEndsTheCoupledBaselinesStickSlipBehindADelay) {
   const nlohmann::json exact = WithTop(CoupledBaseline(), {{"actuator_delay_s", 0.1}, {"kp_Nms_per_rad", 5000}});
-  const nlohmann::json e = RunCase(ParseCase(exact)).summary;
+  // The exact law's bit runs away (it reached 3.7e8 rad/s by 60 s before runs were stopped at 100 times the
+  // set-point): the run stops with the time and state where it left physics.
+  std::string runaway;
+  double runaway_at = 0;
+  try {
+    RunCase(ParseCase(exact));
+  } catch (const NumericalError& e) {
+    runaway = e.what(), runaway_at = e.time();
+  }
   const nlohmann::json f = RunCase(ParseCase(WithTop(exact, {{"wave_filter_time_constant_s", 0.2}}))).summary;
   std::printf(
-      "[ measured ] baseline-60rpm under the wave cancellation behind 100 ms (kp 5000): exact, bit speed up to "
-      "%.3g rad/s; filtered (tf 0.2 s) %.2f to %.2f rad/s, stick fraction %.3f, severity %.3f\n",
-      e["bit_speed_max_rad_s"].get<double>(), f["bit_speed_min_rad_s"].get<double>(),
-      f["bit_speed_max_rad_s"].get<double>(), f["stick_fraction"].get<double>(),
-      f["stick_slip_severity"].get<double>());
-  EXPECT_GT(e["bit_speed_max_rad_s"].get<double>(), 1e3);
+      "[ measured ] baseline-60rpm under the wave cancellation behind 100 ms (kp 5000): exact, stopped at %.2f s: "
+      "%s; filtered (tf 0.2 s) %.2f to %.2f rad/s, stick fraction %.3f, severity %.3f\n",
+      runaway_at, runaway.c_str(), f["bit_speed_min_rad_s"].get<double>(), f["bit_speed_max_rad_s"].get<double>(),
+      f["stick_fraction"].get<double>(), f["stick_slip_severity"].get<double>());
+  EXPECT_NE(runaway.find("runaway: the bit turns at"), std::string::npos) << runaway;
   EXPECT_EQ(f["stick_fraction"].get<double>(), 0.0);
   EXPECT_GT(f["bit_speed_min_rad_s"].get<double>(), 0.5 * kPi);
   EXPECT_LT(f["bit_speed_max_rad_s"].get<double>(), 3 * kPi);

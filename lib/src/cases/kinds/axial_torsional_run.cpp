@@ -466,6 +466,7 @@ RunResult Simulate(const Model& md_, const RunSettings& settings) {
   DrillingSamples d;
   std::vector<double> hook, current, lateral, motor_rpm, gear_torque, pay_out;
   std::vector<double> dx(x.size()), exact(x.size());
+  const double runaway = RunawaySpeed(md_.top_speed);
   auto sample = [&](double t, const std::vector<double>& interpolated) {
     exact = interpolated;
     process.RestoreHeld(exact);
@@ -473,6 +474,7 @@ RunResult Simulate(const Model& md_, const RunSettings& settings) {
     process.BeginStep(t);  // look-ups at t from the committed history (left limits inside the last piece)
     process.Derivatives(s, dx, t);
     const Process::Sample v = process.Sampled(t, s, dx);
+    ThrowIfRunaway(t, v.bit_speed, runaway, s);
     d.time.push_back(t), d.top.push_back(v.top_speed), d.bit.push_back(v.bit_speed);
     d.top_torque.push_back(v.top_torque), d.bit_torque.push_back(v.bit_torque), d.wob.push_back(v.wob);
     hook.push_back(v.hookload), d.depth.push_back(v.depth), d.vbit.push_back(v.bit_axial_speed);

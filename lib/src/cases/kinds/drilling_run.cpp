@@ -1,8 +1,29 @@
 #include "drilling_run.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
+#include "drillwave/core/error.hpp"
+#include "drillwave/core/format.hpp"
+
 namespace drillwave::cases {
+
+double RunawaySpeed(const model::Schedule& top_speed) {
+  double fastest = 1;
+  for (const auto& knot : top_speed.knots()) fastest = std::max(fastest, std::abs(knot.second));
+  return kRunawaySpeedFactor * fastest;
+}
+
+void ThrowIfRunaway(double t, double bit_speed, double runaway, const std::vector<double>& state) {
+  if (std::abs(bit_speed) <= runaway) return;
+  throw NumericalError("runaway: the bit turns at " + Significant(bit_speed, 4) + " rad/s, over " +
+                           Significant(kRunawaySpeedFactor, 3) + " times the fastest commanded speed (" +
+                           Significant(runaway, 4) +
+                           " rad/s): the model grows without bound here (an unstable "
+                           "law, gain or delay)",
+                       t, state);
+}
 
 void SummarizeDrillingRun(DrillingSamples& s, std::vector<double> hookload, const std::vector<StuckInterval>& stuck,
                           const RunSettings& settings, const SteadyDrillingValues& steady,

@@ -194,9 +194,11 @@ class LumpedAxialTorsionalModel : public PreparedModel {
     Process process(md_);
     std::vector<double> x = process.InitialState();
     DrillingSamples d;
+    const double runaway = RunawaySpeed(md_.top_speed);
     auto sample = [&](double t, const std::vector<double>& s) {
       process.BeginStep(t);  // look-ups at t from the committed history (left limits inside the last piece)
       const Process::Sample v = process.Sampled(t, s);
+      ThrowIfRunaway(t, v.bit_speed, runaway, s);
       d.time.push_back(t), d.top.push_back(md_.top_speed.Value(t)), d.bit.push_back(v.bit_speed);
       d.top_torque.push_back(v.top_torque), d.bit_torque.push_back(v.bit_torque), d.wob.push_back(v.wob);
       d.depth.push_back(v.depth), d.vbit.push_back(v.axial_speed), d.tn.push_back(v.tn), d.stuck.push_back(v.stuck);
