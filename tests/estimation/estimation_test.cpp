@@ -484,13 +484,26 @@ TEST(SyntheticRecordings, Rec03MeetsTheIssuesTargets) {
   EXPECT_GT(j["errors"]["stuck"]["f1"].get<double>(), 0.9);
 }
 
+// Dev rec05 hides a soft drive. The independent simulator's string is not drillwave's, and around each stop the
+// estimate swings to -4 to -6 rpm while the recorded bit is held (0 +- 1 rpm): counted as turning back, 583 of its
+// 3 047 stuck samples were missed, 408 of them in the first and last tenth of their stick (F1 0.894, precision 0.9996).
+TEST(SyntheticRecordings, Rec05sStopsAreStuckThoughTheEstimateSwingsBelowZero) {
+  const nlohmann::json j = EstimateSynthetic("synthetic", "rec05");
+  if (j.is_null()) GTEST_SKIP() << "../shared/recordings/synthetic/rec05.csv is absent";
+  const nlohmann::json& stuck = j["errors"]["stuck"];
+  std::printf("[ measured ] dev rec05: stuck F1 %.3f (precision %.4f, recall %.3f)\n", stuck["f1"].get<double>(),
+              stuck["precision"].get<double>(), stuck["recall"].get<double>());
+  EXPECT_GT(stuck["f1"].get<double>(), 0.9);
+  EXPECT_GT(stuck["precision"].get<double>(), 0.99);  // what is flagged is stuck: the rule adds no false stops
+}
+
 // Train rec18 hides a soft drive (and an unbalance): before the top inertia's torque came from a quartic's slope over
 // the travel time, a quadratic's over +-4 J_b / Z flattened it: bit-speed RMS 19.3 rpm (16 %), stuck F1 0.25.
 TEST(SyntheticRecordings, TrainRec18sSoftDriveMeetsTheIssuesTargets) {
   const nlohmann::json j = EstimateSynthetic("synthetic-train", "rec18");
   if (j.is_null()) GTEST_SKIP() << "../shared/recordings/synthetic-train/rec18.csv is absent";
   EXPECT_LT(j["errors"]["bit_rpm"]["rms_percent_of_mean"].get<double>(), 10);  // measured 7.5 %
-  EXPECT_GT(j["errors"]["stuck"]["f1"].get<double>(), 0.85);                    // measured 0.884
+  EXPECT_GT(j["errors"]["stuck"]["f1"].get<double>(), 0.85);                   // measured 0.912
 }
 
 }  // namespace

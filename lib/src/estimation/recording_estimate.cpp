@@ -104,7 +104,10 @@ nlohmann::json EstimateSummary(const recordings::Recording& r, const BitEstimate
   j["method"] = e.method;
   j["latency_s"] = e.latency_s;
   j["stuck_threshold_rpm"] = e.stuck_threshold_rad_s / kRadPerSecondPerRpm;
-  j["stuck_rule"] = "|bit speed| below 5 % of the median top speed, for the estimate and the measurement alike";
+  j["stuck_rule"] =
+      "the measured bit stuck where |bit speed| is below 5 % of the median top speed; the estimate where it does not "
+      "turn forward by more than that and its band (a string), or where its friction regime holds it or |speed| is "
+      "below that (a two-mass model)";
   j["notes"] = e.notes;
   nlohmann::json events = nlohmann::json::array();
   for (const StuckEvent& ev : StuckEvents(e.time_s, e.stuck))

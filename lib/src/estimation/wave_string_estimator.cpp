@@ -6,6 +6,7 @@
 
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/median.hpp"
 #include "drillwave/estimation/smoothing.hpp"
 
 namespace drillwave::estimation {
@@ -134,14 +135,23 @@ BitEstimate EstimateWaveString(const WaveStringModel& model, const SurfaceSignal
   e.bit_speed_band_rad_s.assign(n, kNaN);
   e.bit_torque_band_Nm.assign(n, kNaN);
   e.stuck.assign(n, 0);
+  // The direction the drive turns the string (the sign of the median top speed).
+  std::vector<double> finite_top;
+  for (double v : s.top_speed_rad_s)
+    if (std::isfinite(v)) finite_top.push_back(v);
+  const double forward = Median(std::move(finite_top)) < 0 ? -1.0 : 1.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(speed.value[i])) continue;
     // The bit: J_b w_b' = T(L) - torque on bit.
     e.bit_torque_Nm[i] = torque.value[i] - model.bit_inertia_kgm2 * speed.derivative[i];
     e.bit_speed_band_rad_s[i] = 2 * speed_sigma;
     e.bit_torque_band_Nm[i] = 2 * torque_sigma;
-    // Stuck when the estimate is below the threshold within its band: a stuck bit's estimate is zero plus noise.
-    e.stuck[i] = std::abs(speed.value[i]) < stuck_threshold_rad_s + e.bit_speed_band_rad_s[i];
+    // Stuck when the estimate does not turn forward by more than the threshold within its band: a stuck bit's
+    // estimate is zero plus noise, and it swings below zero around each stop, where the smoothing rings after the
+    // sudden halt (the bit itself does not turn back: the string winds up forward while the rock holds it). Counted as
+    // turning, those swings cost a tenth of the stuck samples (dev rec05: 583 of 3 047, 408 of them in the first and
+    // last tenth of their stick).
+    e.stuck[i] = forward * speed.value[i] < stuck_threshold_rad_s + e.bit_speed_band_rad_s[i];
   }
 
   e.wob_N.assign(n, model.weight_on_bit_N);
