@@ -158,6 +158,21 @@ TEST_F(ErrorPolicy, NonFiniteOutputsAreANumericalFailureNeverExitZero) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+TEST_F(ErrorPolicy, ARunawayBitIsANumericalFailureNotAResult) {
+  // Issue 39: the exact wave cancellation behind 100 ms ran the coupled baseline's bit to 3.7e8 rad/s by 60 s and
+  // wrote it out, exit 0.
+  std::ifstream in(kCases + "baseline-60rpm.json");
+  auto doc = nlohmann::json::parse(in);
+  doc.erase("expect");
+  doc["model"]["top"] = {{"type", "wave_cancellation"},    {"inertia_kgm2", 2500},    {"kp_Nms_per_rad", 5000},
+                         {"speed_loop_corner_rad_s", 0.2}, {"actuator_delay_s", 0.1}, {"speed_rad_s", 6.283185307}};
+  const Outcome o = RunTool("run " + Write(doc) + Out());
+  EXPECT_EQ(o.exit_code, 3) << o.output;
+  EXPECT_NE(o.output.find("runaway: the bit turns at"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("state = ["), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
 TEST_F(ErrorPolicy, EveryChannelsFirstSampleIsDefined) {
   // Every Jeffcott trajectory started with rotor_speed_norm = nan.
   std::ifstream in(kCases + "jeffcott-unbalance.json");
