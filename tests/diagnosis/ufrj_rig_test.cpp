@@ -73,7 +73,8 @@ TEST(UfrjRig, FittedCasePredictsTheHeldOutFeaturesBetterThanItsStart) {
 // the features and the droop as the drive's start, stribeck + soft_topdrive, 38.2 -> 8.31 (the CLI's README command,
 // without the torque-to-bit lag: 34 -> 1.1); from the base with the droop drive and the shaft's period calibrated, the
 // friction falling linearly with speed (linear_weakening; the CLI's README command: 34 -> 0.446, the torque limit and
-// the normal load fitted beside it and refused).
+// the normal load fitted beside it and refused); the shaft's period then calibrated beside it as a base parameter
+// (CalibrateBesideTheKept: fit window 3.34 -> 2.80, held out 0.98 -> 0.806, period 0.351 -> 0.360 s).
 LoopOptions RigLoopOptions() {
   LoopOptions o;
   o.maps = {{"top_rpm", "top_rpm", 1}, {"bit_rpm", "bit_rpm", 1}, {"tob_Nm", "bit_torque_Nm", 1}};
@@ -103,11 +104,12 @@ TEST(UfrjRig, TheLoopAddsTheLinearVelocityWeakeningAndPredictsTheHeldOutPart) {
               names.c_str(), loop.baseline_held_out_error, loop.fitted_held_out_error, loop.masked_samples[0].second);
   EXPECT_NE(std::find(kept.begin(), kept.end(), "linear_weakening"), kept.end()) << names;
   EXPECT_LT(loop.fitted_held_out_error, 0.3 * loop.baseline_held_out_error);
-  // The fitted model keeps sticking and slipping with the recording's period (0.378 s on 20-30 s) within 10 %.
+  // The fitted model keeps sticking and slipping with the recording's period (0.378 s on 20-30 s) within 5 % (issue
+  // 32; the friction alone fitted 0.351 s, -7.1 %).
   const double period = loop.fitted_held_out.Value("period_s");
   std::printf("[ measured ] ufrj-rig loop: held-out period %.3f s, stick fraction %.3f\n", period,
               loop.fitted_held_out.Value("stick_fraction"));
-  EXPECT_NEAR(period, 0.378, 0.1 * 0.378);
+  EXPECT_NEAR(period, 0.378, 0.05 * 0.378);
   EXPECT_GT(loop.fitted_held_out.Value("stick_fraction"), 0.05);
   EXPECT_GT(loop.masked_samples[0].second, 0);  // the encoder's spikes in top_rpm are masked, not modelled
 }

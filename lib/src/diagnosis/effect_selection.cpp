@@ -510,6 +510,7 @@ void EffectSelection::Select() {
   CheckAndExtend(ranked);
   ContestWithTheBase();
   ContestRivals();
+  CalibrateBesideTheKept();
   if (loop_.kept >= 0) loop_.candidates[loop_.kept].kept = true;
   for (std::size_t i = 0; i < loop_.candidates.size(); ++i) {
     Candidate& c = loop_.candidates[i];
@@ -712,6 +713,58 @@ void EffectSelection::ContestRivals() {
   say_("rival explanations within chance of each other (held out: " + each + "): " +
        (loop_.kept >= 0 ? "only " + Joined(loop_.candidates[loop_.kept].effects) + ", which all share, is named"
                         : std::string("none is named")));
+}
+
+// A base parameter offered among the effects (Effect::base_parameter: the rig's shaft period and disc inertia) is
+// the base's, not a name: beside a kept set it is judged as CalibrateBase (loop.cpp) judges a calibration, not by
+// the margin and AIC a name must clear. Each is fitted with the kept set from the set's values; of those that bring
+// the fit window closer, leave the held-out window no worse beyond chance and do not lean on their range's edge, the
+// closest on the fit window stands for the set. (The UFRJ rig: its friction's fit oscillates with a period 7 % short;
+// the disc's inertia beside it brings the fit window 3.34 -> 2.88 and the held-out window 0.98 -> 0.82, which is not
+// the 20 % a name needs, so the period stayed short.)
+void EffectSelection::CalibrateBesideTheKept() {
+  if (loop_.kept < 0) return;
+  const Candidate kept = loop_.candidates[loop_.kept];
+  const std::vector<int> set = IndicesOf(kept);
+  std::vector<std::vector<int>> sets;
+  for (int p : modelable_) {
+    if (!loop_.proposals[p].base_parameter || std::binary_search(set.begin(), set.end(), p)) continue;
+    std::vector<int> with = set;
+    with.insert(std::upper_bound(with.begin(), with.end(), p), p);
+    sets.push_back(with);
+  }
+  if (sets.empty()) return;
+  const auto start_of = [&](const std::vector<int>& s) {
+    std::vector<double> start;
+    for (int effect : s) {
+      const std::vector<double> own =
+          std::binary_search(set.begin(), set.end(), effect) ? ValuesOf(kept, {effect}) : StartOfSet({effect});
+      start.insert(start.end(), own.begin(), own.end());
+    }
+    return start;
+  };
+  std::vector<std::vector<int>> to_fit;
+  for (const std::vector<int>& s : sets)
+    if (!FittedAt(s, start_of(s))) to_fit.push_back(s);
+  if (!to_fit.empty()) {
+    say_("calibrating the base beside " + Joined(kept.effects) + " (" + std::to_string(to_fit.size()) + " fits)");
+    FitAll(to_fit, [&](std::size_t i) { return start_of(to_fit[i]); });
+  }
+  int best = -1;
+  for (const std::vector<int>& s : sets) {
+    const int i = Representative(s);
+    if (i < 0) continue;
+    const Candidate& c = loop_.candidates[i];
+    const bool stands = ParameterOnEdge(c) < 0 && c.fit_error < kept.fit_error &&
+                        c.held_out_error < kept.held_out_error + loop_.error_chance;
+    if (stands && (best < 0 || c.fit_error < loop_.candidates[best].fit_error)) best = i;
+  }
+  if (best < 0) return;
+  say_(Joined(loop_.candidates[best].effects) + " calibrates the base beside " + Joined(kept.effects) +
+       " (fit window " + Significant(kept.fit_error, 3) + " -> " + Significant(loop_.candidates[best].fit_error, 3) +
+       ", held out " + Significant(kept.held_out_error, 3) + " -> " +
+       Significant(loop_.candidates[best].held_out_error, 3) + ")");
+  loop_.kept = best;
 }
 
 }  // namespace drillwave::diagnosis::loop_internal

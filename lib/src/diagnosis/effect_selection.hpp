@@ -3,7 +3,8 @@
 // the strongest fitted alone, then in pairs; a kept set checked against itself without each of its effects (backward
 // elimination) and extended by each other single and the best screened other effect (forward selection); each
 // effect of a kept set contested by the base's calibrations in its place; rival sets within chance of the best contest
-// it, and only what they share is named. Each decision: held-out error below (1 - margin) of the reference's, by
+// it, and only what they share is named; the base parameters offered among the effects last, beside the kept set.
+// Each decision: held-out error below (1 - margin) of the reference's, by
 // more than chance moves it, and a lower AIC on the fit window; a set against the baseline and every fitted smaller
 // set of its effects.
 #include <functional>
@@ -103,6 +104,7 @@ class EffectSelection {
                             const std::function<std::vector<int>(int)>& extended,
                             const std::function<std::vector<double>(const std::vector<int>&)>& start);
   void ContestRivals();
+  void CalibrateBesideTheKept();
 
   const LoopOptions& o_;
   const ModelRuns& runner_;

@@ -126,6 +126,7 @@ Effect BitInertia(double j, const PeriodReading& p) {
            p.strength, p.evidence};
   const double start = std::clamp(j * p.ratio * p.ratio, 0.2 * j, 20 * j);  // the inertia scales with the period squared
   e.parameters = {{"inertia_kgm2", "kg m^2", 0.2 * j, 20 * j, true, start}};
+  e.base_parameter = true;
   e.apply = [](nlohmann::json& d, const std::vector<double>& v) { d["model"]["bit"]["inertia_kgm2"] = v[0]; };
   return e;
 }
@@ -140,6 +141,7 @@ Effect ShaftPeriod(double j, double k, const PeriodReading& p) {
   Effect e{"shaft_period", "calibration: the shaft and disc's natural period at their impedance (J a, k / a)", {},
            nullptr, p.strength, p.evidence};
   e.parameters = {{"period_scale", "-", 0.7, 1.5, true, std::clamp(p.ratio, 0.7, 1.5)}};
+  e.base_parameter = true;
   e.apply = [j, k](nlohmann::json& d, const std::vector<double>& v) {
     d["model"]["bit"]["inertia_kgm2"] = j * v[0];
     d["model"]["string"]["stiffness_Nm_per_rad"] = k / v[0];

@@ -48,6 +48,10 @@ struct Effect {
   std::string evidence;   // the measured numbers behind it
   // A base parameter (BaseCalibrations) re-estimated beside effects as a rival explanation: fitted, never named.
   bool calibration = false;
+  // A base parameter offered among the effects (the rig's shaft period and disc inertia, which no base calibration
+  // can read before an effect makes the disc stick): fitted and named like one, and beside a kept set judged as the
+  // base's calibrations are (EffectSelection::CalibrateBesideTheKept).
+  bool base_parameter = false;
   // What the recording measures directly that contradicts the effect (a stiff drive's law read off it, against a soft
   // drive): such an effect is not fitted. Empty: nothing refutes it.
   std::string refuted = {};
