@@ -78,6 +78,35 @@ TEST(DriveLaw, ReadsAnArmaturesLagBehindThePiInThePhase) {
   EXPECT_LT(law.PhaseStd(), 0.05);
 }
 
+// A soft speed loop driving a DC motor: torque (1 + s tau) = PI(e) + K^2 / R e. Read at every coherent frequency of
+// the stick-slip's lines, a PI behind a lag recovers tau, the loop's kp with the back-EMF damping added, and ki, and
+// the F-test finds the lag; the same loop without the armature reads a PI and no lag.
+TEST(DriveLaw, FitsAPiBehindAnArmatureAtEveryCoherentFrequency) {
+  const double kp = 600, ki = 10000, back_emf = 20000, tau = 0.11;
+  const Signals pi = PiLawSignals(kp + back_emf, ki, 0.05, 200, 11);
+  std::vector<double> lagged(pi.torque.size());
+  lagged[0] = pi.torque[0];
+  const double dt = pi.time_s[1] - pi.time_s[0];
+  for (std::size_t i = 1; i < lagged.size(); ++i)
+    lagged[i] = lagged[i - 1] + (1 - std::exp(-dt / tau)) * (pi.torque[i] - lagged[i - 1]);
+  const DriveLaw law = IdentifyDriveLaw(pi.time_s, pi.error, lagged, 0, 60);
+  const LaggedPi fit = FitLaggedPi(law);
+  std::printf("[ measured ] %d coherent bins: kp %.5g, ki %.5g, tau %.4g s, F %.3g, p %.2g\n", fit.bins,
+              fit.proportional, fit.integral, fit.lag_s, fit.f_statistic, fit.p_value);
+  ASSERT_GE(fit.bins, 3);
+  EXPECT_NEAR(fit.lag_s, tau, 0.1 * tau);  // measured 0.105 s
+  EXPECT_NEAR(fit.proportional, kp + back_emf, 0.05 * (kp + back_emf));
+  EXPECT_NEAR(fit.integral, ki, 0.1 * ki);
+  EXPECT_LT(fit.p_value, 1e-6);
+
+  const LaggedPi plain = FitLaggedPi(IdentifyDriveLaw(pi.time_s, pi.error, pi.torque, 0, 60));
+  std::printf("[ measured ] without the armature: tau %.4g s, F %.3g, p %.2g\n", plain.lag_s, plain.f_statistic,
+              plain.p_value);
+  EXPECT_GT(plain.p_value, 0.01);
+  EXPECT_LT(plain.lag_s, 0.01);
+  EXPECT_EQ(FitLaggedPi(DriveLaw{}).bins, 0);  // nothing read, nothing fitted
+}
+
 // A stiff drive holds the top's speed within the speed channel's noise: the torque oscillates, the speed error is
 // noise, and no law is claimed.
 TEST(DriveLaw, ASpeedErrorOfNoiseGivesNoLaw) {
@@ -172,7 +201,7 @@ Effect ProposalFor(const DriveLaw& law, const std::string& name) {
 Effect SoftDriveProposal(const DriveLaw& law) { return ProposalFor(law, "soft_topdrive"); }
 
 TEST(SoftDriveProposal, StartsFromTheRecordedLawWhereItIsSofterThanTheCases) {
-  DriveLaw soft{0.3, 400, 5000, 0.98, 4};
+  DriveLaw soft{0.3, 400, 5000, 0.98, 4, {}};
   const Effect e = SoftDriveProposal(soft);
   ASSERT_EQ(e.parameters.size(), 2u);
   EXPECT_DOUBLE_EQ(e.parameters[0].start, 400);
@@ -183,7 +212,7 @@ TEST(SoftDriveProposal, StartsFromTheRecordedLawWhereItIsSofterThanTheCases) {
 
   // BASELINE.md's pipe and top: Z = 299 N m s/rad, w1 = pi c / 2 L at 2000 m, J_td = 2500 kg m^2.
   const double c = std::sqrt(80769e6 / 7850), w1 = kPi * c / (2 * 2000);
-  for (const DriveLaw& other : {DriveLaw{0.3, 1e5, 2e5, 0.98, 4}, DriveLaw{0.3, 400, 5000, 0.5, 4}}) {
+  for (const DriveLaw& other : {DriveLaw{0.3, 1e5, 2e5, 0.98, 4, {}}, DriveLaw{0.3, 400, 5000, 0.5, 4, {}}}) {
     const Effect plain = SoftDriveProposal(other);
     EXPECT_NEAR(plain.parameters[0].start, 299.1, 0.5);
     EXPECT_NEAR(plain.parameters[1].start, 2500 * w1 * w1, 1e-6 * 2500 * w1 * w1);
@@ -191,8 +220,8 @@ TEST(SoftDriveProposal, StartsFromTheRecordedLawWhereItIsSofterThanTheCases) {
   }
   // The case's own law read off the recording measures the drive: a soft one is refuted, not fitted; a law not read
   // (coherence 0.5) refutes nothing.
-  EXPECT_FALSE(SoftDriveProposal(DriveLaw{0.3, 1e5, 2e5, 0.98, 4}).refuted.empty());
-  EXPECT_TRUE(SoftDriveProposal(DriveLaw{0.3, 400, 5000, 0.5, 4}).refuted.empty());
+  EXPECT_FALSE(SoftDriveProposal(DriveLaw{0.3, 1e5, 2e5, 0.98, 4, {}}).refuted.empty());
+  EXPECT_TRUE(SoftDriveProposal(DriveLaw{0.3, 400, 5000, 0.5, 4, {}}).refuted.empty());
 }
 
 // The DC motor's proposal reads the lag of the recorded law behind the case's PI: where the law is the case's drive
@@ -205,13 +234,13 @@ TEST(DcMotorProposal, StartsFromTheLagOfTheRecordedLawBehindTheCasesPi) {
   const double kp = doc["model"]["top"]["kp_Nms_per_rad"], ki = doc["model"]["top"]["ki_Nm_per_rad"];
   const double f = 0.3, w = 2 * kPi * f, tau = 0.08;
   const std::complex<double> h = std::complex<double>(kp, -ki / w) / std::complex<double>(1, w * tau);
-  const Effect lagged = DcMotorProposal(DriveLaw{f, h.real(), -w * h.imag(), 0.99, 4});  // 4.2 std
+  const Effect lagged = DcMotorProposal(DriveLaw{f, h.real(), -w * h.imag(), 0.99, 4, {}});  // 4.2 std
   ASSERT_EQ(lagged.parameters.size(), 2u);
   EXPECT_NEAR(lagged.parameters[0].start, tau, 1e-9);
   EXPECT_TRUE(lagged.Proposed()) << lagged.strength;
   EXPECT_NE(lagged.evidence.find("lags the case's PI"), std::string::npos) << lagged.evidence;
-  for (const DriveLaw& other :
-       {DriveLaw{f, kp, ki, 0.98, 4}, DriveLaw{f, 400, 5000, 0.98, 4}, DriveLaw{f, h.real(), -w * h.imag(), 0.5, 4}}) {
+  for (const DriveLaw& other : {DriveLaw{f, kp, ki, 0.98, 4, {}}, DriveLaw{f, 400, 5000, 0.98, 4, {}},
+                                DriveLaw{f, h.real(), -w * h.imag(), 0.5, 4, {}}}) {
     const Effect plain = DcMotorProposal(other);
     EXPECT_DOUBLE_EQ(plain.parameters[0].start, 0.1);
     EXPECT_EQ(plain.strength, 0);
@@ -262,6 +291,27 @@ TEST(TelemetryLag, TheLoopReadsTheBitSpeedsDelayBehindTheVirtualSensor) {
     }
   const loop_internal::PreparedRecording on_time = PreparedWithDelayedBit(0.0, &doc);
   EXPECT_FALSE(on_time.fit.telemetry.found) << on_time.fit.telemetry.lag_s;
+}
+
+// Behind a soft speed loop the law is not the case's PI, so no lag behind it can be read at one frequency; at several,
+// the PI behind a lag (FitLaggedPi) is the proposal's evidence and its lag the first armature time constant.
+TEST(DcMotorProposal, ReadsAnArmatureBehindASoftLoopAtSeveralFrequencies) {
+  const double p = 20600, i = 10000, tau = 0.12;
+  DriveLaw law{0.3, 0, 0, 0.98, 4, {}};
+  for (int k = 1; k <= 8; ++k) {
+    const double f = 0.1 * k, w = 2 * kPi * f;
+    const double scatter = 1 + 0.01 * std::sin(3.0 * k);  // 1 %, under the bins' own 2.5 % spread
+    law.coherent.push_back({f, scatter * std::complex<double>(p, -i / w) / std::complex<double>(1, w * tau), 0.98});
+  }
+  const std::complex<double> peak = law.coherent[2].h;
+  law.proportional = peak.real(), law.integral = -2 * kPi * 0.3 * peak.imag();
+  const Effect e = DcMotorProposal(law);
+  std::printf("[ measured ] %s (strength %.3g)\n", e.evidence.c_str(), e.strength);
+  EXPECT_TRUE(e.Proposed()) << e.strength;
+  EXPECT_NEAR(e.parameters[0].start, tau, 0.005);
+  EXPECT_NE(e.evidence.find("frequencies"), std::string::npos) << e.evidence;
+  for (DriveLawBin& b : law.coherent) b.h = std::complex<double>(p, -i / (2 * kPi * b.frequency_hz));  // no lag
+  EXPECT_EQ(DcMotorProposal(law).strength, 0);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "drillwave/diagnosis/drive_law.hpp"
 
 #include <algorithm>
+#include <boost/math/distributions/fisher_f.hpp>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -69,6 +70,13 @@ DriveLaw IdentifyDriveLaw(const std::vector<double>& time_s, const std::vector<d
   }
   const std::size_t peak = static_cast<std::size_t>(std::max_element(s_tt.begin(), s_tt.end()) - s_tt.begin());
   if (!(s_ee[peak] > 0 && s_tt[peak] > 0)) return DriveLaw{};
+  for (std::size_t b = 0; b < bins; ++b) {
+    if (!(s_ee[b] > 0 && s_tt[b] > 0)) continue;
+    const double coherence = std::norm(s_te[b]) / (s_ee[b] * s_tt[b]);
+    if (coherence >= kMinDriveCoherence)
+      law.coherent.push_back(
+          {static_cast<double>(k_low + b) / (static_cast<double>(n) * dt), s_te[b] / s_ee[b], coherence});
+  }
   const std::complex<double> h = s_te[peak] / s_ee[peak];
   const double w = 2 * kPi * static_cast<double>(k_low + peak) / (static_cast<double>(n) * dt);
   law.frequency_hz = w / (2 * kPi);
@@ -76,6 +84,81 @@ DriveLaw IdentifyDriveLaw(const std::vector<double>& time_s, const std::vector<d
   law.integral = -w * h.imag();
   law.coherence = std::norm(s_te[peak]) / (s_ee[peak] * s_tt[peak]);
   return law;
+}
+
+namespace {
+
+struct PiFit {
+  double proportional = 0, integral = 0, residual = std::numeric_limits<double>::infinity();
+};
+
+// The weighted least-squares PI for one lag: H (1 + i w tau) = P - i I / w, each bin's equations scaled by 1 / (|H|
+// sigma), so the residual is the sum of squared relative misfits in the bins' own spreads.
+PiFit FitPiBehind(const std::vector<DriveLawBin>& bins, const std::vector<double>& sigma, double tau) {
+  double a11 = 0, a22 = 0, b1 = 0,
+         b2 = 0;  // the normal equations are diagonal: P from the real parts, I from the imaginary
+  std::vector<std::complex<double>> target(bins.size());
+  for (std::size_t i = 0; i < bins.size(); ++i) {
+    const double w = 2 * kPi * bins[i].frequency_hz, weight = 1 / (std::abs(bins[i].h) * sigma[i]);
+    target[i] = bins[i].h * std::complex<double>(1, w * tau);
+    a11 += weight * weight, b1 += weight * weight * target[i].real();
+    a22 += weight * weight / (w * w), b2 += weight * weight * (-target[i].imag() / w);
+  }
+  PiFit fit;
+  fit.proportional = b1 / a11, fit.integral = b2 / a22;
+  fit.residual = 0;
+  for (std::size_t i = 0; i < bins.size(); ++i) {
+    const double w = 2 * kPi * bins[i].frequency_hz;
+    const std::complex<double> model =
+        std::complex<double>(fit.proportional, -fit.integral / w) / std::complex<double>(1, w * tau);
+    fit.residual += std::norm((bins[i].h - model) / (std::abs(bins[i].h) * sigma[i]));
+  }
+  return fit;
+}
+
+}  // namespace
+
+LaggedPi FitLaggedPi(const DriveLaw& law, double max_lag_s) {
+  LaggedPi out;
+  const std::vector<DriveLawBin>& bins = law.coherent;
+  if (bins.size() < 3 || law.segments < 2 || !(max_lag_s >= 2e-3)) return out;
+  std::vector<double> sigma(bins.size());
+  for (std::size_t i = 0; i < bins.size(); ++i)
+    sigma[i] = std::sqrt(1 - bins[i].coherence) / (std::sqrt(bins[i].coherence) * std::sqrt(2.0 * law.segments));
+  // A bin read without scatter (coherence 1: a noiseless twin) would take every weight: its spread is floored.
+  for (double& s : sigma) s = std::max(s, 1e-6);
+  constexpr double kStep = 1e-3;
+  const int steps = static_cast<int>(std::lround(max_lag_s / kStep));
+  std::vector<PiFit> profile;  // the residual with P and I fitted at each lag of the grid
+  for (int k = 0; k <= steps; ++k) profile.push_back(FitPiBehind(bins, sigma, kStep * k));
+  const PiFit& pi = profile.front();
+  const auto at = static_cast<std::size_t>(
+      std::min_element(profile.begin(), profile.end(),
+                       [](const PiFit& a, const PiFit& b) { return a.residual < b.residual; }) -
+      profile.begin());
+  const PiFit& best = profile[at];
+  out.proportional = best.proportional, out.integral = best.integral, out.lag_s = kStep * static_cast<double>(at);
+  out.bins = static_cast<int>(bins.size());
+  const double dof = 2.0 * static_cast<double>(bins.size()) - 3;
+  // The standard error from the profile's curvature at its minimum (one-sided at a minimum on tau = 0): Var(tau) =
+  // 2 s^2 / RSS'' with s^2 = RSS / dof, the residual's own scatter.
+  const double curvature =
+      at == 0 ? 2 * (profile[1].residual - best.residual) / (kStep * kStep)
+      : at + 1 < profile.size()
+          ? (profile[at + 1].residual - 2 * best.residual + profile[at - 1].residual) / (kStep * kStep)
+          : 0.0;
+  out.lag_std_s =
+      curvature > 0 ? std::sqrt(2 * (best.residual / dof) / curvature) : std::numeric_limits<double>::infinity();
+  const double gain = pi.residual - best.residual;
+  if (!(gain > 0)) return out;  // no lag fits better than none
+  if (!(best.residual > 0)) {   // a lag that fits exactly
+    out.f_statistic = std::numeric_limits<double>::infinity(), out.p_value = 0;
+    return out;
+  }
+  out.f_statistic = gain / (best.residual / dof);
+  const boost::math::fisher_f_distribution<double> f(1.0, dof);
+  out.p_value = boost::math::cdf(boost::math::complement(f, out.f_statistic));
+  return out;
 }
 
 }  // namespace drillwave::diagnosis
