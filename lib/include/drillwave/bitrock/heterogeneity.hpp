@@ -15,6 +15,10 @@ namespace drillwave::bitrock {
 // std^2 and correlation E[g(z) g(z + dz)] / std^2 = exp(-(dz / correlation)^2 / 2) (0.61 at one correlation length);
 // smooth (every derivative continuous), so the integrator meets no jumps. Default (or std 0): homogeneous rock,
 // Multiplier exactly 1.
+// Deviation evaluates g through its quintic Hermite interpolant on cells of width 0.5 / max |kappa_k| (g, g' and g''
+// exact at the cells' ends): within std sqrt(2 K) 0.5^6 / 46080 of the sum (4e-6 std for K = 64, a strength off by
+// 4e-8), at the cost of a polynomial where the bit stays in a cell (the sum of cosines was a third of a diagnosis's
+// time). A pure function of the field and z: the same value whatever was asked before.
 class StrengthHeterogeneity {
  public:
   StrengthHeterogeneity() = default;
@@ -23,7 +27,8 @@ class StrengthHeterogeneity {
 
   bool on() const { return amplitude_ > 0; }
   double std() const { return std_; }  // the relative standard deviation asked for
-  double Deviation(double z) const;  // g(z), relative
+  double Deviation(double z) const;    // g(z), relative, through the interpolant
+  double ExactDeviation(double z) const;  // the sum of cosines itself
   // 1 + g(z), exactly 1 when off.
   double Multiplier(double z) const { return on() ? 1.0 + Deviation(z) : 1.0; }
 
@@ -31,7 +36,9 @@ class StrengthHeterogeneity {
   std::uint64_t id_ = 0;  // this field's own number (its copies share it): the key of Deviation's last answer
   double std_ = 0;
   double amplitude_ = 0;                    // c
+  double cell_ = 1;                         // the interpolant's cell width [m]
   std::vector<double> wavenumbers_, phases_;  // kappa_k [1/m], phi_k
+  void Jet(double z, double out[3]) const;    // g, g', g'' at z, exactly
 };
 
 }  // namespace drillwave::bitrock
