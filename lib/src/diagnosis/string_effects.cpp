@@ -263,7 +263,7 @@ Effect ProposeDcMotor(const StringFacts& s, const FeatureSet& m, const FeatureSe
   }
   // A law that is not the case's PI (behind a soft speed loop) has no known PI to lag behind. Where it is read at
   // several frequencies, a PI behind a lag fitted to them (FitLaggedPi) reads the armature whatever the loop's gains
-  // (train rec30: 17 bins, tau 0.116 s against the KEY's 0.113, P 20 656 N m s/rad: the soft loop's kp 598 plus
+  // (train rec30: 15 bins, tau 0.111 s against the KEY's 0.113, P 20 600 N m s/rad: the soft loop's kp 598 plus
   // K^2 / R 20 209). Where the law is the case's, its lag behind the known PI above is the better-determined reading
   // (one parameter, not three). The evidence is the F-test's p-value as the standard deviations of a one-sided normal
   // test with that p-value; only a strong one is a reading (a stick-slip string's drive is not a linear system, and
