@@ -72,12 +72,13 @@ class EffectSelection {
     DrawsOf draws;
     const FeatureSet* held_out;  // its held-out features' means over its draws (a judged model always has them)
     std::string name;            // "the baseline", or its effects
+    std::vector<std::string> effects = {};  // none for the baseline
   };
   static DrawsOf DrawsOfCandidate(const Candidate& c) {
     return {&c.held_out_draw_errors, &c.draw_in_regime, &c.draw_seeds};
   }
   static Reference ReferenceOf(const Candidate& c) {
-    return {c.held_out_error, c.aic, DrawsOfCandidate(c), &c.held_out_mean, Joined(c.effects)};
+    return {c.held_out_error, c.aic, DrawsOfCandidate(c), &c.held_out_mean, Joined(c.effects), c.effects};
   }
   int ParameterOnEdge(const Candidate& c) const;
   double DifferenceSpread(const Candidate& c, const Reference& reference) const;
@@ -87,6 +88,9 @@ class EffectSelection {
   double LargestDifference(const Candidate& c, const Reference& reference) const;
   // Whether c qualifies against the reference; `why` (if given) says which test decided, with its numbers.
   bool Qualifies(const Candidate& c, const Reference& reference, std::string* why = nullptr) const;
+  // The first effect c adds to the reference that the recording does not indicate (evidence at most kWeakEvidence;
+  // the base's own parameters excepted), or "".
+  std::string UnindicatedAddition(const Candidate& c, const Reference& reference) const;
   Reference BaselineReference() const;
   std::vector<int> IndicesOf(const Candidate& c) const;
   int Representative(const std::vector<int>& set) const;
