@@ -92,9 +92,8 @@ double StrengthHeterogeneity::Deviation(double z) const {
       }
       return end.jet;
     };
-    double a[3], b[3];
-    std::copy_n(end_jet(index), 3, a);
-    std::copy_n(end_jet(index + 1), 3, b);
+    const double* a = end_jet(index);  // neighbouring ends sit in different slots: both stay valid
+    const double* b = end_jet(index + 1);
     const double h = cell_, p0 = a[0], p1 = b[0], d0 = a[1] * h, d1 = b[1] * h, q0 = a[2] * h * h, q1 = b[2] * h * h,
                  rise = p1 - p0;
     cell.field = id_, cell.index = index;

@@ -95,14 +95,13 @@ struct PiFit {
 // The weighted least-squares PI for one lag: H (1 + i w tau) = P - i I / w, each bin's equations scaled by 1 / (|H|
 // sigma), so the residual is the sum of squared relative misfits in the bins' own spreads.
 PiFit FitPiBehind(const std::vector<DriveLawBin>& bins, const std::vector<double>& sigma, double tau) {
-  double a11 = 0, a22 = 0, b1 = 0,
-         b2 = 0;  // the normal equations are diagonal: P from the real parts, I from the imaginary
-  std::vector<std::complex<double>> target(bins.size());
+  // The normal equations are diagonal: P from the real parts, I from the imaginary ones.
+  double a11 = 0, a22 = 0, b1 = 0, b2 = 0;
   for (std::size_t i = 0; i < bins.size(); ++i) {
     const double w = 2 * kPi * bins[i].frequency_hz, weight = 1 / (std::abs(bins[i].h) * sigma[i]);
-    target[i] = bins[i].h * std::complex<double>(1, w * tau);
-    a11 += weight * weight, b1 += weight * weight * target[i].real();
-    a22 += weight * weight / (w * w), b2 += weight * weight * (-target[i].imag() / w);
+    const std::complex<double> target = bins[i].h * std::complex<double>(1, w * tau);
+    a11 += weight * weight, b1 += weight * weight * target.real();
+    a22 += weight * weight / (w * w), b2 += weight * weight * (-target.imag() / w);
   }
   PiFit fit;
   fit.proportional = b1 / a11, fit.integral = b2 / a22;

@@ -457,6 +457,18 @@ std::vector<double> EffectSelection::ValuesOf(const Candidate& from, const std::
   return u;
 }
 
+// The values of `set`'s effects: the kept candidate's where it has the effect, the effect's first values otherwise.
+std::vector<double> EffectSelection::KeptValuesOrStart(const Candidate& kept, const std::vector<int>& set) const {
+  const std::vector<int> kept_set = IndicesOf(kept);
+  std::vector<double> start;
+  for (int effect : set) {
+    const std::vector<double> own =
+        std::binary_search(kept_set.begin(), kept_set.end(), effect) ? ValuesOf(kept, {effect}) : StartOfSet({effect});
+    start.insert(start.end(), own.begin(), own.end());
+  }
+  return start;
+}
+
 // A fit of the set started or ended at u (a refit from there would repeat it or start from its optimum).
 bool EffectSelection::FittedAt(const std::vector<int>& set, const std::vector<double>& u) const {
   return std::any_of(loop_.candidates.begin(), loop_.candidates.end(), [&](const Candidate& c) {
@@ -664,15 +676,7 @@ void EffectSelection::ContestWithTheBase() {
     }
   say_("contesting each effect of " + Joined(kept.effects) + " with the base's calibrations in its place (" +
        std::to_string(sets.size()) + " fits)");
-  FitAll(sets, [&](std::size_t i) {
-    std::vector<double> start;
-    for (int effect : sets[i]) {
-      const std::vector<double> own = std::binary_search(set.begin(), set.end(), effect) ? ValuesOf(kept, {effect})
-                                                                                          : StartOfSet({effect});
-      start.insert(start.end(), own.begin(), own.end());
-    }
-    return start;
-  });
+  FitAll(sets, [&](std::size_t i) { return KeptValuesOrStart(kept, sets[i]); });
   // A rival from the base that qualifies as the set does and predicts as well (within chance of it, or one model with
   // it at the features' resolution: no feature a scale apart) leads instead; the rivals' contest then names only
   // what the two share. (Train rec29: with the contact stress back at -7.5 % the decoupled model held out 0.0046
@@ -754,15 +758,7 @@ void EffectSelection::CalibrateBesideTheKept() {
     sets.push_back(with);
   }
   if (sets.empty()) return;
-  const auto start_of = [&](const std::vector<int>& s) {
-    std::vector<double> start;
-    for (int effect : s) {
-      const std::vector<double> own =
-          std::binary_search(set.begin(), set.end(), effect) ? ValuesOf(kept, {effect}) : StartOfSet({effect});
-      start.insert(start.end(), own.begin(), own.end());
-    }
-    return start;
-  };
+  const auto start_of = [&](const std::vector<int>& s) { return KeptValuesOrStart(kept, s); };
   std::vector<std::vector<int>> to_fit;
   for (const std::vector<int>& s : sets)
     if (!FittedAt(s, start_of(s))) to_fit.push_back(s);

@@ -99,6 +99,7 @@ class EffectSelection {
   std::vector<double> OwnFit(int effect) const;
   std::vector<double> ScreenedOrStart(int effect) const;
   std::vector<double> ValuesOf(const Candidate& from, const std::vector<int>& set) const;
+  std::vector<double> KeptValuesOrStart(const Candidate& kept, const std::vector<int>& set) const;
   bool FittedAt(const std::vector<int>& set, const std::vector<double>& u) const;
 
   std::vector<int> Screen();  // the singles to fit in full
