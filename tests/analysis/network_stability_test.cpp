@@ -59,6 +59,18 @@ waves::Node SoftTorqueTop(double speed, double gain, double time_constant) {
 }
 waves::Node ZTorqueTop(double speed) { return SoftTorqueTop(speed, 1 / kPipe.impedance, 5); }
 
+// The sliding-mode top (model::SlidingMode) on the stiff PI's drive (J 500) holding Z-Torque's command: surface corner
+// 0.2 1/s, reaching rate 36 rad/s^2 (J eta = 18 kN m, one and a half times the Stribeck bit's static torque), and a
+// layer whose gain J eta / phi is `layer_gain` (inside it, a PI: SlidingMode::InLayer, as the case reader sets it).
+waves::Node SlidingModeTop(double speed, double layer_gain, double delay = 0) {
+  waves::Node top = PiTop(speed, 500, 0, 0);
+  top.law.torque_feedback = {1 / kPipe.impedance, 5};
+  top.law.sliding_mode = {0.2, 36, 500 * 36 / layer_gain};
+  top.pi = top.law.sliding_mode.InLayer(top.LumpedInertia());
+  top.law.actuator_delay_s = delay;
+  return top;
+}
+
 // The wave-cancelling top (model::WaveCancellation): the stiff PI's drive (J 500, kp 5000) absorbing the arriving wave,
 // its slow speed loop's corner k (ki = 2 Z k), behind an actuator delay.
 waves::Node WaveCancellingTop(double speed, double corner, double delay = 0) {
@@ -618,6 +630,17 @@ TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedDelayedTopDrive) {
   // roots, 7 rad/s apart, leak through the window).
   ExpectGrowthRatesOfSimulation(Chain(WaveCancellingTop(4, 0.2, 0.1), {kPipe}, StribeckBit()), 1e-9, 1, 11,
                                 "wave-cancelling top, 100 ms delay, 4 rad/s", 1);
+}
+
+// A sliding-mode top kicked by less than its layer stays inside it, where the law is the PI of SlidingMode::InLayer:
+// the linearization's roots are the simulation's growth rates. With its layer's gain at the stiff PI's (5000) it
+// keeps Z-Torque's decay at 4 rad/s; behind 50 ms of actuator delay the string's harmonic near 26.5 rad/s grows, as
+// under the delayed Z-Torque top above.
+TEST(NetworkStability, RootsAreTheGrowthRatesOfTheSimulatedSlidingModeTop) {
+  ExpectGrowthRatesOfSimulation(Chain(SlidingModeTop(4, 5000), {kPipe}, StribeckBit()), 1e-3, 2, 30,
+                                "sliding-mode top (layer gain 5000) at 4 rad/s");
+  ExpectGrowthRatesOfSimulation(Chain(SlidingModeTop(4, 5000, 0.05), {kPipe}, StribeckBit()), 1e-9, 1, 11,
+                                "sliding-mode top (layer gain 5000), 50 ms delay, 4 rad/s", 1);
 }
 
 // The largest real part among the roots of the band 1 < Im s < 30 (the stick-slip mode and the string's first

@@ -86,7 +86,7 @@ TEST_F(CompareControllers, WritesTheTableAndAStableLawSticksLessThanTheUnstableS
   for (const char* f : {"controllers.csv", "controllers.md", "controllers.svg", "case.json"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const auto rows = ReadRows(out / "controllers.csv");
-  ASSERT_EQ(rows.size(), 5u);
+  ASSERT_EQ(rows.size(), 6u);
   EXPECT_EQ(rows[0].at("law"), "stiff PI");
   EXPECT_EQ(rows[0].at("verdict"), "unstable");
   EXPECT_EQ(rows[0].at("time_to_suppress_s"), "not suppressed");
@@ -127,15 +127,15 @@ TEST_F(CompareControllers, NeedsAStiffPiAndRefusesBadOptions) {
   }
   const Outcome o = RunTool("compare-controllers " + pi + "500,5000,5000 --handover 20 --after 20 -o " + out.string());
   EXPECT_EQ(o.exit_code, 0) << o.output;
-  EXPECT_EQ(ReadRows(out / "controllers.csv").size(), 5u);
+  EXPECT_EQ(ReadRows(out / "controllers.csv").size(), 6u);
 }
 
 // The stiff PI's stick-slip at 4 rad/s handed over at 20 s; every law mapped on 3 x 3 points of the set-point and the
 // weight on bit, across the stiff PI's boundary (unstable at 3 rad/s, marginal above).
 constexpr const char* kSpeedAxis = "/model/top/speed_rad_s/knots/1/1=3:9:3";
 constexpr const char* kWeightAxis = "/model/bit/friction/W_N=80000:120000:3";
-constexpr const char* kLaws[] = {"stiff PI", "SoftSpeed", "Z-Torque", "wave cancellation",
-                                 "filtered wave cancellation"};
+constexpr const char* kLaws[] = {
+    "stiff PI", "SoftSpeed", "Z-Torque", "wave cancellation", "filtered wave cancellation", "sliding mode"};
 constexpr std::size_t kNumLaws = std::size(kLaws);
 
 // Each law's envelope holds the linear verdicts and rightmost roots `drillwave stability --map` gives for the law's

@@ -211,6 +211,30 @@ TEST(TorsionalWaveSoftTorque, BadInputNamesTheField) {
   EXPECT_EQ(RefusedPath(doc), "/model/top/actuator_delay_s");
 }
 
+// The sliding-mode top's fields: its gains follow from the surface and the layer, so a PI's are refused; each of the
+// three > 0 and the filter's time constant required (its command is Z-Torque's); behind a compliant gear refused as
+// Z-Torque is (it reads the string torque at a top driven directly).
+TEST(TorsionalWaveSlidingMode, BadInputNamesTheField) {
+  auto with = [](const char* key, const nlohmann::json& value) {
+    nlohmann::json doc = Load("saldivar-sliding-mode");
+    doc["model"]["top"][key] = value;
+    return doc;
+  };
+  EXPECT_EQ(RefusedPath(Load("saldivar-sliding-mode"), true), "");
+  EXPECT_EQ(RefusedPath(with("kp_Nms_per_rad", 5000)), "/model/top/kp_Nms_per_rad");
+  for (const char* key : {"surface_corner_rad_s", "reaching_rate_rad_s2", "boundary_layer_rad_s",
+                          "feedback_time_constant_s", "impedance_Nms_per_rad"}) {
+    EXPECT_EQ(RefusedPath(with(key, 0)), std::string("/model/top/") + key);
+    if (std::string(key) == "impedance_Nms_per_rad") continue;  // optional: the top section's Z
+    nlohmann::json doc = Load("saldivar-sliding-mode");
+    doc["model"]["top"].erase(key);
+    EXPECT_EQ(RefusedPath(doc), std::string("/model/top/") + key);
+  }
+  nlohmann::json doc = with("gear", {{"ratio", 8}, {"stiffness_Nm_per_rad", 3e5}});
+  doc["model"]["top"]["motor_inertia_kgm2"] = 10;
+  EXPECT_EQ(RefusedPath(doc), "/model/top/gear");
+}
+
 // The kind's whirl: the mean radius over the window against m e w^2 / sqrt((k - (M + m) w^2)^2 + (c w)^2) at the
 // window's mean bit speed, from the case's own fields.
 TEST(TorsionalWaveUnbalance, WhirlRadiusIsTheClosedForm) {

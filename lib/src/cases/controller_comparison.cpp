@@ -19,9 +19,12 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kFigureLeadS = 10;  // the figure shows the stiff PI's stick-slip this long before the handover
+constexpr double kSlidingReachingMargin = 1.5;  // the sliding mode's J eta over the stiff PI's largest torque
+constexpr double kSlidingLayerGain = 10;        // its layer's gain J eta / phi over the stiff PI's kp
 
 bool IsPiTop(const std::string& type) {
-  return type == "top_drive" || type == "soft_torque" || type == "z_torque" || type == "wave_cancellation";
+  return type == "top_drive" || type == "soft_torque" || type == "z_torque" || type == "wave_cancellation" ||
+         type == "sliding_mode";
 }
 
 // The case's top as every law keeps it (inertia, set-point, torque limit, actuator delay, gear, dampers), and the
@@ -33,17 +36,21 @@ struct StiffTop {
 StiffTop StiffTopOf(const nlohmann::json& top, const std::optional<StiffPi>& given) {
   const std::string type = top.value("type", std::string("top_drive"));
   if (!IsPiTop(type) && !given)
-    throw InputError("/model/top/type", "compare-controllers compares the laws of a PI top drive (top_drive, "
-                                        "soft_torque, z_torque or wave_cancellation), got " + type + ": give the stiff "
-                                        "PI that replaces it (inertia, kp, ki)");
+    throw InputError("/model/top/type",
+                     "compare-controllers compares the laws of a PI top drive (top_drive, "
+                     "soft_torque, z_torque, wave_cancellation or sliding_mode), got " +
+                         type +
+                         ": give the stiff "
+                         "PI that replaces it (inertia, kp, ki)");
   if (!top.contains("speed_rad_s"))
     throw InputError("/model/top/speed_rad_s", "the laws track a speed set-point: expected one in the case's top");
   StiffTop stiff;
   if (IsPiTop(type)) {
     stiff.drive = top;
-    for (const char* law_field : {"type", "kp_Nms_per_rad", "ki_Nm_per_rad", "tuning_period_s",
-                                  "feedback_gain_rad_per_Nms", "feedback_time_constant_s", "impedance_Nms_per_rad",
-                                  "speed_loop_corner_rad_s", "wave_filter_time_constant_s", "handover"})
+    for (const char* law_field :
+         {"type", "kp_Nms_per_rad", "ki_Nm_per_rad", "tuning_period_s", "feedback_gain_rad_per_Nms",
+          "feedback_time_constant_s", "impedance_Nms_per_rad", "speed_loop_corner_rad_s", "wave_filter_time_constant_s",
+          "surface_corner_rad_s", "reaching_rate_rad_s2", "boundary_layer_rad_s", "handover"})
       stiff.drive.erase(law_field);
   } else {  // a top of another kind: only its set-point carries over
     stiff.drive = {{"speed_rad_s", top["speed_rad_s"]}};
@@ -233,6 +240,40 @@ ControllerComparison CompareControllers(const nlohmann::json& document, const Co
   filtered["wave_filter_time_constant_s"] = out.wave_filter_time_constant_s;
   out.laws.push_back(Evaluate("filtered wave cancellation", WithTop(p.base, stiff.drive, filtered), out.handover_s,
                               out.end_s, spec.max_steps));
+  // The sliding mode holds Z-Torque's command on the surface e + lambda I, lambda the wave cancellation's corner. Its
+  // reaching torque J eta is one and a half times the largest torque the stiff PI gave the string (the load it must
+  // dominate while stick-slip lasts), and its layer is thin: the gain J eta / phi inside it ten times the stiff PI's
+  // kp, a near-discontinuous law (at the stiff PI's gain it would be Z-Torque with a torque limit).
+  double largest_torque = 0;
+  for (double torque : out.laws.front().top_torque_Nm) largest_torque = std::max(largest_torque, std::abs(torque));
+  out.sliding_reaching_torque_Nm = spec.sliding_reaching_torque_Nm.value_or(kSlidingReachingMargin * largest_torque);
+  if (spec.sliding_reaching_torque_Nm && !(*spec.sliding_reaching_torque_Nm > 0))
+    throw InputError("sliding_reaching_torque_Nm", "the sliding mode's reaching torque: expected > 0 N m, got " +
+                                                       Significant(*spec.sliding_reaching_torque_Nm, 6));
+  out.sliding_boundary_layer_rad_s = out.sliding_reaching_torque_Nm / (kSlidingLayerGain * stiff.kp.get<double>());
+  nlohmann::json sliding = {
+      {"type", "sliding_mode"},
+      {"feedback_time_constant_s", out.feedback_time_constant_s},
+      {"surface_corner_rad_s", out.wave_corner_rad_s},
+      {"reaching_rate_rad_s2", out.sliding_reaching_torque_Nm / stiff.drive.at("inertia_kgm2").get<double>()},
+      {"boundary_layer_rad_s", out.sliding_boundary_layer_rad_s},
+      {"handover", handover}};
+  if (out.sliding_reaching_torque_Nm > 0) {
+    out.laws.push_back(
+        Evaluate("sliding mode", WithTop(p.base, stiff.drive, sliding), out.handover_s, out.end_s, spec.max_steps));
+  } else {  // the stiff PI's run failed: no load to size the reaching torque by
+    ControllerResult failed;
+    failed.law = "sliding mode";
+    failed.document = WithTop(p.base, stiff.drive, sliding);
+    failed.verdict = "not run";
+    failed.rightmost_re = failed.rightmost_im = kNaN;
+    failed.severity = failed.stick_fraction = failed.period_s = failed.torque_std_Nm = kNaN;
+    failed.run_failure =
+        "not run: its reaching torque is sized by the stiff PI's largest torque, and that run "
+        "failed (" +
+        out.laws.front().run_failure + ")";
+    out.laws.push_back(failed);
+  }
   const double reference = out.laws.front().torque_std_Nm;
   for (ControllerResult& r : out.laws) r.torque_reduction_pct = 100 * (1 - r.torque_std_Nm / reference);
   return out;
@@ -243,6 +284,7 @@ std::vector<ControllerComparison> CompareUnderActuatorDelays(const nlohmann::jso
                                                              const ControllerComparison& nominal,
                                                              const std::vector<double>& delays_s) {
   spec.tuning_period_s = nominal.tuning_period_s;
+  spec.sliding_reaching_torque_Nm = nominal.sliding_reaching_torque_Nm;
   long costliest = 0;
   for (const ControllerResult& r : nominal.laws) costliest = std::max(costliest, r.steps);
   if (costliest > 0) spec.max_steps = static_cast<long>(kDelayedWorkFactor * static_cast<double>(costliest));

@@ -94,7 +94,11 @@ void WriteMarkdown(const std::string& name, const ControllerComparison& c, std::
       << Number(c.wave_corner_rad_s) << " rad/s (2 pi / 10 P); filtered wave cancellation: the same law reading the "
       << "arriving wave through a low-pass of time constant t_f = " << Number(c.wave_filter_time_constant_s)
       << " s (P / 5 pi: its corner at 2.5 times the stick-slip frequency), so that behind a delay it absorbs the "
-      << "stick-slip mode and reflects faster waves as a stiff top does. Severity (max - min) / (2 mean) of the bit "
+      << "stick-slip mode and reflects faster waves as a stiff top does; sliding mode: the surface s = e + k I on "
+      << "Z-Torque's speed error e (I its integral), the torque J (k e + eta sat(s / phi)), its reaching torque J eta "
+      << "= " << Number(c.sliding_reaching_torque_Nm) << " N m (1.5 times the stiff PI's largest torque) and a layer "
+      << "phi = " << Number(c.sliding_boundary_layer_rad_s) << " rad/s whose gain J eta / phi is ten times the stiff "
+      << "PI's kp. Severity (max - min) / (2 mean) of the bit "
          "speed and "
       << "the top torque's standard deviation are medians over the " << Number(kSeverityWindowS) << "-s windows after "
       << "the handover (top torque: the kind's top_torque_Nm, the torque the top feeds into the string in "

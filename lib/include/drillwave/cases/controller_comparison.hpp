@@ -4,7 +4,8 @@
 // period the stiff PI shows (kp = Z, ki = J (2 pi / P)^2); Z-Torque, the stiff PI tracking the set-point less the
 // high-passed string torque over the top section's impedance Z; wave cancellation, the top absorbing the arriving
 // wave exactly (model::WaveCancellation) with the stiff PI's kp and its slow speed loop's corner at 2 pi / (10 P);
-// the same law reading the wave through a low-pass of corner 2.5 times the stick-slip frequency (t_f = P / (5 pi)).
+// the same law reading the wave through a low-pass of corner 2.5 times the stick-slip frequency (t_f = P / (5 pi));
+// a sliding mode holding Z-Torque's command (model::SlidingMode) inside a thin boundary layer.
 // Each law takes over from the stiff PI at the same instant of its stick-slip (model::Handover), so every law starts
 // from the same stick-slip state; the stiff PI runs on unchanged. Per law: the linear verdict and rightmost root at
 // the operating point, and over the 20-s windows after the handover the median stick-slip severity and the median
@@ -30,6 +31,8 @@ struct ControllerComparisonSpec {
   std::optional<double> handover_s;        // > 0; default: the start of the case's statistics window
   double after_s = 60;                     // >= 20 s (a severity window): the runs end this long after the handover
   std::optional<double> tuning_period_s;   // SoftSpeed's P; default: the stiff PI's stick-slip period after handover
+  std::optional<double> sliding_reaching_torque_Nm;  // the sliding mode's J eta; default: 1.5 times the stiff PI's
+                                                     // largest torque from 10 s before the handover on
   std::optional<StiffPi> stiff_pi;         // needed for a top that is not a PI top drive (top_drive, soft_torque, ...)
   // The drive every law runs on: its actuator delay [s] and torque limit [N m] (default: the case's top's).
   std::optional<double> actuator_delay_s, torque_limit_Nm;
@@ -38,9 +41,11 @@ struct ControllerComparisonSpec {
 };
 
 struct ControllerResult {
-  std::string law;  // "stiff PI", "SoftSpeed", "Z-Torque", "wave cancellation", "filtered wave cancellation"
+  std::string law;  // "stiff PI", "SoftSpeed", "Z-Torque", "wave cancellation", "filtered wave cancellation",
+                    // "sliding mode"
   nlohmann::json document;       // the case it ran: the law's /model/top, the comparison's duration and window
-  std::string verdict;           // stable | marginal | unstable | no steady state
+  std::string verdict;           // stable | marginal | unstable | no steady state | not run (the sliding mode where
+                                 // the stiff PI's run, which sizes it, failed)
   double rightmost_re = 0, rightmost_im = 0;  // the rightmost characteristic root [1/s, rad/s] (NaN: none)
   double severity = 0;           // median over the 20-s windows after the handover (NaN: the bit turned backwards)
   double stick_fraction = 0;     // over the same span
@@ -62,6 +67,8 @@ struct ControllerComparison {
   double feedback_time_constant_s = 0; // Z-Torque's high-pass filter
   double wave_corner_rad_s = 0;        // the wave cancellation's speed loop corner k
   double wave_filter_time_constant_s = 0;  // the filtered wave cancellation's low-pass t_f = P / (5 pi)
+  double sliding_reaching_torque_Nm = 0;   // the sliding mode's J eta: 1.5 times the stiff PI's largest torque
+  double sliding_boundary_layer_rad_s = 0;  // its layer phi: J eta / phi = 10 times the stiff PI's kp
   double actuator_delay_s = 0;         // of the drive every law runs on
   std::vector<ControllerResult> laws;  // the stiff PI first
 };
@@ -78,11 +85,10 @@ ControllerComparison CompareControllers(const nlohmann::json& document, const Co
 nlohmann::json StiffPiCase(const nlohmann::json& document, const ControllerComparisonSpec& spec);
 
 // Every law again at each actuator delay (spec.actuator_delay_s replaced), with SoftSpeed's period, Z-Torque's
-// filter and the wave cancellation's corner held at the nominal comparison's: the drive is commissioned once and then
-// lives with its delay. A delay
-// equal to the nominal's reuses it. A delayed run may take at most kDelayedWorkFactor times the steps of the
-// costliest nominal run: beyond, it is recorded as failed (a bit bouncing off the rock with 28-MN impacts once took
-// 1e-8-s steps, whose wave histories filled 4 GB).
+// filter, the wave cancellation's corner and the sliding mode's reaching torque held at the nominal comparison's: the
+// drive is commissioned once and then lives with its delay. A delay equal to the nominal's reuses it. A delayed run may
+// take at most kDelayedWorkFactor times the steps of the costliest nominal run: beyond, it is recorded as failed (a bit
+// bouncing off the rock with 28-MN impacts once took 1e-8-s steps, whose wave histories filled 4 GB).
 inline constexpr double kDelayedWorkFactor = 10;
 std::vector<ControllerComparison> CompareUnderActuatorDelays(const nlohmann::json& document,
                                                              ControllerComparisonSpec spec,

@@ -36,7 +36,8 @@ class PiTopDrive {
   };
 
   // The controller of a drive turning steadily at initial_speed before the start (what a delayed controller reads
-  // then), whose speed carries `inertia` (wave cancellation's feed-forward). The references must outlive it.
+  // then), whose speed carries `inertia` (wave cancellation's feed-forward, the sliding mode's gains). The references
+  // must outlive it.
   PiTopDrive(const model::PiController& pi, const model::TopDriveLaw& law, const model::Schedule& setpoint,
              double initial_speed, double inertia);
 
@@ -65,9 +66,11 @@ class PiTopDrive {
     return in;
   }
   // The PI's output for the reading (a torque, or a motor's voltage or torque demand), with the gains in force at t;
-  // under wave cancellation the torque that absorbs the arriving wave.
+  // under wave cancellation the torque that absorbs the arriving wave; under a sliding mode its torque.
   double Output(double t, Side side, const Reading& in, double integral) const {
     if (CancelsWaves(t, side)) return WaveCancellingTorque(in, integral);
+    if (law_.sliding_mode.active() && Engaged(t, side))
+      return law_.sliding_mode.Torque(inertia_, in.command - in.speed, integral);
     return PiAt(t, side).Output(in.command, in.speed, integral);
   }
   // The output as the drive's torque: clamped to the torque limit.

@@ -62,6 +62,32 @@ struct WaveCancellation {
   double Corner(double ki) const { return 0.5 * ki / impedance; }
 };
 
+// A sliding-mode speed loop (the boundary-layer control of Slotine & Li, Applied Nonlinear Control, ch. 7; the
+// sliding-mode drill-string controllers of Navarro-Lopez & Cortes 2007 on a surface of speed errors): the surface
+// s = e + lambda I, e = command - v, I' = e, and the drive's torque
+//   u = J lambda e + J eta sat(s / phi),
+// J the inertia the top's speed carries. For a constant command J v' = u - T (T what the string and dampers take)
+// gives s' = T / J - eta sat(s / phi): outside the layer |s| > phi the top reaches it while J eta dominates the
+// load, whatever the load is; inside, the law is the PI of InLayer (what a linearization sees). The command is
+// Z-Torque's (the set-point less the high-passed string torque over Z): the surface holds the top on the
+// impedance-matched speed. phi -> 0 is the discontinuous law, whose gain inside the layer grows as 1 / phi.
+struct SlidingMode {
+  double surface_corner = 0;  // lambda [1/s]
+  double reaching_rate = 0;   // eta [rad/s^2]; 0: none
+  double boundary_layer = 0;  // phi [rad/s], > 0 with a reaching rate
+
+  bool active() const { return reaching_rate > 0; }
+  // The law inside its layer: kp = J (lambda + eta / phi), ki = J eta lambda / phi.
+  PiController InLayer(double inertia) const {
+    const double gain = inertia * reaching_rate / boundary_layer;
+    return {inertia * surface_corner + gain, gain * surface_corner};
+  }
+  double Torque(double inertia, double error, double integral) const {
+    const double s = error + surface_corner * integral;
+    return inertia * (surface_corner * error + reaching_rate * std::clamp(s / boundary_layer, -1.0, 1.0));
+  }
+};
+
 // The law takes over at time_s from a plain PI with the gains `before` and no torque feedback: a drive switched to
 // SoftTorque while the string sticks and slips. The integral torque carries over (the integral of the speed error is
 // rescaled by before.ki / pi.ki), so only the proportional part and the feedback change the torque at time_s.
@@ -76,6 +102,7 @@ struct TopDriveLaw {
   double torque_limit = 0;          // [N·m], 0: unlimited
   TorqueFeedback torque_feedback;   // SoftTorque / Z-Torque set-point correction
   WaveCancellation wave_cancellation;  // instead of the PI's output (its gains: kp the pull onto w + d, ki = 2 Z k)
+  SlidingMode sliding_mode;  // instead of the PI's output (its gains: the law's inside its layer, SlidingMode::InLayer)
   // The drive's torque acts this pure delay [s] after the controller computes it (0: none). Simulated as the same
   // delay on the controller's inputs (set-point, speed, string torque), which gives the same torque for a linear
   // controller; the clamp commutes with the delay.

@@ -361,81 +361,98 @@ class AxialTorsionalKind : public ModelKind {
            "BHA mass unbalance (Jeffcott rotor at the bit), two-mass hoisting rig, axial coupling off";
   }
   nlohmann::json FieldSchema() const override {
-    nlohmann::json fields = {{"string/length_m", "in (0, 20000], top drive to bit"},
-            {"string/outer_diameter_m", "> 0"},
-            {"string/inner_diameter_m", ">= 0, < outer"},
-            {"string/youngs_modulus_Pa", "> 0"},
-            {"string/shear_modulus_Pa", "> 0"},
-            {"string/density_kg_m3", "> 0, steel"},
-            {"string/mud_density_kg_m3", ">= 0, < steel, default 0 (buoyancy only)"},
-            {"string/torsional_damping_Nms_per_rad_m", "c_t >= 0, viscous, per metre"},
-            {"string/axial_damping_Ns_per_m2", "c_a >= 0, viscous, per metre"},
-            {"string/subsections", "integer in [2, 400], default 20: the pipe's pieces (damping and weight lumped at "
-                                   "their nodes)"},
-            {"string/axial_kelvin_voigt_s", "eta_a in [0, 10] s, default 0: axial N += eta_a E A dv/ds"},
-            {"string/bha/length_m", "> 0, < string/length_m: drill collars of the same steel between the pipe and "
-                                    "the bit (string/length_m stays top drive to bit). string/bha may also be an "
-                                    "array of such sections, top to bottom (heavy-weight pipe, collars, ...)"},
-            {"string/bha/outer_diameter_m", "> 0"},
-            {"string/bha/inner_diameter_m", ">= 0, < outer"},
-            {"string/bha/subsections", "integer in [1, 400], default: pieces about as long as the pipe's"},
-            {"string/bha/torsional_damping_Nms_per_rad_m", ">= 0, default the pipe's"},
-            {"string/bha/axial_damping_Ns_per_m2", ">= 0, default the pipe's"},
-            {"string/side_friction/torque_per_m_Nm", ">= 0: Coulomb friction of the pipe against the borehole "
-                                                     "(set-valued: a stopped piece of pipe is held)"},
-            {"string/side_friction/from_m", ">= 0, default 0 (measured depth where it starts)"},
-            {"string/side_friction/to_m", "> from_m, default: the bit"},
-            {"bit/inertia_kgm2", "J_b > 0 (bit, and the BHA unless string/bha distributes it)"},
-            {"bit/mass_kg", "M_b > 0"},
-            {"axial_coupling", "boolean, default true; false: no axial dynamics, weight on bit held at W0 and depth "
-                               "of cut what W0 cuts in the rock under the bit (the steady one in homogeneous rock)"},
-            {"top/type", "top_drive (default: the stiff PI speed controller) | soft_torque (the PI tracking the "
-                         "set-point less the high-passed string torque; kp/ki or tuning_period_s) | z_torque (the same "
-                         "matched to the pipe's impedance) | wave_cancellation (the top absorbs the arriving torsional "
-                         "wave exactly and injects a down-going one under a slow speed loop, see "
-                         "speed_loop_corner_rad_s); the laws drive the top's torque (no motor)"},
-            {"top/inertia_kgm2", "J_td > 0"},
-            {"top/kp_Nms_per_rad", ">= 0; wave_cancellation: > 0, the torque per rad/s that pulls the top onto the "
-                                   "speed absorbing the arriving wave"},
-            {"top/ki_Nm_per_rad", ">= 0; the run starts, and `stability` linearizes, in steady drilling at the "
-                                  "set-point, which only integral action holds: with 0 (a proportional drive) the "
-                                  "start is out of balance and the drive settles below its set-point"},
-            {"top/speed_rad_s", "set-point schedule [rad/s]"},
-            {"top/motor/motor_constant_Nm_per_A", "K > 0: optional DC motor (absent: the PI output is the torque); "
-                                                        "V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I, torque K I"},
-            {"top/motor/resistance_ohm", "R > 0"},
-            {"top/motor/inductance_H", "La > 0"},
-            {"hoist/mass_kg", "M_td > 0"},
-            {"hoist/damping_Ns_per_m", "c_h >= 0, default 0: a dashpot from the hoist to the travelling block, which "
-                                       "pays out line at the steady rate of penetration V0 (-c_h (v_top - V0); the "
-                                       "top's reflection of Aarsnes & van de Wouw 2019); not with hoist/rig"},
-            {"hoist/hook_force_N", "H(t) [N], a number or {\"knots\": [[t, v], ...]}, instead of weight_on_bit_N: the run "
-                                   "starts in steady drilling under H(0), with W0 = (W_b - H(0) + kappa a sigma l) / "
-                                   "(1 + kappa), kappa = c_a L Omega0 / (2 pi a zeta eps), which must exceed a sigma l"},
-            {"hoist/weight_on_bit_N", "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
-                                      "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
-            {"hoist/rig/derrick_mass_kg", "M_rg1 > 0: optional two-mass hoisting rig (chapter eq. 2.22), absent: the "
-                                          "hook force; the top drive hangs from the travelling block on a rigid hook, "
-                                          "the drawworks pays out line at the steady rate of penetration; needs "
-                                          "weight_on_bit_N, not with axial_coupling false"},
-            {"hoist/rig/block_mass_kg", "M_rg2 > 0: cables, crown and travelling blocks"},
-            {"hoist/rig/derrick_damping_Ns_per_m", "gamma_rg1 >= 0"},
-            {"hoist/rig/block_damping_Ns_per_m", "gamma_rg2 >= 0"},
-            {"hoist/rig/ground_stiffness_N_per_m", "k_rg01 > 0: derrick to ground"},
-            {"hoist/rig/cable_stiffness_N_per_m", "k_rg12 > 0: derrick to travelling block"},
-            {"hoist/rig/cable_tension_change_N", "u_F(t) - u_F0 [N], up on the derrick: a number or {\"knots\": "
-                                                 "[[t, v], ...]}, default 0 (u_F0: the tension of steady drilling)"},
-            {"hoist/rig/drawworks/line_radius_m", "r > 0: optional drawworks (chapter eq. 2.37), an induction motor "
-                                                  "through a gear on the drum paying out the line at r times the "
-                                                  "drum's speed (the drum's radius over the reeving's lines); absent: "
-                                                  "a constant pay-out at the steady rate of penetration"},
-            {"hoist/rig/drawworks/inertia_kgm2", "J > 0: drum and motor referred to the drum"},
-            {"hoist/rig/drawworks/gear_ratio", "n > 0, default 1: motor turns per drum turn"},
-            {"hoist/rig/drawworks/supply_change_Hz", "f(t) - f0 [Hz], default 0: a number or {\"knots\": [[t, v], "
-                                                     "...]}; f0 the supply that pays out at the steady rate of "
-                                                     "penetration under the steady hook force (summary "
-                                                     "drawworks_steady_supply_frequency_Hz)"},
-            {"gravity_m_s2", "> 0, default 9.81"}};
+    nlohmann::json fields = {
+        {"string/length_m", "in (0, 20000], top drive to bit"},
+        {"string/outer_diameter_m", "> 0"},
+        {"string/inner_diameter_m", ">= 0, < outer"},
+        {"string/youngs_modulus_Pa", "> 0"},
+        {"string/shear_modulus_Pa", "> 0"},
+        {"string/density_kg_m3", "> 0, steel"},
+        {"string/mud_density_kg_m3", ">= 0, < steel, default 0 (buoyancy only)"},
+        {"string/torsional_damping_Nms_per_rad_m", "c_t >= 0, viscous, per metre"},
+        {"string/axial_damping_Ns_per_m2", "c_a >= 0, viscous, per metre"},
+        {"string/subsections",
+         "integer in [2, 400], default 20: the pipe's pieces (damping and weight lumped at "
+         "their nodes)"},
+        {"string/axial_kelvin_voigt_s", "eta_a in [0, 10] s, default 0: axial N += eta_a E A dv/ds"},
+        {"string/bha/length_m",
+         "> 0, < string/length_m: drill collars of the same steel between the pipe and "
+         "the bit (string/length_m stays top drive to bit). string/bha may also be an "
+         "array of such sections, top to bottom (heavy-weight pipe, collars, ...)"},
+        {"string/bha/outer_diameter_m", "> 0"},
+        {"string/bha/inner_diameter_m", ">= 0, < outer"},
+        {"string/bha/subsections", "integer in [1, 400], default: pieces about as long as the pipe's"},
+        {"string/bha/torsional_damping_Nms_per_rad_m", ">= 0, default the pipe's"},
+        {"string/bha/axial_damping_Ns_per_m2", ">= 0, default the pipe's"},
+        {"string/side_friction/torque_per_m_Nm",
+         ">= 0: Coulomb friction of the pipe against the borehole "
+         "(set-valued: a stopped piece of pipe is held)"},
+        {"string/side_friction/from_m", ">= 0, default 0 (measured depth where it starts)"},
+        {"string/side_friction/to_m", "> from_m, default: the bit"},
+        {"bit/inertia_kgm2", "J_b > 0 (bit, and the BHA unless string/bha distributes it)"},
+        {"bit/mass_kg", "M_b > 0"},
+        {"axial_coupling",
+         "boolean, default true; false: no axial dynamics, weight on bit held at W0 and depth "
+         "of cut what W0 cuts in the rock under the bit (the steady one in homogeneous rock)"},
+        {"top/type",
+         "top_drive (default: the stiff PI speed controller) | soft_torque (the PI tracking the "
+         "set-point less the high-passed string torque; kp/ki or tuning_period_s) | z_torque (the same "
+         "matched to the pipe's impedance) | wave_cancellation (the top absorbs the arriving torsional "
+         "wave exactly and injects a down-going one under a slow speed loop, see "
+         "speed_loop_corner_rad_s) | sliding_mode (z_torque's command held by a sliding surface, "
+         "see surface_corner_rad_s); the laws drive the top's torque (no motor)"},
+        {"top/inertia_kgm2", "J_td > 0"},
+        {"top/kp_Nms_per_rad",
+         ">= 0; wave_cancellation: > 0, the torque per rad/s that pulls the top onto the "
+         "speed absorbing the arriving wave"},
+        {"top/ki_Nm_per_rad",
+         ">= 0; the run starts, and `stability` linearizes, in steady drilling at the "
+         "set-point, which only integral action holds: with 0 (a proportional drive) the "
+         "start is out of balance and the drive settles below its set-point"},
+        {"top/speed_rad_s", "set-point schedule [rad/s]"},
+        {"top/motor/motor_constant_Nm_per_A",
+         "K > 0: optional DC motor (absent: the PI output is the torque); "
+         "V = R/K u_PI + K Omega_ref, La I' = V - K w_top - R I, torque K I"},
+        {"top/motor/resistance_ohm", "R > 0"},
+        {"top/motor/inductance_H", "La > 0"},
+        {"hoist/mass_kg", "M_td > 0"},
+        {"hoist/damping_Ns_per_m",
+         "c_h >= 0, default 0: a dashpot from the hoist to the travelling block, which "
+         "pays out line at the steady rate of penetration V0 (-c_h (v_top - V0); the "
+         "top's reflection of Aarsnes & van de Wouw 2019); not with hoist/rig"},
+        {"hoist/hook_force_N",
+         "H(t) [N], a number or {\"knots\": [[t, v], ...]}, instead of weight_on_bit_N: the run "
+         "starts in steady drilling under H(0), with W0 = (W_b - H(0) + kappa a sigma l) / "
+         "(1 + kappa), kappa = c_a L Omega0 / (2 pi a zeta eps), which must exceed a sigma l"},
+        {"hoist/weight_on_bit_N",
+         "W0 > a sigma l: the hook force is set so that steady drilling has this weight "
+         "on bit (H = buoyant weight of pipe, BHA and bit - W0 - c_a L V0)"},
+        {"hoist/rig/derrick_mass_kg",
+         "M_rg1 > 0: optional two-mass hoisting rig (chapter eq. 2.22), absent: the "
+         "hook force; the top drive hangs from the travelling block on a rigid hook, "
+         "the drawworks pays out line at the steady rate of penetration; needs "
+         "weight_on_bit_N, not with axial_coupling false"},
+        {"hoist/rig/block_mass_kg", "M_rg2 > 0: cables, crown and travelling blocks"},
+        {"hoist/rig/derrick_damping_Ns_per_m", "gamma_rg1 >= 0"},
+        {"hoist/rig/block_damping_Ns_per_m", "gamma_rg2 >= 0"},
+        {"hoist/rig/ground_stiffness_N_per_m", "k_rg01 > 0: derrick to ground"},
+        {"hoist/rig/cable_stiffness_N_per_m", "k_rg12 > 0: derrick to travelling block"},
+        {"hoist/rig/cable_tension_change_N",
+         "u_F(t) - u_F0 [N], up on the derrick: a number or {\"knots\": "
+         "[[t, v], ...]}, default 0 (u_F0: the tension of steady drilling)"},
+        {"hoist/rig/drawworks/line_radius_m",
+         "r > 0: optional drawworks (chapter eq. 2.37), an induction motor "
+         "through a gear on the drum paying out the line at r times the "
+         "drum's speed (the drum's radius over the reeving's lines); absent: "
+         "a constant pay-out at the steady rate of penetration"},
+        {"hoist/rig/drawworks/inertia_kgm2", "J > 0: drum and motor referred to the drum"},
+        {"hoist/rig/drawworks/gear_ratio", "n > 0, default 1: motor turns per drum turn"},
+        {"hoist/rig/drawworks/supply_change_Hz",
+         "f(t) - f0 [Hz], default 0: a number or {\"knots\": [[t, v], "
+         "...]}; f0 the supply that pays out at the steady rate of "
+         "penetration under the steady hook force (summary "
+         "drawworks_steady_supply_frequency_Hz)"},
+        {"gravity_m_s2", "> 0, default 9.81"}};
     fields.update(TopComponentFields("top"));
     const nlohmann::json drawworks_fields = TopComponentFields("hoist/rig/drawworks");  // its machine, as the top's
     for (const auto& [path, text] : drawworks_fields.items())
@@ -467,8 +484,8 @@ class AxialTorsionalKind : public ModelKind {
     ReadRgdRock(r.Object("rock"), md);
     r.RefuseRenamed("top_drive", "/model/top");
     const JsonReader td = r.Object("top");
-    const std::string type = td.String("type", {"top_drive", "soft_torque", "z_torque", "wave_cancellation"},
-                                       "top_drive");
+    const std::string type =
+        td.String("type", {"top_drive", "soft_torque", "z_torque", "wave_cancellation", "sliding_mode"}, "top_drive");
     PiTopDriveSpec drive = ReadPiTopDrive(td, type, TorsionalImpedance(string, string.sections[0]));
     md.top_inertia = drive.inertia;
     md.top_speed = drive.speed;

@@ -96,7 +96,8 @@ model::Handover ReadHandover(const JsonReader& h) {
 }  // namespace
 
 bool IsPiTopDriveType(const std::string& type) {
-  return type == "top_drive" || type == "soft_torque" || type == "z_torque" || type == "wave_cancellation";
+  return type == "top_drive" || type == "soft_torque" || type == "z_torque" || type == "wave_cancellation" ||
+         type == "sliding_mode";
 }
 
 PiTopDriveSpec ReadPiTopDrive(const JsonReader& r, const std::string& type, double pipe_impedance) {
@@ -121,6 +122,19 @@ PiTopDriveSpec ReadPiTopDrive(const JsonReader& r, const std::string& type, doub
     drive.pi = ReadPiController(r);
     feedback.gain = 1 / r.Number("impedance_Nms_per_rad", Range::Positive(), pipe_impedance);
     feedback.time_constant_s = ReadFeedbackTimeConstant(r);
+  } else if (type == "sliding_mode") {  // Z-Torque's command held by a sliding surface (model::SlidingMode)
+    for (const char* key : {"kp_Nms_per_rad", "ki_Nm_per_rad"})
+      if (r.Has(key))
+        throw InputError(r.PathOf(key),
+                         "a sliding_mode top's gains follow from its surface and layer (inside the "
+                         "layer kp = J (lambda + eta / phi), ki = J eta lambda / phi): expected "
+                         "surface_corner_rad_s, reaching_rate_rad_s2 and boundary_layer_rad_s instead");
+    feedback.gain = 1 / r.Number("impedance_Nms_per_rad", Range::Positive(), pipe_impedance);
+    feedback.time_constant_s = ReadFeedbackTimeConstant(r);
+    model::SlidingMode& sliding = drive.law.sliding_mode;
+    sliding.surface_corner = r.Number("surface_corner_rad_s", Range::Positive());
+    sliding.reaching_rate = r.Number("reaching_rate_rad_s2", Range::Positive());
+    sliding.boundary_layer = r.Number("boundary_layer_rad_s", Range::Positive());
   } else {  // wave_cancellation: the arriving wave absorbed, exactly or below a low-pass's corner
     drive.pi = ReadWaveCancellationGains(r, pipe_impedance);
     drive.law.wave_cancellation.impedance = pipe_impedance;
@@ -139,6 +153,7 @@ void FinishPiTopDrive(const JsonReader& r, const std::string& type, const model:
     throw InputError(r.PathOf("gear"), std::string(law.wave_cancellation.active() ? "the wave cancellation" :
                                        "the torque feedback") + " of a " + type + " top reads the string torque at a "
                                        "top driven directly: expected a rigid gear (no stiffness_Nm_per_rad)");
+  if (law.sliding_mode.active()) drive.pi = law.sliding_mode.InLayer(lumped_inertia);
   if (drive.tuning_period_s > 0) {
     const double omega = 2 * kPi / drive.tuning_period_s;
     drive.pi.ki = lumped_inertia * omega * omega;
@@ -157,9 +172,10 @@ void CheckWaveCancellationString(const JsonReader& top, const model::TopDriveLaw
 
 nlohmann::json PiTopDriveLawFields(const std::string& top) {
   return {
-      {top + "/torque_limit_Nm", "top_drive, soft_torque, z_torque, wave_cancellation: >= 0, 0 = unlimited"},
+      {top + "/torque_limit_Nm",
+       "top_drive, soft_torque, z_torque, wave_cancellation, sliding_mode: >= 0, 0 = unlimited"},
       {top + "/actuator_delay_s",
-       "top_drive, soft_torque, z_torque, wave_cancellation: pure delay [s] in [0, 10] of "
+       "top_drive, soft_torque, z_torque, wave_cancellation, sliding_mode: pure delay [s] in [0, 10] of "
        "the drive's torque behind its controller, default 0; not with a compliant gear or "
        "Kelvin-Voigt damping"},
       {top + "/tuning_period_s",
@@ -171,12 +187,21 @@ nlohmann::json PiTopDriveLawFields(const std::string& top) {
        "tracks speed_rad_s - g T_hp, T_hp the string torque at the top high-passed "
        "by feedback_time_constant_s"},
       {top + "/feedback_time_constant_s",
-       "soft_torque with a feedback gain, z_torque: time constant [s] > 0 of the "
+       "soft_torque with a feedback gain, z_torque, sliding_mode: time constant [s] > 0 of the "
        "first-order high-pass filter on the string torque (the mean speed returns "
        "to the set-point on this scale)"},
       {top + "/impedance_Nms_per_rad",
-       "z_torque: the impedance Z [N·m·s/rad] > 0 the top is matched to, default the "
-       "top section's G J / c; the PI tracks speed_rad_s - T_hp / Z"},
+       "z_torque, sliding_mode: the impedance Z [N·m·s/rad] > 0 the top is matched to, default the "
+       "top section's G J / c; the PI (the sliding surface) tracks speed_rad_s - T_hp / Z"},
+      {top + "/surface_corner_rad_s",
+       "sliding_mode: lambda [1/s] > 0 of the surface s = e + lambda * integral(e), e the tracked speed less the "
+       "top's (the integral's corner: keep it well below the stick-slip frequency)"},
+      {top + "/reaching_rate_rad_s2",
+       "sliding_mode: eta [rad/s^2] > 0: the torque u = J lambda e + J eta sat(s / phi), J the top's inertia with a "
+       "rigid gear's motor; outside the layer the top reaches it while J eta exceeds the string's torque"},
+      {top + "/boundary_layer_rad_s",
+       "sliding_mode: phi [rad/s] > 0, the layer's half-width: inside it the law is a PI of kp = J (lambda + eta / "
+       "phi), ki = J eta lambda / phi (its linearization); small phi is the near-discontinuous law"},
       {top + "/speed_loop_corner_rad_s",
        "wave_cancellation: the slow speed loop's corner k [rad/s] > 0: the top "
        "injects the down-going wave d = speed_rad_s / 2 + k * integral(speed_rad_s "
@@ -191,7 +216,7 @@ nlohmann::json PiTopDriveLawFields(const std::string& top) {
        "below 1 / tf and reflects as a stiff top above it, which keeps the "
        "delayed law's reflection at high frequencies at -1 instead of up to 2"},
       {top + "/handover/time_s",
-       "soft_torque, z_torque, wave_cancellation: optional block; the law takes over at "
+       "soft_torque, z_torque, wave_cancellation, sliding_mode: optional block; the law takes over at "
        "this time [s] > 0 from the plain PI of the handover's gains (no torque feedback "
        "before it; the integral torque carries over to the law's ki > 0): a drive switched "
        "on while the bit sticks and slips"},

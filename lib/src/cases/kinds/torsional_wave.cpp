@@ -144,8 +144,9 @@ void ReadMotorCommand(const JsonReader& r, const MotorCommand& c, waves::Node& t
 waves::Node ReadTop(const JsonReader& r, const waves::Section& top_section) {
   waves::Node top;
   top.name = "top";
-  const std::string type = r.String("type", {"prescribed_speed", "dissipative", "top_drive", "soft_torque", "z_torque",
-                                             "wave_cancellation", "torque", "dc_motor", "induction_motor"});
+  const std::string type =
+      r.String("type", {"prescribed_speed", "dissipative", "top_drive", "soft_torque", "z_torque", "wave_cancellation",
+                        "sliding_mode", "torque", "dc_motor", "induction_motor"});
   std::optional<PiTopDriveSpec> pi_top;  // top_drive, soft_torque, z_torque, wave_cancellation (top_components.hpp)
   if (type == "prescribed_speed") {
     top.drive = waves::Drive::kPrescribedSpeed;
@@ -184,9 +185,10 @@ waves::Node ReadTop(const JsonReader& r, const waves::Section& top_section) {
   top.ground_damping = r.Number("damping_Nms_per_rad", Range::NonNegative(), 0.0);
   for (const char* key : {"gear", "motor_inertia_kgm2"})
     if (r.Has(key) && (top.massless() || top.drive == waves::Drive::kTorque))
-      throw InputError(r.PathOf(key), "a gear and a motor inertia belong to a motor drive: expected top/type top_drive, "
-                                      "soft_torque, z_torque, wave_cancellation, dc_motor or induction_motor, got " +
-                                      type);
+      throw InputError(r.PathOf(key),
+                       "a gear and a motor inertia belong to a motor drive: expected top/type top_drive, "
+                       "soft_torque, z_torque, wave_cancellation, sliding_mode, dc_motor or induction_motor, got " +
+                           type);
   top.gear = ReadGear(r);
   if (pi_top) {
     FinishPiTopDrive(r, type, top.gear, top.LumpedInertia(), *pi_top);
@@ -364,14 +366,19 @@ class TorsionalWaveKind : public ModelKind {
         {"string/sections/*/shear_modulus_Pa", "G [Pa], > 0"},
         {"string/sections/*/density_kg_m3", "rho [kg/m^3], > 0"},
         {"string/sections/*/polar_moment_m4", "J [m^4], > 0 (or outer_radius_m and inner_radius_m)"},
-        {"string/sections/*/name", "optional label (consecutive sections of the same impedance and wave speed are "
-                                   "joined into one: their junction scatters nothing)"},
-        {"string/torsional_damping_Nms_per_rad_m", "distributed viscous damping gamma [N·m·s/rad per m], >= 0, default 0"},
-        {"string/damping_subsections", "parts per section for the viscous and Kelvin-Voigt damping, 1..1000, "
-                                       "default 20"},
-        {"top/type", "prescribed_speed | dissipative | top_drive | soft_torque | z_torque | wave_cancellation | torque "
-                     "| dc_motor | induction_motor (wave_cancellation: the top absorbs the arriving torsional wave "
-                     "exactly and injects a down-going one under a slow speed loop, see speed_loop_corner_rad_s)"},
+        {"string/sections/*/name",
+         "optional label (consecutive sections of the same impedance and wave speed are "
+         "joined into one: their junction scatters nothing)"},
+        {"string/torsional_damping_Nms_per_rad_m",
+         "distributed viscous damping gamma [N·m·s/rad per m], >= 0, default 0"},
+        {"string/damping_subsections",
+         "parts per section for the viscous and Kelvin-Voigt damping, 1..1000, "
+         "default 20"},
+        {"top/type",
+         "prescribed_speed | dissipative | top_drive | soft_torque | z_torque | wave_cancellation | sliding_mode "
+         "| torque "
+         "| dc_motor | induction_motor (wave_cancellation: the top absorbs the arriving torsional wave "
+         "exactly and injects a down-going one under a slow speed loop, see speed_loop_corner_rad_s)"},
         {"top/motor/motor_constant_Nm_per_A", "dc_motor (chapter eq. 2.15): k_T = k_e [N·m/A], > 0"},
         {"top/motor/resistance_ohm", "dc_motor: armature resistance R [ohm], > 0"},
         {"top/motor/inductance_H", "dc_motor: armature inductance L [H], > 0"},
@@ -381,15 +388,18 @@ class TorsionalWaveKind : public ModelKind {
         {"top/ki_V_per_rad", "dc_motor with speed_rad_s: integral gain of the speed controller, >= 0"},
         {"top/speed_rad_s", "set-point [rad/s]: a number or {\"knots\": [[t, v], ...]}"},
         {"top/beta_Nms_per_rad", "dissipative top: beta > 0"},
-        {"top/inertia_kgm2", "top_drive, soft_torque, z_torque, wave_cancellation, dc_motor, induction_motor: inertia "
-                             "> 0; torque: >= 0, default 0 (force-controlled end)"},
-        {"top/kp_Nms_per_rad", "top_drive, soft_torque, z_torque, induction_motor with speed_rad_s: proportional "
-                               "gain >= 0 (the induction motor's PI gives a torque demand u to its V/f drive: "
-                               "f = (p n w + u / (n G)) / 2 pi at the measured speed w, G = p (V/f)^2 / (4 pi^2 R_r), "
-                               "slip held below pull-out); wave_cancellation: > 0, the torque per rad/s that pulls the "
-                               "top onto the speed absorbing the arriving wave (kp / J: how fast)"},
-        {"top/ki_Nm_per_rad", "top_drive, soft_torque, z_torque, induction_motor with speed_rad_s: integral gain "
-                              ">= 0"},
+        {"top/inertia_kgm2",
+         "top_drive, soft_torque, z_torque, wave_cancellation, sliding_mode, dc_motor, induction_motor: inertia "
+         "> 0; torque: >= 0, default 0 (force-controlled end)"},
+        {"top/kp_Nms_per_rad",
+         "top_drive, soft_torque, z_torque, induction_motor with speed_rad_s: proportional "
+         "gain >= 0 (the induction motor's PI gives a torque demand u to its V/f drive: "
+         "f = (p n w + u / (n G)) / 2 pi at the measured speed w, G = p (V/f)^2 / (4 pi^2 R_r), "
+         "slip held below pull-out); wave_cancellation: > 0, the torque per rad/s that pulls the "
+         "top onto the speed absorbing the arriving wave (kp / J: how fast)"},
+        {"top/ki_Nm_per_rad",
+         "top_drive, soft_torque, z_torque, induction_motor with speed_rad_s: integral gain "
+         ">= 0"},
         {"top/torque_Nm", "torque top: schedule [N·m]"},
         {"top/damping_Nms_per_rad", "local damper at the top, >= 0, default 0"},
         {"bit/inertia_kgm2", "bit (BHA) inertia, >= 0 (0: massless bit, smooth friction only)"},
