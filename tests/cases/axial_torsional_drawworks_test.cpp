@@ -131,7 +131,7 @@ TEST(AxialTorsionalDrawworks, BadInputIsRefusedByPath) {
   nlohmann::json stray = doc;  // no field of a code it does not have
   stray["model"]["hoist"]["rig"]["drawworks"]["line_radius"] = 0.04;
   EXPECT_EQ(RefusedPath(stray), "/model/hoist/rig/drawworks/line_radius");
-  EXPECT_EQ(RefusedPath(doc, true), "/model/hoist/rig/drawworks");  // its motor is not linearized: said, not ignored
+  EXPECT_EQ(RefusedPath(doc, true), "");  // linearized with its drum and motor (AxialTorsionalStability)
 }
 
 }  // namespace

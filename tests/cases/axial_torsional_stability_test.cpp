@@ -12,6 +12,9 @@
 // D_t w_b + (a^2 eps / 2) delta d = 0 and D_a v_b + a zeta eps delta d = 0 have the determinant
 //   F(s) = D_t D_a + E (a zeta eps D_t - (a^2 eps / 2) (V0 / Omega0) D_a),
 // whose zeros must be the spectrum's roots.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -19,15 +22,15 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
+#include "complex_newton.hpp"
+#include "drillwave/analysis/induction_linearization.hpp"
 #include "drillwave/analysis/spectrum.hpp"
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/model/hoist_rig.hpp"
-#include "complex_newton.hpp"
+#include "drillwave/model/induction_motor.hpp"
 #include "json_case.hpp"
 #include "wave_cancelling_top.hpp"
 
@@ -58,6 +61,10 @@ struct ClosedForm {
   double gear_ratio = 1, gear_k = 0, gear_c = 0, j_motor = 0, dc_k = 0, dc_r = 0, dc_l = 0;  // optional top parts
   double rig_m1 = 0, rig_m2 = 0, rig_g1 = 0, rig_g2 = 0, rig_k01 = 0, rig_k12 = 0;            // optional hoisting rig
   double hoist_c = 0;                                                                          // optional hoist dashpot
+  // The rig's optional drawworks: drum inertia, line radius, gear ratio and its motor's linear torque per drum speed
+  // n^2 G(s), G = dT/dpsi (s I - dF/dpsi)^-1 dF/dw_m at the steady supply (analysis::LinearizeInductionMotor).
+  double drum_j = 0, drum_r = 0, drum_n = 1;
+  analysis::InductionJacobian drum_motor;
   double feedback_gain = 0, feedback_tau = 0, delay = 0;                                       // optional top-drive law
   double wave_corner = 0;                                                              // the wave cancellation's k
   int pieces = 1;
@@ -93,6 +100,23 @@ struct ClosedForm {
       rig_m1 = r["derrick_mass_kg"], rig_m2 = r["block_mass_kg"];
       rig_g1 = r["derrick_damping_Ns_per_m"], rig_g2 = r["block_damping_Ns_per_m"];
       rig_k01 = r["ground_stiffness_N_per_m"], rig_k12 = r["cable_stiffness_N_per_m"];
+      if (r.contains("drawworks")) {  // at the supply that pays out the steady rate of penetration (the run's summary)
+        const auto& d = r["drawworks"];
+        drum_j = d["inertia_kgm2"], drum_r = d["line_radius_m"], drum_n = d.value("gear_ratio", 1.0);
+        nlohmann::json start = doc;
+        start["simulation"]["duration_s"] = 0.01;
+        start.erase("statistics"), start.erase("expect");
+        const double f0 = RunCase(ParseCase(start)).summary["drawworks_steady_supply_frequency_Hz"];
+        const auto& im = d["induction_motor"];
+        model::InductionMotor motor;
+        motor.pole_pairs = im["pole_pairs"];
+        motor.stator_resistance = im["stator_resistance_ohm"], motor.rotor_resistance = im["rotor_resistance_ohm"];
+        motor.stator_leakage_inductance = im["stator_leakage_inductance_H"];
+        motor.rotor_leakage_inductance = im["rotor_leakage_inductance_H"];
+        motor.magnetizing_inductance = im["magnetizing_inductance_H"];
+        motor.volts_per_hertz = im["volts_per_hertz_V_per_Hz"], motor.voltage_limit = im.value("voltage_limit_V", 0.0);
+        drum_motor = analysis::LinearizeInductionMotor(motor, f0, drum_n * ratio * w0 / drum_r);
+      }
     }
     const std::string type = top.value("type", std::string("top_drive"));
     if (type == "soft_torque") feedback_gain = top.value("feedback_gain_rad_per_Nms", 0.0);
@@ -124,13 +148,20 @@ struct ClosedForm {
     const Complex motor = j_referred * s + drive, gear = gear_k / s + gear_c;
     return j_top * s + gear * motor / (gear + motor);
   }
-  // The hoist's impedance: M_h s under a constant hook force, M_h s + c_h with its dashpot. Hanging from the rig (chapter eq. 2.22) it carries the
-  // block, (M_h + M2) s + gamma2, and the cable k12 delta with delta = (v - s y1) / s and
-  // (M1 s^2 + gamma1 s + k01) y1 = k12 delta: k12 D1 / (s (D1 + k12)), D1 = M1 s^2 + gamma1 s + k01.
+  // The hoist's impedance: M_h s under a constant hook force, M_h s + c_h with its dashpot. Hanging from the rig
+  // (chapter eq. 2.22) it carries the block, (M_h + M2) s + gamma2, and the cable k12 delta with delta = (v - s y1) / s
+  // and (M1 s^2 + gamma1 s + k01) y1 = k12 delta: k12 D1 / (s (D1 + k12)), D1 = M1 s^2 + gamma1 s + k01. With a
+  // drawworks the line's lower end moves by r w_d too, delta = (v - s y1 - r w_d) / s, and the drum turns under the
+  // line's pull P = gamma2 v + k12 delta and its motor: (J s - n^2 G) w_d = r P. With Q = r^2 / (J s - n^2 G) the
+  // cable's force F = k12 delta = v (1 - Q gamma2) / (s / k12 + s / D1 + Q) (Q = 0: the constant pay-out's).
   Complex HoistImpedance(Complex s) const {
     if (rig_m1 == 0) return m_hoist * s + hoist_c;
     const Complex d1 = rig_m1 * s * s + rig_g1 * s + rig_k01;
-    return (m_hoist + rig_m2) * s + rig_g2 + rig_k12 * d1 / (s * (d1 + rig_k12));
+    if (drum_j == 0) return (m_hoist + rig_m2) * s + rig_g2 + rig_k12 * d1 / (s * (d1 + rig_k12));
+    const Eigen::Matrix4cd resolvent = (s * Eigen::Matrix4cd::Identity() - drum_motor.flux.cast<Complex>()).inverse();
+    const Complex g = (drum_motor.torque.cast<Complex>() * resolvent * drum_motor.shaft_speed.cast<Complex>())(0, 0);
+    const Complex q = drum_r * drum_r / (drum_j * s - drum_n * drum_n * g);
+    return (m_hoist + rig_m2) * s + rig_g2 + (1.0 - q * rig_g2) / (s / rig_k12 + s / d1 + q);
   }
   static Complex G(Complex s, double z, Complex y, double tau) {
     const Complex r = (z - y) / (z + y), e = r * std::exp(-2.0 * s * tau);
@@ -271,6 +302,21 @@ TEST(AxialTorsionalStability, HoistingRigIsTheZeroOfTheClosedForm) {
   doc["model"]["hoist"]["rig"] = rig["model"]["hoist"]["rig"];
   doc["model"]["hoist"]["rig"].erase("cable_tension_change_N");
   ExpectRootsAreTheZerosOfTheClosedForm(doc, "undamped string in 2 pieces, hoisting rig");
+}
+
+// The same rig paying out its line by json-cases/hoist-drawworks.json's drawworks (a 30 000 kg m^2 drum at 0.04 m of
+// line per radian, 50:1, the top's induction machine): the drum's speed and the motor's four fluxes join the states.
+TEST(AxialTorsionalStability, DrawworksIsTheZeroOfTheClosedForm) {
+  const nlohmann::json drawworks = testing::LoadCase("hoist-drawworks");
+  nlohmann::json doc = Undamped(2);
+  doc["model"]["hoist"]["rig"] = drawworks["model"]["hoist"]["rig"];
+  doc["model"]["hoist"]["rig"].erase("cable_tension_change_N");
+  doc["model"]["hoist"]["rig"]["drawworks"].erase("supply_change_Hz");
+  const auto points = Linearize(doc);
+  ASSERT_EQ(points.size(), 1u);
+  const auto& names = points[0].state_names;
+  EXPECT_NE(std::find(names.begin(), names.end(), "drawworks_drum_speed_rad_s"), names.end());
+  ExpectRootsAreTheZerosOfTheClosedForm(doc, "undamped string in 2 pieces, hoisting rig with its drawworks");
 }
 
 // Without the rig's dampers and with the string's pull on the hoist negligible (hoist, block, derrick and both

@@ -1,12 +1,13 @@
 #include "drillwave/analysis/axial_torsional_linearization.hpp"
 
-#include "drillwave/analysis/bha_whirl_linearization.hpp"
-#include "drillwave/core/constants.hpp"
-
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+
+#include "drillwave/analysis/bha_whirl_linearization.hpp"
+#include "drillwave/analysis/induction_linearization.hpp"
+#include "drillwave/core/constants.hpp"
 
 namespace drillwave::analysis {
 namespace {
@@ -101,7 +102,8 @@ NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string,
   const LinearDelaySystem& as = axial.system;
   const int t_waves = ts.derivative_only_states, a_waves = as.derivative_only_states;
   const int t_nodes = ts.dimension() - t_waves, a_nodes = as.dimension() - a_waves;
-  const int rig = t_nodes + a_nodes, rig_states = string.rig ? 3 : 0;
+  const model::Drawworks* drawworks = string.rig && string.rig->drawworks ? &*string.rig->drawworks : nullptr;
+  const int rig = t_nodes + a_nodes, rig_states = string.rig ? (drawworks ? 8 : 3) : 0;
   // Node states of both channels, the rig's, then the derivative-only tail: bit angle, bit position, torsional and
   // axial waves.
   const int phi = rig + rig_states, u = phi + 1, n = u + 1 + t_waves + a_waves;
@@ -116,6 +118,10 @@ NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string,
     out.state_names[rig] = "rig_derrick_displacement_m";
     out.state_names[rig + 1] = "rig_derrick_speed_m_s";
     out.state_names[rig + 2] = "rig_cable_stretch_m";
+    if (drawworks) {
+      out.state_names[rig + 3] = "drawworks_drum_speed_rad_s";
+      for (int j = 0; j < 4; ++j) out.state_names[rig + 4 + j] = "drawworks_flux_" + std::to_string(j) + "_Wb";
+    }
   }
   out.state_names[phi] = "bit_angle_rad";
   out.state_names[u] = "bit_position_m";
@@ -157,6 +163,20 @@ NetworkLinearization LinearizeAxialTorsional(const AxialTorsionalString& string,
     sys.a0(stretch, hoist) = 1;
     sys.a0(stretch, y1d) = -1;
     sys.a0(hoist, stretch) -= r.cable_stiffness / axial_channel.top_inertia;
+    if (drawworks) {  // the drum pays out r w_d under the line's pull and its motor's torque
+      const model::Drawworks& d = *drawworks;
+      const int drum = rig + 3, flux = rig + 4;
+      const InductionJacobian motor =
+          LinearizeInductionMotor(d.motor, string.drawworks_supply_hz, d.gear_ratio * v0 / d.line_radius);
+      sys.a0(stretch, drum) = -d.line_radius;
+      sys.a0(drum, hoist) = d.line_radius * r.block_damping / d.inertia;
+      sys.a0(drum, stretch) = d.line_radius * r.cable_stiffness / d.inertia;
+      for (int j = 0; j < 4; ++j) {
+        sys.a0(drum, flux + j) = d.gear_ratio * motor.torque(j) / d.inertia;
+        sys.a0(flux + j, drum) = d.gear_ratio * motor.shaft_speed(j);
+        for (int k = 0; k < 4; ++k) sys.a0(flux + j, flux + k) = motor.flux(j, k);
+      }
+    }
   }
 
   // The cut: delta d = n (u - u(t - t_n0)) - (n V0 / Omega0) (phi - phi(t - t_n0)), t_n0 = 2 pi / (n Omega0).

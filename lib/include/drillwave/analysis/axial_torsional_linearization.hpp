@@ -63,7 +63,12 @@ struct AxialTorsionalString {
   // displacement and speed and the cable's stretch join the states: about steady drilling (constant pay-out)
   //   y1' = y1d,  M1 y1d' = -gamma1 y1d - k01 y1 + k12 delta,  delta' = v_hoist - y1d,
   //   (M2 + M_td) v_hoist' = (the string's pull) - gamma2 v_hoist - k12 delta.
+  //   With the rig's drawworks (model::Drawworks) the line is paid out at r w_d instead of the constant rate: the
+  //   drum's speed and its induction motor's four fluxes join the states, at the steady supply drawworks_supply_hz,
+  //   delta' = v_hoist - y1d - r w_d,  J w_d' = r P + n T(psi),  psi' = F(psi, f0, n w_d),
+  //   P = gamma2 (v_hoist - V0) + k12 delta + H0 the line's pull (model::HoistRig::CablePull).
   std::optional<model::HoistRig> rig{};
+  double drawworks_supply_hz = 0;
   // The BHA's lateral motion with a mass unbalance at the bit (bha_whirl_linearization.hpp); absent: none.
   std::optional<model::JeffcottBha> unbalance{};
 };

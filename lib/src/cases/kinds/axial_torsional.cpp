@@ -297,9 +297,6 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
     balance.drag_per_speed += md_.hoist_damping;
   }
   Model at = md_;
-  if (md_.rig && md_.rig->drawworks)
-    throw InputError("/model/hoist/rig/drawworks", "the drawworks' motor is not linearized: leave it out for the "
-                                                   "linear verdict (it pays out at nearly constant speed, as without it)");
   if (md_.rig) {
     // The drawworks pays out at the rate of penetration of the start: steady drilling at omega keeps that rate, and
     // the weight on bit cuts its depth per revolution.
@@ -316,6 +313,9 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
                                         md_.blades, md_.axial_coupling};
   DescribeTopDrive(md_, string);
   string.rig = md_.rig;
+  if (md_.rig && md_.rig->drawworks)  // its supply of steady drilling: the start's pay-out under the steady pull
+    string.drawworks_supply_hz =
+        md_.rig->drawworks->SteadySupply(SteadyDrilling(md_, md_.top_speed.Value(0.0)).rop, md_.hook_force.Value(0.0));
   string.unbalance = md_.unbalance;
   // The steady whirl of an unbalanced BHA costs the bit a torque too.
   const double whirl_drag = md_.unbalance ? md_.unbalance->SteadyDragTorque(omega) : 0.0;
