@@ -13,6 +13,7 @@
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/median.hpp"
 #include "drillwave/core/progress.hpp"
+#include "kinds/top_components.hpp"
 
 namespace drillwave::cases {
 namespace {
@@ -22,11 +23,6 @@ constexpr double kFigureLeadS = 10;  // the figure shows the stiff PI's stick-sl
 constexpr double kSlidingReachingMargin = 1.5;  // the sliding mode's J eta over the stiff PI's largest torque
 constexpr double kSlidingLayerGain = 10;        // its layer's gain J eta / phi over the stiff PI's kp
 
-bool IsPiTop(const std::string& type) {
-  return type == "top_drive" || type == "soft_torque" || type == "z_torque" || type == "wave_cancellation" ||
-         type == "sliding_mode";
-}
-
 // The case's top as every law keeps it (inertia, set-point, torque limit, actuator delay, gear, dampers), and the
 // stiff PI's gains.
 struct StiffTop {
@@ -35,7 +31,7 @@ struct StiffTop {
 };
 StiffTop StiffTopOf(const nlohmann::json& top, const std::optional<StiffPi>& given) {
   const std::string type = top.value("type", std::string("top_drive"));
-  if (!IsPiTop(type) && !given)
+  if (!IsPiTopDriveType(type) && !given)
     throw InputError("/model/top/type",
                      "compare-controllers compares the laws of a PI top drive (top_drive, "
                      "soft_torque, z_torque, wave_cancellation or sliding_mode), got " +
@@ -45,7 +41,7 @@ StiffTop StiffTopOf(const nlohmann::json& top, const std::optional<StiffPi>& giv
   if (!top.contains("speed_rad_s"))
     throw InputError("/model/top/speed_rad_s", "the laws track a speed set-point: expected one in the case's top");
   StiffTop stiff;
-  if (IsPiTop(type)) {
+  if (IsPiTopDriveType(type)) {
     stiff.drive = top;
     for (const char* law_field :
          {"type", "kp_Nms_per_rad", "ki_Nm_per_rad", "tuning_period_s", "feedback_gain_rad_per_Nms",

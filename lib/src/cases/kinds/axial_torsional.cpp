@@ -484,8 +484,7 @@ class AxialTorsionalKind : public ModelKind {
     ReadRgdRock(r.Object("rock"), md);
     r.RefuseRenamed("top_drive", "/model/top");
     const JsonReader td = r.Object("top");
-    const std::string type =
-        td.String("type", {"top_drive", "soft_torque", "z_torque", "wave_cancellation", "sliding_mode"}, "top_drive");
+    const std::string type = td.String("type", PiTopDriveTypes(), "top_drive");
     PiTopDriveSpec drive = ReadPiTopDrive(td, type, TorsionalImpedance(string, string.sections[0]));
     md.top_inertia = drive.inertia;
     md.top_speed = drive.speed;

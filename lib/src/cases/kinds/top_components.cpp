@@ -1,5 +1,6 @@
 #include "top_components.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "drillwave/core/constants.hpp"
@@ -95,9 +96,15 @@ model::Handover ReadHandover(const JsonReader& h) {
 
 }  // namespace
 
+const std::vector<std::string>& PiTopDriveTypes() {
+  static const std::vector<std::string> types = {"top_drive", "soft_torque", "z_torque", "wave_cancellation",
+                                                 "sliding_mode"};
+  return types;
+}
+
 bool IsPiTopDriveType(const std::string& type) {
-  return type == "top_drive" || type == "soft_torque" || type == "z_torque" || type == "wave_cancellation" ||
-         type == "sliding_mode";
+  const std::vector<std::string>& types = PiTopDriveTypes();
+  return std::find(types.begin(), types.end(), type) != types.end();
 }
 
 PiTopDriveSpec ReadPiTopDrive(const JsonReader& r, const std::string& type, double pipe_impedance) {

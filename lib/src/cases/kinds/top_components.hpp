@@ -3,9 +3,9 @@
 // a V/f supply, the gear between a motor and the top drive (rigid, or compliant: the rig's two-mass model), the PI
 // speed controller's gains and the PI top drive with its law against stick-slip (issue 35), with their field
 // documentation for `drillwave kinds`.
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/model/gear.hpp"
@@ -38,6 +38,9 @@ struct PiTopDriveSpec {
   model::TopDriveLaw law;
   double tuning_period_s = 0;  // SoftSpeed: ki is set by FinishPiTopDrive once the lumped inertia is known
 };
+// The top/type names of a PI top drive with its law against stick-slip, stiff PI first: what every kind with such a
+// top accepts, and what compare-controllers compares.
+const std::vector<std::string>& PiTopDriveTypes();
 bool IsPiTopDriveType(const std::string& type);
 // The drive's fields up to its gear, for top/type `type` (IsPiTopDriveType); pipe_impedance is Z = G J / c of the top
 // section, the SoftSpeed kp, Z-Torque's default impedance and the wave cancellation's.

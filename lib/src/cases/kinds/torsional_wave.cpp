@@ -141,13 +141,19 @@ void ReadMotorCommand(const JsonReader& r, const MotorCommand& c, waves::Node& t
   }
 }
 
+// Every top/type of the kind: the PI top drives with their laws and the other ends.
+std::vector<std::string> TopTypes() {
+  std::vector<std::string> types = {"prescribed_speed", "dissipative"};
+  types.insert(types.end(), PiTopDriveTypes().begin(), PiTopDriveTypes().end());
+  types.insert(types.end(), {"torque", "dc_motor", "induction_motor"});
+  return types;
+}
+
 waves::Node ReadTop(const JsonReader& r, const waves::Section& top_section) {
   waves::Node top;
   top.name = "top";
-  const std::string type =
-      r.String("type", {"prescribed_speed", "dissipative", "top_drive", "soft_torque", "z_torque", "wave_cancellation",
-                        "sliding_mode", "torque", "dc_motor", "induction_motor"});
-  std::optional<PiTopDriveSpec> pi_top;  // top_drive, soft_torque, z_torque, wave_cancellation (top_components.hpp)
+  const std::string type = r.String("type", TopTypes());
+  std::optional<PiTopDriveSpec> pi_top;  // PiTopDriveTypes (top_components.hpp)
   if (type == "prescribed_speed") {
     top.drive = waves::Drive::kPrescribedSpeed;
     top.setpoint = model::Schedule::FromJson(r.Raw("speed_rad_s"), r.PathOf("speed_rad_s"));
