@@ -35,9 +35,7 @@ StiffTop StiffTopOf(const nlohmann::json& top, const std::optional<StiffPi>& giv
     throw InputError("/model/top/type",
                      "compare-controllers compares the laws of a PI top drive (top_drive, "
                      "soft_torque, z_torque, wave_cancellation or sliding_mode), got " +
-                         type +
-                         ": give the stiff "
-                         "PI that replaces it (inertia, kp, ki)");
+                         type + ": give the stiff PI that replaces it (inertia, kp, ki)");
   if (!top.contains("speed_rad_s"))
     throw InputError("/model/top/speed_rad_s", "the laws track a speed set-point: expected one in the case's top");
   StiffTop stiff;

@@ -287,21 +287,21 @@ double SteadyTopTorque(const Channel& torsion, double bit_torque, double omega) 
 std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   // Steady drilling at the final set-points: the hook force leaves W0 on the bit by the axial balance.
   const double omega = md_.top_speed.knots().back().second;
+  const double start_rop = SteadyDrilling(md_, md_.top_speed.Value(0.0)).rop;  // V0, the start's rate of penetration
   HoistBalance balance;
   for (double l : md_.axial.load) balance.buoyant_weight += l;
   for (double c : md_.axial.damping) balance.drag_per_speed += c;  // sum of c_a times piece length
   // The hoist's dashpot pulls against the block paying out at the start's rate V0: at other set-points it carries
   // c_h (V - V0), a drag like the string's with an offset.
   if (md_.hoist_damping > 0) {
-    balance.buoyant_weight += md_.hoist_damping * SteadyDrilling(md_, md_.top_speed.Value(0.0)).rop;
+    balance.buoyant_weight += md_.hoist_damping * start_rop;
     balance.drag_per_speed += md_.hoist_damping;
   }
   Model at = md_;
   if (md_.rig) {
     // The drawworks pays out at the rate of penetration of the start: steady drilling at omega keeps that rate, and
     // the weight on bit cuts its depth per revolution.
-    const double rop = SteadyDrilling(md_, md_.top_speed.Value(0.0)).rop;
-    at.weight_on_bit = md_.ContactForce() + md_.CutWeightPerDepth() * 2 * kPi * rop / omega;
+    at.weight_on_bit = md_.ContactForce() + md_.CutWeightPerDepth() * 2 * kPi * start_rop / omega;
   } else if (md_.axial_coupling) {
     at.weight_on_bit = balance.WeightOnBit(md_, omega, md_.hook_force.knots().back().second);
   }
@@ -314,8 +314,7 @@ std::vector<LinearizedOperatingPoint> AxialTorsionalModel::Linearize() const {
   DescribeTopDrive(md_, string);
   string.rig = md_.rig;
   if (md_.rig && md_.rig->drawworks)  // its supply of steady drilling: the start's pay-out under the steady pull
-    string.drawworks_supply_hz =
-        md_.rig->drawworks->SteadySupply(SteadyDrilling(md_, md_.top_speed.Value(0.0)).rop, md_.hook_force.Value(0.0));
+    string.drawworks_supply_hz = md_.rig->drawworks->SteadySupply(start_rop, md_.hook_force.Value(0.0));
   string.unbalance = md_.unbalance;
   // The steady whirl of an unbalanced BHA costs the bit a torque too.
   const double whirl_drag = md_.unbalance ? md_.unbalance->SteadyDragTorque(omega) : 0.0;
