@@ -57,6 +57,31 @@ TEST(DiagnosisLoop, ANoisyTwinKeepsTheBaselineAndItsNoiseIsMeasured) {
   EXPECT_TRUE(loop.baseline_document.contains(nlohmann::json::json_pointer("/sensors/channels/bit_rpm/noise_std")));
 }
 
+// Where the time went: the stages' clock times add up to the whole (to the bookkeeping between them), every screened
+// and fitted candidate has its own, within the stage that ran it, and diagnosis.json says them.
+TEST(DiagnosisLoop, ItsTimeIsAccountedForByStageAndCandidate) {
+  const nlohmann::json doc = TwoMassCase();
+  const DiagnosisLoop loop = RunDiagnosisLoop(doc, NoisyTwin(doc, 0.5), Options());
+  const LoopTimes& t = loop.wall_seconds;
+  const double stages = t.preparing + t.calibration + t.baseline + t.selection + t.fitted;
+  for (double stage : {t.preparing, t.calibration, t.baseline, t.selection, t.fitted}) EXPECT_GE(stage, 0.0);
+  EXPECT_GT(t.preparing, 0.0);  // the plain case ran
+  EXPECT_GT(t.selection, 0.0);
+  EXPECT_LE(stages, t.total);
+  EXPECT_GT(stages, 0.9 * t.total) << "more than a tenth of the loop's time outside its stages";
+  ASSERT_FALSE(loop.screening.empty());
+  double screened = 0;
+  for (const Candidate& c : loop.screening) {
+    EXPECT_GT(c.wall_seconds, 0.0) << c.effects.front();
+    screened += c.wall_seconds;
+  }
+  EXPECT_LE(screened, t.selection * 1.0001);  // one thread here: the screenings run one after another
+  const nlohmann::json j = DiagnosisLoopToJson(loop);
+  EXPECT_DOUBLE_EQ(j.at("wall_seconds").at("total").get<double>(), t.total);
+  EXPECT_DOUBLE_EQ(j.at("screening").at("candidates").at(0).at("wall_seconds").get<double>(),
+                   loop.screening.front().wall_seconds);
+}
+
 // The regime margin: the two-mass string of two-mass-stickslip sticks and slips from rest up to a set-point of about
 // 10.75 rad/s (a sweep from 10 to 11 rad/s: stick fraction 0.148 at 10, 0.079 at 10.7, none at 10.8). Its twin at
 // 10.3 rad/s is 4.4 % below that edge and is flagged; at 8 rad/s it holds over the +-20 % searched.

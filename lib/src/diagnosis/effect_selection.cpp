@@ -10,6 +10,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
+#include "drillwave/core/stopwatch.hpp"
 #include "drillwave/diagnosis/minimize.hpp"
 
 namespace drillwave::diagnosis::loop_internal {
@@ -127,6 +128,7 @@ bool EffectSelection::MovesOnlySensors(const std::vector<int>& set) const {
 
 Candidate EffectSelection::Fit(const std::vector<int>& set, std::vector<double> start, int threads, bool screening) {
   using Tolerance = ModelRuns::Tolerance;
+  const Stopwatch clock;
   const double full_duration = runner_.FullDuration(), fit_duration = runner_.FitDuration();
   Candidate c;
   for (int i : set) c.effects.push_back(loop_.proposals[i].name);
@@ -202,14 +204,14 @@ Candidate EffectSelection::Fit(const std::vector<int>& set, std::vector<double> 
     c.failure = std::string("the fitted model failed on the whole span: ") + e.what();
   }
   c.aic = k_features_ * std::log(c.fit_error) + 2.0 * start.size();
+  c.wall_seconds = clock.Seconds();
   const int on_edge = screening ? -1 : ParameterOnEdge(c);
   const std::lock_guard<std::mutex> lock(progress_mutex_);
   say_((screening ? "screening " : "") + Joined(c.effects) + ": " + std::to_string(c.evaluations + c.redrawn_runs) +
-       " runs" +
+       " runs in " + Fixed(c.wall_seconds, 0) + " s" +
        (c.failed_runs ? " (" + std::to_string(c.failed_runs) + " failed: " + c.first_failure + ")" : "") +
-       (c.failure.empty() ? ", error " + Significant(c.fit_error, 3) + " fitted, " +
-                                Significant(c.held_out_error, 3) + " held out (baseline " +
-                                Significant(loop_.baseline_held_out_error, 3) + ")" +
+       (c.failure.empty() ? ", error " + Significant(c.fit_error, 3) + " fitted, " + Significant(c.held_out_error, 3) +
+                                " held out (baseline " + Significant(loop_.baseline_held_out_error, 3) + ")" +
                                 (std::count(c.draw_in_regime.begin(), c.draw_in_regime.end(), 0)
                                      ? "; draws " + EachDraw(c.held_out_draw_errors, c.draw_in_regime)
                                      : std::string()) +

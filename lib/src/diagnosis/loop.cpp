@@ -20,6 +20,7 @@
 #include "drillwave/core/parallel.hpp"
 #include "drillwave/core/progress.hpp"
 #include "drillwave/core/sampled.hpp"
+#include "drillwave/core/stopwatch.hpp"
 #include "drillwave/core/validity.hpp"
 #include "drillwave/diagnosis/minimize.hpp"
 #include "drillwave/diagnosis/recording.hpp"
@@ -327,6 +328,13 @@ LoopOptions DefaultLoopOptions(const cases::Case& c, const Recording& rec, doubl
 DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& raw, const LoopOptions& o,
                                const LoopProgress& progress) {
   ThrowIfInvalid(o);
+  const Stopwatch clock;
+  double mark = 0;  // the clock at the end of the last stage
+  auto lap = [&](double& stage) {
+    const double now = clock.Seconds();
+    stage = now - mark;
+    mark = now;
+  };
   // What the loop does, said as it happens, and every 5 s on long steps (core/progress.hpp, where a program shows
   // it): the step it is in and the model runs started of those planned.
   Progress long_work("diagnosis");
@@ -376,8 +384,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   runner.SetWorkBudget();
   loop.plain_fit_error = FeatureDistance(runner.FitFeatures(plain), loop.recording_fit);
   loop.plain_held_out_error = FeatureDistance(runner.HeldOutFeatures(plain), loop.recording_held_out);
+  lap(loop.wall_seconds.preparing);
   // 2a. A calibrated base before effects (none where only the case's own errors are asked for).
   if (o.max_singles > 0 && o.calibrate_base) CalibrateBase(runner, o, say, base, loop);
+  lap(loop.wall_seconds.calibration);
   Draws baseline_draws = runner.RunDraws(base, o.threads);
   // The candidates' work budget: the costliest of the baseline's draws (one that bounces costs more than one that
   // drills).
@@ -420,9 +430,11 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
       say((e.Proposed() ? "proposed " : "indicated ") + e.name + " (evidence " + Fixed(e.strength, 1) + "): " + e.evidence);
 
   // 4. Every effect the case can model screened, fitted alone, in pairs and larger sets; rivals contest the best.
+  lap(loop.wall_seconds.baseline);
   EffectSelection selection(o, runner, base, loop, say);
   selection.FindModelable();
   selection.Select();
+  lap(loop.wall_seconds.selection);
 
   // 5. The model that stands, on both windows.
   loop.fitted_document = base;
@@ -472,6 +484,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
                                                             loop.recording_held_out, o.threads);
   loop.model_runs += loop.regime_margin.runs;
   if (loop.regime_margin.measured) say(RegimeMarginText(loop.regime_margin));
+  lap(loop.wall_seconds.fitted);
   // The envelopes' correlogram is one feature read at several lags: one entry, where it counts.
   const CorrelogramDifference correlogram = CompareCorrelograms(loop.fitted_held_out, loop.recording_held_out);
   if (correlogram.rms_scales > 3)
@@ -490,6 +503,10 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   say("kept: " + (loop.kept >= 0 ? Joined(loop.candidates[loop.kept].effects) : std::string("nothing")) +
       "; held-out error " + Significant(loop.baseline_held_out_error, 3) + " -> " +
       Significant(loop.fitted_held_out_error, 3));
+  loop.wall_seconds.total = clock.Seconds();
+  say("time: " + Fixed(loop.wall_seconds.total, 0) + " s on the clock, of which the effects' fits " +
+      Fixed(loop.wall_seconds.selection, 0) + " s and the base's calibration " +
+      Fixed(loop.wall_seconds.calibration, 0) + " s");
   return loop;
 }
 
@@ -597,7 +614,8 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
                           {"first_failed_run", c.first_failure},
                           {"kept", c.kept},
                           {"failure", c.failure},
-                          {"verdict", c.verdict}});
+                          {"verdict", c.verdict},
+                          {"wall_seconds", c.wall_seconds}});
   }
   if (loop.kept >= 0) {
     const Candidate& c = loop.candidates[loop.kept];
@@ -623,7 +641,8 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
                          {"fit_error", io::FiniteOrNull(c.fit_error)},
                          {"held_out_error_one_draw", io::FiniteOrNull(c.held_out_error)},
                          {"evaluations", c.evaluations},
-                         {"failure", c.failure}});
+                         {"failure", c.failure},
+                         {"wall_seconds", c.wall_seconds}});
   for (const Candidate& c : loop.rivals)
     ambiguous.push_back({{"effects", c.effects},
                          {"held_out_error", io::FiniteOrNull(c.held_out_error)},
@@ -673,6 +692,13 @@ nlohmann::json DiagnosisLoopToJson(const DiagnosisLoop& loop) {
           {"artefact_samples_masked", masked},
           {"channels_left_whole", loop.channels_left_whole},
           {"model_runs", loop.model_runs},
+          {"wall_seconds",
+           {{"preparing", loop.wall_seconds.preparing},
+            {"calibration", loop.wall_seconds.calibration},
+            {"baseline", loop.wall_seconds.baseline},
+            {"selection", loop.wall_seconds.selection},
+            {"fitted", loop.wall_seconds.fitted},
+            {"total", loop.wall_seconds.total}}},
           {"features_held_out", FeatureSetToJson(loop.fitted_held_out, loop.recording_held_out)},
           {"features_fit_baseline", FeatureSetToJson(loop.baseline_fit, loop.recording_fit)}};
 }

@@ -90,7 +90,9 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
   out << "<h1>Diagnosis of " << Html(rec.source) << "</h1>\n";
   out << "<p>Fit window [" << Fixed(loop.recording_fit.begin_s, 2) << ", " << Fixed(loop.recording_fit.end_s, 2)
       << "] s, held out [" << Fixed(loop.recording_held_out.begin_s, 2) << ", "
-      << Fixed(loop.recording_held_out.end_s, 2) << "] s; " << loop.model_runs << " model runs.</p>\n";
+      << Fixed(loop.recording_held_out.end_s, 2) << "] s; " << loop.model_runs << " model runs in "
+      << Fixed(loop.wall_seconds.total, 0) << " s (the effects' fits " << Fixed(loop.wall_seconds.selection, 0)
+      << " s, the base's calibration " << Fixed(loop.wall_seconds.calibration, 0) << " s).</p>\n";
   out << "<h2>Result</h2>\n<p>";
   if (loop.kept < 0) {
     out << "No effect kept: the baseline stands.";
@@ -116,15 +118,16 @@ void WriteLoopHtml(const DiagnosisLoop& loop, const Recording& rec, std::ostream
   if (picture.rfind("<?xml", 0) == 0) picture = picture.substr(picture.find("?>") + 2);  // inline: no prolog
   out << "<figure id=\"channels\">" << picture << "</figure>\n";
 
-  out << "<h2>Candidates</h2>\n<table><tr><th>effects</th><th>runs</th><th>fit error</th><th>held-out error</th>"
-         "<th>AIC</th><th>parameters (&plusmn; 1 sigma)</th><th>note</th></tr>\n";
-  out << "<tr><td>baseline</td><td>1</td><td>" << Cell(loop.baseline_fit_error) << "</td><td>"
-      << Cell(loop.baseline_held_out_error) << "</td><td>" << Cell(loop.baseline_aic) << "</td><td></td><td></td></tr>\n";
+  out << "<h2>Candidates</h2>\n<table><tr><th>effects</th><th>runs</th><th>s</th><th>fit error</th>"
+         "<th>held-out error</th><th>AIC</th><th>parameters (&plusmn; 1 sigma)</th><th>note</th></tr>\n";
+  out << "<tr><td>baseline</td><td>1</td><td></td><td>" << Cell(loop.baseline_fit_error) << "</td><td>"
+      << Cell(loop.baseline_held_out_error) << "</td><td>" << Cell(loop.baseline_aic)
+      << "</td><td></td><td></td></tr>\n";
   for (const Candidate& c : loop.candidates) {
     out << "<tr" << (c.kept ? " class=\"kept\"" : "") << "><td>";
     for (const std::string& e : c.effects) out << Html(e) << " ";
-    out << "</td><td>" << c.evaluations + c.redrawn_runs << "</td><td>" << Cell(c.fit_error) << "</td><td>"
-        << Cell(c.held_out_error) << "</td><td>" << Cell(c.aic) << "</td><td>";
+    out << "</td><td>" << c.evaluations + c.redrawn_runs << "</td><td>" << Fixed(c.wall_seconds, 0) << "</td><td>"
+        << Cell(c.fit_error) << "</td><td>" << Cell(c.held_out_error) << "</td><td>" << Cell(c.aic) << "</td><td>";
     for (const FittedParameter& p : c.parameters)
       out << Html(p.name) << " = " << Cell(p.value) << " &plusmn; " << Cell(p.sigma, 2) << " " << Html(p.unit) << "<br>";
     // The decision with its numbers (Candidate::verdict), or why it could not be judged.

@@ -122,6 +122,17 @@ struct Candidate {
   std::vector<double> unit_values;   // the fitted parameters in the fit's unit cube
   std::vector<double> start_values;  // where the fit started, in the same cube
   std::string failure;  // why it could not be fitted (a run failed, the component is missing), empty otherwise
+  double wall_seconds = 0;  // its fit and judging, on the clock (beside the fits the loop runs alongside)
+};
+
+// Where a diagnosis spent its time, on the clock [s]: the stages in their order, and the whole.
+struct LoopTimes {
+  double preparing = 0;    // the recording read, the plain case's run
+  double calibration = 0;  // the base's parameters calibrated before any effect
+  double baseline = 0;     // the base's draws judged, the proposals read
+  double selection = 0;    // every effect screened, fitted alone, in sets; rivals
+  double fitted = 0;       // the model that stands run and judged, its regime margin measured
+  double total = 0;        // the loop from its start to its report's data
 };
 
 // How far the model that stands is from the edge of its motion regime over the held-out window (issue 32 item 4): its
@@ -183,6 +194,7 @@ struct DiagnosisLoop {
   Recording baseline_model, fitted_model;  // the median draw's measured channels on the recording's times and names
   RegimeMargin regime_margin;  // of the fitted model (the baseline's where nothing is kept)
   int model_runs = 0;
+  LoopTimes wall_seconds;
 };
 
 // Options for a case and a recording: the model's time offset (a warm-up before the recording), and the usable
