@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -9,9 +10,8 @@
 #include <queue>
 #include <stdexcept>
 
-#include <boost/math/tools/roots.hpp>
-
 #include "drillwave/core/validity.hpp"
+#include "drillwave/dynamics/contact.hpp"
 #include "drillwave/dynamics/pi_top_drive.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/waves/wave_chain.hpp"
@@ -26,9 +26,6 @@ using State = std::vector<double>;
 constexpr int kNone = -1;
 constexpr int kBitAngle = 0;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// The slip branch of a set-valued law is continued to the far side of zero by its limit at zero (trial stages can
-// overshoot a stop before the event that ends the regime is located).
-constexpr double kTinySpeed = 1e-300;
 
 // The chain of the network's sections (WaveChain): the inner nodes' dampers; the ends' own dampers, drives and
 // friction stay with the process.
@@ -447,12 +444,8 @@ class NetworkProcess {
     return limit > 0 ? std::clamp(u, -limit, limit) : u;
   }
 
-  double SlipFriction(int i, double v) const {
-    const auto& f = *net_.nodes[i].friction;
-    if (!f.IsSetValued()) return f.SlipTorque(v);
-    return regime_[i] == Turn::kForward ? f.SlipTorque(std::max(v, kTinySpeed))
-                                               : f.SlipTorque(std::min(v, -kTinySpeed));
-  }
+  dynamics::Contact Contact(int i) const { return dynamics::Contact(*net_.nodes[i].friction); }
+  double SlipFriction(int i, double v) const { return Contact(i).SlipTorque(regime_[i], v); }
 
   // Everything but friction acting on end i held at rest: what the friction must balance to keep it stuck.
   // (The callers set the end's regime to stuck first, so that EndSpeeds gives it 0.)
@@ -466,8 +459,7 @@ class NetworkProcess {
 
   // The driving torque on end i held at rest and the static range of its friction.
   bitrock::AtRest AtRest(int i, double t, const State& x) const {
-    const auto& f = *net_.nodes[i].friction;
-    return {DrivingTorqueAtRest(i, t, x), {f.StaticPositive(), f.StaticNegative()}};
+    return Contact(i).HeldAtRest(DrivingTorqueAtRest(i, t, x));
   }
 
   // --- The ends' speeds ------------------------------------------------------------------------------------------

@@ -8,12 +8,11 @@
 #include <limits>
 
 #include "drillwave/bitrock/stick_slip.hpp"
+#include "drillwave/dynamics/contact.hpp"
 #include "lumped_friction_process.hpp"
 
 namespace drillwave::cases::lumped {
 namespace {
-
-constexpr double kTinySpeed = 1e-300;  // a set-valued law evaluated on the side of its slip direction
 
 class ChainField : public analysis::PiecewiseSmoothField {
  public:
@@ -27,7 +26,7 @@ class ChainField : public analysis::PiecewiseSmoothField {
     dim_ = next;
     for (int i = 0; i < n_; ++i) {
       const auto& f = c_.inertias[i].friction;
-      if (f && f->IsSetValued() && c_.friction_smoothing_rad_s == 0 && speed_index_[i] >= 0) frictional_.push_back(i);
+      if (f && Contact(i).CanStick() && speed_index_[i] >= 0) frictional_.push_back(i);
       scale_.push_back(c_.inertias[i].friction_scale.knots().back().second);
     }
   }
@@ -131,14 +130,14 @@ class ChainField : public analysis::PiecewiseSmoothField {
     if (speed_index_[i] < 0) return u_;
     return Regime(mode, i) == 0 ? 0.0 : x[speed_index_[i]];
   }
+  // Inertia i's contact with its friction law (which it must have).
+  dynamics::Contact Contact(int i) const {
+    return dynamics::Contact(*c_.inertias[i].friction, c_.friction_smoothing_rad_s);
+  }
+  // The friction on inertia i slipping in regime r (+1 or -1) at v.
   double Friction(int i, double v, int r) const {
-    const auto& law = c_.inertias[i].friction;
-    if (!law) return 0;
-    const double s = scale_[i];
-    if (c_.friction_smoothing_rad_s > 0)
-      return v == 0 ? 0.0 : s * law->SlipTorque(v) * std::tanh(std::abs(v) / c_.friction_smoothing_rad_s);
-    if (!law->IsSetValued()) return s * law->SlipTorque(v);
-    return s * law->SlipTorque(r > 0 ? std::max(v, kTinySpeed) : std::min(v, -kTinySpeed));
+    if (!c_.inertias[i].friction) return 0;
+    return Contact(i).SlipTorque(r > 0 ? bitrock::Turn::kForward : bitrock::Turn::kBackward, v, scale_[i]);
   }
   // Every torque on inertia i except its friction, its speed taken as v.
   double Unbalanced(int mode, int i, const Eigen::VectorXd& x, double v) const {
@@ -159,8 +158,7 @@ class ChainField : public analysis::PiecewiseSmoothField {
   }
   // The torque on inertia i held at rest in `mode` and the static range of its (scaled) friction.
   bitrock::AtRest AtRest(int mode, int i, const Eigen::VectorXd& x) const {
-    const auto& f = *c_.inertias[i].friction;
-    return {Unbalanced(mode, i, x, 0.0), {scale_[i] * f.StaticPositive(), scale_[i] * f.StaticNegative()}};
+    return Contact(i).HeldAtRest(Unbalanced(mode, i, x, 0.0), scale_[i]);
   }
 
   Chain c_;

@@ -7,6 +7,7 @@
 
 #include "drillwave/bitrock/stick_slip.hpp"
 #include "drillwave/core/error.hpp"
+#include "drillwave/dynamics/contact.hpp"
 #include "drillwave/integration/simulator.hpp"
 
 namespace drillwave::cases::lumped {
@@ -14,8 +15,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 using bitrock::Turn;
-
-constexpr double kTinySpeed = 1e-300;  // evaluates a set-valued law on the side of its slip direction
 
 // The Process of integration::Simulator for a Chain. Regimes: a bitrock::Turn per inertia; only
 // inertias with a set-valued law (and no smoothing) ever stick. Everything that changes during a run lives here.
@@ -142,11 +141,7 @@ class ChainProcess {
     const auto& law = Inertia(i).friction;
     if (!law) return 0;
     if (regime_[i] == Turn::kStuck) return DrivingTorqueAtRest(i, x, t);
-    const double v = Speed(i, x, t), s = Scale(i, x, t);
-    if (c_.friction_smoothing_rad_s > 0)
-      return v == 0 ? 0.0 : s * law->SlipTorque(v) * std::tanh(std::abs(v) / c_.friction_smoothing_rad_s);
-    if (!law->IsSetValued()) return s * law->SlipTorque(v);
-    return s * law->SlipTorque(regime_[i] == Turn::kForward ? std::max(v, kTinySpeed) : std::min(v, -kTinySpeed));
+    return Contact(i).SlipTorque(regime_[i], Speed(i, x, t), Scale(i, x, t));
   }
   double StoredEnergy(const State& x, double t) const {
     double e = 0;
@@ -168,10 +163,11 @@ class ChainProcess {
  private:
   const lumped::Inertia& Inertia(int i) const { return c_.inertias[i]; }
   bool Prescribed() const { return c_.drive == Drive::kPrescribedSpeed; }
-  bool CanStick(int i) const {
-    const auto& f = Inertia(i).friction;
-    return f && f->IsSetValued() && c_.friction_smoothing_rad_s == 0 && !(i == 0 && Prescribed());
+  // Inertia i's contact with its friction law (which it must have).
+  dynamics::Contact Contact(int i) const {
+    return dynamics::Contact(*Inertia(i).friction, c_.friction_smoothing_rad_s);
   }
+  bool CanStick(int i) const { return Inertia(i).friction && Contact(i).CanStick() && !(i == 0 && Prescribed()); }
   // Inputs on the side of the current step: right limits at its start, left limits inside and at its end (a step
   // never crosses a knot, so a jump or kink at the step's end belongs to the next step).
   std::pair<double, double> Setpoint(double t) const { return c_.setpoint.Evaluate(t, t > step_start_); }
@@ -208,9 +204,7 @@ class ChainProcess {
   double DrivingTorqueAtRest(int i, const State& x, double t) const { return UnbalancedTorque(i, x, t, 0.0); }
   // The torque on inertia i held at rest and the static range of its (scaled) friction.
   bitrock::AtRest AtRest(int i, const State& x, double t) const {
-    const auto& f = *Inertia(i).friction;
-    const double s = Scale(i, x, t);
-    return {DrivingTorqueAtRest(i, x, t), {s * f.StaticPositive(), s * f.StaticNegative()}};
+    return Contact(i).HeldAtRest(DrivingTorqueAtRest(i, x, t), Scale(i, x, t));
   }
 
   const Chain& c_;
