@@ -223,10 +223,15 @@ class Process {
   // A sample of the last committed piece, read from its quartic, with the coordinates its regime holds still (a
   // stuck bit's angle, a held bit's position) put back to the exact values the dynamics held them at. The quartic
   // returns a constant only to rounding, and an angle an ulp below the furthest one reached reads as "not cutting":
-  // such a sample dropped the cutting force, and a held bit's weight on bit fell to a sigma l (issue 39).
-  void RestoreHeld(State& x) const {
+  // such a sample dropped the cutting force, and a held bit's weight on bit fell to a sigma l (issue 39). The same
+  // holds just after a break-away, where the piece starts on the furthest angle: an angle within rounding of it
+  // (a few ulps) is put back on it.
+  void RestoreHeld(double t, State& x) const {
     if (rg_.turn == Turn::kStuck) x[kPhi] = held_phi_;
     if (rg_.AxiallyHeld()) x[kU] = held_u_;
+    const double furthest = cut_.Furthest(t);
+    if (rg_.turn == Turn::kForward && x[kPhi] < furthest && furthest - x[kPhi] <= 1e-13 * (1 + std::abs(furthest)))
+      x[kPhi] = furthest;
   }
   struct Sample {
     double top_speed, bit_speed, top_torque, bit_torque, wob, hookload, depth, bit_axial_speed, tn, stuck, off_bottom;
@@ -469,7 +474,7 @@ RunResult Simulate(const Model& md_, const RunSettings& settings) {
   const double runaway = RunawaySpeed(md_.top_speed);
   auto sample = [&](double t, const std::vector<double>& interpolated) {
     exact = interpolated;
-    process.RestoreHeld(exact);
+    process.RestoreHeld(t, exact);
     const std::vector<double>& s = exact;
     process.BeginStep(t);  // look-ups at t from the committed history (left limits inside the last piece)
     process.Derivatives(s, dx, t);
