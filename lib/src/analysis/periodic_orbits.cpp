@@ -24,7 +24,7 @@ double FdStep(double v) { return 1e-7 * std::max(1.0, std::abs(v)); }
 
 // The integrator's Process for a field with its sensitivity: state (x, Phi column-major). The mode is the only thing
 // that changes; the saltation matrix maps Phi across every switch.
-class OrbitProcess {
+class OrbitProcess : public integration::WithoutHistory {
  public:
   using State = std::vector<double>;
 
@@ -42,10 +42,7 @@ class OrbitProcess {
     Eigen::Map<MatrixXd>(ds.data() + n_, n_, n_) =
         field_.Jacobian(mode_, x) * Eigen::Map<const MatrixXd>(s.data() + n_, n_, n_);
   }
-  double MaxStep() const { return kInf; }
   void BeginStep(double) {}
-  double PrepareCommit(const integration::Piece&, double, double) { return 0; }
-  void Commit(const integration::Piece&) {}
   int NumWitnesses() const { return field_.NumSwitches(); }
   double Witness(int k, double, const State& s) const {
     return field_.Switch(mode_, k, Eigen::Map<const VectorXd>(s.data(), n_));

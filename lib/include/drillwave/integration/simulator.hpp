@@ -46,6 +46,14 @@ namespace drillwave::integration {
 
 using PieceObserver = std::function<void(const Piece&)>;
 
+// The history members of a Process without delayed arguments (an ODE with events), for it to inherit: no step limit,
+// nothing stored, so nothing to check.
+struct WithoutHistory {
+  double MaxStep() const { return std::numeric_limits<double>::infinity(); }
+  double PrepareCommit(const Piece&, double, double) { return 0; }
+  void Commit(const Piece&) {}
+};
+
 namespace detail {
 template <class P, class = void>
 struct ReadsItsOwnStep : std::false_type {};

@@ -45,16 +45,13 @@ struct Rotor {
 };
 
 // State: x, y, gamma, x', y', gamma', theta.
-class RotorProcess {
+class RotorProcess : public integration::WithoutHistory {
  public:
   using State = std::vector<double>;
   explicit RotorProcess(const Rotor& r) : r_(r), c_b_(r.bending_damping()), c_tor_(r.torsional_damping()) {}
 
   int Dimension() const { return 7; }
-  double MaxStep() const { return std::numeric_limits<double>::infinity(); }
   void BeginStep(double t0) { step_start_ = t0; }
-  double PrepareCommit(const integration::Piece&, double, double) { return 0; }
-  void Commit(const integration::Piece&) {}
   int NumWitnesses() const { return 0; }
   double Witness(int, double, const State&) const { return 1; }
   bool OnEvent(int, double, State&) { return false; }

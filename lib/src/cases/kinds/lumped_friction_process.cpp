@@ -18,7 +18,7 @@ using bitrock::Turn;
 
 // The Process of integration::Simulator for a Chain. Regimes: a bitrock::Turn per inertia; only
 // inertias with a set-valued law (and no smoothing) ever stick. Everything that changes during a run lives here.
-class ChainProcess {
+class ChainProcess : public integration::WithoutHistory {
  public:
   using State = std::vector<double>;
 
@@ -55,10 +55,7 @@ class ChainProcess {
   }
 
   // --- Process interface -------------------------------------------------------------------------------------
-  double MaxStep() const { return kInf; }
   void BeginStep(double t0) { step_start_ = t0; }
-  double PrepareCommit(const integration::Piece&, double, double) { return 0; }
-  void Commit(const integration::Piece&) {}
 
   void Derivatives(const State& x, State& dx, double t) const {
     for (int j = 0; j + 1 < n_; ++j) dx[Twist(j)] = Speed(j, x, t) - Speed(j + 1, x, t);
