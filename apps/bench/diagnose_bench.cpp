@@ -2,26 +2,18 @@
 // goal: one recording with all candidates under 60 s on 2 cores; issue 32's: under 90 s). Per recording: wall time
 // of the loop with 2 threads and of its costliest stages, model runs, and the wall time of one baseline run measured
 // in the same process, as the reference unit.
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "drillwave/cases/case_runner.hpp"
+#include "drillwave/core/stopwatch.hpp"
 #include "drillwave/diagnosis/comparison.hpp"
 #include "drillwave/diagnosis/loop.hpp"
 #include "drillwave/diagnosis/recording.hpp"
 #include "drillwave/diagnosis/sidecar.hpp"
 #include "drillwave/io/json_reader.hpp"
-
-namespace {
-
-double Seconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
-
-}  // namespace
 
 int BenchDiagnose(const std::vector<std::string>& names) {
   namespace dg = drillwave::diagnosis;
@@ -49,12 +41,12 @@ int BenchDiagnose(const std::vector<std::string>& names) {
     dg::LoopOptions o = dg::DefaultLoopOptions(c, rec, dg::kSidecarWarmupS);
     o.maps = dg::ResolveChannelMaps({}, rec, dg::ProbeChannels(c));
     o.threads = 2;
-    auto start = std::chrono::steady_clock::now();
+    const drillwave::Stopwatch run_clock;
     drillwave::cases::RunCase(c);
-    const double one_run = Seconds(start);
-    start = std::chrono::steady_clock::now();
+    const double one_run = run_clock.Seconds();
+    const drillwave::Stopwatch loop_clock;
     const dg::DiagnosisLoop loop = dg::RunDiagnosisLoop(doc, rec, o);
-    const double wall = Seconds(start);
+    const double wall = loop_clock.Seconds();
     std::string kept;
     if (loop.kept >= 0)
       for (const std::string& e : loop.candidates[loop.kept].effects) kept += e + " ";

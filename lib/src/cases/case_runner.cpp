@@ -1,13 +1,13 @@
 #include "drillwave/cases/case_runner.hpp"
 
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
 #include "drillwave/core/error.hpp"
+#include "drillwave/core/stopwatch.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/axis_label.hpp"
@@ -160,7 +160,7 @@ Case ParseCase(const nlohmann::json& document) {
 }
 
 CaseRun RunCase(const Case& c) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   CaseRun run{c.model->Run(c.settings), nlohmann::json::object()};
   ApplySensors(c.sensors, run.result);
   CheckFinite(run.result);
@@ -170,7 +170,7 @@ CaseRun RunCase(const Case& c) {
   run.summary["kind"] = c.kind;
   run.summary["window_s"] = {c.settings.window_begin_s, c.settings.window_end_s};
   run.summary["simulated_time_s"] = c.settings.duration_s;
-  run.summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.summary["wall_time_s"] = clock.Seconds();
   return run;
 }
 

@@ -1,6 +1,5 @@
 #include "drillwave/cases/orbits.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <ostream>
@@ -10,6 +9,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/stopwatch.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
 #include "drillwave/io/axis_label.hpp"
@@ -54,7 +54,7 @@ OrbitsSpec ParseContinueOption(const std::string& text, const nlohmann::json& do
 }
 
 OrbitsResult ContinueOrbits(const nlohmann::json& document, const OrbitsSpec& spec, const OrbitsProgress& progress) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   const analysis::FieldFamily family = CaseFieldFamily(document, spec.pointer);
   OrbitsResult result;
   const double lo = spec.grid.front(), hi = spec.grid.back(), width = hi - lo;
@@ -78,7 +78,7 @@ OrbitsResult ContinueOrbits(const nlohmann::json& document, const OrbitsSpec& sp
     result.starts.push_back(h);
     result.branches.push_back(analysis::ContinueFromHopf(family, h, o));
   }
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_time_s = clock.Seconds();
   return result;
 }
 

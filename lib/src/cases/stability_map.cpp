@@ -1,7 +1,6 @@
 #include "drillwave/cases/stability_map.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -12,6 +11,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
+#include "drillwave/core/stopwatch.hpp"
 #include "drillwave/core/validity.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -22,10 +22,6 @@ namespace drillwave::cases {
 namespace {
 
 using Verdict = analysis::Spectrum::Verdict;
-
-double Seconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
 
 int Rank(Verdict v) { return v == Verdict::kStable ? 0 : v == Verdict::kMarginal ? 1 : 2; }
 
@@ -165,7 +161,7 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
   }
 
   StabilityMapResult result;
-  auto start = std::chrono::steady_clock::now();
+  const Stopwatch linear_clock;
   auto blank_cell = [&](std::size_t k) {
     StabilityMapCell cell;
     cell.x = spec.x.values[k % nx];
@@ -234,9 +230,9 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
       result.full_spectra += walked[l].second;
     }
   }
-  result.linear_wall_time_s = Seconds(start);
+  result.linear_wall_time_s = linear_clock.Seconds();
   if (!spec.simulate) return result;
-  start = std::chrono::steady_clock::now();
+  const Stopwatch simulation_clock;
   struct Run {
     Regime regime = Regime::kFailed;
     double stick_fraction = std::nan(""), severity = std::nan("");
@@ -260,7 +256,7 @@ StabilityMapResult StabilityMap2D(const nlohmann::json& document, const Stabilit
     result.cells[k].stick_fraction = runs[k].stick_fraction;
     result.cells[k].severity = runs[k].severity;
   }
-  result.simulation_wall_time_s = Seconds(start);
+  result.simulation_wall_time_s = simulation_clock.Seconds();
   return result;
 }
 

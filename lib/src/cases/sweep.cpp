@@ -1,7 +1,6 @@
 #include "drillwave/cases/sweep.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -11,6 +10,7 @@
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
 #include "drillwave/core/parallel.hpp"
+#include "drillwave/core/stopwatch.hpp"
 #include "drillwave/io/csv.hpp"
 #include "drillwave/io/json_reader.hpp"
 #include "drillwave/io/output_dir.hpp"
@@ -120,7 +120,7 @@ SweepResult RunSweep(const nlohmann::json& document, const SweepSpec& spec, cons
   CheckSweepWork(parse(spec.values.front()), spec.values.size());
   for (double v : spec.values) parse(v);
 
-  const auto wall_start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   SweepResult result;
   result.points = ParallelMap(
       spec.values.size(), spec.jobs,
@@ -138,7 +138,7 @@ SweepResult RunSweep(const nlohmann::json& document, const SweepSpec& spec, cons
       [&](const SweepPoint& p, std::size_t done, std::size_t total) {
         if (progress) progress(p, static_cast<int>(done), static_cast<int>(total));
       });
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  result.wall_time_s = clock.Seconds();
   return result;
 }
 

@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <array>
-#include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <optional>
 #include <queue>
 #include <stdexcept>
+
+#include <boost/math/tools/roots.hpp>
 
 #include "drillwave/core/validity.hpp"
 #include "drillwave/dynamics/contact.hpp"

@@ -1,5 +1,6 @@
 #pragma once
-// Wall-clock seconds since a start, for the work a report accounts for (diagnosis.json's wall_seconds).
+// Wall-clock seconds since a start, for the work a report accounts for (a run's, sweep's or map's wall_time_s,
+// diagnosis.json's wall_seconds).
 #include <chrono>
 
 namespace drillwave {
