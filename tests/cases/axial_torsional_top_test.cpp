@@ -41,15 +41,6 @@ nlohmann::json InductionMotorJson() {
           {"magnetizing_inductance_H", 8e-3},
           {"volts_per_hertz_V_per_Hz", 11.5}};
 }
-model::InductionMotor Machine() {
-  model::InductionMotor m;
-  m.pole_pairs = 2;
-  m.stator_resistance = m.rotor_resistance = 0.01;
-  m.stator_leakage_inductance = m.rotor_leakage_inductance = 0.2e-3;
-  m.magnetizing_inductance = 8e-3;
-  m.volts_per_hertz = 11.5;
-  return m;
-}
 const std::vector<double>& Values(const CaseRun& run, const std::string& name) { return run.result.channel(name).values; }
 double MaxDeviation(const std::vector<double>& v, double target) {
   double worst = 0;
@@ -75,7 +66,7 @@ TEST(AxialTorsionalTop, InductionMotorDrillsSteadilyOnItsTorqueSpeedCurve) {
   doc["model"]["top"]["gear"] = {{"ratio", kRatio}};
   const CaseRun run = RunCase(ParseCase(doc));
   const double torque = SteadyTopTorque(doc["model"]), shaft = kRatio * kOmega;
-  const model::InductionMotor m = Machine();
+  const model::InductionMotor m = testing::IllustrativeMachine();
   const double synchronous_hz = m.pole_pairs * shaft / (2 * kPi);
   const double f = testing::Bisect([&](double hz) { return torque / kRatio - testing::EquivalentCircuit(m, hz, shaft).torque; },
                                    synchronous_hz * (1 + 1e-12), synchronous_hz + 1);

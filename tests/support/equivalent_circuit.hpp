@@ -10,6 +10,17 @@
 
 namespace drillwave::testing {
 
+// A 690 V, 60 Hz four-pole machine of about 800 kW (illustrative values of the size that drives top drives).
+inline model::InductionMotor IllustrativeMachine() {
+  model::InductionMotor m;
+  m.pole_pairs = 2;
+  m.stator_resistance = m.rotor_resistance = 0.01;
+  m.stator_leakage_inductance = m.rotor_leakage_inductance = 0.2e-3;
+  m.magnetizing_inductance = 8e-3;
+  m.volts_per_hertz = 690.0 / 60;
+  return m;
+}
+
 struct CircuitPoint {
   double torque;          // 3 p |I_r|^2 R_r / (s w_e) [N·m]
   double stator_current;  // rms [A]

@@ -65,5 +65,31 @@ TEST(WaveEnergy, LosslessStringKeepsItsEnergyOver1000Reflections) {
 // follow for as long as with the uniform string.
 TEST(WaveEnergy, StringWithCollarsKeepsItsEnergyOver1000Reflections) { EXPECT_LT(EnergyDrift(true, 500), 1e-8); }
 
+// A drive behind a compliant gear stores its motor's kinetic energy and the gear's elastic energy once: turning
+// rigidly at the start with nothing to carry, the stored energy is 1/2 (J_top + n^2 J_m + J_bit + rho J L) w^2, and
+// with no gains, dampers or friction it stays there. (The motor and the gear were once counted twice.)
+TEST(WaveEnergy, MotorBehindACompliantGearIsCountedOnce) {
+  Network net;
+  net.sections.push_back(Section::Torsional(1000, 79.3e9, 8000, 1.19e-5));
+  Node top;
+  top.name = "top";
+  top.inertia = 500;
+  top.drive = Drive::kPiSpeedController;  // kp = ki = 0: no torque
+  top.setpoint = model::Schedule(10.0);
+  top.gear = {4.0, 2.0e5, 0.0, 30.0};  // ratio, stiffness, damping, motor inertia
+  Node bit;
+  bit.name = "bit";
+  bit.inertia = 89;
+  net.nodes = {top, bit};
+  net.initial.speed_rad_s = 10;
+  NetworkRunOptions options;
+  options.t_end_s = 2.0;
+  options.output_interval_s = 0.1;
+  options.record_energy = true;
+  const NetworkRun run = SimulateNetwork(net, options);
+  const double expected = 0.5 * (500 + 16 * 30 + 89 + net.sections[0].inertia()) * 10 * 10;
+  for (double e : run.trajectory.energy_j) EXPECT_NEAR(e, expected, 1e-9 * expected);
+}
+
 }  // namespace
 }  // namespace drillwave::waves

@@ -17,17 +17,6 @@ constexpr double kC = 300;     // bit damper [N·m·s/rad], about the pipe's imp
 constexpr double kRatio = 8;   // gear: motor turns per string turn
 constexpr double kTwoPi = 6.283185307179586;
 
-// A 690 V, 60 Hz four-pole machine of about 800 kW (illustrative values of the size that drives top drives).
-model::InductionMotor Machine() {
-  model::InductionMotor m;
-  m.pole_pairs = 2;
-  m.stator_resistance = 0.01, m.rotor_resistance = 0.01;
-  m.stator_leakage_inductance = m.rotor_leakage_inductance = 0.2e-3;
-  m.magnetizing_inductance = 8e-3;
-  m.volts_per_hertz = 690.0 / 60;
-  return m;
-}
-
 // The string speed where the motor's torque-speed curve, through the gear, meets the damper's load line c w:
 // bisection between the pull-out region and synchronous speed, where the curve falls steeply through the line.
 double OperatingSpeed(const model::InductionMotor& m, double f) {
@@ -66,7 +55,7 @@ NetworkRun Settle(const Network& net, double t_end) {
 // The model's own steady state (fluxes that hold still) has the circuit's torque at every slip, motoring and
 // generating: the supply-frame two-axis equations and the phasor circuit are two forms of one machine.
 TEST(InductionMotor, SteadyFluxesGiveTheEquivalentCircuitTorque) {
-  const model::InductionMotor m = Machine();
+  const model::InductionMotor m = testing::IllustrativeMachine();
   for (double f : {5.0, 30.0, 60.0})
     for (double slip : {-0.2, -0.01, 0.003, 0.05, 0.3, 1.0}) {
       const double w = (1 - slip) * kTwoPi * f / m.pole_pairs;
@@ -80,7 +69,7 @@ TEST(InductionMotor, SteadyFluxesGiveTheEquivalentCircuitTorque) {
 
 // The supply frequency that gives a torque at a speed, motoring and generating: the circuit's torque there.
 TEST(InductionMotor, SteadySupplyFrequencyGivesTheAskedTorque) {
-  const model::InductionMotor m = Machine();
+  const model::InductionMotor m = testing::IllustrativeMachine();
   const double w = 100;
   for (double torque : {-3000.0, 500.0, 4000.0})
     EXPECT_NEAR(EquivalentCircuit(m, m.SteadySupplyFrequency(torque, w), w).torque, torque, 1e-9 * 4000) << torque;
@@ -90,7 +79,7 @@ TEST(InductionMotor, SteadySupplyFrequencyGivesTheAskedTorque) {
 
 // Started at rest at 30 Hz, the string settles where the torque-speed curve meets the load line.
 TEST(InductionMotor, SettlesWhereTheTorqueSpeedCurveMeetsTheLoadLine) {
-  const model::InductionMotor m = Machine();
+  const model::InductionMotor m = testing::IllustrativeMachine();
   const double f = 30;
   const NetworkRun run = Settle(MotorString(m, model::Schedule(f)), 60);
   const double w = OperatingSpeed(m, f);
@@ -108,13 +97,13 @@ TEST(InductionMotor, SettlesWhereTheTorqueSpeedCurveMeetsTheLoadLine) {
 // A supply ramp into the voltage limit: above 50 Hz the line voltage stays at 575 V (field weakening), and the speed
 // follows the circuit with the limited voltage.
 TEST(InductionMotor, VoltageLimitWeakensTheFieldAboveTheBaseFrequency) {
-  model::InductionMotor m = Machine();
+  model::InductionMotor m = testing::IllustrativeMachine();
   m.voltage_limit = 575;
   const double f = 70;
   const NetworkRun run = Settle(MotorString(m, model::Schedule({{0.0, 0.0}, {10.0, f}})), 60);
   const double w = OperatingSpeed(m, f);
   EXPECT_NEAR(run.trajectory.top_speed_rad_s.back(), w, 1e-6 * w);
-  model::InductionMotor unlimited = Machine();
+  model::InductionMotor unlimited = testing::IllustrativeMachine();
   EXPECT_GT(std::abs(OperatingSpeed(unlimited, f) - w), 1e-4 * w);  // the limit matters at this point
 }
 
@@ -122,7 +111,7 @@ TEST(InductionMotor, VoltageLimitWeakensTheFieldAboveTheBaseFrequency) {
 // and the motor sits on its torque-speed curve where it carries the load c Omega: the supply frequency and stator
 // current are the equivalent circuit's there. Started at rest, and started turning at the set-point (then held).
 TEST(InductionMotor, SpeedControllerHoldsTheSetpointOnTheTorqueSpeedCurve) {
-  const model::InductionMotor m = Machine();
+  const model::InductionMotor m = testing::IllustrativeMachine();
   const double omega = 10, shaft = kRatio * omega;
   const double synchronous_hz = m.pole_pairs * shaft / kTwoPi;
   const double f = testing::Bisect(

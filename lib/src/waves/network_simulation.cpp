@@ -13,7 +13,7 @@
 
 #include "drillwave/core/validity.hpp"
 #include "drillwave/dynamics/contact.hpp"
-#include "drillwave/dynamics/pi_top_drive.hpp"
+#include "drillwave/dynamics/top_drive.hpp"
 #include "drillwave/integration/simulator.hpp"
 #include "drillwave/waves/wave_chain.hpp"
 
@@ -42,6 +42,21 @@ ChainSpec ChainOf(const Network& net) {
   }
   spec.load.assign(net.nodes.size(), 0.0), spec.coulomb.assign(net.nodes.size(), 0.0);
   return spec;
+}
+
+// An end's drive (dynamics::TopDrive) from its node: a DC motor's constant referred to the node through its gear.
+dynamics::TopDriveParts DriveOf(const Node& node) {
+  dynamics::TopDriveParts parts;
+  parts.drive = node.drive;
+  parts.setpoint = &node.setpoint;
+  parts.dashpot = node.drive_damping;
+  parts.pi = &node.pi, parts.law = &node.law;
+  parts.dc = node.motor;
+  parts.dc.motor_constant = node.motor.motor_constant * node.gear.ratio;
+  parts.induction = &node.induction;
+  parts.gear = node.gear;
+  parts.inertia = node.LumpedInertia();
+  return parts;
 }
 
 // The mutable side of a run: the string's waves (a WaveChain: the inner nodes are massless, their waves stored split
@@ -90,11 +105,13 @@ class NetworkProcess {
     for (int i : ends)
       if (net.nodes[i].has_set_valued_friction()) frictional_nodes_.push_back(i);
     steady_torque_ = net_.SteadyTopTorque();
-    controllers_.resize(num_nodes_);
-    for (int i : ends)
-      if (net.nodes[i].has_speed_integral())
-        controllers_[i].emplace(net.nodes[i].pi, net.nodes[i].law, net.nodes[i].setpoint, net.initial.speed_rad_s,
-                                net.nodes[i].LumpedInertia());
+    for (int i : ends) {
+      dynamics::TopDrive::Slots slots;
+      slots.integral = integral_index_[i], slots.filter = filter_index_[i], slots.current = current_index_[i];
+      slots.flux = flux_index_[i], slots.motor_speed = motor_speed_index_[i];
+      // Throws std::domain_error where an induction motor cannot carry the steady torque (above its pull-out torque).
+      drives_[i == 0 ? 0 : 1].emplace(DriveOf(net.nodes[i]), slots, net.initial.speed_rad_s, steady_torque_);
+    }
     // What the delays can still reach, output look-ups.
     read_back_ = 2.0 * net.LargestTravelTime() + 1.0 + net.top().law.actuator_delay_s;
     if (!kelvin_voigt_) {
@@ -107,47 +124,17 @@ class NetworkProcess {
   NetworkProcess& operator=(const NetworkProcess&) = delete;
 
   int Dimension() const { return dimension_; }
-  double MaxStep() const {
-    return controllers_[0] ? controllers_[0]->MaxStep(net_.SmallestTravelTime()) : net_.SmallestTravelTime();
-  }
+  double MaxStep() const { return DriveAt(0).MaxStep(net_.SmallestTravelTime()); }
   void BeginStep(double t0) { step_start_ = t0; }
 
   State InitialState() const {
     State x(dimension_, 0.0);
     for (int i = 0; i < num_nodes_; ++i)
       if (speed_index_[i] != kNone) x[speed_index_[i]] = net_.initial.speed_rad_s;
-    // In steady state a PI controller holds the steady torque (a DC motor: the steady voltage) with its integral part,
-    // a DC motor carries the current of the steady torque and a compliant gear the twist of it. An induction motor
-    // starts with the fluxes that are steady at its initial speed and supply: under the speed controller the supply
-    // that gives the steady torque; in open loop the scheduled one, whatever torque that gives.
-    const double v0 = net_.initial.speed_rad_s;
-    for (int i = 0; i < num_nodes_; ++i) {
-      const Node& node = net_.nodes[i];
-      double held = steady_torque_;
-      if (current_index_[i] != kNone) {
-        const double k = node.motor.motor_constant * node.gear.ratio;  // referred to the node's side
-        x[current_index_[i]] = steady_torque_ / k;
-        held = node.motor.armature_resistance * x[current_index_[i]] + k * v0;
-      }
-      if (flux_index_[i] != kNone) {
-        const double n = node.gear.ratio;
-        const double supply = node.drive == Drive::kInductionMotor
-                                  ? node.setpoint.Value(0.0)
-                                  : node.induction.SteadySupplyFrequency(steady_torque_ / n, n * v0);
-        const auto psi = node.induction.SteadyFluxes(supply, n * v0);
-        std::copy(psi.begin(), psi.end(), x.begin() + flux_index_[i]);
-        if (node.drive == Drive::kInductionMotorSpeed)  // the demand that asks for this supply
-          held = n * node.induction.TorqueDemandFor(supply, n * v0);
-      }
-      const double string_torque = steady_torque_ - node.SteadyLoad(v0);
-      if (integral_index_[i] != kNone) x[integral_index_[i]] = controllers_[i]->InitialIntegral(held, string_torque);
-      // The filter has settled (on the steady string torque: no correction of the set-point at the start).
-      if (filter_index_[i] != kNone) x[filter_index_[i]] = controllers_[i]->InitialLowPassed(v0, string_torque);
-      if (motor_speed_index_[i] != kNone) {
-        x[motor_speed_index_[i]] = v0;
-        x[motor_speed_index_[i] + 1] = steady_torque_ / node.gear.stiffness;
-      }
-    }
+    // Each drive in steady rotation (dynamics::TopDrive::SteadyStart), the string taking what the node's own dampers
+    // and friction leave of the steady torque.
+    for (int i : {0, bit_})
+      DriveAt(i).SteadyStart(steady_torque_ - net_.nodes[i].SteadyLoad(net_.initial.speed_rad_s), x);
     return x;
   }
 
@@ -179,27 +166,10 @@ class NetworkProcess {
     for (int i : {0, bit_}) {
       const Node& node = net_.nodes[i];
       if (speed_index_[i] == kNone) continue;  // drives, motors and gears sit on ends with inertia (Validate)
-      const double vi = i == 0 ? v.top : v.bit, vd = DriveSpeed(i, x, vi);
-      if (const auto& controller = controllers_[i]) {
-        const Reading in = ReadController(i, x, vd, t, side);
-        dxdt[integral_index_[i]] = controller->IntegralRate(in);
-        if (filter_index_[i] != kNone) dxdt[filter_index_[i]] = controller->FilterRate(in, x[filter_index_[i]]);
-      }
-      if (current_index_[i] != kNone) {
-        const DcMotor& m = node.motor;
-        const double current = x[current_index_[i]];
-        dxdt[current_index_[i]] = (MotorVoltage(i, x, vd, t, side) - m.armature_resistance * current -
-                                   m.motor_constant * node.gear.ratio * vd) / m.armature_inductance;
-      }
-      if (flux_index_[i] != kNone) {
-        const auto rates = node.induction.FluxRates(Fluxes(i, x), SupplyFrequency(i, x, vd, t, side), node.gear.ratio * vd);
-        std::copy(rates.begin(), rates.end(), dxdt.begin() + flux_index_[i]);
-      }
-      if (motor_speed_index_[i] != kNone) {
-        dxdt[motor_speed_index_[i]] =
-            (DriveTorque(i, x, vd, t, side) - GearTorque(i, x, vi)) / node.gear.ReferredMotorInertia();
-        dxdt[motor_speed_index_[i] + 1] = vd - vi;
-      }
+      const dynamics::TopDrive& drive = DriveAt(i);
+      const double vi = i == 0 ? v.top : v.bit;
+      const Reading in = ReadController(i, x, drive.DriveSpeed(x, vi), t, side);
+      drive.Rates(x, vi, t, side, in, dxdt);
       double& a = dxdt[speed_index_[i]];
       if (regime_[i] == Turn::kStuck) {
         a = 0;
@@ -207,7 +177,8 @@ class NetworkProcess {
       }
       const double string = kelvin_voigt_ ? (i == 0 ? force.top : force.bit)
                                           : (i == 0 ? chain_.TopForce(t, side, v) : chain_.BitForce(t, side, v));
-      double torque = string - node.ground_damping * vi + TorqueIntoNode(i, x, vi, t, side);
+      double torque =
+          string - node.ground_damping * vi + drive.TorqueIntoNode(x, vi, t, side, [&](double) { return in; });
       if (node.lateral) torque += node.lateral->Reaction(x[kBitAngle], vi, Lateral(x));
       if (node.friction) torque -= SlipFriction(i, vi);
       a = torque / node.LumpedInertia();
@@ -244,8 +215,8 @@ class NetworkProcess {
     chain_.Commit(p.t0, p.t1, read_back_, arriving_);
     for (double t : arriving_)
       if (t < t_end_) end_breaks_.push(t);
-    for (int i : {0, bit_})
-      if (controllers_[i]) controllers_[i]->Commit(p, speed_index_[i], read_back_);
+    drives_[0]->Commit(p, speed_index_[0], read_back_);
+    drives_[1]->Commit(p, speed_index_[bit_], read_back_);
   }
 
   int NumWitnesses() const { return 2 * static_cast<int>(frictional_nodes_.size()); }
@@ -267,8 +238,7 @@ class NetworkProcess {
     if (after == Turn::kStuck || before == Turn::kStuck) x[speed_index_[i]] = 0;
     changes_.push_back({t, i, before, after});
     chain_.ForgetStart();  // the end's waves kink here
-    for (auto& controller : controllers_)
-      if (controller) controller->MarkRestart();
+    for (auto& drive : drives_) drive->MarkRestart();
     return after != before;
   }
 
@@ -280,16 +250,12 @@ class NetworkProcess {
   // rad/s).
   double NextBreakpoint() const {
     double next = end_breaks_.empty() ? kInf : end_breaks_.top();
-    for (int i : {0, bit_}) {
-      next = std::min(next, net_.nodes[i].setpoint.NextKnotAfter(passed_));
-      if (controllers_[i]) next = std::min(next, controllers_[i]->NextBreakpoint(passed_));
-    }
+    for (const auto& drive : drives_) next = std::min(next, drive->NextBreakpoint(passed_));
     return next;
   }
   void OnBreakpoint(double t, State& x) {
     passed_ = t;
-    for (int i : {0, bit_})
-      if (controllers_[i]) controllers_[i]->OnBreakpoint(t, x[integral_index_[i]]);
+    for (auto& drive : drives_) drive->OnBreakpoint(t, x);
     chain_.ForgetStart();
     while (!end_breaks_.empty() && PassedWith(end_breaks_.top(), t)) end_breaks_.pop();
   }
@@ -306,12 +272,10 @@ class NetworkProcess {
     out.bit_torque_nm.push_back(BitTorque(x, t, v.bit));
     out.bit_angle_rad.push_back(x[kBitAngle]);
     out.bit_stuck.push_back(regime_[bit_] == Turn::kStuck && net_.bit().has_set_valued_friction() ? 1.0 : 0.0);
-    if (current_index_[top] != kNone) out.top_current_a.push_back(x[current_index_[top]]);
-    if (flux_index_[top] != kNone)
-      out.top_current_a.push_back(net_.nodes[top].induction.StatorCurrentRms(Fluxes(top, x)));
-    if (motor_speed_index_[top] != kNone) {
-      out.motor_speed_rad_s.push_back(net_.nodes[top].gear.ratio * x[motor_speed_index_[top]]);
-      out.gear_torque_nm.push_back(GearTorque(top, x, v.top));
+    if (current_index_[top] != kNone || flux_index_[top] != kNone) out.top_current_a.push_back(DriveAt(top).Current(x));
+    if (DriveAt(top).has_motor_speed()) {
+      out.motor_speed_rad_s.push_back(DriveAt(top).MotorShaftSpeed(x));
+      out.gear_torque_nm.push_back(DriveAt(top).GearTorque(x, v.top));
     }
     if (options_.record_energy) out.energy_j.push_back(StoredEnergy(t, x, v));
     if (dissipated_index_ != kNone) out.dissipated_j.push_back(x[dissipated_index_]);
@@ -341,57 +305,16 @@ class NetworkProcess {
       e += 0.5 * b.TotalMass() * (s[2] * s[2] + s[3] * s[3]) + me_w * along + 0.5 * me_w * me_w / b.TotalMass() +
            0.5 * b.stiffness * (s[0] * s[0] + s[1] * s[1]);
     }
-    for (int i = 0; i < num_nodes_; ++i)
-      if (motor_speed_index_[i] != kNone) {
-        const model::Gear& g = net_.nodes[i].gear;
-        const double vm = x[motor_speed_index_[i]], twist = x[motor_speed_index_[i] + 1];
-        e += 0.5 * g.ReferredMotorInertia() * vm * vm + 0.5 * g.stiffness * twist * twist;
-      }
-    for (int i : {0, bit_})
-      if (motor_speed_index_[i] != kNone) {
-        const model::Gear& g = net_.nodes[i].gear;
-        const double vm = x[motor_speed_index_[i]], twist = x[motor_speed_index_[i] + 1];
-        e += 0.5 * g.ReferredMotorInertia() * vm * vm + 0.5 * g.stiffness * twist * twist;
-      }
+    for (const auto& drive : drives_) e += drive->StoredEnergy(x);
     return e + chain_.WaveEnergy(t);
   }
 
-  static double Setpoint(const Node& node, double t, Side side) {
-    return side == Side::kLeft ? node.setpoint.ValueBefore(t) : node.setpoint.Value(t);
-  }
-  static double SetpointRate(const Node& node, double t, Side side) {
-    return side == Side::kLeft ? node.setpoint.SlopeBefore(t) : node.setpoint.Slope(t);
-  }
-
-  double DriveTorque(int i, const State& x, double v, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    switch (node.drive) {
-      case Drive::kNone:
-      case Drive::kPrescribedSpeed: return 0;
-      case Drive::kSpeedDashpot: return node.drive_damping * (Setpoint(node, t, side) - v);
-      case Drive::kTorque: return Setpoint(node, t, side);
-      case Drive::kPiSpeedController: return controllers_[i]->Torque(t, side, ReadController(i, x, v, t, side),
-                                                                     x[integral_index_[i]]);
-      case Drive::kDcMotorVoltage:
-      case Drive::kDcMotorSpeed: return node.gear.ratio * node.motor.motor_constant * x[current_index_[i]];
-      case Drive::kInductionMotor:
-      case Drive::kInductionMotorSpeed: return node.gear.ratio * node.induction.Torque(Fluxes(i, x));
-    }
-    return 0;
-  }
-
-  // The PI speed controller of node i at drive speed v: kp (command - speed) + ki * integral, as the controller reads
-  // them. A torque for the PI top drive and the induction motor's demand, a voltage for the DC motor's speed loop.
-  double SpeedControllerOutput(int i, const State& x, double v, double t, Side side) const {
-    return controllers_[i]->Output(t, side, ReadController(i, x, v, t, side), x[integral_index_[i]]);
-  }
   // What node i's speed controller reads at time t with the drive turning at vd (dynamics::PiTopDrive::Read): with an
   // actuator delay the top's speed from the controller's history, the string torque from the wave that arrived then.
   using Reading = dynamics::PiTopDrive::Reading;
   Reading ReadController(int i, const State& x, double vd, double t, Side side) const {
-    const double low_passed = filter_index_[i] != kNone ? x[filter_index_[i]] : 0.0;
-    return controllers_[i]->Read(
-        t, side, vd, low_passed, [&](double when, double speed) { return TopStringTorque(x, when, side, speed); },
+    return DriveAt(i).Read(
+        x, vd, t, side, [&](double when, double speed) { return TopStringTorque(x, when, side, speed); },
         [&](double when, double speed) { return TopWave(x, when, side, speed); });
   }
   // What a wave-cancelling top reads at time t turning at v: the torque the string and its own dampers take from it,
@@ -408,42 +331,7 @@ class NetworkProcess {
     return -chain_.EndForces(t, side, EndSpeeds(x, t, side, Massless::kBit)).top;
   }
 
-  // An induction motor's supply: the setpoint (open loop), or the supply for the PI's torque demand at the drive's
-  // speed (slip-frequency control).
-  double SupplyFrequency(int i, const State& x, double vd, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    if (node.drive == Drive::kInductionMotor) return Setpoint(node, t, side);
-    const double n = node.gear.ratio;
-    const double demand = SpeedControllerOutput(i, x, vd, t, side);
-    return node.induction.SupplyForTorque(demand / n, n * vd);
-  }
-
-  // The drive acts on the node itself, or on the motor behind a compliant gear, which passes on the gear torque.
-  double TorqueIntoNode(int i, const State& x, double v, double t, Side side) const {
-    return motor_speed_index_[i] != kNone ? GearTorque(i, x, v) : DriveTorque(i, x, v, t, side);
-  }
-  double GearTorque(int i, const State& x, double v) const {
-    return net_.nodes[i].gear.Torque(x[motor_speed_index_[i] + 1], x[motor_speed_index_[i]], v);
-  }
-  // The speed the drive sees, referred to the node's side: the node's, or its motor's behind a compliant gear.
-  double DriveSpeed(int i, const State& x, double v) const {
-    return motor_speed_index_[i] != kNone ? x[motor_speed_index_[i]] : v;
-  }
-  model::InductionMotor::Fluxes Fluxes(int i, const State& x) const {
-    model::InductionMotor::Fluxes psi;
-    std::copy(x.begin() + flux_index_[i], x.begin() + flux_index_[i] + 4, psi.begin());
-    return psi;
-  }
-
-  // The armature voltage of a DC motor: the setpoint (open loop) or the speed controller's output, clamped.
-  double MotorVoltage(int i, const State& x, double v, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    const double u = node.drive == Drive::kDcMotorVoltage
-                         ? Setpoint(node, t, side)
-                         : SpeedControllerOutput(i, x, v, t, side);
-    const double limit = node.motor.voltage_limit;
-    return limit > 0 ? std::clamp(u, -limit, limit) : u;
-  }
+  const dynamics::TopDrive& DriveAt(int i) const { return *drives_[i == 0 ? 0 : 1]; }
 
   dynamics::Contact Contact(int i) const { return dynamics::Contact(*net_.nodes[i].friction); }
   double SlipFriction(int i, double v) const { return Contact(i).SlipTorque(regime_[i], v); }
@@ -453,7 +341,10 @@ class NetworkProcess {
   double DrivingTorqueAtRest(int i, double t, const State& x) const {
     const Side side = SideAt(t);
     const ChainEnds v = EndSpeeds(x, t, side, i == 0 ? Massless::kBoth : Massless::kBit);
-    double torque = (i == 0 ? chain_.TopForce(t, side, v) : chain_.BitForce(t, side, v)) + TorqueIntoNode(i, x, 0.0, t, side);
+    const dynamics::TopDrive& drive = DriveAt(i);
+    const double into_node = drive.TorqueIntoNode(
+        x, 0.0, t, side, [&](double drive_speed) { return ReadController(i, x, drive_speed, t, side); });
+    double torque = (i == 0 ? chain_.TopForce(t, side, v) : chain_.BitForce(t, side, v)) + into_node;
     if (net_.nodes[i].lateral) torque += net_.nodes[i].lateral->Reaction(x[kBitAngle], 0.0, Lateral(x));
     return torque;
   }
@@ -470,32 +361,22 @@ class NetworkProcess {
   // Kelvin-Voigt dashpots each end feels only the wave arriving there (MasslessEnd, which the chain also uses to
   // close its ends); with them the string's force is affine in both end speeds, F = F0 + S v (WaveChain::EndSlopes),
   // and with both ends massless the top's linear balance is folded into the bit's.
-  bool KnownSpeed(int i) const { return speed_index_[i] != kNone || net_.nodes[i].drive == Drive::kPrescribedSpeed; }
+  bool KnownSpeed(int i) const {
+    return speed_index_[i] != kNone || net_.nodes[i].drive == model::Drive::kPrescribedSpeed;
+  }
   double KnownSpeedOf(int i, const State& x, double t, Side side) const {
     if (speed_index_[i] != kNone) return regime_[i] == Turn::kStuck ? 0.0 : x[speed_index_[i]];
-    return Setpoint(net_.nodes[i], t, side);
+    return DriveAt(i).Setpoint(t, side);
   }
   double KnownRateOf(int i, const State& f, double t, Side side) const {
     if (speed_index_[i] != kNone) return regime_[i] == Turn::kStuck ? 0.0 : f[speed_index_[i]];
-    return SetpointRate(net_.nodes[i], t, side);
+    return DriveAt(i).SetpointRate(t, side);
   }
-  // The constant a of a massless end's own balance a - b v (friction aside), its rate, and b.
-  double OwnDrive(int i, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    if (node.drive == Drive::kSpeedDashpot) return node.drive_damping * Setpoint(node, t, side);
-    if (node.drive == Drive::kTorque) return Setpoint(node, t, side);
-    return 0;
-  }
-  double OwnDriveRate(int i, double t, Side side) const {
-    const Node& node = net_.nodes[i];
-    if (node.drive == Drive::kSpeedDashpot) return node.drive_damping * SetpointRate(node, t, side);
-    if (node.drive == Drive::kTorque) return SetpointRate(node, t, side);
-    return 0;
-  }
-  double OwnConductance(int i) const {
-    const Node& node = net_.nodes[i];
-    return node.ground_damping + (node.drive == Drive::kSpeedDashpot ? node.drive_damping : 0.0);
-  }
+  // The constant a of a massless end's own balance a - b v (friction aside), its rate, and b: its drive's and its
+  // dampers'.
+  double OwnDrive(int i, double t, Side side) const { return DriveAt(i).MasslessTorque(t, side); }
+  double OwnDriveRate(int i, double t, Side side) const { return DriveAt(i).MasslessTorqueRate(t, side); }
+  double OwnConductance(int i) const { return net_.nodes[i].ground_damping + DriveAt(i).MasslessConductance(); }
 
   // A massless end without dashpots: F_rest - (Z + c) v + a - b v - T(v) = 0, F_rest = 2 Z w_in.
   class MasslessEnd : public WaveChain::EndClosure {
@@ -614,7 +495,7 @@ class NetworkProcess {
   double steady_torque_ = 0;
   double read_back_ = 0;
   double t_end_ = kInf;
-  std::vector<std::optional<dynamics::PiTopDrive>> controllers_;  // per node: the ends' speed controllers
+  std::array<std::optional<dynamics::TopDrive>, 2> drives_;  // the top's and the bit's
   int lateral_index_ = kNone;  // the bit's lateral BHA
   bool kelvin_voigt_ = false;
   int dissipated_index_ = kNone;

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "drillwave/bitrock/friction.hpp"
+#include "drillwave/model/dc_motor.hpp"
+#include "drillwave/model/drive.hpp"
 #include "drillwave/model/gear.hpp"
 #include "drillwave/model/induction_motor.hpp"
 #include "drillwave/model/jeffcott_bha.hpp"
@@ -33,31 +35,8 @@ struct Section {
   double inertia() const { return impedance * travel_time_s; }              // rho J L: lumped inertia of the section
 };
 
-// How a node is driven from outside (the top boundary conditions of the seeds).
-enum class Drive {
-  kNone,
-  kPrescribedSpeed,   // v = setpoint(t): the imposed-speed top (Neumann-free, reflection -1)
-  kSpeedDashpot,      // torque beta (setpoint(t) - v): the dissipative top of the chapter's eq. 2.10 family
-  kPiSpeedController, // torque kp (setpoint - v) + ki * integral(setpoint - v), clamped to +/- torque_limit
-  kTorque,            // torque = setpoint(t)
-  // DC motor (chapter eq. 2.15): torque k I with L dI/dt = V - R I - k v (k_T = k_e = k). V is the setpoint in volts
-  // (open loop) or comes from a PI speed controller, kp (setpoint - v) + ki * integral, in volts; both clamped to
-  // +/- voltage_limit.
-  kDcMotorVoltage,
-  kDcMotorSpeed,
-  // Induction motor on a V/f supply (chapter eqs. 2.18-2.19): the setpoint is the supply frequency [Hz] (open loop),
-  // or the speed [rad/s] of a PI controller whose torque demand kp (setpoint - v) + ki * integral [N·m] the drive
-  // turns into the supply frequency by slip-frequency control (model::InductionMotor::SupplyForTorque).
-  kInductionMotor,
-  kInductionMotorSpeed,
-};
-
-struct DcMotor {
-  double motor_constant = 0;       // k [N·m/A = V·s/rad]
-  double armature_resistance = 0;  // R [ohm]
-  double armature_inductance = 0;  // L [H]
-  double voltage_limit = 0;        // [V], 0: unlimited
-};
+using Drive = model::Drive;
+using DcMotor = model::DcMotor;
 
 struct Node {
   std::string name;                  // e.g. "top", "junction", "bit": used in messages and outputs

@@ -67,15 +67,12 @@ namespace drillwave::cases::axial_torsional {
 // One wave channel: the pipe's and the BHA's sub-sections as a chain (waves::WaveChain).
 using Channel = waves::ChainSpec;
 
-// DC motor of the top drive (the torsional_wave kind's dc_motor top): torque constant K = back-emf constant.
+// DC motor of the top drive (the torsional_wave kind's dc_motor top): torque constant K = back-emf constant. Its PI
+// commands a torque u and the drive applies V = R/K u + K Omega_ref (dynamics::TopDriveParts::dc_torque_command), so
+// that at steady state K I = u with w_top = Omega_ref.
 struct DcMotor {
   bool on = false;
   double k = 0, resistance = 0, inductance = 0;
-  // Armature voltage that makes the motor follow the PI: at steady state K I = u_PI with w_top = Omega_ref.
-  double Voltage(double u_pi, double omega_ref) const { return resistance / k * u_pi + k * omega_ref; }
-  double CurrentRate(double voltage, double w_top, double current) const {
-    return (voltage - k * w_top - resistance * current) / inductance;
-  }
 };
 
 // The bit-rock law's parameters and forces are bitrock::RgdLaw's (a, zeta, eps, sigma_l, mu, gamma, blades, Stribeck).
@@ -100,10 +97,6 @@ struct Model : bitrock::RgdLaw {
   model::Gear gear;                 // between the motor and the top drive
   // The top drive's own speed carries its inertia, and with a rigid gear the motor's.
   double TopInertia() const { return top_inertia + gear.InertiaAddedToNode(); }
-  // Supply frequency of the V/f drive for the PI's torque demand u at drive speed w (both on the top drive's side).
-  double SupplyFrequency(double u_pi, double drive_speed) const {
-    return induction.SupplyForTorque(u_pi / gear.ratio, gear.ratio * drive_speed);
-  }
   std::optional<model::JeffcottBha> unbalance;  // the BHA's lateral motion at the bit (absent: none)
   std::optional<model::HoistRig> rig;           // the hoisting rig above the top drive (absent: the hook force H)
 

@@ -13,7 +13,7 @@
 #include "drillwave/cases/statistics.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
-#include "drillwave/dynamics/pi_top_drive.hpp"
+#include "drillwave/dynamics/top_drive.hpp"
 #include "drillwave/integration/hermite_history.hpp"
 #include "drillwave/integration/simulator.hpp"
 
@@ -37,19 +37,39 @@ enum Index {
   kDrum = kRigDim, kDrumFlux, kDrawworksDim = kDrumFlux + 4
 };
 
+// The model's top drive: its PI speed loop alone, or commanding the torque of a DC motor (its constant referred to
+// the top drive already) or the torque demand of an induction motor.
+dynamics::TopDriveParts TopDriveOf(const Model& md) {
+  dynamics::TopDriveParts parts;
+  parts.drive = md.motor.on       ? model::Drive::kDcMotorSpeed
+                : md.induction_on ? model::Drive::kInductionMotorSpeed
+                                  : model::Drive::kPiSpeedController;
+  parts.setpoint = &md.top_speed;
+  parts.pi = &md.pi, parts.law = &md.law;
+  parts.dc = {md.motor.k, md.motor.resistance, md.motor.inductance, 0.0};
+  parts.dc_torque_command = true;
+  parts.induction = &md.induction;
+  parts.gear = md.gear;
+  parts.inertia = md.TopInertia();
+  return parts;
+}
+
 class Process {
  public:
   using State = std::vector<double>;
   explicit Process(const Model& md)
       : md_(md), steady_(SteadyDrilling(md, md.top_speed.Value(0.0))),
-        cut_(md.blades, steady_.omega, steady_.rop, md.surface_passes, md.bottom_roughness),
-        top_drive_(md.pi, md.law, md.top_speed, steady_.omega, md.TopInertia()) {
+        cut_(md.blades, steady_.omega, steady_.rop, md.surface_passes, md.bottom_roughness) {
     InitializeWaves();
-    if (top_drive_.has_filter()) filter_index_ = LayoutDimension();
+    const dynamics::TopDriveParts parts = TopDriveOf(md);
+    dynamics::TopDrive::Slots slots;
+    slots.integral = kZ;
+    if (md.motor.on) slots.current = kCurrent;
+    if (md.induction_on) slots.flux = kFlux;
+    if (md.gear.compliant()) slots.motor_speed = kMotorSpeed;
+    if (dynamics::TopDrive::HasFilter(parts)) slots.filter = filter_index_ = LayoutDimension();
     // Throws std::domain_error when the motor cannot carry the steady torque (below its pull-out torque).
-    if (md.induction_on)
-      steady_supply_hz_ =
-          md.induction.SteadySupplyFrequency(top_torque0_ / md.gear.ratio, md.gear.ratio * steady_.omega);
+    top_drive_.emplace(parts, slots, steady_.omega, top_torque0_);
     // The drawworks' supply that pays out at the steady rate of penetration under the steady hook force.
     if (Drawworks()) drawworks_supply_hz_ = Drawworks()->SteadySupply(steady_.rop, md.hook_force.Value(0.0));
   }
@@ -59,7 +79,7 @@ class Process {
   // --- Simulator interface --------------------------------------------------------------------------------
   int Dimension() const { return filter_index_ >= 0 ? filter_index_ + 1 : LayoutDimension(); }
   double MaxStep() const {
-    return top_drive_.MaxStep(std::min(md_.torsion.ShortestPiece(), md_.axial.ShortestPiece()));
+    return top_drive_->MaxStep(std::min(md_.torsion.ShortestPiece(), md_.axial.ShortestPiece()));
   }
   void BeginStep(double t0) { step_start_ = t0; }
 
@@ -68,23 +88,7 @@ class Process {
     x[kWtop] = steady_.omega;
     x[kWbit] = steady_.omega;
     x[kVtop] = x[kVbit] = steady_.rop;
-    // The PI holds the steady top torque with its integral part, the motor with its steady current (DC) or fluxes
-    // (induction: at the supply frequency that gives the steady torque), the gear with its twist.
-    x[kZ] = top_drive_.InitialIntegral(top_torque0_, SteadyStringTorque());
-    if (md_.motor.on) x[kCurrent] = top_torque0_ / md_.motor.k;
-    if (md_.induction_on) {
-      const auto psi = md_.induction.SteadyFluxes(steady_supply_hz_, md_.gear.ratio * steady_.omega);
-      std::copy(psi.begin(), psi.end(), x.begin() + kFlux);
-      const double n = md_.gear.ratio, u = n * md_.induction.TorqueDemandFor(steady_supply_hz_, n * steady_.omega);
-      x[kZ] = top_drive_.InitialIntegral(u, SteadyStringTorque());
-    }
-    // The drive's filter has settled (the torque feedback's on the steady string torque: no correction of the
-    // set-point).
-    if (filter_index_ >= 0) x[filter_index_] = top_drive_.InitialLowPassed(steady_.omega, SteadyStringTorque());
-    if (md_.gear.compliant()) {
-      x[kMotorSpeed] = steady_.omega;
-      x[kTwist] = top_torque0_ / md_.gear.stiffness;
-    }
+    top_drive_->SteadyStart(SteadyStringTorque(), x);
     if (const model::Drawworks* d = Drawworks()) {
       x[kDrum] = steady_.rop / d->line_radius;
       const auto psi = d->motor.SteadyFluxes(drawworks_supply_hz_, d->gear_ratio * x[kDrum]);
@@ -95,7 +99,6 @@ class Process {
 
   void Derivatives(const State& x, State& dx, double t) const {
     const Side side = t <= step_start_ ? Side::kRight : Side::kLeft;
-    const double omega_ref = md_.top_speed.Evaluate(t, t > step_start_).first;
     const Ends ends = StringEnds(x, t, side);
     const BitForces f = Forces(x, t, side, ends);
     dx[kPhi] = rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
@@ -103,20 +106,8 @@ class Process {
     // Top drive (with its motor and gear) and hoist. States a component does not use stay at 0.
     if (Dimension() >= kTopDim) std::fill(dx.begin() + kDim, dx.end(), 0.0);
     const Reading in = ReadController(x, t, side);
-    const double vd = DriveSpeed(x), u = TopTorque(x, t, side, in);
-    if (md_.motor.on)
-      dx[kCurrent] = md_.motor.CurrentRate(md_.motor.Voltage(PiOutput(x, t, side, in), omega_ref), vd, x[kCurrent]);
-    if (md_.induction_on) {
-      const auto rates = md_.induction.FluxRates(Fluxes(x), md_.SupplyFrequency(PiOutput(x, t, side, in), vd),
-                                                 md_.gear.ratio * vd);
-      std::copy(rates.begin(), rates.end(), dx.begin() + kFlux);
-    }
-    double into_top = u;
-    if (md_.gear.compliant()) {
-      into_top = GearTorque(x);
-      dx[kMotorSpeed] = (u - into_top) / md_.gear.ReferredMotorInertia();
-      dx[kTwist] = vd - x[kWtop];
-    }
+    top_drive_->Rates(x, x[kWtop], t, side, in, dx);
+    const double into_top = top_drive_->TorqueIntoNode(x, x[kWtop], t, side, [&](double) { return in; });
     dx[kWtop] = (ends.top[0] + into_top) / md_.TopInertia();
     if (md_.rig) {  // the top drive hangs from the rig's travelling block
       const model::HoistRig::State rig = RigState(x);
@@ -135,8 +126,6 @@ class Process {
     } else {
       dx[kVtop] = (ends.top[1] - md_.hook_force.Evaluate(t, t > step_start_).first - HoistDashpot(x)) / md_.hoist_mass;
     }
-    dx[kZ] = top_drive_.IntegralRate(in);
-    if (filter_index_ >= 0) dx[filter_index_] = top_drive_.FilterRate(in, x[filter_index_]);
     // Bit.
     dx[kWbit] = rg_.turn == Turn::kStuck ? 0.0 : (f.drive_torque - f.torque) / md_.EffectiveBitInertia();
     dx[kVbit] = rg_.axial == Axial::kHeld && rg_.contact ? 0.0 : (f.drive_force - f.weight) / md_.bit_mass;
@@ -167,7 +156,7 @@ class Process {
     // A node's waves are read one piece's travel time later, never earlier: keeping two of the longest makes the
     // histories a few dozen pieces each, which stay in cache.
     // A delayed controller reads the top's arriving wave one delay later still.
-    const double read_back = 2 * std::max(md_.torsion.LongestPiece(), md_.axial.LongestPiece()) + top_drive_.delay();
+    const double read_back = 2 * std::max(md_.torsion.LongestPiece(), md_.axial.LongestPiece()) + top_drive_->delay();
     // The kinks just stored next to the top and the bit reach them one piece later: the steps stop there, as at a
     // breakpoint (the state's own dense output is then smooth within each step, and the end waves too).
     while (!end_kinks_.empty() && end_kinks_.top() < p.t1) end_kinks_.pop();
@@ -177,7 +166,7 @@ class Process {
     const double keep = 2 * std::max(md_.torsion.travel_time(), md_.axial.travel_time()) + 1.0;
     cut_.Commit(p, kPhi, kU, rg_.contact, rg_.last_contact_change, keep);
     held_phi_ = p.x1[kPhi], held_u_ = p.x1[kU];
-    top_drive_.Commit(p, kWtop, read_back);
+    top_drive_->Commit(p, kWtop, read_back);
   }
 
   // Witnesses: bitrock::RgdRegimes's (0, 1 rotation; 2, 3 axial; 4 contact).
@@ -193,7 +182,7 @@ class Process {
   bool OnEvent(int k, double t, State& x) {
     const Side side = Side::kLeft;
     for (waves::WaveChain& chain : chains_) chain.ForgetStart();  // the regime (and the bit's waves) may change here
-    top_drive_.MarkRestart();
+    top_drive_->MarkRestart();
     const Turn turn_before = rg_.turn;
     const bool changed =
         rg_.OnEvent(k, t, x[kWbit], x[kVbit], md_.ContactForceAt(x[kU]), [&] { return Forces(x, t, side); });
@@ -209,12 +198,12 @@ class Process {
                                           Drawworks() ? Drawworks()->supply_change_hz.NextKnotAfter(passed_) : kInf)
                                : kInf;
     const double input = std::min({md_.top_speed.NextKnotAfter(passed_), md_.hook_force.NextKnotAfter(passed_), rig,
-                                   top_drive_.NextBreakpoint(passed_)});
+                                   top_drive_->NextBreakpoint(passed_)});
     return end_kinks_.empty() ? input : std::min(input, end_kinks_.top());
   }
   void OnBreakpoint(double t, State& x) {
     passed_ = t;
-    top_drive_.OnBreakpoint(t, x[kZ]);
+    top_drive_->OnBreakpoint(t, x);
     for (waves::WaveChain& chain : chains_) chain.ForgetStart();  // an input may jump here, or a kink arrive at an end
     while (!end_kinks_.empty() && waves::PassedWith(end_kinks_.top(), t)) end_kinks_.pop();
   }
@@ -244,7 +233,7 @@ class Process {
     s.top_speed = x[kWtop];
     s.bit_speed = rg_.turn == Turn::kStuck ? 0.0 : x[kWbit];
     // The controller as the derivatives at the sample read it (the right limits of a step starting there).
-    s.top_torque = TopTorque(x, t, Side::kRight, ReadController(x, t, Side::kRight));
+    s.top_torque = top_drive_->DriveTorque(x, DriveSpeed(x), t, Side::kRight, ReadController(x, t, Side::kRight));
     s.bit_torque = rg_.turn == Turn::kStuck ? f.drive_torque : f.torque;
     s.wob = f.weight;
     s.hookload = md_.hook_force.Value(t) + HoistDashpot(x) + md_.hoist_mass * dx[kVtop];
@@ -257,15 +246,15 @@ class Process {
     s.tn = f.tn;
     s.stuck = rg_.turn == Turn::kStuck ? 1.0 : 0.0;
     s.off_bottom = rg_.contact ? 0.0 : 1.0;
-    s.top_current = md_.motor.on ? x[kCurrent] : md_.induction_on ? md_.induction.StatorCurrentRms(Fluxes(x)) : 0.0;
-    s.motor_speed = md_.gear.compliant() ? md_.gear.ratio * x[kMotorSpeed] : 0.0;
-    s.gear_torque = md_.gear.compliant() ? GearTorque(x) : 0.0;
+    s.top_current = top_drive_->Current(x);
+    s.motor_speed = top_drive_->has_motor_speed() ? top_drive_->MotorShaftSpeed(x) : 0.0;
+    s.gear_torque = top_drive_->has_motor_speed() ? top_drive_->GearTorque(x, x[kWtop]) : 0.0;
     s.lateral_displacement = md_.unbalance.has_value() ? std::hypot(x[kX], x[kY]) : 0.0;
     return s;
   }
   const std::vector<StuckInterval>& stuck_intervals() const { return stuck_; }
   const Steady& steady() const { return steady_; }
-  double steady_supply_hz() const { return steady_supply_hz_; }
+  double steady_supply_hz() const { return top_drive_->steady_supply_hz(); }
 
  private:
   using BitForces = bitrock::RgdForces;
@@ -332,14 +321,9 @@ class Process {
   // What the top drive's controller reads at t (dynamics::PiTopDrive::Read), and its output.
   using Reading = dynamics::PiTopDrive::Reading;
   Reading ReadController(const State& x, double t, Side side) const {
-    const double low_passed = filter_index_ >= 0 ? x[filter_index_] : 0.0;
-    return top_drive_.Read(
-        t, side, DriveSpeed(x), low_passed,
-        [&](double when, double speed) { return TopStringTorque(x, when, side, speed); },
+    return top_drive_->Read(
+        x, DriveSpeed(x), t, side, [&](double when, double speed) { return TopStringTorque(x, when, side, speed); },
         [&](double when, double speed) { return TopWave(x, when, side, speed); });
-  }
-  double PiOutput(const State& x, double t, Side side, const Reading& in) const {
-    return top_drive_.Output(t, side, in, x[kZ]);
   }
   // The torque the top feeds into the top piece at time t turning at `speed` (what a torque sub there measures): minus
   // the chain's force on the top node without that node's own share of the pipe's damping, as the network's
@@ -357,21 +341,9 @@ class Process {
     const waves::WaveChain::Wave arriving = chains_[0].TopArrival(t, side);
     return {TopStringTorque(x, t, side, speed) + md_.torsion.damping[0] * speed, arriving.value, arriving.rate};
   }
-  // Torque of the drive (on the top drive's side): the PI's output (clamped to its limit), or the motor's K I when a
-  // DC motor sits between them, or n T_e of an induction motor. It turns the top drive, or the motor behind a
-  // compliant gear.
-  double TopTorque(const State& x, double t, Side side, const Reading& in) const {
-    if (md_.motor.on) return md_.motor.k * x[kCurrent];
-    if (md_.induction_on) return md_.gear.ratio * md_.induction.Torque(Fluxes(x));
-    return top_drive_.Torque(t, side, in, x[kZ]);
-  }
   // The speed the PI and the motor see (on the top drive's side): the top drive's, or the motor's behind a compliant
   // gear.
-  double DriveSpeed(const State& x) const { return md_.gear.compliant() ? x[kMotorSpeed] : x[kWtop]; }
-  double GearTorque(const State& x) const { return md_.gear.Torque(x[kTwist], x[kMotorSpeed], x[kWtop]); }
-  static model::InductionMotor::Fluxes Fluxes(const State& x) {
-    return {x[kFlux], x[kFlux + 1], x[kFlux + 2], x[kFlux + 3]};
-  }
+  double DriveSpeed(const State& x) const { return top_drive_->DriveSpeed(x, x[kWtop]); }
   double BitSpeed(const State& x) const { return rg_.turn == Turn::kStuck ? 0.0 : x[kWbit]; }
   // The hoist's dashpot force (up) against the block paying out at the steady rate of penetration.
   double HoistDashpot(const State& x) const { return md_.hoist_damping * (x[kVtop] - steady_.rop); }
@@ -402,10 +374,9 @@ class Process {
   Steady steady_;
   std::vector<waves::WaveChain> chains_;  // torsion, axial
   bitrock::CutProfile cut_;
-  dynamics::PiTopDrive top_drive_;
-  int filter_index_ = -1;  // the drive's filter (PiTopDrive::has_filter)
+  std::optional<dynamics::TopDrive> top_drive_;  // built on the steady torque the waves give the top
+  int filter_index_ = -1;                        // the drive's filter (TopDrive::HasFilter)
   double top_torque0_ = 0;
-  double steady_supply_hz_ = 0;  // induction motor: the supply frequency of steady drilling
   double drawworks_supply_hz_ = 0;  // the drawworks motor's steady supply
   bitrock::RgdRegimes rg_;
   double step_start_ = 0, passed_ = 0;
