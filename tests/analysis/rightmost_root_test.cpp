@@ -4,6 +4,8 @@
 // of them.
 #include <cmath>
 #include <complex>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -92,6 +94,38 @@ TEST(CountRootsInBox, CountsTheRootsTheFullSpectrumFindsInTheBox) {
       EXPECT_EQ(CountRootsInBox(det, re_left, bound, options.im_max), RootsRightOf(sp, re_left))
           << "speed " << speed << ", weight " << weight << ", left edge " << re_left;
     }
+  }
+}
+
+// The count of roots right of the axis says "unstable" exactly where the full spectrum's verdict does: the coupled
+// string's regenerative modes, and the scalar neutral x' - c x'(t - 1) = a x + b x(t - 1) on both sides of its
+// boundary, with its essential spectrum left of the axis (c = 0.5) or on it (c = 1: marginal where no root is right).
+TEST(UnstableByArgumentPrinciple, AgreesWithTheFullSpectrumsVerdict) {
+  int unstable = 0, not_unstable = 0;
+  auto check = [&](const LinearDelaySystem& sys, const std::string& what) {
+    const Spectrum sp = ComputeSpectrum(sys);
+    const std::optional<bool> counted = UnstableByArgumentPrinciple(sys, {});
+    ASSERT_TRUE(counted.has_value()) << what;
+    EXPECT_EQ(*counted, sp.verdict == Spectrum::Verdict::kUnstable)
+        << what << ": verdict " << VerdictName(sp.verdict) << ", rightmost root " << sp.spectral_abscissa;
+    (*counted ? unstable : not_unstable) += 1;
+  };
+  for (double speed : {4.5, 12.0}) check(CoupledString(speed, 90e3), "coupled string at " + std::to_string(speed));
+  for (double c : {0.5, 1.0})
+    for (double a : {-2.0, -0.7, 0.3})
+      for (double b : {-0.5, 0.4, 1.5}) {
+        LinearDelaySystem sys;
+        sys.a0 = Eigen::MatrixXd::Constant(1, 1, a);
+        sys.delays.push_back({1.0, Eigen::MatrixXd::Constant(1, 1, b), Eigen::MatrixXd::Constant(1, 1, c)});
+        check(sys, "a " + std::to_string(a) + ", b " + std::to_string(b) + ", c " + std::to_string(c));
+      }
+  EXPECT_GT(unstable, 0);  // both verdicts occur
+  EXPECT_GT(not_unstable, 0);
+  LinearDelaySystem shifted;  // delay-free: eigenvalues a +- 3i and -2
+  for (double a : {0.5, -0.5}) {
+    shifted.a0 = Eigen::MatrixXd::Zero(3, 3);
+    shifted.a0 << a, -3, 0, 3, a, 0, 0, 1, -2;
+    EXPECT_EQ(UnstableByArgumentPrinciple(shifted, {}), std::optional<bool>(a > 0));
   }
 }
 

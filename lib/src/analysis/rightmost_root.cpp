@@ -250,6 +250,20 @@ int CountRootsInBox(const CharacteristicFunction& f, double near_step, double re
   return CountRootsInBoxOf(f, near_step, re_left, re_right, im_max);
 }
 
+// Unstable when the essential spectrum lies right of the axis; else when a root lies right of 0 (a strictly stable
+// difference operator) or right of kEssentialOnAxis (one on the axis: marginal up to there), |Im s| <= im_max.
+std::optional<bool> UnstableByArgumentPrinciple(const LinearDelaySystem& system, const SpectrumOptions& o) {
+  std::vector<Complex> chain_starts;
+  const double essential = EssentialAbscissa(system, o, chain_starts);
+  if (std::isnan(essential)) return std::nullopt;
+  if (essential > kEssentialOnAxis) return true;
+  const double re_left = essential < -kEssentialOnAxis ? 0.0 : kEssentialOnAxis;
+  const double re_right = std::max(RootRealPartBound(system), re_left + 1.0);
+  const int count = CountRootsInBox(CharacteristicDeterminant(system), re_left, re_right, o.im_max);
+  if (count < 0) return std::nullopt;
+  return count > 0;
+}
+
 bool NewtonOnFunction(const CharacteristicFunction& f, std::complex<double>& s, int iterations,
                       const std::vector<std::complex<double>>& known) {
   return NewtonOnDeterminant(f, s, iterations, known);

@@ -342,17 +342,32 @@ RunFromStart CompareWithRunFromStart(const Case& c, const std::vector<OperatingP
 void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
   constexpr int kLinearVerdictStates = 64;
   if (!summary.contains("stick_onsets") || !summary.at("stick_onsets").is_number()) return;
+  const bool sticks = summary.at("stick_onsets").get<int>() > 0;
   std::vector<OperatingPointStability> points;
   try {
     // Beyond 64 states (the coupled model's 20 sub-sections: 87) the spectrum costs seconds, more than the run:
     // `stability` answers there.
-    for (const LinearizedOperatingPoint& p : c.model->Linearize())
+    const std::vector<LinearizedOperatingPoint> linearized = c.model->Linearize();
+    for (const LinearizedOperatingPoint& p : linearized)
       if (p.system.dimension() > kLinearVerdictStates) return;
+    // The note speaks only where a run that sticks meets a steady state that is not unstable, or a run that does not
+    // stick meets only unstable ones. Counting the roots right of the axis (milliseconds) tells most runs that there
+    // is nothing to say, before the full spectra its numbers need (seconds with many sub-sections, issue 33).
+    std::vector<std::optional<bool>> unstable;
+    for (const LinearizedOperatingPoint& p : linearized) {
+      p.system.Validate();
+      unstable.push_back(analysis::UnstableByArgumentPrinciple(p.system, {}));
+    }
+    const auto known = [&](bool value) { return [value](const std::optional<bool>& u) { return u == value; }; };
+    if (sticks && std::all_of(unstable.begin(), unstable.end(), known(true))) return;
+    if (!sticks && std::any_of(unstable.begin(), unstable.end(), known(false))) return;
     points = AnalyzeStability(c, {}, ContinuumRoots::kSkipped);  // the note sets the run against the pieces' roots
   } catch (const InputError&) {
     return;  // this kind or configuration has no linearization
+  } catch (const std::invalid_argument&) {
+    return;  // a linearization out of range (AnalyzeStability says so as an InputError)
   }
-  const std::string note = LinearVerdictNote(points, summary.at("stick_onsets").get<int>() > 0, "this run");
+  const std::string note = LinearVerdictNote(points, sticks, "this run");
   if (!note.empty()) summary["linear_verdict"] = note;
 }
 

@@ -70,6 +70,12 @@ int CountRootsInBox(const CharacteristicFunction& f, double near_step, double re
 bool NewtonOnFunction(const CharacteristicFunction& f, std::complex<double>& s, int iterations,
                       const std::vector<std::complex<double>>& known);
 
+// Whether the system is unstable as ComputeSpectrum's verdict would say (SetVerdict: kUnstable or not), from the
+// difference operator's roots and the count of characteristic roots right of the axis alone, without finding them:
+// milliseconds where the full spectrum of many sub-sections costs seconds. nullopt where it cannot tell (delays that
+// are not commensurate, a root on the box's edge). Validate the system first.
+std::optional<bool> UnstableByArgumentPrinciple(const LinearDelaySystem& system, const SpectrumOptions& options);
+
 struct SeededSpectrum {
   // roots: the seeds' roots in the region (Re s >= re_min, 0 <= Im s <= im_max), distinct, rightmost first; only
   // roots.front() is refined as ComputeSpectrum refines (the others to about 1e-9, enough to seed a neighbour);
