@@ -810,7 +810,8 @@ int CompareControllers(const std::string& file, const std::string& out_dir, cons
     for (const auto& e : envelopes->laws)
       std::cout << "  " << e.law << ": free of stick-slip at " << e.linear_free << " points by the linear verdict, "
                 << e.simulated_free << " by simulation; simulation agrees at " << e.boundary_agreeing << " of "
-                << e.boundary << " boundary points (" << drillwave::Significant(e.map.linear_wall_time_s, 3)
+                << e.boundary << " boundary points, " << e.simulated_boundary << " on the runs' own boundary ("
+                << drillwave::Significant(e.map.linear_wall_time_s, 3)
                 << " s linear, " << drillwave::Significant(e.map.simulation_wall_time_s, 3) << " s runs)"
                 << std::endl;
     studies.envelopes = &*envelopes;

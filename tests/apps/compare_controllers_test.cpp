@@ -161,7 +161,7 @@ TEST_F(CompareControllers, EnvelopesAreTheStabilityMapsOfTheLawsCasesAndTheirCou
     ASSERT_EQ(m.exit_code, 0) << m.output;
     const auto reference = ReadRows(map / "stability_map.csv");
     ASSERT_EQ(reference.size(), 9u);
-    int linear_free = 0, simulated_free = 0, boundary = 0, agreeing = 0;
+    int linear_free = 0, simulated_free = 0, boundary = 0, agreeing = 0, simulated_boundary = 0;
     auto free = [&](std::size_t k) {
       return envelope[k].at("verdict") == "stable" || envelope[k].at("verdict") == "marginal";
     };
@@ -175,6 +175,11 @@ TEST_F(CompareControllers, EnvelopesAreTheStabilityMapsOfTheLawsCasesAndTheirCou
                                (j > 0 && free(k - 3) != free(k)) || (j < 2 && free(k + 3) != free(k));
       EXPECT_EQ(envelope[k].at("boundary"), on_boundary ? "1" : "0") << kLaws[law] << " point " << k;
       const bool smooth = envelope[k].at("regime") == "smooth";
+      auto smooth_at = [&](std::size_t m) { return envelope[m].at("regime") == "smooth"; };
+      const bool on_runs_boundary = (i > 0 && smooth_at(k - 1) != smooth) || (i < 2 && smooth_at(k + 1) != smooth) ||
+                                    (j > 0 && smooth_at(k - 3) != smooth) || (j < 2 && smooth_at(k + 3) != smooth);
+      EXPECT_EQ(envelope[k].at("simulated_boundary"), on_runs_boundary ? "1" : "0") << kLaws[law] << " point " << k;
+      simulated_boundary += on_runs_boundary;
       linear_free += free(k), simulated_free += smooth, boundary += on_boundary;
       agreeing += on_boundary && free(k) == smooth;
     }
@@ -186,10 +191,11 @@ TEST_F(CompareControllers, EnvelopesAreTheStabilityMapsOfTheLawsCasesAndTheirCou
     std::stringstream cells(md.substr(row, md.find('\n', row) - row));
     std::vector<std::string> cell;
     for (std::string c; std::getline(cells, c, '|');) cell.push_back(c);
-    ASSERT_GE(cell.size(), 7u) << md.substr(row, 200);
+    ASSERT_GE(cell.size(), 10u) << md.substr(row, 200);
     EXPECT_DOUBLE_EQ(std::stod(cell[4]), std::round(simulated_free / 9.0 * 1000) / 1000) << kLaws[law];
     EXPECT_EQ(std::stoi(cell[5]), boundary) << kLaws[law];
     EXPECT_EQ(std::stoi(cell[6]), agreeing) << kLaws[law];
+    EXPECT_EQ(std::stoi(cell[9]), simulated_boundary) << kLaws[law];
   }
 }
 

@@ -15,11 +15,12 @@ namespace {
 
 std::string Number(double v) { return std::isfinite(v) ? Significant(v, 6) : "nan"; }
 
-// Whether each grid point's linear verdict (free of stick-slip or not) differs from a neighbour's along an axis.
-std::vector<bool> BoundaryPoints(const StabilityMapResult& map, std::size_t nx, std::size_t ny) {
+// Whether each grid point's class (free of stick-slip or not, by `free`) differs from a neighbour's along an axis.
+template <class Free>
+std::vector<bool> BoundaryPoints(const StabilityMapResult& map, std::size_t nx, std::size_t ny, const Free& free) {
   std::vector<bool> boundary(map.cells.size(), false);
   auto compare = [&](std::size_t a, std::size_t b) {
-    if (LinearlySteady(map.cells[a]) == LinearlySteady(map.cells[b])) return;
+    if (free(map.cells[a]) == free(map.cells[b])) return;
     boundary[a] = boundary[b] = true;
   };
   for (std::size_t j = 0; j < ny; ++j)
@@ -31,11 +32,18 @@ std::vector<bool> BoundaryPoints(const StabilityMapResult& map, std::size_t nx, 
 }
 
 bool SimulatedFree(const StabilityMapCell& cell) { return cell.regime == Regime::kSmooth; }
+std::vector<bool> LinearBoundary(const StabilityMapResult& map, std::size_t nx, std::size_t ny) {
+  return BoundaryPoints(map, nx, ny, LinearlySteady);
+}
+std::vector<bool> SimulatedBoundary(const StabilityMapResult& map, std::size_t nx, std::size_t ny) {
+  return BoundaryPoints(map, nx, ny, SimulatedFree);
+}
 
 void Count(std::size_t nx, std::size_t ny, LawEnvelope& e) {
-  const std::vector<bool> boundary = BoundaryPoints(e.map, nx, ny);
+  const std::vector<bool> boundary = LinearBoundary(e.map, nx, ny), simulated = SimulatedBoundary(e.map, nx, ny);
   for (std::size_t k = 0; k < e.map.cells.size(); ++k) {
     const StabilityMapCell& c = e.map.cells[k];
+    e.simulated_boundary += simulated[k];
     e.linear_free += LinearlySteady(c);
     e.marginal += c.steady_states > 0 && c.verdict == analysis::Spectrum::Verdict::kMarginal;
     e.simulated_free += SimulatedFree(c);
@@ -71,15 +79,15 @@ ControllerEnvelopes MapControllerEnvelopes(const ControllerComparison& nominal, 
 }
 
 void WriteEnvelopeCsv(const ControllerEnvelopes& envelopes, std::ostream& out) {
-  out << "law,p1,p2,verdict,rightmost_re_per_s,regime,stick_fraction,severity,boundary\n";
+  out << "law,p1,p2,verdict,rightmost_re_per_s,regime,stick_fraction,severity,boundary,simulated_boundary\n";
   const std::size_t nx = envelopes.x.values.size(), ny = envelopes.y.values.size();
   for (const LawEnvelope& e : envelopes.laws) {
-    const std::vector<bool> boundary = BoundaryPoints(e.map, nx, ny);
+    const std::vector<bool> boundary = LinearBoundary(e.map, nx, ny), simulated = SimulatedBoundary(e.map, nx, ny);
     for (std::size_t k = 0; k < e.map.cells.size(); ++k) {
       const StabilityMapCell& c = e.map.cells[k];
       out << e.law << "," << Number(c.x) << "," << Number(c.y) << "," << CellVerdictName(c) << ","
           << Number(c.spectral_abscissa) << "," << RegimeName(c.regime) << "," << Number(c.stick_fraction) << ","
-          << Number(c.severity) << "," << (boundary[k] ? 1 : 0) << "\n";
+          << Number(c.severity) << "," << (boundary[k] ? 1 : 0) << "," << (simulated[k] ? 1 : 0) << "\n";
     }
   }
 }
@@ -117,14 +125,16 @@ void WriteEnvelopeMarkdown(const ControllerEnvelopes& envelopes, std::ostream& o
       << "): at each of the " << points << " grid points the linear verdict (free of stick-slip: a stable or "
       << "marginal steady state) and a run under the comparison's protocol, classified over the window after the "
       << "handover (free: smooth). Boundary points: those whose linear verdict differs from a neighbour's; agreeing: "
-      << "the run is smooth where the verdict is free and not where it is not (envelopes.csv, envelopes.svg).\n\n"
+      << "the run is smooth where the verdict is free and not where it is not; simulated boundary: the points whose run "
+      << "is smooth where a neighbour's is not, or the reverse (envelopes.csv, envelopes.svg).\n\n"
       << "| law | free area, linear | of it marginal | free area, simulated | boundary points | simulation agrees "
-         "at | linear [s] | runs [s] |\n|---|---|---|---|---|---|---|---|\n";
+         "at | linear [s] | runs [s] | simulated boundary |\n|---|---|---|---|---|---|---|---|---|\n";
   auto fraction = [&](int count) { return Significant(double(count) / points, 3); };
   for (const LawEnvelope& e : envelopes.laws)
     out << "| " << e.law << " | " << fraction(e.linear_free) << " | " << fraction(e.marginal) << " | "
         << fraction(e.simulated_free) << " | " << e.boundary << " | " << e.boundary_agreeing << " | "
-        << Significant(e.map.linear_wall_time_s, 3) << " | " << Significant(e.map.simulation_wall_time_s, 3) << " |\n";
+        << Significant(e.map.linear_wall_time_s, 3) << " | " << Significant(e.map.simulation_wall_time_s, 3) << " | "
+        << e.simulated_boundary << " |\n";
 }
 
 }  // namespace drillwave::cases

@@ -27,6 +27,10 @@ struct LawEnvelope {
   // Boundary points: grid points whose linear verdict (free or not) differs from that of a neighbour along an axis;
   // at how many of them the run agrees with the linear verdict (smooth where free, not smooth where not).
   int boundary = 0, boundary_agreeing = 0;
+  // Grid points whose simulated regime (free or not) differs from that of a neighbour: the envelope as the runs draw
+  // it, where the linear verdict has no boundary (one mode unstable over the whole grid, e.g. the coupled strings'
+  // axial regenerative mode, whatever the top-drive law).
+  int simulated_boundary = 0;
 };
 
 struct ControllerEnvelopes {
