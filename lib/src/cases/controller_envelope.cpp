@@ -125,8 +125,8 @@ void WriteEnvelopeMarkdown(const ControllerEnvelopes& envelopes, std::ostream& o
       << "): at each of the " << points << " grid points the linear verdict (free of stick-slip: a stable or "
       << "marginal steady state) and a run under the comparison's protocol, classified over the window after the "
       << "handover (free: smooth). Boundary points: those whose linear verdict differs from a neighbour's; agreeing: "
-      << "the run is smooth where the verdict is free and not where it is not; simulated boundary: the points whose run "
-      << "is smooth where a neighbour's is not, or the reverse (envelopes.csv, envelopes.svg).\n\n"
+      << "the run is smooth where the verdict is free and not where it is not; simulated boundary: the points "
+      << "whose run is smooth where a neighbour's is not, or the reverse (envelopes.csv, envelopes.svg).\n\n"
       << "| law | free area, linear | of it marginal | free area, simulated | boundary points | simulation agrees "
          "at | linear [s] | runs [s] | simulated boundary |\n|---|---|---|---|---|---|---|---|---|\n";
   auto fraction = [&](int count) { return Significant(double(count) / points, 3); };
