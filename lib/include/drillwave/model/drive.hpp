@@ -3,7 +3,6 @@
 
 namespace drillwave::model {
 
-// How a node is driven from outside (the top boundary conditions of the seeds).
 enum class Drive {
   kNone,
   kPrescribedSpeed,    // v = setpoint(t): the imposed-speed top (Neumann-free, reflection -1)
