@@ -44,21 +44,6 @@ ChainSpec ChainOf(const Network& net) {
   return spec;
 }
 
-// An end's drive (dynamics::TopDrive) from its node: a DC motor's constant referred to the node through its gear.
-dynamics::TopDriveParts DriveOf(const Node& node) {
-  dynamics::TopDriveParts parts;
-  parts.drive = node.drive;
-  parts.setpoint = &node.setpoint;
-  parts.dashpot = node.drive_damping;
-  parts.pi = &node.pi, parts.law = &node.law;
-  parts.dc = node.motor;
-  parts.dc.motor_constant = node.motor.motor_constant * node.gear.ratio;
-  parts.induction = &node.induction;
-  parts.gear = node.gear;
-  parts.inertia = node.LumpedInertia();
-  return parts;
-}
-
 // The mutable side of a run: the string's waves (a WaveChain: the inner nodes are massless, their waves stored split
 // at the kinks and jumps that arrive there), the ends' friction regimes, the breakpoints pending at the ends.
 // State layout: the bit angle (for statistics and, later, the cut-depth delay), then the speeds of the ends with
@@ -110,7 +95,7 @@ class NetworkProcess {
       slots.integral = integral_index_[i], slots.filter = filter_index_[i], slots.current = current_index_[i];
       slots.flux = flux_index_[i], slots.motor_speed = motor_speed_index_[i];
       // Throws std::domain_error where an induction motor cannot carry the steady torque (above its pull-out torque).
-      drives_[i == 0 ? 0 : 1].emplace(DriveOf(net.nodes[i]), slots, net.initial.speed_rad_s, steady_torque_);
+      drives_[i == 0 ? 0 : 1].emplace(DriveParts(net.nodes[i]), slots, net.initial.speed_rad_s, steady_torque_);
     }
     // What the delays can still reach, output look-ups.
     read_back_ = 2.0 * net.LargestTravelTime() + 1.0 + net.top().law.actuator_delay_s;
@@ -504,6 +489,20 @@ class NetworkProcess {
 };
 
 }  // namespace
+
+dynamics::TopDriveParts DriveParts(const Node& node) {
+  dynamics::TopDriveParts parts;
+  parts.drive = node.drive;
+  parts.setpoint = &node.setpoint;
+  parts.dashpot = node.drive_damping;
+  parts.pi = &node.pi, parts.law = &node.law;
+  parts.dc = node.motor;
+  parts.dc.motor_constant = node.motor.motor_constant * node.gear.ratio;
+  parts.induction = &node.induction;
+  parts.gear = node.gear;
+  parts.inertia = node.LumpedInertia();
+  return parts;
+}
 
 bool NetworkRunOptions::IsValid(std::string* error) const {
   return PositiveField(error, "t_end_s", t_end_s) && NonNegativeField(error, "output_interval_s", output_interval_s) &&

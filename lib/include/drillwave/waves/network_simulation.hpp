@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "drillwave/bitrock/stick_slip.hpp"
+#include "drillwave/dynamics/top_drive.hpp"
 #include "drillwave/integration/options.hpp"
 #include "drillwave/waves/network.hpp"
 
@@ -53,5 +54,9 @@ struct NetworkRun {
 
 // Throws ParameterError for options that are not valid, before the network is run.
 NetworkRun SimulateNetwork(const Network& network, const NetworkRunOptions& options);
+
+// The drive a node's process runs (dynamics::TopDrive): its parts, pointing into the node, with a DC motor's constant
+// referred to the node through its gear.
+dynamics::TopDriveParts DriveParts(const Node& node);
 
 }  // namespace drillwave::waves
