@@ -12,6 +12,7 @@
 
 #include "drillwave/analysis/network_linearization.hpp"
 #include "drillwave/waves/network_simulation.hpp"
+#include "drive_rows.hpp"
 #include "equivalent_circuit.hpp"
 
 namespace drillwave::analysis {
@@ -70,36 +71,7 @@ double WorstRowDifference(Drive drive, bool compliant_gear, int& compared) {
   std::vector<double> x(lin.system.dimension(), 0.0);
   component.SteadyStart(p.top_torque_Nm - top.SteadyLoad(p.speed_rad_s), x);
   x[speed] = p.speed_rad_s;
-  auto rates = [&](const std::vector<double>& state) {
-    const auto no_torque = [](double, double) { return 0.0; };
-    const auto no_wave = [](double, double) { return dynamics::PiTopDrive::TopWave{}; };
-    const double vd = component.DriveSpeed(state, state[speed]);
-    const auto in = component.Read(state, vd, 0.0, Side::kRight, no_torque, no_wave);
-    std::vector<double> dx(state.size(), 0.0);
-    component.Rates(state, state[speed], 0.0, Side::kRight, in, dx);
-    return dx;
-  };
-  std::vector<int> rows;
-  for (int first : {slots.integral, slots.current, slots.flux, slots.motor_speed})
-    if (first >= 0)
-      for (int k = 0; k < (first == slots.flux ? 4 : first == slots.motor_speed ? 2 : 1); ++k)
-        rows.push_back(first + k);
-  std::vector<int> columns = rows;
-  columns.push_back(speed);
-  double worst = 0;
-  for (int r : rows) {
-    double scale = 0;
-    for (int c : columns) scale = std::max(scale, std::abs(lin.system.a0(r, c)));
-    for (int c : columns) {
-      const double h = 1e-6 * (1 + std::abs(x[c]));
-      std::vector<double> up = x, down = x;
-      up[c] += h, down[c] -= h;
-      const double fd = (rates(up)[r] - rates(down)[r]) / (2 * h);
-      worst = std::max(worst, std::abs(fd - lin.system.a0(r, c)) / scale);
-      ++compared;
-    }
-  }
-  return worst;
+  return testing::WorstDriveRowDifference(lin.system, component, slots, speed, x, compared);
 }
 
 TEST(TopDriveLinearization, NetworkRowsAreTheComponentsRatesDifferentiated) {

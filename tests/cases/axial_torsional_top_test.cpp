@@ -12,6 +12,7 @@
 #include "drillwave/cases/case_runner.hpp"
 #include "drillwave/core/constants.hpp"
 #include "drillwave/io/json_reader.hpp"
+#include "drive_rows.hpp"
 #include "equivalent_circuit.hpp"
 #include "two_mass_reference.hpp"
 #include "json_case.hpp"
@@ -164,6 +165,78 @@ TEST(AxialTorsionalTop, RigidGearIsTheMotorReferredToTheTopDrive) {
     ASSERT_EQ(Values(a, name).size(), Values(b, name).size());
     for (std::size_t k = 0; k < Values(a, name).size(); ++k)
       EXPECT_NEAR(Values(a, name)[k], Values(b, name)[k], 1e-9 * (1 + std::abs(Values(b, name)[k]))) << name;
+  }
+}
+
+// The coupled kind's linearization holds the top drive as the component its run uses (dynamics::TopDrive): the rows
+// of the drive's own states (the PI's integral, a DC motor's current commanded as torque, an induction motor's
+// fluxes, a compliant gear's motor speed and twist) are the component's rates differentiated by central differences
+// about its steady start, for those states and the top drive's speed.
+double WorstTopRowDifference(const nlohmann::json& doc, const dynamics::TopDriveParts& parts, int& compared) {
+  const auto points = ParseCase(doc).model->Linearize();
+  EXPECT_EQ(points.size(), 1u);
+  if (points.empty()) return 1.0;
+  const LinearizedOperatingPoint& p = points.front();
+  auto index = [&](const std::string& name) {
+    const auto it = std::find(p.state_names.begin(), p.state_names.end(), "torsion_top_" + name);
+    return it == p.state_names.end() ? -1 : static_cast<int>(it - p.state_names.begin());
+  };
+  dynamics::TopDrive::Slots slots;
+  slots.integral = index("speed_error_integral_rad");
+  slots.current = index("current_A");
+  slots.flux = index("stator_flux_d_Wb");
+  slots.motor_speed = index("motor_speed_referred_rad_s");
+  const int speed = index("speed_rad_s");
+  EXPECT_GE(slots.integral, 0);
+  EXPECT_GE(speed, 0);
+  if (slots.integral < 0 || speed < 0) return 1.0;
+  const double top_torque = p.steady_state.at("top_torque_Nm");
+  const dynamics::TopDrive drive(parts, slots, kOmega, top_torque);
+  std::vector<double> x(p.system.dimension(), 0.0);
+  drive.SteadyStart(top_torque, x);
+  x[speed] = kOmega;
+  return testing::WorstDriveRowDifference(p.system, drive, slots, speed, x, compared);
+}
+
+TEST(AxialTorsionalTop, LinearizationsDriveRowsAreTheComponentsRatesDifferentiated) {
+  const nlohmann::json base = Steady(2, 0.01);
+  const model::Schedule setpoint(kOmega);
+  const model::PiController pi{base["model"]["top"]["kp_Nms_per_rad"].get<double>(),
+                               base["model"]["top"]["ki_Nm_per_rad"].get<double>()};
+  const model::TopDriveLaw law;
+  const model::InductionMotor machine = testing::IllustrativeMachine();
+  auto parts_of = [&](model::Drive drive) {
+    dynamics::TopDriveParts parts;
+    parts.drive = drive, parts.setpoint = &setpoint, parts.pi = &pi, parts.law = &law, parts.induction = &machine;
+    return parts;
+  };
+  struct Kind {
+    std::string name;
+    nlohmann::json doc;
+    dynamics::TopDriveParts parts;
+  };
+  std::vector<Kind> kinds;
+  kinds.push_back({"DC motor commanding torque", base, parts_of(model::Drive::kDcMotorSpeed)});
+  kinds.back().doc["model"]["top"]["motor"] = {
+      {"motor_constant_Nm_per_A", 50}, {"resistance_ohm", 0.05}, {"inductance_H", 0.005}};
+  kinds.back().parts.dc = {50, 0.05, 0.005, 0};
+  kinds.back().parts.dc_torque_command = true;
+  kinds.push_back({"induction motor through a gear", base, parts_of(model::Drive::kInductionMotorSpeed)});
+  kinds.back().doc["model"]["top"]["induction_motor"] = InductionMotorJson();
+  kinds.back().doc["model"]["top"]["gear"] = {{"ratio", kRatio}};
+  kinds.back().parts.gear.ratio = kRatio;
+  kinds.push_back({"PI behind a compliant gear", base, parts_of(model::Drive::kPiSpeedController)});
+  kinds.back().doc["model"]["top"]["gear"] = {
+      {"ratio", kRatio}, {"stiffness_Nm_per_rad", kStiffness}, {"damping_Nms_per_rad", kGearDamping}};
+  kinds.back().doc["model"]["top"]["motor_inertia_kgm2"] = kMotorInertia;
+  kinds.back().parts.gear = {kRatio, kStiffness, kGearDamping, kMotorInertia};
+  for (const Kind& k : kinds) {
+    int compared = 0;
+    const double worst = WorstTopRowDifference(k.doc, k.parts, compared);
+    std::printf("[ measured ] coupled kind, %s: %d entries, largest difference %.3g of the row's largest\n",
+                k.name.c_str(), compared, worst);
+    EXPECT_LT(worst, 1e-6) << k.name;
+    EXPECT_GE(compared, 4) << k.name;
   }
 }
 
