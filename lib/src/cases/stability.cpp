@@ -358,7 +358,7 @@ void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
       p.system.Validate();
       unstable.push_back(analysis::UnstableByArgumentPrinciple(p.system, {}));
     }
-    const auto known = [&](bool value) { return [value](const std::optional<bool>& u) { return u == value; }; };
+    const auto known = [](bool value) { return [value](const std::optional<bool>& u) { return u == value; }; };
     if (sticks && std::all_of(unstable.begin(), unstable.end(), known(true))) return;
     if (!sticks && std::any_of(unstable.begin(), unstable.end(), known(false))) return;
     points = AnalyzeStability(c, {}, ContinuumRoots::kSkipped);  // the note sets the run against the pieces' roots

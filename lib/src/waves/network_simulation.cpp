@@ -47,10 +47,10 @@ ChainSpec ChainOf(const Network& net) {
 // The mutable side of a run: the string's waves (a WaveChain: the inner nodes are massless, their waves stored split
 // at the kinks and jumps that arrive there), the ends' friction regimes, the breakpoints pending at the ends.
 // State layout: the bit angle (for statistics and, later, the cut-depth delay), then the speeds of the ends with
-// inertia, then PI integrals, a PI top's torque-feedback filter (the low-passed string torque; the speed controllers
-// themselves are dynamics::PiTopDrive components), DC motor currents,
-// induction motor fluxes (4 each), for an end behind a compliant gear its motor's speed (referred to the node) and
-// the gear's twist, the bit's lateral BHA (x, y, x', y'), and with
+// inertia, then the ends' drives' states (dynamics::TopDrive, which runs them) grouped by kind: PI integrals, a PI
+// top's filter (the low-passed string torque or arriving wave), DC motor currents, induction motor fluxes (4 each),
+// for an end behind a compliant gear its motor's speed (referred to the node) and the gear's twist; then the bit's
+// lateral BHA (x, y, x', y'), and with
 // Kelvin-Voigt damping and record_energy the energy the dashpots have dissipated. The top's angle is not integrated:
 // nothing reads it.
 class NetworkProcess {
@@ -64,25 +64,21 @@ class NetworkProcess {
         slopes_(chain_.end_slopes()) {
     int next = 1;  // index 0: bit angle
     speed_index_.assign(num_nodes_, kNone);
-    integral_index_.assign(num_nodes_, kNone);
-    filter_index_.assign(num_nodes_, kNone);
-    current_index_.assign(num_nodes_, kNone);
-    flux_index_.assign(num_nodes_, kNone);
-    motor_speed_index_.assign(num_nodes_, kNone);
     regime_.assign(num_nodes_, Turn::kForward);
     const std::array<int, 2> ends{0, bit_};
     for (int i : ends)
       if (!net.nodes[i].massless()) speed_index_[i] = next++;
-    for (int i : ends)
-      if (net.nodes[i].has_speed_integral()) integral_index_[i] = next++;
-    for (int i : ends)
-      if (net.nodes[i].has_drive_filter()) filter_index_[i] = next++;
-    for (int i : ends)
-      if (net.nodes[i].has_dc_motor()) current_index_[i] = next++;
-    for (int i : ends)
-      if (net.nodes[i].has_induction_motor()) flux_index_[i] = next, next += 4;
-    for (int i : ends)
-      if (net.nodes[i].has_compliant_gear()) motor_speed_index_[i] = next, next += 2;  // motor speed, then twist
+    std::array<dynamics::TopDrive::Slots, 2> slots;  // the top's and the bit's drive
+    for (int e : {0, 1})
+      if (net.nodes[ends[e]].has_speed_integral()) slots[e].integral = next++;
+    for (int e : {0, 1})
+      if (net.nodes[ends[e]].has_drive_filter()) slots[e].filter = next++;
+    for (int e : {0, 1})
+      if (net.nodes[ends[e]].has_dc_motor()) slots[e].current = next++;
+    for (int e : {0, 1})
+      if (net.nodes[ends[e]].has_induction_motor()) slots[e].flux = next, next += 4;
+    for (int e : {0, 1})
+      if (net.nodes[ends[e]].has_compliant_gear()) slots[e].motor_speed = next, next += 2;  // motor speed, then twist
     if (net.bit().lateral) lateral_index_ = next, next += 4;  // x, y, x', y'
     kelvin_voigt_ = net.HasKelvinVoigt();
     if (kelvin_voigt_ && options.record_energy) dissipated_index_ = next++;
@@ -90,13 +86,9 @@ class NetworkProcess {
     for (int i : ends)
       if (net.nodes[i].has_set_valued_friction()) frictional_nodes_.push_back(i);
     steady_torque_ = net_.SteadyTopTorque();
-    for (int i : ends) {
-      dynamics::TopDrive::Slots slots;
-      slots.integral = integral_index_[i], slots.filter = filter_index_[i], slots.current = current_index_[i];
-      slots.flux = flux_index_[i], slots.motor_speed = motor_speed_index_[i];
-      // Throws std::domain_error where an induction motor cannot carry the steady torque (above its pull-out torque).
-      drives_[i == 0 ? 0 : 1].emplace(DriveParts(net.nodes[i]), slots, net.initial.speed_rad_s, steady_torque_);
-    }
+    // Throws std::domain_error where an induction motor cannot carry the steady torque (above its pull-out torque).
+    for (int e : {0, 1})
+      drives_[e].emplace(DriveParts(net.nodes[ends[e]]), slots[e], net.initial.speed_rad_s, steady_torque_);
     // What the delays can still reach, output look-ups.
     read_back_ = 2.0 * net.LargestTravelTime() + 1.0 + net.top().law.actuator_delay_s;
     if (!kelvin_voigt_) {
@@ -257,7 +249,7 @@ class NetworkProcess {
     out.bit_torque_nm.push_back(BitTorque(x, t, v.bit));
     out.bit_angle_rad.push_back(x[kBitAngle]);
     out.bit_stuck.push_back(regime_[bit_] == Turn::kStuck && net_.bit().has_set_valued_friction() ? 1.0 : 0.0);
-    if (current_index_[top] != kNone || flux_index_[top] != kNone) out.top_current_a.push_back(DriveAt(top).Current(x));
+    if (DriveAt(top).has_motor_current()) out.top_current_a.push_back(DriveAt(top).Current(x));
     if (DriveAt(top).has_motor_speed()) {
       out.motor_speed_rad_s.push_back(DriveAt(top).MotorShaftSpeed(x));
       out.gear_torque_nm.push_back(DriveAt(top).GearTorque(x, v.top));
@@ -469,7 +461,7 @@ class NetworkProcess {
   int dimension_ = 0;
   WaveChain chain_;
   WaveChain::EndSlopes slopes_;
-  std::vector<int> speed_index_, integral_index_, filter_index_, current_index_, flux_index_, motor_speed_index_;
+  std::vector<int> speed_index_;
   std::vector<int> frictional_nodes_;
   std::vector<Turn> regime_;
   std::vector<RegimeChange> changes_;

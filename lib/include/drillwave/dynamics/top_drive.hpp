@@ -73,9 +73,8 @@ class TopDrive {
   TopDrive(const TopDrive&) = delete;  // the controller keeps references into the parts
   TopDrive& operator=(const TopDrive&) = delete;
 
-  model::Drive drive() const { return parts_.drive; }
-  bool has_speed_loop() const { return controller_.has_value(); }
   double delay() const { return controller_ ? controller_->delay() : 0.0; }
+  bool has_motor_current() const { return slots_.current >= 0 || slots_.flux >= 0; }  // a DC or induction motor
   bool has_motor_speed() const { return slots_.motor_speed >= 0; }
   // An induction motor's steady supply [Hz]: the one that carries the steady torque under a speed loop.
   double steady_supply_hz() const { return steady_supply_hz_; }
