@@ -13,4 +13,4 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_REL
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DDRILLWAVE_PYTHON=OFF >/dev/null
 cmake --build build-asan -j"$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -L fast
+ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -L fast --timeout 900
