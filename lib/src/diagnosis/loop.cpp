@@ -163,6 +163,9 @@ nlohmann::json InRegimeJson(const std::vector<char>& in_regime) {
   return out;
 }
 
+// What the loop says as each step ends.
+using Say = std::function<void(const std::string&)>;
+
 // The median draw's channels, features and errors, into the loop's fields for a model (baseline or fitted).
 void Adopt(const Judged& j, Recording& model, FeatureSet& fit, FeatureSet& held_out, double& fit_error,
            double& held_out_error) {
@@ -174,8 +177,8 @@ void Adopt(const Judged& j, Recording& model, FeatureSet& fit, FeatureSet& held_
 // to what it moves (a level: the fit window's means and period; the motion: all its features). `base` and
 // loop.baseline_document take each calibration that, judged over draws through both windows, brings the base closer
 // on the fit window and leaves the held-out window no worse beyond chance.
-void CalibrateBase(const ModelRuns& runner, const LoopOptions& o, const std::function<void(const std::string&)>& say,
-                   nlohmann::json& base, DiagnosisLoop& loop) {
+void CalibrateBase(const ModelRuns& runner, const LoopOptions& o, const Say& say, nlohmann::json& base,
+                   DiagnosisLoop& loop) {
   const double fit_duration = runner.FitDuration();
   FeatureSet levels = loop.recording_fit;
   const auto not_a_level = [](const Feature& f) {
@@ -284,6 +287,112 @@ void CalibrateBase(const ModelRuns& runner, const LoopOptions& o, const std::fun
   }
 }
 
+// The baseline judged over its draws through both windows, into the loop's baseline fields; the candidates' work budget
+// set from it. Says how many draws are in the recording's regime and the baseline's errors.
+Judged JudgeBaseline(ModelRuns& runner, const nlohmann::json& base, const LoopOptions& o, const Say& say,
+                     DiagnosisLoop& loop) {
+  Draws baseline_draws = runner.RunDraws(base, o.threads);
+  // The candidates' work budget: the costliest of the baseline's draws (one that bounces costs more than one that
+  // drills).
+  runner.SetWorkBudget();
+  loop.model_runs += static_cast<int>(baseline_draws.models.size());
+  const Judged baseline = runner.Judge(std::move(baseline_draws));
+  Adopt(baseline, loop.baseline_model, loop.baseline_fit, loop.baseline_held_out, loop.baseline_fit_error,
+        loop.baseline_held_out_error);
+  loop.baseline_held_out_draw_errors = baseline.held_out_draw_errors;
+  loop.baseline_held_out_mean = baseline.held_out_mean;
+  loop.baseline_draw_in_regime = baseline.draw_in_regime;
+  loop.baseline_draw_seeds = baseline.draw_seeds;
+  const auto first_in_regime = static_cast<std::size_t>(
+      std::find(baseline.draw_in_regime.begin(), baseline.draw_in_regime.end(), 1) - baseline.draw_in_regime.begin());
+  loop.fit_draw = first_in_regime < baseline.draw_seeds.size() ? baseline.draw_seeds[first_in_regime] : 0;
+  const double k_features = FeatureCount(loop.recording_fit);
+  loop.baseline_aic = k_features * std::log(loop.baseline_fit_error);
+  const int baseline_in_regime = static_cast<int>(
+      std::count(loop.baseline_draw_in_regime.begin(), loop.baseline_draw_in_regime.end(), 1));
+  if (baseline_in_regime < static_cast<int>(loop.baseline_draw_in_regime.size()))
+    say("baseline: " + std::to_string(baseline_in_regime) + " of " +
+        std::to_string(loop.baseline_draw_in_regime.size()) + " draws in the recording's regime (" +
+        (loop.recording_bounces ? "the bit bounces" : "the bit stays on the bottom") + ", off the bottom " +
+        Fixed(100 * loop.recorded_off_bottom_share, 1) + " % of the time): the model has both regimes here, and " +
+        (baseline_in_regime ? "is judged on those draws; the fits run draw " + std::to_string(loop.fit_draw)
+                            : std::string("none is in the recording's: judged on all")));
+  say("baseline: error " + Significant(loop.baseline_fit_error, 3) + " on the fit window, " +
+      Significant(loop.baseline_held_out_error, 3) + " held out" +
+      (loop.baseline_held_out_draw_errors.size() > 1
+           ? " (draws alone: " + EachDraw(loop.baseline_held_out_draw_errors, loop.baseline_draw_in_regime) + ")"
+           : ""));
+  return baseline;
+}
+
+// The model that stands, judged over its draws: the kept candidate's effects applied to the base, or the base itself.
+// Writes loop.fitted_document; a kept fit whose held-out motion is not the recording's is rejected here.
+Judged JudgeStandingModel(ModelRuns& runner, const nlohmann::json& base, const Judged& baseline, const LoopOptions& o,
+                          const Say& say, DiagnosisLoop& loop) {
+  loop.fitted_document = base;
+  Judged fitted = baseline;
+  if (loop.kept >= 0) {
+    const Candidate& c = loop.candidates[loop.kept];
+    std::size_t k = 0;
+    for (const std::string& name : c.effects)
+      for (const Effect& e : loop.proposals)
+        if (e.name == name) {
+          std::vector<double> values;
+          for (std::size_t j = 0; j < e.parameters.size(); ++j) values.push_back(c.parameters[k++].value);
+          e.apply(loop.fitted_document, values);
+        }
+    Draws models = runner.RunDraws(loop.fitted_document, o.threads);
+    loop.model_runs += static_cast<int>(models.models.size());
+    fitted = runner.Judge(std::move(models));
+    // A fit whose motion over the held-out window is not the recording's (stick-slip against smooth, bouncing against
+    // on the bottom: its judged draw) where the baseline's is, is rejected, however its features compare: it explains
+    // the recording with another motion (issue 32 item 4).
+    const bool bounces = runner.RecordingBounces();
+    const bool fitted_bounces = runner.InRegime(fitted.model) ? bounces : !bounces;
+    const std::string recorded = RegimeOf(loop.recording_held_out, bounces);
+    const std::string model = RegimeOf(fitted.held_out, fitted_bounces);
+    const Feature* stuck = loop.recording_held_out.Find("stick_fraction");
+    if (stuck && loop_internal::RejectedForRegime(
+                     loop_internal::MotionOf(loop.recording_held_out, bounces),
+                     loop_internal::MotionOf(fitted.held_out, fitted_bounces),
+                     loop_internal::MotionOf(baseline.held_out, runner.InRegime(baseline.model) ? bounces : !bounces),
+                     stuck->scale)) {
+      Candidate& rejected = loop.candidates[loop.kept];
+      rejected.kept = false;
+      rejected.verdict = "rejected: held out " + model + " where the recording is " + recorded +
+                         " (and the baseline); it qualified: " + rejected.verdict;
+      say("rejected " + Joined(rejected.effects) + ": its held-out window is " + model + ", the recording's " +
+          recorded + " (the baseline's too)");
+      loop.regime_rejected = rejected.effects;
+      loop.kept = -1;
+      loop.fitted_document = base;
+      fitted = baseline;
+    }
+  }
+  return fitted;
+}
+
+// What the standing model leaves unexplained on the held-out window: features more than 3 scales off, or present on one
+// side only.
+std::vector<std::string> Unexplained(const FeatureSet& model, const FeatureSet& recorded) {
+  std::vector<std::string> out;
+  // The envelopes' correlogram is one feature read at several lags: one entry, where it counts.
+  const CorrelogramDifference correlogram = CompareCorrelograms(model, recorded);
+  if (correlogram.rms_scales > 3)
+    out.push_back("hook load and weight on bit envelopes' correlogram: " + Fixed(correlogram.rms_scales, 1) +
+                  " scales rms over its lags, most at " + Fixed(correlogram.largest_at_lag_s, 1) + " s");
+  for (const Feature& f : recorded.features) {
+    if (f.name.rfind(kEnvelopeCorrelation, 0) == 0) continue;
+    const double m = model.Value(f.name);
+    if (std::isfinite(f.value) && std::isfinite(m) && std::abs(m - f.value) > 3 * f.scale)
+      out.push_back(f.name + ": model " + Significant(m, 4) + " against " + Significant(f.value, 4) + " recorded (" +
+                    Fixed((m - f.value) / f.scale, 1) + " scales)");
+    else if (std::isfinite(f.value) != std::isfinite(m))
+      out.push_back(f.name + ": " + (std::isfinite(m) ? "only the model has it" : "only the recording has it"));
+  }
+  return out;
+}
+
 // The windows in order and finite: the fit window, then the held-out window from its end on.
 bool WindowsAreValid(const LoopOptions& o, std::string* error) {
   return FiniteField(error, "fit_begin_s", o.fit_begin_s) &&
@@ -388,37 +497,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   // 2a. A calibrated base before effects (none where only the case's own errors are asked for).
   if (o.max_singles > 0 && o.calibrate_base) CalibrateBase(runner, o, say, base, loop);
   lap(loop.wall_seconds.calibration);
-  Draws baseline_draws = runner.RunDraws(base, o.threads);
-  // The candidates' work budget: the costliest of the baseline's draws (one that bounces costs more than one that
-  // drills).
-  runner.SetWorkBudget();
-  loop.model_runs += static_cast<int>(baseline_draws.models.size());
-  const Judged baseline = runner.Judge(std::move(baseline_draws));
-  Adopt(baseline, loop.baseline_model, loop.baseline_fit, loop.baseline_held_out, loop.baseline_fit_error,
-        loop.baseline_held_out_error);
-  loop.baseline_held_out_draw_errors = baseline.held_out_draw_errors;
-  loop.baseline_held_out_mean = baseline.held_out_mean;
-  loop.baseline_draw_in_regime = baseline.draw_in_regime;
-  loop.baseline_draw_seeds = baseline.draw_seeds;
-  const auto first_in_regime = static_cast<std::size_t>(
-      std::find(baseline.draw_in_regime.begin(), baseline.draw_in_regime.end(), 1) - baseline.draw_in_regime.begin());
-  loop.fit_draw = first_in_regime < baseline.draw_seeds.size() ? baseline.draw_seeds[first_in_regime] : 0;
-  const double k_features = FeatureCount(loop.recording_fit);
-  loop.baseline_aic = k_features * std::log(loop.baseline_fit_error);
-  const int baseline_in_regime = static_cast<int>(
-      std::count(loop.baseline_draw_in_regime.begin(), loop.baseline_draw_in_regime.end(), 1));
-  if (baseline_in_regime < static_cast<int>(loop.baseline_draw_in_regime.size()))
-    say("baseline: " + std::to_string(baseline_in_regime) + " of " +
-        std::to_string(loop.baseline_draw_in_regime.size()) + " draws in the recording's regime (" +
-        (loop.recording_bounces ? "the bit bounces" : "the bit stays on the bottom") + ", off the bottom " +
-        Fixed(100 * loop.recorded_off_bottom_share, 1) + " % of the time): the model has both regimes here, and " +
-        (baseline_in_regime ? "is judged on those draws; the fits run draw " + std::to_string(loop.fit_draw)
-                            : std::string("none is in the recording's: judged on all")));
-  say("baseline: error " + Significant(loop.baseline_fit_error, 3) + " on the fit window, " +
-      Significant(loop.baseline_held_out_error, 3) + " held out" +
-      (loop.baseline_held_out_draw_errors.size() > 1
-           ? " (draws alone: " + EachDraw(loop.baseline_held_out_draw_errors, loop.baseline_draw_in_regime) + ")"
-           : ""));
+  const Judged baseline = JudgeBaseline(runner, base, o, say, loop);
 
   // 3. Proposals, strongest first. Those the case can model are fitted alone, then in pairs and larger sets (below:
   //    every effect of a set must earn its place).
@@ -437,46 +516,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   lap(loop.wall_seconds.selection);
 
   // 5. The model that stands, on both windows.
-  loop.fitted_document = base;
-  Judged fitted = baseline;
-  if (loop.kept >= 0) {
-    const Candidate& c = loop.candidates[loop.kept];
-    std::size_t k = 0;
-    for (const std::string& name : c.effects)
-      for (const Effect& e : loop.proposals)
-        if (e.name == name) {
-          std::vector<double> values;
-          for (std::size_t j = 0; j < e.parameters.size(); ++j) values.push_back(c.parameters[k++].value);
-          e.apply(loop.fitted_document, values);
-        }
-    Draws models = runner.RunDraws(loop.fitted_document, o.threads);
-    loop.model_runs += static_cast<int>(models.models.size());
-    fitted = runner.Judge(std::move(models));
-    // A fit whose motion over the held-out window is not the recording's (stick-slip against smooth, bouncing against
-    // on the bottom: its judged draw) where the baseline's is, is rejected, however its features compare: it explains
-    // the recording with another motion (issue 32 item 4).
-    const bool bounces = runner.RecordingBounces();
-    const bool fitted_bounces = runner.InRegime(fitted.model) ? bounces : !bounces;
-    const std::string recorded = RegimeOf(loop.recording_held_out, bounces);
-    const std::string model = RegimeOf(fitted.held_out, fitted_bounces);
-    const Feature* stuck = loop.recording_held_out.Find("stick_fraction");
-    if (stuck && loop_internal::RejectedForRegime(
-                     loop_internal::MotionOf(loop.recording_held_out, bounces),
-                     loop_internal::MotionOf(fitted.held_out, fitted_bounces),
-                     loop_internal::MotionOf(baseline.held_out, runner.InRegime(baseline.model) ? bounces : !bounces),
-                     stuck->scale)) {
-      Candidate& rejected = loop.candidates[loop.kept];
-      rejected.kept = false;
-      rejected.verdict = "rejected: held out " + model + " where the recording is " + recorded +
-                         " (and the baseline); it qualified: " + rejected.verdict;
-      say("rejected " + Joined(rejected.effects) + ": its held-out window is " + model + ", the recording's " +
-          recorded + " (the baseline's too)");
-      loop.regime_rejected = rejected.effects;
-      loop.kept = -1;
-      loop.fitted_document = base;
-      fitted = baseline;
-    }
-  }
+  const Judged fitted = JudgeStandingModel(runner, base, baseline, o, say, loop);
   Adopt(fitted, loop.fitted_model, loop.fitted_fit, loop.fitted_held_out, loop.fitted_fit_error,
         loop.fitted_held_out_error);
   if (o.measure_regime_margin)
@@ -485,21 +525,7 @@ DiagnosisLoop RunDiagnosisLoop(const nlohmann::json& document, const Recording& 
   loop.model_runs += loop.regime_margin.runs;
   if (loop.regime_margin.measured) say(RegimeMarginText(loop.regime_margin));
   lap(loop.wall_seconds.fitted);
-  // The envelopes' correlogram is one feature read at several lags: one entry, where it counts.
-  const CorrelogramDifference correlogram = CompareCorrelograms(loop.fitted_held_out, loop.recording_held_out);
-  if (correlogram.rms_scales > 3)
-    loop.unexplained.push_back("hook load and weight on bit envelopes' correlogram: " +
-                               Fixed(correlogram.rms_scales, 1) + " scales rms over its lags, most at " +
-                               Fixed(correlogram.largest_at_lag_s, 1) + " s");
-  for (const Feature& f : loop.recording_held_out.features) {
-    if (f.name.rfind(kEnvelopeCorrelation, 0) == 0) continue;
-    const double m = loop.fitted_held_out.Value(f.name);
-    if (std::isfinite(f.value) && std::isfinite(m) && std::abs(m - f.value) > 3 * f.scale)
-      loop.unexplained.push_back(f.name + ": model " + Significant(m, 4) + " against " + Significant(f.value, 4) +
-                                 " recorded (" + Fixed((m - f.value) / f.scale, 1) + " scales)");
-    else if (std::isfinite(f.value) != std::isfinite(m))
-      loop.unexplained.push_back(f.name + ": " + (std::isfinite(m) ? "only the model has it" : "only the recording has it"));
-  }
+  loop.unexplained = Unexplained(loop.fitted_held_out, loop.recording_held_out);
   say("kept: " + (loop.kept >= 0 ? Joined(loop.candidates[loop.kept].effects) : std::string("nothing")) +
       "; held-out error " + Significant(loop.baseline_held_out_error, 3) + " -> " +
       Significant(loop.fitted_held_out_error, 3));
