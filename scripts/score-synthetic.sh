@@ -4,7 +4,7 @@
 # that are concealed), recall (concealed effects that are named), names on base recordings and recordings named
 # without a lower held-out error; it exits non-zero below the floors given here or on any of the latter two.
 #   bash scripts/score-synthetic.sh        the 12 recordings of synthetic/ (about 35 min on 2 cores)
-#   bash scripts/score-synthetic.sh ci     CI's seven of them (about 11 min): the base recording and the six whose
+#   bash scripts/score-synthetic.sh ci     CI's seven of them (541 s): the base recording and the six whose
 #                                          diagnosis takes under 5 minutes (rec03, rec05-rec10: soft top drive, axial
 #                                          decoupling, side friction, Stribeck with a telemetry delay, Stribeck,
 #                                          Kelvin-Voigt). Left to the full run: rec01-02, rec04 (the bouncing bit,
