@@ -1,16 +1,53 @@
 // `drillwave_bench stability`: the cost of two-parameter stability maps (linear analysis only): the saldivar string
 // (one section: scalar neutral form) and the collars string (two sections: wave network with the robust essential
-// abscissa, shared by neighbours with the same difference operator) on 100 x 100 grids, on 1 and 2 threads; the coupled axial-torsional string (27 states) by
-// the full spectrum and by continued roots.
+// abscissa, shared by neighbours with the same difference operator) on 100 x 100 grids, on 1 and 2 threads; the coupled
+// axial-torsional string (27 states) by the full spectrum and by continued roots; and `run`'s linear-verdict note
+// against the run itself on a Kelvin-Voigt string in many sub-sections.
 #include <cstdio>
 #include <ctime>
 #include <string>
 
+#include "drillwave/cases/case_runner.hpp"
+#include "drillwave/cases/stability.hpp"
 #include "drillwave/cases/stability_map.hpp"
 #include "drillwave/io/json_reader.hpp"
 
+namespace {
+
+double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+// `run`'s note (cases::AddLinearVerdict: the count right of the axis, then the abscissa bisected on it) against the
+// run and against the full spectra the note was computed from before (cases::AnalyzeStability), CPU seconds.
+void BenchVerdictNote() {
+  std::printf("## the linear-verdict note of `run` (saldivar-kelvin-voigt, CPU seconds)\n\n");
+  std::printf("| sub-sections | run | note | note's share | full spectra (the former note) | note |\n"
+              "|---|---|---|---|---|---|\n");
+  nlohmann::json doc =
+      drillwave::io::LoadJsonFile(std::string(DRILLWAVE_SOURCE_DIR) + "/json-cases/saldivar-kelvin-voigt.json");
+  for (int parts : {10, 20}) {
+    doc["model"]["string"]["damping_subsections"] = parts;
+    const drillwave::cases::Case c = drillwave::cases::ParseCase(doc);
+    double start = CpuSeconds();
+    drillwave::cases::CaseRun run = drillwave::cases::RunCase(c);
+    const double run_s = CpuSeconds() - start;
+    start = CpuSeconds();
+    drillwave::cases::AddLinearVerdict(c, run.summary);
+    const double note_s = CpuSeconds() - start;
+    start = CpuSeconds();
+    drillwave::cases::AnalyzeStability(c, {}, drillwave::cases::ContinuumRoots::kSkipped);
+    const double full_s = CpuSeconds() - start;
+    std::printf("| %d | %.3f | %.3f | %.0f %% | %.3f | %s |\n", parts, run_s, note_s, 100 * note_s / (run_s + note_s),
+                full_s, run.summary.value("linear_verdict", std::string("(none)")).c_str());
+    std::fflush(stdout);
+  }
+  std::printf("\nGoal (issue 33): the note no more than 20 %% of `run`.\n\n");
+}
+
+}  // namespace
+
 int BenchStabilityMap() {
   using drillwave::cases::ParseMapAxis;
+  BenchVerdictNote();
   std::printf("## two-parameter stability maps (linear analysis, top speed x bit inertia)\n\n");
   std::printf("| case | grid | threads | wall [s] | ms per point |\n|---|---|---|---|---|\n");
   for (const auto& [name, n] : {std::pair<std::string, int>{"saldivar-stickslip", 100}, {"saldivar-collars", 100}}) {

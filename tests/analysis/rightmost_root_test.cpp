@@ -2,8 +2,10 @@
 // determinant equals the dense LU's, the argument principle counts the roots ComputeSpectrum finds in a box (and a
 // delay-free system's eigenvalues), and roots continued from nearby seeds are certified only when nothing lies right
 // of them.
+#include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
@@ -127,6 +129,40 @@ TEST(UnstableByArgumentPrinciple, AgreesWithTheFullSpectrumsVerdict) {
     shifted.a0 << a, -3, 0, 3, a, 0, 0, 1, -2;
     EXPECT_EQ(UnstableByArgumentPrinciple(shifted, {}), std::optional<bool>(a > 0));
   }
+}
+
+// The abscissa bisected on the same count is the full spectrum's to within its precision, with the same verdict: the
+// coupled string at two speeds, the scalar neutral equation on both sides of its boundary with its essential spectrum
+// left of the axis or on it, and a delay-free system.
+TEST(AbscissaByArgumentPrinciple, IsTheFullSpectrumsAbscissaAndVerdict) {
+  constexpr double kPrecision = 1e-6;
+  double worst = 0;
+  auto check = [&](const LinearDelaySystem& sys, const std::string& what) {
+    const Spectrum sp = ComputeSpectrum(sys);
+    const std::optional<Spectrum> bisected = AbscissaByArgumentPrinciple(sys, {}, kPrecision);
+    ASSERT_TRUE(bisected.has_value()) << what;
+    EXPECT_EQ(bisected->verdict, sp.verdict) << what;
+    EXPECT_NEAR(bisected->spectral_abscissa, sp.spectral_abscissa, kPrecision) << what;
+    EXPECT_EQ(bisected->essential_abscissa, sp.essential_abscissa) << what;
+    EXPECT_TRUE(bisected->roots.empty());
+    worst = std::max(worst, std::abs(bisected->spectral_abscissa - sp.spectral_abscissa));
+  };
+  for (double speed : {4.5, 12.0}) check(CoupledString(speed, 90e3), "coupled string at " + std::to_string(speed));
+  for (double c : {0.5, 1.0})
+    for (double a : {-2.0, 0.3})
+      for (double b : {-0.5, 1.5}) {
+        LinearDelaySystem sys;
+        sys.a0 = Eigen::MatrixXd::Constant(1, 1, a);
+        sys.delays.push_back({1.0, Eigen::MatrixXd::Constant(1, 1, b), Eigen::MatrixXd::Constant(1, 1, c)});
+        check(sys, "a " + std::to_string(a) + ", b " + std::to_string(b) + ", c " + std::to_string(c));
+      }
+  LinearDelaySystem shifted;  // delay-free: eigenvalues a +- 3i and -2
+  for (double a : {0.5, -0.5}) {
+    shifted.a0 = Eigen::MatrixXd::Zero(3, 3);
+    shifted.a0 << a, -3, 0, 3, a, 0, 0, 1, -2;
+    check(shifted, "delay-free, a " + std::to_string(a));
+  }
+  std::printf("[ measured ] bisected abscissa against the full spectrum's: largest difference %.1e\n", worst);
 }
 
 TEST(SpectrumFromSeeds, FindsTheFullSpectrumsRightmostRootFromNearbySeeds) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/validity.hpp"
@@ -45,9 +44,11 @@ double PhaseChange(Complex a, Complex b) { return std::arg(b * std::conj(a)); }
 // Change of arg det Delta from a to b, steps halved until each changes the argument by at most 0.5 rad and the
 // modulus by at most a factor e (a root near the segment then costs steps, not a missed turn). Steps are also at most
 // longest_step(s): a root passed within one step turns the argument by about pi, which the step's other changes must
-// not wrap back below 0.5 rad. False when a step falls below rounding (a root on the segment).
+// not wrap back below 0.5 rad. False when a step falls below rounding (a root on the segment). With `moments`, also
+// adds the integrals of s dln(det) and s^2 dln(det) along the segment (midpoint rule per step) to moments[0], [1].
 template <typename Determinant, typename LongestStep>
-bool ArgumentChange(const Determinant& det, Complex a, Complex b, LongestStep longest_step, double& change) {
+bool ArgumentChange(const Determinant& det, Complex a, Complex b, LongestStep longest_step, double& change,
+                    Complex* moments = nullptr) {
   const double length = std::abs(b - a);
   const Complex direction = (b - a) / length;
   CharacteristicDeterminant::Value from = det(a);
@@ -65,6 +66,10 @@ bool ArgumentChange(const Determinant& det, Complex a, Complex b, LongestStep lo
       continue;
     }
     change += d_arg;
+    if (moments) {
+      const Complex mid = a + direction * (t + 0.5 * step), d_ln(d_log, d_arg);
+      moments[0] += mid * d_ln, moments[1] += mid * mid * d_ln;
+    }
     t += step;
     from = to;
     h = std::abs(d_arg) < 0.2 && std::abs(d_log) < 0.4 ? 2 * step : step;
@@ -106,7 +111,14 @@ bool NewtonOnDeterminant(const Determinant& det, Complex& s, int iterations, con
 
 CharacteristicDeterminant::CharacteristicDeterminant(const LinearDelaySystem& sys) : n_(sys.dimension()) {
   const int n = n_, first_derivative_only = n - sys.derivative_only_states;
-  for (const DelayTerm& d : sys.delays) tau_.push_back(d.tau);
+  // Terms of one delay share their exponential: merged, each entry sums one product per distinct delay (a string in k
+  // equal pieces has k terms of one tau). delay_sum_ keeps every term's: det Delta varies as fast as their sum.
+  std::vector<std::size_t> merged;
+  for (const DelayTerm& d : sys.delays) {
+    delay_sum_ += d.tau;
+    merged.push_back(static_cast<std::size_t>(std::find(tau_.begin(), tau_.end(), d.tau) - tau_.begin()));
+    if (merged.back() == tau_.size()) tau_.push_back(d.tau);
+  }
   std::vector<std::vector<bool>> used(n, std::vector<bool>(n, false));
   for (int i = 0; i < n; ++i) {
     used[i][i] = true;
@@ -127,10 +139,12 @@ CharacteristicDeterminant::CharacteristicDeterminant(const LinearDelaySystem& sy
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       if (!used[i][j]) continue;
-      Entry e{position[i], position[j], j >= first_derivative_only, i == j, sys.a0(i, j), {}, {}};
-      for (const DelayTerm& d : sys.delays) {
-        e.retarded.push_back(d.retarded.size() > 0 ? d.retarded(i, j) : 0.0);
-        e.neutral.push_back(d.neutral.size() > 0 ? d.neutral(i, j) : 0.0);
+      Entry e{position[i], position[j], j >= first_derivative_only, i == j, sys.a0(i, j),
+              std::vector<double>(tau_.size(), 0.0), std::vector<double>(tau_.size(), 0.0)};
+      for (std::size_t t = 0; t < sys.delays.size(); ++t) {
+        const DelayTerm& d = sys.delays[t];
+        if (d.retarded.size() > 0) e.retarded[merged[t]] += d.retarded(i, j);
+        if (d.neutral.size() > 0) e.neutral[merged[t]] += d.neutral(i, j);
       }
       lower_ = std::max(lower_, e.row - e.col);
       upper_ = std::max(upper_, e.col - e.row);
@@ -138,7 +152,7 @@ CharacteristicDeterminant::CharacteristicDeterminant(const LinearDelaySystem& sy
     }
 }
 
-double CharacteristicDeterminant::delay_sum() const { return std::accumulate(tau_.begin(), tau_.end(), 0.0); }
+double CharacteristicDeterminant::delay_sum() const { return delay_sum_; }
 
 CharacteristicDeterminant::Value CharacteristicDeterminant::operator()(Complex s) const {
   const int n = n_, terms = static_cast<int>(tau_.size());
@@ -180,12 +194,13 @@ CharacteristicDeterminant::Value CharacteristicDeterminant::operator()(Complex s
     if (!(size > 0) || !std::isfinite(size)) return {-std::numeric_limits<double>::infinity(), Complex(1.0)};
     out.log_modulus += std::log(size);
     out.phase *= p / size;
+    // Written out: std::complex's operator* and operator/ guard against inf and NaN by a library call each.
+    const double inverse_r = p.real() / (size * size), inverse_i = -p.imag() / (size * size);  // 1 / p
     for (int i = k + 1; i <= last_row; ++i) {
       Complex* row_i = &m[static_cast<std::size_t>(i) * n];
       if (row_i[k] == 0.0) continue;
-      const Complex f = row_i[k] / p;
-      // Written out: std::complex's operator* guards against inf and NaN by a library call per product.
-      const double fr = f.real(), fi = f.imag();
+      const double fr = row_i[k].real() * inverse_r - row_i[k].imag() * inverse_i;  // row_i[k] / p
+      const double fi = row_i[k].real() * inverse_i + row_i[k].imag() * inverse_r;
       for (int j = k + 1; j <= last_col; ++j) {
         const double ur = row_k[j].real(), ui = row_k[j].imag();
         row_i[j] = Complex(row_i[j].real() - (fr * ur - fi * ui), row_i[j].imag() - (fr * ui + fi * ur));
@@ -222,16 +237,21 @@ double RootRealPartBound(const LinearDelaySystem& sys) {
 namespace {
 
 // The count of CountRootsInBox, for any determinant-like function; near_step: the longest step at the left edge.
+// With `sums`, also the sum of the roots in the box and of their squares (real: the roots come in conjugate pairs):
+// (1 / 2 pi i) of the contour integrals of s^m dln(det), the lower half the mirror of the upper.
 template <typename Determinant>
-int CountRootsInBoxOf(const Determinant& det, double near_step, double re_left, double re_right, double im_max) {
+int CountRootsInBoxOf(const Determinant& det, double near_step, double re_left, double re_right, double im_max,
+                      double* sums = nullptr) {
   // Near the left edge the steps are at most near_step; farther right the exponentials fade and the roots thin out,
   // and the steps grow with the distance.
   auto longest_step = [&](Complex s) { return near_step + 0.2 * (s.real() - re_left); };
   // Counter-clockwise upper half: (re_right, 0) up, across the top, down to (re_left, 0).
   double change = 0;
   const Complex corners[4] = {{re_right, 0}, {re_right, im_max}, {re_left, im_max}, {re_left, 0}};
+  Complex moments[2] = {0.0, 0.0};
   for (int k = 0; k < 3; ++k)
-    if (!ArgumentChange(det, corners[k], corners[k + 1], longest_step, change)) return -1;
+    if (!ArgumentChange(det, corners[k], corners[k + 1], longest_step, change, sums ? moments : nullptr)) return -1;
+  if (sums) sums[0] = moments[0].imag() / kPi, sums[1] = moments[1].imag() / kPi;  // I - conj(I) = 2i Im I
   const double count = change / kPi;  // the whole box winds twice the upper half's change
   const double whole = std::round(count);
   return std::abs(count - whole) < 0.05 && whole >= 0 ? static_cast<int>(whole) : -1;
@@ -262,6 +282,70 @@ std::optional<bool> UnstableByArgumentPrinciple(const LinearDelaySystem& system,
   const int count = CountRootsInBox(CharacteristicDeterminant(system), re_left, re_right, o.im_max);
   if (count < 0) return std::nullopt;
   return count > 0;
+}
+
+std::optional<Spectrum> AbscissaByArgumentPrinciple(const LinearDelaySystem& system, const SpectrumOptions& o,
+                                                    double precision) {
+  Spectrum sp;
+  std::vector<Complex> chain_starts;
+  sp.essential_abscissa = EssentialAbscissa(system, o, chain_starts);
+  if (std::isnan(sp.essential_abscissa)) return std::nullopt;
+  const CharacteristicDeterminant det(system);
+  const double bound = RootRealPartBound(system), near_step = 0.25 / std::max(1e-300, det.delay_sum());
+  // The roots right of the line Re s = left (|Im s| <= im_max): their count, sum and sum of squares. A line through a
+  // root is moved by a fraction of the precision.
+  struct Right {
+    double left;
+    int count;
+    double sums[2];
+  };
+  auto right_of = [&](double re) -> std::optional<Right> {
+    for (const double nudge : {0.0, 0.3, -0.3}) {
+      Right r{re + nudge * precision, 0, {0, 0}};
+      r.count = CountRootsInBoxOf(det, near_step, r.left, std::max(bound, r.left + 1.0), o.im_max, r.sums);
+      if (r.count >= 0) return r;
+    }
+    return std::nullopt;
+  };
+  // One real root or one pair right of the line: the sums place it (a pair's sum is 2 Re r, its squares' 2 (Re^2 -
+  // Im^2)) and Newton's method refines it; nullopt where the sums say two real roots or Newton leaves the box.
+  auto rightmost_of = [&](const Right& r) -> std::optional<double> {
+    const double re = r.count == 1 ? r.sums[0] : 0.5 * r.sums[0], im2 = re * re - 0.5 * r.sums[1];
+    if (!(r.count == 1 || (r.count == 2 && im2 > 0))) return std::nullopt;
+    Complex s(re, r.count == 1 ? 1e-3 * (1.0 + std::abs(re)) : std::sqrt(im2));
+    if (!NewtonOnDeterminant(det, s, o.newton_iterations, {})) return std::nullopt;
+    const bool real = std::abs(s.imag()) <= 1e-7 * (1.0 + std::abs(s));
+    if ((r.count == 1) != real || !(s.real() > r.left) || std::abs(s.imag()) > o.im_max) return std::nullopt;
+    return s.real();
+  };
+  // A bracket lo < abscissa <= hi: right of the bound no root; leftward from 0 the step doubles down to re_min.
+  std::optional<Right> lo = right_of(0.0);
+  double hi = std::max(bound, 1.0);
+  if (!lo) return std::nullopt;
+  for (double step = 0.125; lo->count == 0; step *= 2) {
+    hi = lo->left;
+    if (lo->left <= o.re_min) {  // no root in the region
+      sp.spectral_abscissa = -std::numeric_limits<double>::infinity();
+      SetVerdict(sp);
+      return sp;
+    }
+    if (!(lo = right_of(std::max(o.re_min, lo->left - step)))) return std::nullopt;
+  }
+  // Halved until one real root or one pair lies right of lo, placed by its sums; else to the precision.
+  std::optional<double> abscissa = rightmost_of(*lo);
+  while (!abscissa && hi - lo->left > precision) {
+    const std::optional<Right> mid = right_of(0.5 * (lo->left + hi));
+    if (!mid) return std::nullopt;
+    if (mid->count == 0) {
+      hi = mid->left;
+    } else {
+      lo = mid;
+      abscissa = rightmost_of(*lo);
+    }
+  }
+  sp.spectral_abscissa = abscissa.value_or(0.5 * (lo->left + hi));
+  SetVerdict(sp);
+  return sp;
 }
 
 bool NewtonOnFunction(const CharacteristicFunction& f, std::complex<double>& s, int iterations,

@@ -340,28 +340,44 @@ RunFromStart CompareWithRunFromStart(const Case& c, const std::vector<OperatingP
 }
 
 void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
-  constexpr int kLinearVerdictStates = 64;
+  // Beyond 64 states (the coupled model's 20 sub-sections: 87) the full spectrum costs seconds, more than the run:
+  // where the counts below cannot answer, `stability` does. The counts cost a banded LU of det Delta per step along
+  // their contours: beyond 2e5 multiply-adds per LU (a Kelvin-Voigt string in 20 sub-sections, whose dashpots make
+  // Delta dense, needs 1.4e5; in 40, 1.1e6 and a note costlier than the run) `stability` answers as well.
+  constexpr int kFullSpectrumStates = 64;
+  constexpr double kCountLuCost = 2e5;
   if (!summary.contains("stick_onsets") || !summary.at("stick_onsets").is_number()) return;
   const bool sticks = summary.at("stick_onsets").get<int>() > 0;
   std::vector<OperatingPointStability> points;
   try {
-    // Beyond 64 states (the coupled model's 20 sub-sections: 87) the spectrum costs seconds, more than the run:
-    // `stability` answers there.
     const std::vector<LinearizedOperatingPoint> linearized = c.model->Linearize();
-    for (const LinearizedOperatingPoint& p : linearized)
-      if (p.system.dimension() > kLinearVerdictStates) return;
+    for (const LinearizedOperatingPoint& p : linearized) {
+      p.system.Validate();
+      const analysis::CharacteristicDeterminant det(p.system);
+      const double lower = det.lower_bandwidth(), upper = det.upper_bandwidth();
+      if (p.system.dimension() * (lower + 1) * (lower + upper + 1) > kCountLuCost) return;
+    }
     // The note speaks only where a run that sticks meets a steady state that is not unstable, or a run that does not
     // stick meets only unstable ones. Counting the roots right of the axis (milliseconds) tells most runs that there
     // is nothing to say, before the full spectra its numbers need (seconds with many sub-sections, issue 33).
     std::vector<std::optional<bool>> unstable;
-    for (const LinearizedOperatingPoint& p : linearized) {
-      p.system.Validate();
+    for (const LinearizedOperatingPoint& p : linearized)
       unstable.push_back(analysis::UnstableByArgumentPrinciple(p.system, {}));
-    }
     const auto known = [](bool value) { return [value](const std::optional<bool>& u) { return u == value; }; };
     if (sticks && std::all_of(unstable.begin(), unstable.end(), known(true))) return;
     if (!sticks && std::any_of(unstable.begin(), unstable.end(), known(false))) return;
-    points = AnalyzeStability(c, {}, ContinuumRoots::kSkipped);  // the note sets the run against the pieces' roots
+    // The note's numbers are a verdict and a spectral abscissa: from counts of the same kind (tens of milliseconds
+    // where the full spectrum of 20 sub-sections costs seconds); the full spectra where a count cannot be made.
+    for (const LinearizedOperatingPoint& p : linearized) {
+      std::optional<analysis::Spectrum> sp = analysis::AbscissaByArgumentPrinciple(p.system, {}, 1e-5);
+      if (!sp) break;
+      points.push_back({p, std::move(*sp)});
+    }
+    if (points.size() != linearized.size()) {
+      for (const LinearizedOperatingPoint& p : linearized)
+        if (p.system.dimension() > kFullSpectrumStates) return;
+      points = AnalyzeStability(c, {}, ContinuumRoots::kSkipped);  // the note sets the run against the pieces' roots
+    }
   } catch (const InputError&) {
     return;  // this kind or configuration has no linearization
   } catch (const std::invalid_argument&) {

@@ -46,7 +46,8 @@ class CharacteristicDeterminant {
     std::vector<double> retarded, neutral;  // per delay term
   };
   int n_ = 0, lower_ = 0, upper_ = 0;
-  std::vector<double> tau_;
+  double delay_sum_ = 0;
+  std::vector<double> tau_;  // distinct
   std::vector<Entry> entries_;
 };
 
@@ -75,6 +76,14 @@ bool NewtonOnFunction(const CharacteristicFunction& f, std::complex<double>& s, 
 // milliseconds where the full spectrum of many sub-sections costs seconds. nullopt where it cannot tell (delays that
 // are not commensurate, a root on the box's edge). Validate the system first.
 std::optional<bool> UnstableByArgumentPrinciple(const LinearDelaySystem& system, const SpectrumOptions& options);
+
+// The verdict and spectral abscissa ComputeSpectrum would give (roots with Re s >= re_min, |Im s| <= im_max) from the
+// count of roots right of a vertical line, moved left until a root is right of it and then halved until one real
+// root or one pair is: the contour's moments place it, Newton's method refines it (else the halving goes on to
+// `precision`). `roots` stays empty. Tens of milliseconds where the full spectrum of many sub-sections costs seconds.
+// nullopt where a count cannot be made (delays not commensurate, a root on a box's edge).
+std::optional<Spectrum> AbscissaByArgumentPrinciple(const LinearDelaySystem& system, const SpectrumOptions& options,
+                                                    double precision);
 
 struct SeededSpectrum {
   // roots: the seeds' roots in the region (Re s >= re_min, 0 <= Im s <= im_max), distinct, rightmost first; only
