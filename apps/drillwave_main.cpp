@@ -63,7 +63,9 @@ const std::map<std::string, std::string> kFlagsOfFields = {
     {"window_begin_s", "--window"},
     {"window_end_s", "--window"},
     {"bit_speed", "--bit"},
-    {"top_speed", "--top"}};
+    {"top_speed", "--top"},
+    {"telemetry_delay_s", "--fuse-delay"},
+    {"innovation_time_constant_s", "--fuse-time-constant"}};
 
 // The flag that sets a library parameter (drillwave::ParameterError names it as the library does): "max_samples"
 // -> "--max-samples", an options field by kFlagsOfFields; a parameter with a qualifier ("map /model/bit/inertia_kgm2")
@@ -409,6 +411,9 @@ struct EstimateArguments {
   std::string from, window, out = "drillwave-estimate";
   bool follow = false;
   double follow_idle_s = 10;
+  std::string fuse;  // downhole telemetry channels fused into the estimate
+  drillwave::estimation::TelemetryFusion fusion;
+  bool read_fuse_delay = true;  // --fuse-delay not given: read from the bit speed channel
 };
 
 // --follow: the recording read as it grows (or from standard input), each estimate row printed to standard output as
@@ -501,6 +506,7 @@ int Estimate(const std::string& file, const std::string& recording_file, const s
         es::SignalsFromRecording(recording, es::ParseSurfaceChannels(a.from, recording));
     const auto begin = std::chrono::steady_clock::now();
     e = es::EstimateBit(model, signals, options);
+    if (!a.fuse.empty()) es::FuseTelemetry(recording, a.fuse, a.fusion, a.read_fuse_delay, e);
     estimating_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   }
   const nlohmann::json summary = es::EstimateSummary(recording, e, score);
@@ -1159,8 +1165,18 @@ Command AddEstimate(CLI::App& app, CommonArguments& common) {
       ->add_option("--follow-idle", a->follow_idle_s,
                    "with --follow on a file: end after this many seconds without a new line (default 10)")
       ->check(CLI::PositiveNumber);
+  estimate->add_option("--fuse", a->fuse,
+                        "downhole telemetry channels fused into the estimate at their delay, e.g. bit_rpm,wob_kN: "
+                        "their innovation low-passed corrects the model's slow error (not with --follow)");
+  estimate->add_option("--fuse-delay", a->fusion.telemetry_delay_s,
+                       "with --fuse: the telemetry's delay [s] (default: read from the bit speed channel)");
+  estimate->add_option("--fuse-time-constant", a->fusion.innovation_time_constant_s,
+                       "with --fuse: the innovation's low-pass time constant [s] (default 20)");
   estimate->add_option("--set", common.overrides, "override a parameter of the case by JSON pointer");
-  return {estimate, [a, &common] {
+  return {estimate, [a, &common, estimate] {
+            a->read_fuse_delay = estimate->count("--fuse-delay") == 0;
+            if (!a->fuse.empty() && a->follow)
+              throw drillwave::ParameterError("fuse", "telemetry is fused on a whole recording, not with --follow");
             return Estimate(common.case_file, common.recording_file, common.sidecar_file, common.overrides, *a);
           }};
 }

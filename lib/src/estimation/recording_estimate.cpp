@@ -6,6 +6,7 @@
 #include "drillwave/core/constants.hpp"
 #include "drillwave/core/error.hpp"
 #include "drillwave/core/format.hpp"
+#include "drillwave/core/validity.hpp"
 #include "drillwave/estimation/estimate_report.hpp"
 #include "drillwave/estimation/metrics.hpp"
 #include "drillwave/io/csv.hpp"
@@ -99,6 +100,58 @@ SurfaceSignals SignalsFromRecording(const recordings::Recording& r, const Surfac
   return s;
 }
 
+void FuseTelemetry(const recordings::Recording& r, const std::string& channels, TelemetryFusion fusion, bool read_delay,
+                   BitEstimate& e) {
+  ThrowIfInvalid(fusion);
+  std::vector<std::pair<std::string, std::vector<double>*>> fused;
+  std::stringstream in(channels);
+  std::string name;
+  while (std::getline(in, name, ',')) {
+    const std::string shown = "'" + ReadableText(name) + "' in '" + ReadableText(channels) + "'";
+    const char role = RoleOf(name).first;
+    if (!IsDownhole(name) || role == 0)
+      throw ParameterError("fuse", shown + ": expected a downhole channel (bit_rpm or bit_rad_s; tob_Nm, bit_torque_Nm "
+                                           "or tob_kNm; wob_N or wob_kN)");
+    if (!r.Has(name)) r.Channel(name);  // throws, naming the channels there are
+    fused.push_back({name, role == 's' ? &e.bit_speed_rad_s : role == 't' ? &e.bit_torque_Nm : &e.wob_N});
+  }
+  if (fused.empty()) throw ParameterError("fuse", "no channel named in '" + ReadableText(channels) + "'");
+  std::string delay_from = "given";
+  if (read_delay) {
+    const auto [speed_name, speed] = Downhole(r, {"bit_rpm", "bit_rad_s"});
+    if (speed.empty())
+      throw ParameterError("fuse", "the telemetry delay is read from a bit speed channel (bit_rpm or bit_rad_s), which "
+                                   "the recording does not hold: give the delay (telemetry_delay_s)",
+                           {"telemetry_delay_s"});
+    const TelemetryLag lag = ReadTelemetryLag(e.time_s, e.bit_speed_rad_s, speed, -1e300, 1e300, 10.0);
+    if (!lag.found)
+      throw ParameterError("fuse", "no telemetry delay read from '" + speed_name + "' (correlation " +
+                                       ReadableNumber(lag.correlation) + " at " + ReadableNumber(lag.lag_s) +
+                                       " s): a channel without delay would be copied into the estimate, not fused; "
+                                       "give the delay (telemetry_delay_s) if it is known",
+                           {"telemetry_delay_s"});
+    fusion.telemetry_delay_s = lag.lag_s;
+    delay_from = "read from " + speed_name;
+  }
+  const double dt = r.sample_interval_s;
+  std::ostringstream note;
+  note << "downhole telemetry fused at a delay of " << Significant(fusion.telemetry_delay_s, 4) << " s (" << delay_from
+       << "), its innovation low-passed over " << Significant(fusion.innovation_time_constant_s, 4) << " s:";
+  for (auto& [channel, estimate] : fused) {
+    const std::vector<double> telemetry = Scaled(r.Channel(channel), RoleOf(channel).second);
+    const std::vector<double> before = *estimate;
+    *estimate = FuseDelayedTelemetry(before, telemetry, dt, fusion);
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < before.size(); ++i)
+      if (std::isfinite(before[i])) sum += (*estimate)[i] - before[i], ++count;
+    note << " " << channel << " corrected by " << Significant(count ? sum / count / RoleOf(channel).second : 0.0, 3)
+         << " on average;";
+  }
+  note << " the stuck flag is the surface estimate's";
+  e.notes.push_back(note.str());
+}
+
 nlohmann::json EstimateSummary(const recordings::Recording& r, const BitEstimate& e, const ScoreWindow& w) {
   nlohmann::json j;
   j["method"] = e.method;
@@ -155,6 +208,13 @@ nlohmann::json EstimateSummary(const recordings::Recording& r, const BitEstimate
   if (!wob.empty()) {
     m["wob_N"] = ErrorJson(CompareSeries(e.time_s, e.wob_N, wob, w.begin_s, w.end_s), 1);
     m["wob_N"]["channel"] = wob_name;
+    if (m.contains("bit_rpm_at_downhole_delay")) {  // the same telemetry delays every downhole channel
+      const double delay = m["bit_rpm_at_downhole_delay"]["delay_s"].get<double>();
+      const std::size_t shift = static_cast<std::size_t>(std::lround(delay / r.sample_interval_s));
+      m["wob_N_at_downhole_delay"] = ErrorJson(CompareSeries(e.time_s, e.wob_N, Advanced(wob, shift), w.begin_s,
+                                                             w.end_s), 1);
+      m["wob_N_at_downhole_delay"]["delay_s"] = delay;
+    }
   }
   if (!m.empty()) {
     m["window_s"] = {std::max(w.begin_s, r.time_s.front()), std::min(w.end_s, r.time_s.back())};

@@ -6,8 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "drillwave/recordings/recording.hpp"
 #include "drillwave/estimation/estimate.hpp"
+#include "drillwave/estimation/telemetry_fusion.hpp"
+#include "drillwave/recordings/recording.hpp"
 
 namespace drillwave::estimation {
 
@@ -27,6 +28,15 @@ double SiFactor(const std::string& channel);
 
 // The named channels in SI units on the recording's grid (InputError naming time_s if it is not uniform).
 SurfaceSignals SignalsFromRecording(const recordings::Recording& recording, const SurfaceChannels& channels);
+
+// Downhole telemetry fused into the estimate (telemetry_fusion.hpp): each channel named in `channels`
+// ("bit_rpm,wob_kN": a bit speed, torque on bit or weight on bit channel the recording holds) into its estimate. The
+// delay is fusion.telemetry_delay_s, or, with read_delay, the lag ReadTelemetryLag finds between the estimate and the
+// recording's bit speed channel (up to 10 s). The stuck flag stays the surface estimate's. Adds a note to the
+// estimate's notes. Throws ParameterError("fuse", ...) naming the channel where it is not a downhole one or not in the
+// recording, or where no delay is found; ParameterError for fusion options that are not valid.
+void FuseTelemetry(const recordings::Recording& recording, const std::string& channels, TelemetryFusion fusion,
+                   bool read_delay, BitEstimate& estimate);
 
 struct ScoreWindow {
   double begin_s = -1e300, end_s = 1e300;
