@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang (ASan + UBSan) into build-fuzz and runs each for FUZZ_SECONDS seconds
-# (default 60): the case JSON reader, the --set parser, the CSV reader and the recordings' sidecar reader; every case
+# Builds the libFuzzer targets with clang (ASan + UBSan; scripts/sanitized-build.sh, the build sanitize.sh tests) and
+# runs each for FUZZ_SECONDS seconds (default 60): the case JSON reader, the --set parser, the CSV reader and the recordings' sidecar reader; every case
 # the readers accept is also run briefly (fuzz/short_run.hpp). Fails if any target finds a crash, a sanitizer report,
 # an exception other than InputError (or NumericalError from a run), an input taking over 10 s or 2 GB; the input that
 # did it is left in build-fuzz/artifacts/. Seeds: json-cases/ and fuzz/corpus/; what the fuzzers add stays in
@@ -8,16 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-60}
-command -v clang++ >/dev/null || { echo "fuzz.sh: needs clang (apt-get install clang)" >&2; exit 2; }
-launcher=()
-command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-# -O1 and line tables only: the usual fuzzing build, and much quicker to compile than -O2 -g.
-cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
-  -DCMAKE_CXX_COMPILER=clang++ "${launcher[@]}" \
-  -DDRILLWAVE_FUZZ=ON -DDRILLWAVE_BUILD_APPS=OFF -DDRILLWAVE_BUILD_TESTS=OFF -DDRILLWAVE_PYTHON=OFF \
-  -DDRILLWAVE_INSTALL=OFF >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target drillwave_fuzz_case drillwave_fuzz_set drillwave_fuzz_csv \
-  drillwave_fuzz_sidecar
+bash scripts/sanitized-build.sh drillwave_fuzz_case drillwave_fuzz_set drillwave_fuzz_csv drillwave_fuzz_sidecar
 export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 mkdir -p build-fuzz/artifacts
 # Dictionaries: every key and string value of json-cases/ and the sidecar seeds as a JSON string (the case and sidecar

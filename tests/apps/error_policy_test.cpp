@@ -124,11 +124,23 @@ TEST_F(ErrorPolicy, AMillionActuatorDelaysAreRefusedBeforeAnyRun) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+// AddressSanitizer as gcc (__SANITIZE_ADDRESS__) and clang (__has_feature) say it.
+#if defined(__SANITIZE_ADDRESS__)
+#define DRILLWAVE_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define DRILLWAVE_UNDER_ASAN 1
+#endif
+#endif
+#ifndef DRILLWAVE_UNDER_ASAN
+#define DRILLWAVE_UNDER_ASAN 0
+#endif
+
 // Issue 41: a run whose trajectory the memory cannot hold (8e6 samples of about 20 channels, some 450 MB, under an
 // address-space limit of 400 MB) ended as an internal error (exit 4, std::bad_alloc) after part of the work; now it is
 // refused before the run with exit 6, naming both sizes and what to ask for instead.
 TEST_F(ErrorPolicy, ARunLargerThanTheMemoryIsRefusedBeforeTheRun) {
-#if defined(__SANITIZE_ADDRESS__)
+#if DRILLWAVE_UNDER_ASAN
   GTEST_SKIP() << "AddressSanitizer maps terabytes of shadow memory: no run starts under an address-space limit";
 #endif
   auto doc = base_;

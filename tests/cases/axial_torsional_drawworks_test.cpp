@@ -87,7 +87,8 @@ TEST(AxialTorsionalDrawworks, AFasterSupplyLoadsTheBitUntilItDrillsAsFastAsTheLi
   const auto [rop1, hook1] = steady(w1);
   const auto [rop2, hook2] = steady(w2);
   const double rop_per_wob = (rop2 - rop1) / (w2 - w1);
-  auto rop = [&](double wob) { return rop1 + rop_per_wob * (wob - w1); };
+  // C++17 lambdas cannot capture a structured binding (clang refuses it): rop1 by an init-capture.
+  auto rop = [&, rop_at_w1 = rop1](double wob) { return rop_at_w1 + rop_per_wob * (wob - w1); };
   // hook = B - W - D rop: two equations for B and D.
   const double damping = -((hook2 - hook1) + (w2 - w1)) / (rop2 - rop1), buoyant = hook1 + w1 + damping * rop1;
   const CaseRun run = RunCase(ParseCase(doc));
