@@ -419,7 +419,8 @@ py::dict Diagnose(const py::object& case_, const py::object& recording_file, con
 // As `drillwave estimate`: the bit seen from the surface channels named in from_channels, scored against the
 // downhole channels the recording holds (read only for the errors).
 py::dict Estimate(const py::object& case_, const py::object& recording_file, const std::string& from_channels,
-                  const py::object& sidecar, const py::object& overrides, const py::object& window) {
+                  const py::object& sidecar, const py::object& overrides, const py::object& window,
+                  const std::string& fuse, const py::object& fuse_delay, double fuse_time_constant) {
   namespace es = drillwave::estimation;
   namespace dg = drillwave::diagnosis;
   json doc = CaseDocument(case_, overrides);
@@ -435,6 +436,9 @@ py::dict Estimate(const py::object& case_, const py::object& recording_file, con
   drillwave::ThrowIfInvalid(options);
   const std::string recording_name = FileName(recording_file, "recording");
   const json window_given = window.is_none() ? json() : ToJson(window, "window");
+  es::TelemetryFusion fusion;
+  fusion.innovation_time_constant_s = fuse_time_constant;
+  if (!fuse_delay.is_none()) fusion.telemetry_delay_s = fuse_delay.cast<double>();
   const auto [summary, e] = WithoutGil(std::nullopt, [&] {
     drillwave::cases::ParseCase(doc);  // every field checked (InputError names its path)
     const es::EstimatorModel model = es::EstimatorModelFromCase(doc, hook_force_N);
@@ -444,6 +448,7 @@ py::dict Estimate(const py::object& case_, const py::object& recording_file, con
     const es::SurfaceSignals signals =
         es::SignalsFromRecording(recording, es::ParseSurfaceChannels(from_channels, recording));
     es::BitEstimate estimate = es::EstimateBit(model, signals, options);
+    if (!fuse.empty()) es::FuseTelemetry(recording, fuse, fusion, fuse_delay.is_none(), estimate);
     return std::make_pair(es::EstimateSummary(recording, estimate, score), std::move(estimate));
   });
   auto rpm = [](std::vector<double> rad_s) {
@@ -517,7 +522,9 @@ std::string KeywordOf(const std::string& parameter) {
       {"fit_begin_s", "fit_window"},
       {"fit_end_s", "fit_window"},
       {"held_out_begin_s", "held_out"},
-      {"held_out_end_s", "held_out"}};
+      {"held_out_end_s", "held_out"},
+      {"telemetry_delay_s", "fuse_delay"},
+      {"innovation_time_constant_s", "fuse_time_constant"}};
   const std::size_t space = parameter.find(' ');
   const auto keyword = keywords.find(parameter.substr(0, space));
   if (keyword == keywords.end()) return parameter;
@@ -610,13 +617,16 @@ held_out: (begin, end) in recording time [s] (default: the usable recording's ha
 content ("hypotheses", "held_out", "fit", "candidates", "fitted_parameters", ...) and "fitted_case".)");
   m.def("estimate", &Estimate, py::arg("case"), py::arg("recording"), py::arg("from_channels"),
         py::arg("sidecar") = py::none(), py::arg("set") = py::none(), py::arg("window") = py::none(),
+        py::arg("fuse") = "", py::arg("fuse_delay") = py::none(), py::arg("fuse_time_constant") = 20.0,
         R"(A virtual downhole sensor, as `drillwave estimate`: the bit's speed, torque, weight on bit and stuck flag
 estimated from the surface channels named in from_channels (e.g. "top_rpm,top_torque_kNm,hookload_kN"; the downhole
 channels are never read for the estimate), with a case (typically diagnose's "fitted_case"; a sidecar moves it to a
 synthetic recording's operating point). window: (begin, end) [s] of the error figures (default: all). Returns
 estimate.json's content ("method", "latency_s", "stuck_events", "severity_windows", "errors" against the downhole
 channels the recording holds, ...) and "channels": NumPy arrays time_s, bit_rpm, bit_rpm_band, bit_torque_Nm,
-bit_torque_Nm_band, wob_N, wob_N_band, bit_stuck (bands: two standard deviations; NaN where not estimated).)");
+bit_torque_Nm_band, wob_N, wob_N_band, bit_stuck (bands: two standard deviations; NaN where not estimated).
+fuse: downhole telemetry channels fused at their delay (e.g. "bit_rpm,wob_kN", as --fuse), the delay fuse_delay [s]
+or read from the bit speed channel, the innovation low-passed over fuse_time_constant [s].)");
   m.def("calibrate", &Calibrate, py::arg("case"), py::arg("recording"), py::arg("params"),
         py::arg("sidecar") = py::none(), py::arg("set") = py::none(), py::arg("maps") = py::none(),
         py::arg("fit_window") = py::none(), py::arg("held_out") = py::none(), py::arg("walkers") = 16,

@@ -192,6 +192,27 @@ def test_estimate_sees_the_bit_of_the_models_own_recording_as_the_command_line_d
         drillwave.estimate(CASE, str(recording), "bit_rpm", set=SHORT)
 
 
+TRAIN_REC06 = os.path.join(SOURCE, "..", "shared", "recordings", "synthetic-train", "rec06.csv")
+
+
+@pytest.mark.skipif(not os.path.exists(TRAIN_REC06), reason="the workplace's recordings (../shared) are absent")
+def test_estimate_fuses_delayed_telemetry_as_the_command_line_does(tmp_path):
+    # train rec06's downhole channels arrive about 3.7 s late; the baseline case as given is off in weight on bit.
+    base = os.path.join(SOURCE, "json-cases", "baseline-60rpm.json")
+    surface = drillwave.estimate(base, TRAIN_REC06, "top_rpm,top_torque_kNm,hookload_kN")
+    fused = drillwave.estimate(base, TRAIN_REC06, "top_rpm,top_torque_kNm,hookload_kN", fuse="bit_rpm,wob_kN")
+    bias = [abs(e["errors"]["wob_N_at_downhole_delay"]["bias"]) for e in (surface, fused)]
+    assert bias[1] < 0.5 * bias[0]
+    assert any("telemetry fused at a delay of" in n for n in fused["notes"])
+    out = tmp_path / "out"
+    subprocess.run([CLI, "estimate", base, TRAIN_REC06, "--from", "top_rpm,top_torque_kNm,hookload_kN", "--fuse",
+                    "bit_rpm,wob_kN", "--out", str(out)], check=True, capture_output=True)
+    with open(out / "estimate.json") as f:
+        assert json.load(f)["errors"] == fused["errors"]
+    with pytest.raises(drillwave.InputError, match="^fuse_time_constant: expected a finite number > 0"):
+        drillwave.estimate(base, TRAIN_REC06, "top_rpm,top_torque_kNm", fuse="bit_rpm", fuse_time_constant=0)
+
+
 def test_calibrate_samples_the_posterior_of_a_recording_of_the_model_itself(tmp_path):
     # The model's own run as a recording: the posterior of its static friction holds the case's value.
     recording = own_recording(tmp_path)
