@@ -195,7 +195,7 @@ CharacteristicDeterminant::Value CharacteristicDeterminant::operator()(Complex s
     out.log_modulus += std::log(size);
     out.phase *= p / size;
     // Written out: std::complex's operator* and operator/ guard against inf and NaN by a library call each.
-    const double inverse_r = p.real() / (size * size), inverse_i = -p.imag() / (size * size);  // 1 / p
+    const double inverse_r = p.real() / size / size, inverse_i = -p.imag() / size / size;  // 1 / p; size^2 may overflow
     for (int i = k + 1; i <= last_row; ++i) {
       Complex* row_i = &m[static_cast<std::size_t>(i) * n];
       if (row_i[k] == 0.0) continue;
@@ -242,6 +242,10 @@ namespace {
 template <typename Determinant>
 int CountRootsInBoxOf(const Determinant& det, double near_step, double re_left, double re_right, double im_max,
                       double* sums = nullptr) {
+  // A delay so long that the left edge needs more than 1e5 steps (a string's few hundred; a cut delay 2 pi / (n w) at
+  // a bit turning at 1e-300 rad/s, 1e300 s, would need 1e303) cannot be followed: not counted.
+  constexpr double kMaxEdgeSteps = 1e5;
+  if (!(im_max / near_step <= kMaxEdgeSteps)) return -1;
   // Near the left edge the steps are at most near_step; farther right the exponentials fade and the roots thin out,
   // and the steps grow with the distance.
   auto longest_step = [&](Complex s) { return near_step + 0.2 * (s.real() - re_left); };

@@ -340,11 +340,11 @@ RunFromStart CompareWithRunFromStart(const Case& c, const std::vector<OperatingP
 }
 
 void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
-  // Beyond 64 states (the coupled model's 20 sub-sections: 87) the full spectrum costs seconds, more than the run:
-  // where the counts below cannot answer, `stability` does. The counts cost a banded LU of det Delta per step along
-  // their contours: beyond 2e5 multiply-adds per LU (a Kelvin-Voigt string in 20 sub-sections, whose dashpots make
-  // Delta dense, needs 1.4e5; in 40, 1.1e6 and a note costlier than the run) `stability` answers as well.
-  constexpr int kFullSpectrumStates = 64;
+  // Beyond 64 states (the coupled model's 20 sub-sections: 87) `stability` answers: the full spectrum costs seconds,
+  // more than the run, and so can the difference operator's abscissa the counts need first (several sections). The
+  // counts cost a banded LU of det Delta per step along their contours: beyond 2e5 multiply-adds per LU (a
+  // Kelvin-Voigt string in 20 sub-sections, whose dashpots make Delta dense, needs 1.4e5; in 30, 4.6e5) as well.
+  constexpr int kLinearVerdictStates = 64;
   constexpr double kCountLuCost = 2e5;
   if (!summary.contains("stick_onsets") || !summary.at("stick_onsets").is_number()) return;
   const bool sticks = summary.at("stick_onsets").get<int>() > 0;
@@ -355,7 +355,9 @@ void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
       p.system.Validate();
       const analysis::CharacteristicDeterminant det(p.system);
       const double lower = det.lower_bandwidth(), upper = det.upper_bandwidth();
-      if (p.system.dimension() * (lower + 1) * (lower + upper + 1) > kCountLuCost) return;
+      if (p.system.dimension() > kLinearVerdictStates ||
+          p.system.dimension() * (lower + 1) * (lower + upper + 1) > kCountLuCost)
+        return;
     }
     // The note speaks only where a run that sticks meets a steady state that is not unstable, or a run that does not
     // stick meets only unstable ones. Counting the roots right of the axis (milliseconds) tells most runs that there
@@ -373,11 +375,8 @@ void AddLinearVerdict(const Case& c, nlohmann::json& summary) {
       if (!sp) break;
       points.push_back({p, std::move(*sp)});
     }
-    if (points.size() != linearized.size()) {
-      for (const LinearizedOperatingPoint& p : linearized)
-        if (p.system.dimension() > kFullSpectrumStates) return;
+    if (points.size() != linearized.size())
       points = AnalyzeStability(c, {}, ContinuumRoots::kSkipped);  // the note sets the run against the pieces' roots
-    }
   } catch (const InputError&) {
     return;  // this kind or configuration has no linearization
   } catch (const std::invalid_argument&) {

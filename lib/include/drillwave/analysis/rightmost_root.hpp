@@ -57,7 +57,8 @@ double RootRealPartBound(const LinearDelaySystem& system);
 
 // The number of roots (with multiplicity) in re_left < Re s < re_right, |Im s| < im_max, from the change of arg det
 // Delta along the box's upper half (det Delta is real on the real axis: the lower half mirrors it). -1 when a root
-// lies on the box's edge or the change of argument cannot be followed.
+// lies on the box's edge or the change of argument cannot be followed (also where the delays are so long that the
+// left edge would take over 1e5 steps).
 int CountRootsInBox(const CharacteristicDeterminant& det, double re_left, double re_right, double im_max);
 
 // The same argument principle and Newton's method for a characteristic function given otherwise than as a delay
